@@ -1,0 +1,51 @@
+# Multi-level selective rendering accelerator: the project's entry points.
+# `make sim` and `make test` set up everything they need on a fresh Debian machine.
+SHELL        := /bin/bash
+.SHELLFLAGS  := -eo pipefail -c
+.DEFAULT_GOAL := help
+
+PY   := .venv/bin/python
+ENV  := source scripts/env.sh &&
+
+# make sim parameters (see ../shared/spec/contracts.md); empty means the tool's default.
+SCENE    ?= cornell
+WIDTH    ?= 320
+HEIGHT   ?= 240
+TILE     ?= 16
+LEVELS   ?= 2
+THR      ?= 8,16
+METRIC   ?= max
+FOV_GAIN ?= 0
+OUT      ?=
+WAVES    ?= 0
+PYTEST_ARGS ?=
+ifeq ($(CI),true)
+PYTEST_JOBS ?= -n 2
+endif
+
+.PHONY: help setup sim test lint synth bench eval waves clean
+
+help: ## list the targets
+	@echo "Multi-level selective rendering accelerator"
+	@echo
+	@echo "  make sim    set up, then render the default scene (SCENE=, WIDTH=, HEIGHT=, TILE=, LEVELS=,"
+	@echo "              THR=a,b,.., METRIC=max|sum, FOV_GAIN=, OUT=dir, WAVES=1)"
+	@echo "  make test   set up, then run every test (pytest, cocotb on Verilator)"
+	@echo "  make lint   Verilator -Wall, Verible and slang on every RTL module"
+	@echo "  make synth  Yosys synthesis reports"
+	@echo "  make bench  golden-model and hardware throughput benchmarks"
+	@echo "  make eval   quality against traced pixels (FULL=1 for 1920x1080)"
+	@echo "  make setup  only install what is missing (apt-get, .venv)"
+	@echo "  make clean  remove build outputs"
+
+setup:
+	@bash scripts/setup.sh
+
+include mk/*.mk
+
+test: setup $(TEST_DEPS)
+	$(ENV) python -m pytest $(PYTEST_JOBS) $(PYTEST_ARGS)
+
+clean:
+	rm -rf build out sim_build
+	find . -name __pycache__ -prune -exec rm -rf {} + 2>/dev/null || true

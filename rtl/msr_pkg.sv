@@ -1,0 +1,77 @@
+// Shared types and constants of the multi-level selective rendering accelerator.
+// The arithmetic they carry is defined in ../shared/spec/algorithm.md.
+//
+// Naming: parameters and constants ALL_CAPS, types *_t, enums *_e (lowRISC style).
+package msr_pkg;
+
+  // ---- Limits ---------------------------------------------------------------------------
+  localparam int unsigned MAX_TILE   = 32;                   // largest tile edge T
+  localparam int unsigned MAX_LEVELS = 3;                    // largest L
+  localparam int unsigned MAX_FRAME  = 4096;                 // largest frame edge
+  localparam int unsigned MAX_STRIDE = 1 << MAX_LEVELS;      // initial stride S = 2^L <= 8
+
+  localparam int unsigned COORD_W   = 12;                    // frame coordinate 0..4095
+  localparam int unsigned DIM_W     = 13;                    // frame extent 1..4096
+  localparam int unsigned LCOORD_W  = $clog2(MAX_TILE);      // tile-local coordinate 0..31
+  localparam int unsigned LDIM_W    = LCOORD_W + 1;          // tile extent 1..32
+  localparam int unsigned GAP_W     = 4;                     // gap b - a, 1..8
+  localparam int unsigned THR_W     = 8;
+  localparam int unsigned DIFF_W    = 10;                    // colour difference, sum metric <= 765
+  localparam int unsigned SRC_W     = 8;                     // source code (spec section 4)
+
+  // ---- Pixels and coordinates -------------------------------------------------------------
+  typedef logic [7:0]          chan_t;
+  typedef struct packed {
+    chan_t r;
+    chan_t g;
+    chan_t b;
+  } rgb_t;
+
+  typedef logic [COORD_W-1:0]  coord_t;    // global frame coordinate
+  typedef logic [DIM_W-1:0]    dim_t;      // frame width / height
+  typedef logic [LCOORD_W-1:0] lcoord_t;   // tile-local coordinate
+  typedef logic [LDIM_W-1:0]   ldim_t;     // tile width / height
+  typedef logic [GAP_W-1:0]    gap_t;
+  typedef logic [THR_W-1:0]    thr_t;
+  typedef logic [DIFF_W-1:0]   diff_t;
+  typedef logic [SRC_W-1:0]    src_t;
+
+  // ---- Run-time configuration encodings -----------------------------------------------------
+  typedef enum logic [1:0] {
+    TILE_8  = 2'd0,
+    TILE_16 = 2'd1,
+    TILE_32 = 2'd2
+  } tile_size_e;
+
+  typedef enum logic {
+    METRIC_MAX = 1'b0,   // max(|dR|, |dG|, |dB|)
+    METRIC_SUM = 1'b1    // |dR| + |dG| + |dB|
+  } metric_e;
+
+  typedef logic [1:0] level_t;            // L = 1..3, level index k = 0..3
+
+  // ---- Source codes (spec section 4) ------------------------------------------------------
+  localparam src_t SRC_INITIAL     = 8'd0;    // initial sample, traced
+  localparam src_t SRC_INTERP_BASE = 8'd16;   // interpolated at level k: 16 + k
+                                              // traced at level k: k
+
+  function automatic src_t src_traced(level_t k);
+    return src_t'(k);
+  endfunction
+
+  function automatic src_t src_interp(level_t k);
+    return SRC_INTERP_BASE | src_t'(k);
+  endfunction
+
+  // ---- Tile descriptor: everything one engine needs for one tile ---------------------------
+  typedef struct packed {
+    coord_t                  x0;          // tile origin in the frame
+    coord_t                  y0;
+    ldim_t                   w;           // tile extent, 1..T
+    ldim_t                   h;
+    level_t                  levels;      // L, 1..3
+    metric_e                 metric;
+    thr_t [MAX_LEVELS-1:0]   thr;         // foveated thresholds, thr[k-1] for level k
+  } tile_desc_t;
+
+endpackage : msr_pkg
