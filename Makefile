@@ -43,6 +43,8 @@ setup:
 
 include mk/*.mk
 
+bench: setup $(BENCH_DEPS)
+
 test: setup $(TEST_DEPS)
 	$(ENV) python -m pytest $(PYTEST_JOBS) $(PYTEST_ARGS)
 

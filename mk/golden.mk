@@ -1,0 +1,5 @@
+# Golden model benchmark (issue 2): 1080p wall time of the vectorised model.
+.PHONY: bench-golden
+bench-golden: setup
+	$(ENV) python scripts/bench_golden.py
+BENCH_DEPS += bench-golden
