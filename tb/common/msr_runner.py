@@ -1,0 +1,49 @@
+"""Shared cocotb runner for the RTL unit tests: reads the one source-of-truth file list
+rtl/msr.f, builds each (top level, parameter set) into its own folder under build/ and runs
+a cocotb test module. Used by every tb/<unit>/test_<unit>.py."""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from cocotb_tools.runner import get_runner
+
+ROOT = Path(__file__).resolve().parents[2]
+FILE_LIST = ROOT / "rtl" / "msr.f"
+
+
+def rtl_sources(file_list: Path = FILE_LIST) -> list[Path]:
+    """Source files of rtl/msr.f in order (package first); '//' and '#' start comments."""
+    out = []
+    for line in file_list.read_text().splitlines():
+        line = line.split("//")[0].split("#")[0].strip()
+        if line and not line.startswith(("+", "-")):
+            out.append(ROOT / line)
+    return out
+
+
+def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict | None = None,
+               extra_env: dict | None = None, tag: str = "") -> None:
+    """Build `toplevel` with Verilator and run the cocotb tests of `test_module`."""
+    parameters = parameters or {}
+    name = "_".join(f"{k}{v}" for k, v in sorted(parameters.items())) or "default"
+    build_dir = ROOT / "build" / "tb" / toplevel / (name + (f"_{tag}" if tag else ""))
+    runner = get_runner("verilator")
+    runner.build(
+        sources=[str(s) for s in rtl_sources()],
+        hdl_toplevel=toplevel,
+        parameters=parameters,
+        build_dir=str(build_dir),
+        build_args=["-Wno-fatal", "--assert", "-j", "2", "-O2"],
+        waves=os.environ.get("WAVES", "0") == "1",
+    )
+    env = dict(extra_env or {})
+    runner.test(
+        hdl_toplevel=toplevel,
+        test_module=test_module,
+        test_dir=str(test_dir),
+        build_dir=str(build_dir),
+        results_xml=str(build_dir / "results.xml"),
+        extra_env={k: str(v) for k, v in env.items()},
+        waves=os.environ.get("WAVES", "0") == "1",
+    )

@@ -1,0 +1,42 @@
+"""Small cocotb helpers shared by the RTL unit tests.
+
+Timing convention (simulator independent): the testbench writes every input right after a
+falling clock edge, then waits for ReadOnly and samples the DUT's outputs; what it samples
+there is what the next rising edge will act on, so a handshake "valid && ready" seen in
+ReadOnly is a transfer at that rising edge."""
+from __future__ import annotations
+
+import cocotb
+from cocotb.clock import Clock
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
+
+
+def pack_rgb(c) -> int:
+    r, g, b = (int(v) for v in c)
+    return (r << 16) | (g << 8) | b
+
+
+def unpack_rgb(v: int) -> tuple[int, int, int]:
+    v = int(v)
+    return ((v >> 16) & 0xFF, (v >> 8) & 0xFF, v & 0xFF)
+
+
+async def start_clock_and_reset(dut, idle_inputs: dict, cycles: int = 3) -> None:
+    """10 ns clock on clk_i, inputs to their idle values, rst_ni low for a few cycles."""
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    for name, val in idle_inputs.items():
+        getattr(dut, name).value = val
+    dut.rst_ni.value = 0
+    for _ in range(cycles):
+        await RisingEdge(dut.clk_i)
+    await FallingEdge(dut.clk_i)
+    dut.rst_ni.value = 1
+
+
+async def next_cycle() -> None:
+    """From ReadOnly of one cycle to the write window (falling edge) of the next."""
+    await FallingEdge(cocotb.top.clk_i)
+
+
+async def settle() -> None:
+    await ReadOnly()
