@@ -17,7 +17,8 @@ method's own bookkeeping.
                        fully traced (Fig. 5b); `border="borrowed"`: one frame-wide grid, so a
                        tile borrows the next tile's first grid line (Fig. 5, [0068]; the tiles
                        then depend on each other and cannot run in parallel).
-- multi_level:         the patent's method, exactly msr_model.golden.select.
+- multi_level:         the patent's method, exactly msr_model.golden.select; with rule=
+                       another decision test of msr_model.rules.
 """
 from __future__ import annotations
 
@@ -270,8 +271,13 @@ def single_level(renderer, width: int, height: int, thr: int, stride: int = 4,
 
 # --- the patent's multi-level method ------------------------------------------------------
 
-def multi_level(renderer, width: int, height: int, params: Params) -> MethodResult:
-    """The patent's method: msr_model.golden.select, unchanged."""
+def multi_level(renderer, width: int, height: int, params: Params, rule: str = "patent") -> MethodResult:
+    """The patent's method (msr_model.golden.select, unchanged); another `rule` runs
+    msr_model.rules.select_rule, the same passes with a different decision test."""
     c = CountingRenderer(renderer, width, height)
-    r = _golden_select(c, width, height, params)
-    return _result(c, r.frame, r.source, "multi", params.as_dict())
+    if rule == "patent":
+        r = _golden_select(c, width, height, params)
+        return _result(c, r.frame, r.source, "multi", params.as_dict())
+    from .rules import select_rule
+    r = select_rule(c, width, height, params, rule=rule)
+    return _result(c, r.frame, r.source, f"multi_{rule}", {**params.as_dict(), "rule": rule})

@@ -174,3 +174,14 @@ def test_bad_arguments():
         M.coarse_grid(ImageRenderer(img), 8, 8, 0)
     with pytest.raises(SpecError):
         M.full_render(ImageRenderer(img), 0, 8)
+
+
+def test_multi_level_other_rule_counts_through_renderer():
+    from msr_model.rules import select_rule
+    img = make_test_image(48, 40)
+    p = Params(16, 3, (4, 8, 16))
+    rec = Recorder(img)
+    r = M.multi_level(rec, 48, 40, p, rule="lindiag")
+    ref = select_rule(ImageRenderer(img), 48, 40, p, rule="lindiag")
+    assert (r.frame == ref.frame).all() and r.traced == ref.stats["traced"]
+    _check_honest(r, rec, img)

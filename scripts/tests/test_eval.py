@@ -1,0 +1,56 @@
+"""The small evaluation run (make eval) as part of make test, plus its analysis helpers."""
+import json
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import eval as ev  # noqa: E402
+
+
+def test_pareto_and_fraction_for_by_hand():
+    pts = [(0.10, 30.0), (0.20, 36.0), (0.15, 29.0), (0.40, 44.0), (0.30, 35.0)]
+    # (0.15, 29) and (0.30, 35) are dominated
+    assert ev.pareto(pts) == [(0.10, 30.0), (0.20, 36.0), (0.40, 44.0)]
+    f, how = ev.fraction_for(pts, 40.0)      # between (0.2, 36) and (0.4, 44): 0.2 + 4/8 * 0.2
+    assert how == "interp" and f == pytest.approx(0.30)
+    f, how = ev.fraction_for(pts, 35.0)      # between (0.1, 30) and (0.2, 36): 0.1 + 5/6 * 0.1
+    assert how == "interp" and f == pytest.approx(0.1 + 0.1 * 5 / 6)
+    assert ev.fraction_for(pts, 25.0) == (0.10, "at_or_below")
+    assert ev.fraction_for(pts, 50.0) == (None, "not_reached")
+
+
+def test_level_thresholds_and_fov_gain():
+    assert ev.level_thr(3, 4) == (4, 8, 16)
+    assert ev.level_thr(2, 200) == (200, 255)
+    # 1920 / 16 = 120 tiles: r2 up to 119 half-tiles; gain 2 adds (2 * 119) >> 4 = 14 at the edge
+    assert ev.fov_gain_for(1920, 1080, 16) == 2
+
+
+def test_small_eval_run(tmp_path):
+    """The quick run end to end on two scenes (Embree when built, else the test picture)."""
+    t0 = time.perf_counter()
+    args = ["--width", "96", "--height", "64", "--max-scenes", "2", "--out", str(tmp_path)]
+    backend = ev.Backend("auto")
+    if backend.embree:
+        args += ["--modes", "fast"]
+    res = ev.main(args)
+    data = json.loads((tmp_path / "results.json").read_text())
+    assert data["config"]["width"] == 96 and len(data["records"]) == len(res["records"])
+    W, H = 96, 64
+    for scene in data["config"]["scenes"]:
+        recs = {(r["family"], r["label"]): r for r in data["records"] if r["scene"] == scene}
+        full = recs[("full", "full")]
+        assert full["traced"] == W * H and full["psnr"] is None          # identical to the reference
+        # grid 2 traces 0, 2, .., 94, 95 x 0, 2, .., 62, 63 (last row/column added)
+        assert recs[("grid2", "grid 2")]["traced"] == 49 * 33
+        assert recs[("checkerboard", "checkerboard")]["traced"] == W * H // 2
+        for r in recs.values():
+            assert 0 < r["traced_fraction"] <= 1
+            assert r["psnr"] is None or r["psnr"] > 10
+            assert 0 <= r["flip"] <= 1 and -1 <= r["ssim"] <= 1
+    assert (tmp_path / f"curves_{data['config']['modes'][0]}.png").is_file()
+    assert data["needed_fraction"] and data["headline"]
+    assert time.perf_counter() - t0 < 120
