@@ -180,10 +180,9 @@ def families(width, height, scales, quick):
     multi = [("L1_T16", 16, 1, 0, "patent"), ("L2_T16", 16, 2, 0, "patent"),
              ("L3_T16", 16, 3, 0, "patent"), ("L3_T32", 32, 3, 0, "patent"),
              ("L3_T16_fov", 16, 3, 16, "patent"),
-             ("L3_T16_linear", 16, 3, 0, "linear"), ("L3_T16_diag", 16, 3, 0, "diag"),
-             ("L3_T16_lindiag", 16, 3, 0, "lindiag"), ("L3_T32_lindiag", 32, 3, 0, "lindiag")]
-    if not quick:
-        multi += [("L2_T32", 32, 2, 0, "patent"), ("L3_T32_linear", 32, 3, 0, "linear")]
+             ("L3_T16_dilate", 16, 3, 0, "dilate"), ("L3_T16_linear", 16, 3, 0, "linear"),
+             ("L3_T16_lindilate", 16, 3, 0, "lindilate"), ("L3_T16_diag", 16, 3, 0, "diag"),
+             ("L3_T32_lindilate", 32, 3, 0, "lindilate")]
     for name, tile, levels, fov_edge, rule in multi:
         gain = fov_gain_for(W, H, tile, fov_edge) if fov_edge else 0
         for s in scales:
@@ -293,8 +292,8 @@ def summarise(records, modes):
     return needed, set_curves, headline
 
 
-def rule_comparison(records, base="multi_L3_T16", others=("multi_L3_T16_linear", "multi_L3_T16_diag",
-                                                           "multi_L3_T16_lindiag")):
+def rule_comparison(records, base="multi_L3_T16", others=("multi_L3_T16_dilate", "multi_L3_T16_linear",
+                                                           "multi_L3_T16_lindilate", "multi_L3_T16_diag")):
     """PSNR of each rule minus the patent's at equal traced fraction (interpolated along the
     patent's Pareto front), per scene and mode, at every setting of the rule that lies inside
     the patent curve's fraction range."""
@@ -332,11 +331,11 @@ FAMILY_STYLE = {
     "multi_L2_T32": ("patent L2 T32", ".", "tab:purple"),
     "multi_L3_T16": ("patent L3 T16", "o", "tab:blue"), "multi_L3_T32": ("patent L3 T32", "o", "navy"),
     "multi_L3_T16_fov": ("patent L3 T16 foveated", "v", "tab:green"),
-    "multi_L3_T16_linear": ("new rule: linear, L3 T16", "*", "tab:orange"),
-    "multi_L3_T16_diag": ("new rule: diag, L3 T16", "1", "gold"),
-    "multi_L3_T16_lindiag": ("new rule: lindiag, L3 T16", "*", "tab:red"),
-    "multi_L3_T32_lindiag": ("new rule: lindiag, L3 T32", "*", "darkred"),
-    "multi_L3_T32_linear": ("new rule: linear, L3 T32", "*", "chocolate"),
+    "multi_L3_T16_dilate": ("new rule: dilate, L3 T16", "P", "tab:orange"),
+    "multi_L3_T16_linear": ("new rule: linear, L3 T16", "1", "chocolate"),
+    "multi_L3_T16_lindilate": ("new rule: lindilate, L3 T16", "*", "tab:red"),
+    "multi_L3_T16_diag": ("new rule: diag, L3 T16", "2", "gold"),
+    "multi_L3_T32_lindilate": ("new rule: lindilate, L3 T32", "*", "darkred"),
 }
 
 
@@ -536,7 +535,7 @@ def main(argv=None):
     if backend.embree and not a.no_speedup:
         smode = "heavy" if "heavy" in modes else modes[0]
         for scene in scenes:
-            for fam in ("multi_L3_T16", "multi_L3_T16_lindiag"):
+            for fam in ("multi_L3_T16", "multi_L3_T16_lindilate"):
                 r = pick_near(records, scene_id(scene), smode, fam, 40.0)
                 if r is not None:
                     s = speedup(backend, scene, smode, W, H, r, refs[(scene, smode)], infos[(scene, smode)],

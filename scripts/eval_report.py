@@ -18,9 +18,9 @@ FAMILY_NAMES = {
     "multi_L1_T16": "patent, L=1, T=16", "multi_L2_T16": "patent, L=2, T=16", "multi_L2_T32": "patent, L=2, T=32",
     "multi_L3_T16": "patent, L=3, T=16", "multi_L3_T32": "patent, L=3, T=32",
     "multi_L3_T16_fov": "patent, L=3, T=16, foveated (+~16 at the edge)",
-    "multi_L3_T16_linear": "**new** linear rule, L=3, T=16", "multi_L3_T16_diag": "**new** diag rule, L=3, T=16",
-    "multi_L3_T16_lindiag": "**new** lindiag rule, L=3, T=16",
-    "multi_L3_T32_lindiag": "**new** lindiag rule, L=3, T=32", "multi_L3_T32_linear": "**new** linear rule, L=3, T=32",
+    "multi_L3_T16_dilate": "**new** dilate rule, L=3, T=16", "multi_L3_T16_linear": "**new** linear rule, L=3, T=16",
+    "multi_L3_T16_lindilate": "**new** lindilate rule, L=3, T=16", "multi_L3_T16_diag": "**new** diag rule, L=3, T=16",
+    "multi_L3_T32_lindilate": "**new** lindilate rule, L=3, T=32",
 }
 
 
@@ -117,7 +117,7 @@ def write_docs(result: dict, out: Path, docs: Path):
       "the same traced fraction, the patent's value interpolated along its Pareto front; over the "
       "rule's settings that fall inside the patent curve's range. Positive = the new rule is better.\n")
     rc = result["rule_vs_patent"]
-    for fam in ("multi_L3_T16_linear", "multi_L3_T16_diag", "multi_L3_T16_lindiag"):
+    for fam in ("multi_L3_T16_dilate", "multi_L3_T16_linear", "multi_L3_T16_lindilate", "multi_L3_T16_diag"):
         if fam not in rc:
             continue
         for mode, per in rc[fam].items():

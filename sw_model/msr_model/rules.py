@@ -5,16 +5,23 @@ Same passes, same positions, same tile independence (a rule reads only pixels of
 tile that were final before the pass began), only the interpolate-or-trace test changes:
 
 - "patent": d * n_k < thr_k' * g, d the colour difference of the two neighbours A, B.
+- "dilate": the patent's test, and a gap is also traced when the same gap on the previous
+  or the next fixed line of the pass fails it (same tile; the neighbouring row of G_y(k-1) in the H
+  pass, the neighbouring column of G_x(k) in the V pass). Edges are
+  continuous, so a detection next door says a feature may have slipped between this pair's
+  two samples (a thin line, a corner). In hardware: the decision of the next line is known
+  one line ahead (its two samples are final before the pass), so it costs two more
+  tile-buffer reads and one line of decision bits per decision.
 - "linear": also interpolate when the four samples A', A, B, B' on the line (A' at a - g,
   B' at b + g, both final, inside the tile) lie on a straight line within the threshold:
   max(|A' - 2A + B|, |A - 2B + B'|) * n_k < thr_k' * g. Linear interpolation is exact on a
   linear ramp, so a smooth gradient steeper than the threshold no longer forces traces,
   while an edge between A and B still gives a second difference of about |B - A|. Costs two
   more tile-buffer reads per decision.
+- "lindilate": the "linear" test, then "dilate" applied to its failures.
 - "diag": the patent's test, and for a centre pixel (new on both axes; decided in the V pass
   from two H-pass results) also the four diagonal corners (a_x, a_y), (b_x, a_y), (a_x, b_y),
   (b_x, b_y) that claim 8 lets it read: their colour range must pass the same test.
-- "lindiag": "linear" for the test, plus the "diag" corner condition for centre pixels.
 """
 from __future__ import annotations
 
@@ -24,7 +31,7 @@ from . import spec
 from .golden import FrameResult, frame_axis, threshold_maps
 from .spec import Params
 
-RULES = ("patent", "linear", "diag", "lindiag")
+RULES = ("patent", "dilate", "linear", "lindilate", "diag")
 
 
 def _range_diff(cols, metric):
@@ -32,6 +39,22 @@ def _range_diff(cols, metric):
     cols = np.asarray(cols, dtype=np.int32)
     rng = cols.max(axis=0) - cols.min(axis=0)
     return rng.max(axis=-1) if metric == "max" else rng.sum(axis=-1)
+
+
+def _linear_ok(at, a, b, shape, known_line, n_line, T, A, B, thr_pos, g, n, metric):
+    """The second-difference test of rule "linear" (False where no outer sample exists)."""
+    pa, pb = a - (b - a), b + (b - a)              # outer samples a - g and b + g
+    va = (pa >= 0) & (pa // T == a // T) & known_line[np.clip(pa, 0, n_line - 1)]
+    vb = (pb < n_line) & (pb // T == b // T) & known_line[np.clip(pb, 0, n_line - 1)]
+    Ai, Bi = A.astype(np.int32), B.astype(np.int32)
+    c2 = np.zeros(shape, np.int32)
+    for valid, outer, near, far in ((va, pa, Ai, Bi), (vb, pb, Bi, Ai)):
+        if valid.any():
+            P = at(np.clip(outer, 0, n_line - 1)[None, :]).astype(np.int32)
+            c = np.abs(P - 2 * near + far)
+            c = c.max(-1) if metric == "max" else c.sum(-1)
+            c2 = np.where(valid[None, :], np.maximum(c2, c), c2)
+    return (va | vb)[None, :] & spec.interpolate_ok(c2, thr_pos, g, n)
 
 
 def select_rule(renderer, width: int, height: int, params: Params, rule: str = "patent") -> FrameResult:
@@ -62,8 +85,9 @@ def select_rule(renderer, width: int, height: int, params: Params, rule: str = "
     source[yy, xx] = spec.SRC_INITIAL
     counts["initial"] = yy.size
 
-    use_lin = rule in ("linear", "lindiag")
-    use_diag = rule in ("diag", "lindiag")
+    use_lin = rule in ("linear", "lindilate")
+    use_dilate = rule in ("dilate", "lindilate")
+    use_diag = rule == "diag"
     for k in range(1, L + 1):
         n = params.nominal_gap(k)
         thr = thr_maps[k - 1]
@@ -93,32 +117,15 @@ def select_rule(renderer, width: int, height: int, params: Params, rule: str = "
                 thr_pos = thr[mtile[None, :], ftile[:, None]]
             d = spec.color_diff(A, B, params.metric)
             ok = spec.interpolate_ok(d, thr_pos, g, n)
-
             if use_lin:
-                # outer samples a - g and b + g: inside the tile and final before this pass
-                pa, pb = a - (b - a), b + (b - a)
-                t_line = T
-                va = (pa >= 0) & (pa // t_line == a // t_line)
-                vb = (pb < n_line) & (pb // t_line == b // t_line)
-                va &= known_line[np.clip(pa, 0, n_line - 1)]
-                vb &= known_line[np.clip(pb, 0, n_line - 1)]
-                Ai, Bi = A.astype(np.int32), B.astype(np.int32)
-                c2 = np.zeros(d.shape, np.int32)
-                have = np.zeros(len(m), bool)
-                if va.any():
-                    Ap = at(np.clip(pa, 0, n_line - 1)[None, :]).astype(np.int32)
-                    ca = np.abs(Ap - 2 * Ai + Bi)
-                    ca = ca.max(-1) if params.metric == "max" else ca.sum(-1)
-                    c2 = np.where(va[None, :], np.maximum(c2, ca), c2)
-                    have |= va
-                if vb.any():
-                    Bp = at(np.clip(pb, 0, n_line - 1)[None, :]).astype(np.int32)
-                    cb = np.abs(Ai - 2 * Bi + Bp)
-                    cb = cb.max(-1) if params.metric == "max" else cb.sum(-1)
-                    c2 = np.where(vb[None, :], np.maximum(c2, cb), c2)
-                    have |= vb
-                ok |= have[None, :] & spec.interpolate_ok(c2, thr_pos, g, n)
-
+                ok |= _linear_ok(at, a, b, d.shape, known_line, n_line, T, A, B, thr_pos, g, n, params.metric)
+            if use_dilate:
+                # trace a gap if the test fails on the previous or next fixed line of the
+                # same tile (computed from samples final before the pass)
+                bad = ~ok
+                same = (ftile[1:] == ftile[:-1])[:, None]
+                ok[1:] &= ~(bad[:-1] & same)
+                ok[:-1] &= ~(bad[1:] & same)
             if use_diag and not horizontal:
                 # centre pixels: x new at level k (not in G_x(k-1)); corners from G_x(k-1)
                 x = fixed

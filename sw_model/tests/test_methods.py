@@ -181,7 +181,7 @@ def test_multi_level_other_rule_counts_through_renderer():
     img = make_test_image(48, 40)
     p = Params(16, 3, (4, 8, 16))
     rec = Recorder(img)
-    r = M.multi_level(rec, 48, 40, p, rule="lindiag")
-    ref = select_rule(ImageRenderer(img), 48, 40, p, rule="lindiag")
+    r = M.multi_level(rec, 48, 40, p, rule="lindilate")
+    ref = select_rule(ImageRenderer(img), 48, 40, p, rule="lindilate")
     assert (r.frame == ref.frame).all() and r.traced == ref.stats["traced"]
     _check_honest(r, rec, img)

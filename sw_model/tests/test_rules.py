@@ -68,10 +68,27 @@ def test_diag_rule_catches_crossing_edges():
     assert (pat.source[mask] == dia.source[mask]).all()
 
 
+def test_dilate_rule_traces_next_to_a_detection():
+    """L = 1, 5 x 5: a bright sample at (2, 0) makes both gaps of row 0 fail; row 2 hides a
+    feature at (1, 2) that its samples cannot see. The patent interpolates it away, the
+    dilate rule traces row 2's gaps because row 0 (the neighbouring sampled row) failed."""
+    img = np.zeros((5, 5, 3), np.uint8)
+    img[0, 2] = 200
+    img[2, 1] = 100
+    p = Params(8, 1, (20,))
+    pat = select_rule(ImageRenderer(img), 5, 5, p, rule="patent")
+    dil = select_rule(ImageRenderer(img), 5, 5, p, rule="dilate")
+    assert pat.source[2, 1] == 17 and pat.frame[2, 1, 0] == 0
+    assert dil.source[2, 1] == 1 and dil.frame[2, 1, 0] == 100 and dil.source[2, 3] == 1
+    assert dil.source[4, 1] == 17          # row 4's neighbour (row 2) passed the test
+    # every trace of the patent is also a trace of the dilate rule at level 1's H pass
+    assert ((pat.source[::2] == 1) <= (dil.source[::2] == 1)).all()
+
+
 def test_rules_tile_independent():
     img = make_test_image(64, 48)
     p = Params(16, 3, (4, 8, 16))
-    for rule in ("linear", "diag", "lindiag"):
+    for rule in ("linear", "diag", "dilate", "lindilate"):
         whole = select_rule(ImageRenderer(img), 64, 48, p, rule=rule)
         crop = np.ascontiguousarray(img[16:32, 32:48])
         part = select_rule(ImageRenderer(crop), 16, 16, p, rule=rule)
