@@ -109,6 +109,8 @@ module msr_decide
   end
 
 `ifndef SYNTHESIS
+  // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
+  /* verilator lint_off SYNCASYNCNET */
   // Output handshake: valid held with stable data until taken.
   property p_hold;
     @(posedge clk_i) disable iff (!rst_ni || clear_i)
@@ -118,6 +120,7 @@ module msr_decide
   a_gap : assert property (@(posedge clk_i) disable iff (!rst_ni)
       valid_i && ready_o |-> gap_i inside {[1 : 8]})
     else $error("msr_decide: gap %0d outside 1..8", gap_i);
+  /* verilator lint_on SYNCASYNCNET */
 `endif
 
 endmodule : msr_decide

@@ -112,6 +112,8 @@ module msr_interp
   end
 
 `ifndef SYNTHESIS
+  // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
+  /* verilator lint_off SYNCASYNCNET */
   a_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
       valid_o && !ready_i |=> valid_o && $stable({rgb_o, user_o}))
     else $error("msr_interp: output changed while stalled");
@@ -119,6 +121,7 @@ module msr_interp
   a_range : assert property (@(posedge clk_i) disable iff (!rst_ni)
       valid_i && ready_o && off_i != '0 |-> gap_i inside {[2 : 8]} && off_i < gap_i)
     else $error("msr_interp: gap %0d / offset %0d out of range", gap_i, off_i);
+  /* verilator lint_on SYNCASYNCNET */
 `endif
 
 endmodule : msr_interp

@@ -4,6 +4,10 @@
 // Naming: parameters and constants ALL_CAPS, types *_t, enums *_e (lowRISC style).
 package msr_pkg;
 
+  // Not every module uses every constant of the package; Verilator lints each module on
+  // its own with the package, so its unused-parameter warning is waived for this file only.
+  /* verilator lint_off UNUSEDPARAM */
+
   // ---- Limits ---------------------------------------------------------------------------
   localparam int unsigned MAX_TILE   = 32;                   // largest tile edge T
   localparam int unsigned MAX_LEVELS = 3;                    // largest L
@@ -73,5 +77,16 @@ package msr_pkg;
     metric_e                 metric;
     thr_t [MAX_LEVELS-1:0]   thr;         // foveated thresholds, thr[k-1] for level k
   } tile_desc_t;
+
+  // ---- Level processing controller: one position of one pass -------------------------------
+  typedef enum logic [1:0] {
+    DIR_INIT = 2'd0,     // initial sample: traced, no neighbours
+    DIR_H    = 2'd1,     // horizontal pass: neighbours left / right
+    DIR_V    = 2'd2      // vertical pass: neighbours above / below
+  } dir_e;
+
+  localparam int unsigned TADDR_W = 2 * LCOORD_W;            // tile buffer address {y, x}
+
+  /* verilator lint_on UNUSEDPARAM */
 
 endpackage : msr_pkg

