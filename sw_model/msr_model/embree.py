@@ -1,0 +1,201 @@
+"""The Embree rendering unit from Python: ctypes on build/renderer/libmsr_render.so.
+
+The same shared library paints pixels for the RTL simulation through DPI-C, so Python and
+the hardware flow see bit-identical colours. Build it with `make renderer`.
+
+    with open_renderer("cornell", 320, 240) as r:
+        rgb = r.render(xs, ys)      # (N, 3) uint8, any pixel order, any batch split
+        img = r.render_full()       # (H, W, 3) uint8
+"""
+from __future__ import annotations
+
+import ctypes
+import os
+import threading
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import numpy as np
+
+from . import spec
+
+QUALITIES = {"fast": 0, "heavy": 1}
+_BATCH = 8192  # pixels per C call: big enough to hide call overhead, small for a smooth progress bar
+
+class RendererUnavailable(spec.SpecError):
+    """The shared library is not built (or MSR_RENDER_LIB points nowhere)."""
+
+
+_lib = None
+_lib_lock = threading.Lock()
+
+
+def library_path() -> Path:
+    """The shared library: $MSR_RENDER_LIB, else <repo>/build/renderer/libmsr_render.so."""
+    env = os.environ.get("MSR_RENDER_LIB")
+    if env:
+        return Path(env)
+    return Path(__file__).resolve().parents[2] / "build" / "renderer" / "libmsr_render.so"
+
+
+def _load():
+    global _lib
+    with _lib_lock:
+        if _lib is not None:
+            return _lib
+        path = library_path()
+        if not path.is_file():
+            raise RendererUnavailable(f"rendering library {path} not found: run `make renderer` in the repository root"
+                               + (" (or fix MSR_RENDER_LIB)" if os.environ.get("MSR_RENDER_LIB") else ""))
+        lib = ctypes.CDLL(str(path))  # CDLL releases the GIL during every call
+        lib.msr_render_create.restype = ctypes.c_void_p
+        lib.msr_render_create.argtypes = [ctypes.c_char_p, ctypes.c_int, ctypes.c_int, ctypes.c_int,
+                                          ctypes.c_char_p, ctypes.c_size_t]
+        lib.msr_render_pixel.restype = None
+        lib.msr_render_pixel.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.c_int, ctypes.POINTER(ctypes.c_uint8)]
+        lib.msr_render_pixels.restype = None
+        lib.msr_render_pixels.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p,
+                                          ctypes.c_void_p]
+        lib.msr_render_destroy.restype = None
+        lib.msr_render_destroy.argtypes = [ctypes.c_void_p]
+        lib.msr_render_scene_names.restype = ctypes.c_char_p
+        lib.msr_render_scene_names.argtypes = []
+        _lib = lib
+        return lib
+
+
+def scene_names() -> list[str]:
+    """The built-in scene names, default scene first."""
+    return _load().msr_render_scene_names().decode().split(",")
+
+
+def _threads() -> int:
+    try:
+        n = len(os.sched_getaffinity(0))
+    except AttributeError:  # not Linux
+        n = os.cpu_count() or 1
+    return max(1, n)
+
+
+class EmbreeRenderer:
+    """A renderer object for the golden model: `.render(xs, ys) -> (N, 3) uint8`."""
+
+    def __init__(self, scene: str, width: int, height: int, quality: str | int = "fast",
+                 threads: int | None = None):
+        spec.check_frame_size(width, height)
+        if isinstance(quality, str):
+            if quality not in QUALITIES:
+                raise spec.SpecError(f"quality must be one of {', '.join(QUALITIES)}, got {quality!r}")
+            q = QUALITIES[quality]
+        elif quality in (0, 1):
+            q = int(quality)
+        else:
+            raise spec.SpecError(f"quality must be 'fast' or 'heavy', got {quality!r}")
+        if not isinstance(scene, (str, os.PathLike)) or not str(scene):
+            raise spec.SpecError(f"scene must be a built-in name or a model file path, got {scene!r}")
+        self._lib = _load()
+        err = ctypes.create_string_buffer(512)
+        handle = self._lib.msr_render_create(os.fsencode(str(scene)), int(width), int(height), q, err, len(err))
+        if not handle:
+            msg = err.value.decode(errors="replace") or f"cannot open scene {scene}"
+            raise spec.SpecError(msg)
+        self._ctx = handle
+        self.scene = str(scene)
+        self.width = int(width)
+        self.height = int(height)
+        self.quality = [k for k, v in QUALITIES.items() if v == q][0]
+        self.threads = max(1, int(threads)) if threads else _threads()
+        self.calls = 0
+        self.pixels_traced = 0
+
+    # -- pixels -------------------------------------------------------------------------------
+    def _check_open(self):
+        if not self._ctx:
+            raise spec.SpecError("renderer is closed")
+
+    def _render_into(self, xs: np.ndarray, ys: np.ndarray, out: np.ndarray, progress=None) -> None:
+        """Colours of (xs[i], ys[i]) into out[i]; batches spread over self.threads threads."""
+        n = xs.size
+        starts = list(range(0, n, _BATCH))
+
+        def run(start: int) -> None:
+            stop = min(n, start + _BATCH)
+            self._lib.msr_render_pixels(self._ctx, stop - start, xs[start:].ctypes.data, ys[start:].ctypes.data,
+                                        out[start:].ctypes.data)
+            if progress is not None:
+                progress.update(stop - start)
+
+        if self.threads == 1 or len(starts) == 1:
+            for s in starts:
+                run(s)
+        else:
+            with ThreadPoolExecutor(max_workers=self.threads) as pool:
+                list(pool.map(run, starts))
+
+    def render(self, xs, ys) -> np.ndarray:
+        """Colours of the pixels (xs[i], ys[i]) as an (N, 3) uint8 array."""
+        self._check_open()
+        xs = np.ascontiguousarray(np.asarray(xs).reshape(-1), dtype=np.int32)
+        ys = np.ascontiguousarray(np.asarray(ys).reshape(-1), dtype=np.int32)
+        if xs.shape != ys.shape:
+            raise spec.SpecError(f"xs and ys differ in length ({xs.size} vs {ys.size})")
+        if xs.size and (xs.min() < 0 or xs.max() >= self.width or ys.min() < 0 or ys.max() >= self.height):
+            raise spec.SpecError(f"pixel outside the {self.width}x{self.height} frame")
+        out = np.empty((xs.size, 3), dtype=np.uint8)
+        self.calls += 1
+        self.pixels_traced += xs.size
+        self._render_into(xs, ys, out)
+        return out
+
+    def render_pixel(self, x: int, y: int) -> tuple[int, int, int]:
+        """One pixel through msr_render_pixel (the call the DPI bridge makes)."""
+        self._check_open()
+        rgb = (ctypes.c_uint8 * 3)()
+        self._lib.msr_render_pixel(self._ctx, int(x), int(y), rgb)
+        return rgb[0], rgb[1], rgb[2]
+
+    def render_full(self, progress: bool = True) -> np.ndarray:
+        """Every pixel, as an (H, W, 3) uint8 image; a progress bar when it takes over a second."""
+        self._check_open()
+        h, w = self.height, self.width
+        ys, xs = np.divmod(np.arange(h * w, dtype=np.int32), np.int32(w))
+        out = np.empty((h * w, 3), dtype=np.uint8)
+        bar = None
+        if progress:
+            from tqdm import tqdm
+            bar = tqdm(total=h * w, unit="px", unit_scale=True, delay=1.0, leave=False,
+                       desc=f"render {Path(self.scene).name} {w}x{h} {self.quality}")
+        try:
+            self._render_into(xs, ys, out, bar)
+        finally:
+            if bar is not None:
+                bar.close()
+        return out.reshape(h, w, 3)
+
+    # -- lifetime -----------------------------------------------------------------------------
+    def close(self) -> None:
+        if getattr(self, "_ctx", None):
+            self._lib.msr_render_destroy(self._ctx)
+            self._ctx = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # interpreter shutdown
+            pass
+
+
+def open_renderer(scene: str, width: int, height: int, quality: str | int = "fast",
+                  threads: int | None = None) -> EmbreeRenderer:
+    """Open the Embree rendering unit on a built-in scene name or a model file path.
+
+    Raises spec.SpecError with a one-line message for an unknown scene, an unreadable file,
+    a file without triangles or a bad frame size.
+    """
+    return EmbreeRenderer(scene, width, height, quality, threads)

@@ -1,0 +1,48 @@
+/* msr_render.h: C API of the rendering unit (an Embree 3 Whitted ray tracer).
+ *
+ * One shared library (build/renderer/libmsr_render.so) paints every pixel in every flow:
+ * the Python golden model (ctypes) and the RTL simulation (DPI-C) both call these functions,
+ * so they see bit-identical pixels by construction.
+ *
+ * Determinism: a pixel's colour depends only on (scene, width, height, quality, x, y), never on
+ * call order, batch split or thread. The scene is read-only after msr_render_create, so any
+ * number of threads may call msr_render_pixel(s) on one context at the same time.
+ */
+#ifndef MSR_RENDER_H
+#define MSR_RENDER_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct msr_render_ctx msr_render_ctx; /* opaque */
+
+/* scene: built-in name (see msr_render_scene_names) or a model file path (any format the Open
+ * Asset Importer reads). width, height: 1..4096. quality 0 = fast (one sample per pixel),
+ * 1 = heavy (several deterministic samples: antialiasing, soft shadows, ambient occlusion).
+ * Returns NULL on failure, with a one-line message in err (errlen bytes, NUL-terminated;
+ * err may be NULL when errlen is 0). */
+msr_render_ctx *msr_render_create(const char *scene, int width, int height, int quality,
+                                  char *err, size_t errlen);
+
+/* Colour of pixel (x, y), (0, 0) top left, as 8-bit sRGB. A pixel outside the frame (or a NULL
+ * context) gives (0, 0, 0). */
+void msr_render_pixel(msr_render_ctx *ctx, int x, int y, uint8_t rgb[3]);
+
+/* n pixels at once: rgb_out[3*i .. 3*i+2] is the colour of (xs[i], ys[i]). */
+void msr_render_pixels(msr_render_ctx *ctx, int n, const int32_t *xs, const int32_t *ys,
+                       uint8_t *rgb_out /* 3*n bytes */);
+
+void msr_render_destroy(msr_render_ctx *ctx); /* NULL is fine */
+
+/* Comma-separated names of the built-in scenes (static string), default scene first. */
+const char *msr_render_scene_names(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MSR_RENDER_H */

@@ -1,0 +1,139 @@
+// The C API (msr_render.h) over msr::Renderer.
+#include "msr_render.h"
+
+#include <xmmintrin.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "render.h"
+#include "scenes.h"
+
+struct msr_render_ctx {
+    RTCDevice device = nullptr;
+    std::unique_ptr<msr::Renderer> renderer;  // owns the scene; released before the device
+    ~msr_render_ctx() {
+        renderer.reset();
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+namespace {
+
+constexpr int kMaxSize = 4096;
+
+void set_err(char *err, size_t errlen, const std::string &msg) {
+    if (!err || errlen == 0) return;
+    std::string one = msg;
+    for (char &c : one)
+        if (c == '\n' || c == '\r') c = ' ';
+    std::snprintf(err, errlen, "%s", one.c_str());
+}
+
+// Every pixel is computed with the same SSE state, whatever the caller set: round to
+// nearest, all exceptions masked, flush-to-zero and denormals-are-zero (Embree's advice).
+class FpState {
+public:
+    FpState() : saved_(_mm_getcsr()) { _mm_setcsr(0x1F80u | 0x8040u); }
+    ~FpState() { _mm_setcsr(saved_); }
+
+private:
+    unsigned saved_;
+};
+
+struct DeviceError {
+    std::string msg;
+};
+
+void device_error(void *user, RTCError code, const char *str) {
+    auto *e = static_cast<DeviceError *>(user);
+    if (e && e->msg.empty()) e->msg = "embree error " + std::to_string(int(code)) + (str ? std::string(": ") + str : "");
+}
+
+// The instruction set is pinned so that the same pixel comes out on every machine (the ISA
+// Embree picks can flip a hit exactly on a triangle edge). MSR_EMBREE_ISA overrides it.
+std::string isa_config(bool &from_env) {
+    const char *env = std::getenv("MSR_EMBREE_ISA");
+    from_env = env && *env;
+    std::string isa = from_env ? env : "avx2";
+    if (!from_env && !__builtin_cpu_supports("avx2")) {
+        static std::once_flag warned;
+        std::call_once(warned, [] {
+            std::fprintf(stderr, "msr_render: CPU without AVX2, using isa=sse4.2 (pixels on exact triangle edges may "
+                                 "differ from AVX2 machines)\n");
+        });
+        isa = "sse4.2";
+    }
+    return "isa=" + isa;
+}
+
+}  // namespace
+
+extern "C" {
+
+msr_render_ctx *msr_render_create(const char *scene, int width, int height, int quality, char *err, size_t errlen) {
+    set_err(err, errlen, "");
+    if (!scene) { set_err(err, errlen, "scene is NULL"); return nullptr; }
+    if (width < 1 || width > kMaxSize || height < 1 || height > kMaxSize) {
+        set_err(err, errlen, "frame size " + std::to_string(width) + "x" + std::to_string(height) + " outside 1..4096");
+        return nullptr;
+    }
+    if (quality != 0 && quality != 1) {
+        set_err(err, errlen, "quality " + std::to_string(quality) + " is neither 0 (fast) nor 1 (heavy)");
+        return nullptr;
+    }
+    try {
+        bool from_env = false;
+        std::string cfg = isa_config(from_env);
+        DeviceError derr;  // outlives ctx: the device reports into it until released
+        auto ctx = std::make_unique<msr_render_ctx>();
+        ctx->device = rtcNewDevice(cfg.c_str());
+        if (!ctx->device) {
+            set_err(err, errlen, "embree: cannot create a device with " + cfg +
+                                     (from_env ? " (check MSR_EMBREE_ISA)" : " (set MSR_EMBREE_ISA, e.g. sse4.2)"));
+            return nullptr;
+        }
+        rtcSetDeviceErrorFunction(ctx->device, device_error, &derr);
+        std::string msg;
+        std::unique_ptr<msr::Scene> sc = msr::make_scene(scene, msg);
+        if (!sc) { set_err(err, errlen, msg); return nullptr; }
+        bool ok = sc->commit(ctx->device, msg);
+        rtcSetDeviceErrorFunction(ctx->device, nullptr, nullptr);
+        if (!ok || !derr.msg.empty()) {
+            set_err(err, errlen, derr.msg.empty() ? msg : derr.msg);
+            return nullptr;
+        }
+        ctx->renderer = std::make_unique<msr::Renderer>(std::move(sc), width, height,
+                                                        quality ? msr::Quality::Heavy : msr::Quality::Fast);
+        return ctx.release();
+    } catch (const std::exception &e) {
+        set_err(err, errlen, std::string("renderer: ") + e.what());
+    } catch (...) {
+        set_err(err, errlen, "renderer: unknown failure while building the scene");
+    }
+    return nullptr;
+}
+
+void msr_render_pixel(msr_render_ctx *ctx, int x, int y, uint8_t rgb[3]) {
+    if (!rgb) return;
+    if (!ctx || !ctx->renderer) { rgb[0] = rgb[1] = rgb[2] = 0; return; }
+    FpState fp;
+    ctx->renderer->pixel(x, y, rgb);
+}
+
+void msr_render_pixels(msr_render_ctx *ctx, int n, const int32_t *xs, const int32_t *ys, uint8_t *rgb_out) {
+    if (n <= 0 || !rgb_out) return;
+    if (!ctx || !ctx->renderer || !xs || !ys) { std::memset(rgb_out, 0, size_t(n) * 3); return; }
+    FpState fp;
+    for (int i = 0; i < n; ++i) ctx->renderer->pixel(xs[i], ys[i], rgb_out + 3 * size_t(i));
+}
+
+void msr_render_destroy(msr_render_ctx *ctx) { delete ctx; }
+
+const char *msr_render_scene_names(void) { return msr::builtin_scene_names(); }
+
+}  // extern "C"

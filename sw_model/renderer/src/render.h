@@ -1,0 +1,57 @@
+// The per-pixel render function: Whitted ray tracing (direct light with shadow rays, mirror
+// reflection, glass refraction, recursion limit, sky), then tone mapping and sRGB to 8 bits.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "scene.h"
+
+namespace msr {
+
+// 8-bit sRGB code of a linear value in [0, 1] (round half up), by exact thresholds.
+uint8_t srgb8(float linear);
+
+enum class Quality { Fast = 0, Heavy = 1 };
+
+class Renderer {
+public:
+    // Takes a committed scene. width, height >= 1.
+    Renderer(std::unique_ptr<Scene> scene, int width, int height, Quality q);
+
+    // Linear radiance of pixel (x, y) (averaged over its samples), before exposure.
+    Vec3 radiance(int x, int y) const;
+    // Final 8-bit sRGB colour; outside the frame: (0, 0, 0).
+    void pixel(int x, int y, uint8_t rgb[3]) const;
+
+    // Tone mapping (exposure, ACES fit) and sRGB encoding, rounded to 8 bits.
+    static void encode(Vec3 linear, float exposure, uint8_t rgb[3]);
+
+    // Primary ray through image position (fx, fy) in pixels (pixel centre = x + 0.5).
+    void primary_ray(float fx, float fy, Vec3 &org, Vec3 &dir) const;
+
+    const Scene &scene() const { return *scene_; }
+    int width() const { return width_; }
+    int height() const { return height_; }
+    Quality quality() const { return quality_; }
+    int samples_per_pixel() const { return spp_; }
+
+    static constexpr int kMaxDepth = 6;        // Whitted recursion limit (reflection/refraction)
+    static constexpr int kHeavyGrid = 4;       // heavy mode: kHeavyGrid^2 samples per pixel
+
+private:
+    struct Sample;
+    Vec3 trace(Vec3 org, Vec3 dir, int depth, float weight, const Sample &s) const;
+    Vec3 shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const Sample &s) const;
+    float shadow(Vec3 org, Vec3 dir, float dist, Vec3 &tint) const;
+    Vec3 sky(Vec3 dir) const;
+
+    std::unique_ptr<Scene> scene_;
+    int width_, height_;
+    Quality quality_;
+    int spp_;
+    Vec3 eye_, fwd_, right_, up_;
+    float scale_;  // tan(fov/2) / (shorter side / 2)
+};
+
+}  // namespace msr
