@@ -3,3 +3,5 @@ rtl/msr_decide.sv
 rtl/msr_interp.sv
 rtl/msr_tile_sram.sv
 rtl/msr_level_ctrl.sv
+rtl/msr_tile_stream.sv
+rtl/tile_engine.sv

@@ -1,0 +1,159 @@
+// Output streamer: reads a finished tile from the tile buffer row-major and emits it as a
+// valid/ready pixel stream in global coordinates (claim 10's hand-over to the frame
+// buffer). Reads are issued only when the skid FIFO has room for every read in flight, so
+// a stalled consumer never loses data and a ready consumer gets one pixel per clock.
+module msr_tile_stream
+  import msr_pkg::*;
+#(
+  parameter int unsigned FIFO_DEPTH = 4
+) (
+  input  logic                 clk_i,
+  input  logic                 rst_ni,
+  input  logic                 clear_i,      // synchronous soft reset
+  input  logic                 start_valid_i, // a finished tile to stream
+  output logic                 start_ready_o,
+  input  coord_t               x0_i,         // tile origin and size
+  input  coord_t               y0_i,
+  input  ldim_t                w_i,
+  input  ldim_t                h_i,
+  output logic                 re_o,         // tile buffer read port
+  output logic [TADDR_W-1:0]   raddr_o,
+  input  rgb_t                 rdata_rgb_i,  // one cycle after re_o
+  input  src_t                 rdata_src_i,
+  output logic                 pix_valid_o,  // pixel stream
+  input  logic                 pix_ready_i,
+  output coord_t               pix_x_o,
+  output coord_t               pix_y_o,
+  output rgb_t                 pix_rgb_o,
+  output src_t                 pix_src_o,
+  output logic                 pix_last_o,   // last pixel of the tile
+  output logic                 done_o        // pulse: last pixel taken
+);
+
+  localparam int unsigned CNT_W = $clog2(FIFO_DEPTH + 1);
+  localparam int unsigned PTR_W = $clog2(FIFO_DEPTH);
+
+  if (FIFO_DEPTH < 2 || (FIFO_DEPTH & (FIFO_DEPTH - 1)) != 0) begin : g_check_depth
+    $fatal(1, "msr_tile_stream: FIFO_DEPTH %0d must be a power of two >= 2", FIFO_DEPTH);
+  end
+
+  typedef struct packed {
+    coord_t x;
+    coord_t y;
+    rgb_t   rgb;
+    src_t   src;
+    logic   last;
+  } entry_t;
+
+  logic    active_q;
+  coord_t  x0_q, y0_q;
+  lcoord_t wm1_q, hm1_q;
+  lcoord_t rx_q, ry_q;          // next pixel to read
+  logic    rd_done_q;           // all reads issued
+
+  // Read in flight (data arrives next cycle) and its coordinates.
+  logic    rd_pend_q;
+  lcoord_t pend_x_q, pend_y_q;
+  logic    pend_last_q;
+
+  entry_t [FIFO_DEPTH-1:0] fifo_q;
+  logic [PTR_W-1:0] wptr_q, rptr_q;
+  logic [CNT_W-1:0] cnt_q;
+
+  logic push, pop, issue, last_rd;
+
+  assign start_ready_o = !active_q;
+  assign last_rd  = (rx_q == wm1_q) && (ry_q == hm1_q);
+  // room for the read in flight plus this one, without looking at this cycle's pop
+  assign issue    = active_q && !rd_done_q &&
+                    (32'(cnt_q) + 32'(rd_pend_q) < FIFO_DEPTH - 1);
+  assign push     = rd_pend_q;
+  assign pop      = pix_valid_o && pix_ready_i;
+  assign re_o     = issue;
+  assign raddr_o  = {ry_q, rx_q};
+
+  assign pix_valid_o = (cnt_q != '0);
+  assign pix_x_o     = fifo_q[rptr_q].x;
+  assign pix_y_o     = fifo_q[rptr_q].y;
+  assign pix_rgb_o   = fifo_q[rptr_q].rgb;
+  assign pix_src_o   = fifo_q[rptr_q].src;
+  assign pix_last_o  = fifo_q[rptr_q].last;
+  assign done_o      = pop && pix_last_o;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      active_q    <= 1'b0;
+      rd_done_q   <= 1'b0;
+      rd_pend_q   <= 1'b0;
+      wptr_q      <= '0;
+      rptr_q      <= '0;
+      cnt_q       <= '0;
+      x0_q        <= '0;
+      y0_q        <= '0;
+      wm1_q       <= '0;
+      hm1_q       <= '0;
+      rx_q        <= '0;
+      ry_q        <= '0;
+      pend_x_q    <= '0;
+      pend_y_q    <= '0;
+      pend_last_q <= 1'b0;
+    end else if (clear_i) begin
+      active_q  <= 1'b0;
+      rd_done_q <= 1'b0;
+      rd_pend_q <= 1'b0;
+      wptr_q    <= '0;
+      rptr_q    <= '0;
+      cnt_q     <= '0;
+    end else begin
+      if (start_valid_i && start_ready_o) begin
+        active_q  <= 1'b1;
+        rd_done_q <= 1'b0;
+        x0_q      <= x0_i;
+        y0_q      <= y0_i;
+        wm1_q     <= lcoord_t'(w_i - 1'b1);
+        hm1_q     <= lcoord_t'(h_i - 1'b1);
+        rx_q      <= '0;
+        ry_q      <= '0;
+      end
+      rd_pend_q <= issue;
+      if (issue) begin
+        pend_x_q    <= rx_q;
+        pend_y_q    <= ry_q;
+        pend_last_q <= last_rd;
+        if (last_rd) begin
+          rd_done_q <= 1'b1;
+        end else if (rx_q == wm1_q) begin
+          rx_q <= '0;
+          ry_q <= ry_q + 1'b1;
+        end else begin
+          rx_q <= rx_q + 1'b1;
+        end
+      end
+      if (push) wptr_q <= wptr_q + 1'b1;
+      if (pop) rptr_q <= rptr_q + 1'b1;
+      cnt_q <= cnt_q + CNT_W'(push) - CNT_W'(pop);
+      if (done_o) active_q <= 1'b0;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (push) begin
+      fifo_q[wptr_q] <= '{x: x0_q + coord_t'(pend_x_q), y: y0_q + coord_t'(pend_y_q),
+                          rgb: rdata_rgb_i, src: rdata_src_i, last: pend_last_q};
+    end
+  end
+
+`ifndef SYNTHESIS
+  // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
+  /* verilator lint_off SYNCASYNCNET */
+  a_pix_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
+      pix_valid_o && !pix_ready_i |=> pix_valid_o &&
+        $stable({pix_x_o, pix_y_o, pix_rgb_o, pix_src_o, pix_last_o}))
+    else $error("msr_tile_stream: pixel changed while stalled");
+  a_no_overflow : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      push |-> 32'(cnt_q) < FIFO_DEPTH || pop)
+    else $error("msr_tile_stream: FIFO overflow");
+  /* verilator lint_on SYNCASYNCNET */
+`endif
+
+endmodule : msr_tile_stream
