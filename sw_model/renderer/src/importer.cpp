@@ -76,6 +76,12 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
         std::string why = imp.GetErrorString();
         for (char &ch : why)
             if (ch == '\n' || ch == '\r') ch = ' ';
+        // Files that parse but hold only points, lines or nothing fail in post-processing.
+        for (const char *empty : {"No meshes remaining", "contains no faces", "mNumMeshes is 0"})
+            if (why.find(empty) != std::string::npos) {
+                err = "model file " + path + " holds no triangles (assimp: " + why + ")";
+                return false;
+            }
         err = "cannot read model file " + path + ": " + (why.empty() ? "unknown importer error" : why);
         return false;
     }

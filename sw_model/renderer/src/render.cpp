@@ -18,9 +18,17 @@ constexpr uint32_t kSeed = 0x4d5352u;      // "MSR": the fixed seed of every pix
 constexpr float kGlassShadow = 0.55f;      // light passing a glass occluder (stands in for caustics)
 
 // Purposes of the per-sample random numbers (mixed into the hash with the depth).
-enum : uint32_t { R_AA_X = 1, R_AA_Y, R_LIGHT_STRATUM, R_LIGHT_U, R_LIGHT_V, R_AO_U, R_AO_V };
+enum : uint32_t { R_AA_X = 1, R_AA_Y, R_LIGHT_U, R_LIGHT_V, R_AO_U, R_AO_V };
 
 Vec3 reflect(Vec3 d, Vec3 n) { return d - n * (2.f * dot(d, n)); }
+
+float aces(float x) {
+    // Narkowicz's fit of the ACES filmic curve.
+    float y = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
+    return std::fmin(1.f, std::fmax(0.f, y));
+}
+
+}  // namespace
 
 // Irradiance factor of a uniform parallelogram emitter at point p with normal n, i.e.
 // E = L * factor (Lambert's polygon formula, the polygon clipped to the hemisphere above p).
@@ -51,14 +59,6 @@ float polygon_irradiance(Vec3 p, Vec3 n, const AreaLight &l) {
     return 0.5f * std::fabs(sum);
 }
 
-float aces(float x) {
-    // Narkowicz's fit of the ACES filmic curve.
-    float y = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
-    return std::fmin(1.f, std::fmax(0.f, y));
-}
-
-}  // namespace
-
 uint8_t srgb8(float v) {
     // Binary search of the exact thresholds: 8 comparisons, no pow.
     int lo = 0, hi = 255;  // answer in [lo, hi]
@@ -68,10 +68,6 @@ uint8_t srgb8(float v) {
     }
     return uint8_t(lo);
 }
-
-namespace {
-
-}  // namespace
 
 struct Renderer::Sample {
     uint32_t pix;  // hash of (x, y, seed)

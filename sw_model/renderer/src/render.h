@@ -12,6 +12,10 @@ namespace msr {
 // 8-bit sRGB code of a linear value in [0, 1] (round half up), by exact thresholds.
 uint8_t srgb8(float linear);
 
+// Unoccluded irradiance at p (normal n) from a parallelogram emitter of unit radiance:
+// Lambert's polygon formula, the polygon clipped to the hemisphere above p.
+float polygon_irradiance(Vec3 p, Vec3 n, const AreaLight &l);
+
 enum class Quality { Fast = 0, Heavy = 1 };
 
 class Renderer {
