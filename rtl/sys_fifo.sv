@@ -1,0 +1,56 @@
+// Synchronous FIFO of the system units (fb_writer): first-word fall-through, one push and
+// one pop per cycle, synchronous flush. Storage is a plain array without reset so a
+// hand-off can map it to a register file or SRAM macro.
+module sys_fifo #(
+  parameter int unsigned WIDTH = 8,    // bits per entry
+  parameter int unsigned DEPTH = 4     // entries, a power of two >= 2
+) (
+  input  logic             clk_i,      // clock
+  input  logic             rst_ni,     // asynchronous reset, active low
+  input  logic             flush_i,    // synchronous clear: drop every entry
+  input  logic             valid_i,    // push request
+  output logic             ready_o,    // not full
+  input  logic [WIDTH-1:0] data_i,     // pushed entry
+  output logic             valid_o,    // not empty
+  input  logic             ready_i,    // pop request
+  output logic [WIDTH-1:0] data_o      // oldest entry
+);
+  localparam int unsigned PTR_W = $clog2(DEPTH);
+
+  if (DEPTH < 2 || (1 << PTR_W) != DEPTH) begin : gen_bad_depth
+    $fatal(1, "sys_fifo: DEPTH must be a power of two >= 2, got %0d", DEPTH);
+  end
+
+  logic [WIDTH-1:0] mem_q [DEPTH];
+  logic [PTR_W-1:0] wptr_q, rptr_q;
+  logic [PTR_W:0]   count_q;
+  logic             push, pop;
+
+  assign ready_o = (count_q != DEPTH[PTR_W:0]);
+  assign valid_o = (count_q != '0);
+  assign data_o  = mem_q[rptr_q];
+  assign push    = valid_i && ready_o;
+  assign pop     = valid_o && ready_i;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      wptr_q  <= '0;
+      rptr_q  <= '0;
+      count_q <= '0;
+    end else if (flush_i) begin
+      wptr_q  <= '0;
+      rptr_q  <= '0;
+      count_q <= '0;
+    end else begin
+      if (push) wptr_q <= wptr_q + 1'b1;
+      if (pop)  rptr_q <= rptr_q + 1'b1;
+      count_q <= count_q + {{PTR_W{1'b0}}, push} - {{PTR_W{1'b0}}, pop};
+    end
+  end
+
+  // The array has no reset (memory); it is written only on a push.
+  always_ff @(posedge clk_i) begin
+    if (push) mem_q[wptr_q] <= data_i;
+  end
+
+endmodule
