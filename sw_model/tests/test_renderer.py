@@ -48,7 +48,14 @@ def test_scene_names():
     assert len(names) >= 4
 
 
-@pytest.mark.parametrize("name", ["cornell", "showcase", "bunny", "duck", "teapots"])
+BUILTINS = ["cornell", "showcase", "bunny", "duck", "teapots", "engine"]
+
+
+def test_every_builtin_is_checked():
+    assert sorted(scene_names()) == sorted(BUILTINS)
+
+
+@pytest.mark.parametrize("name", BUILTINS)
 def test_builtin_scene_is_a_picture(frames, name):
     img = frames[name]
     assert img.shape == (H, W, 3) and img.dtype == np.uint8

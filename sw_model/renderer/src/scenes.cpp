@@ -212,11 +212,14 @@ const Builtin kBuiltins[] = {
     {"bunny", bunny},
     {"duck", [](std::string &e) { return model_builtin("/usr/share/assimp/models/Collada/duck.dae", "assimp-testmodels", 0.f, e); }},
     {"teapots", [](std::string &e) { return model_builtin("/usr/share/assimp/models/Collada/teapots.DAE", "assimp-testmodels", 0.f, e); }},
+    {"engine", [](std::string &e) {
+         return model_builtin("/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb", "assimp-testmodels", 0.f, e);
+     }},
 };
 
 }  // namespace
 
-const char *builtin_scene_names() { return "cornell,showcase,bunny,duck,teapots"; }
+const char *builtin_scene_names() { return "cornell,showcase,bunny,duck,teapots,engine"; }
 
 std::unique_ptr<Scene> model_file_scene(const std::string &path, std::string &err) {
     Model m;
