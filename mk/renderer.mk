@@ -38,3 +38,9 @@ $(RENDER_TEST_BIN): $(RENDER_TOBJS) $(RENDER_OBJS)
 -include $(RENDER_OBJS:.o=.d) $(RENDER_TOBJS:.o=.d)
 
 TEST_DEPS += renderer renderer-tests
+
+# Renderer benchmark: 1920x1080 reference render time and rays/s per built-in scene.
+.PHONY: bench-renderer
+bench-renderer: renderer
+	$(ENV) python scripts/bench_renderer.py
+BENCH_DEPS += bench-renderer

@@ -60,6 +60,8 @@ def _load():
         lib.msr_render_destroy.argtypes = [ctypes.c_void_p]
         lib.msr_render_scene_names.restype = ctypes.c_char_p
         lib.msr_render_scene_names.argtypes = []
+        lib.msr_render_rays.restype = ctypes.c_uint64
+        lib.msr_render_rays.argtypes = [ctypes.c_void_p]
         _lib = lib
         return lib
 
@@ -171,6 +173,11 @@ class EmbreeRenderer:
             if bar is not None:
                 bar.close()
         return out.reshape(h, w, 3)
+
+    @property
+    def rays(self) -> int:
+        """Rays cast so far by this renderer (primary, shadow, secondary, occlusion)."""
+        return int(self._lib.msr_render_rays(self._ctx)) if self._ctx else 0
 
     # -- lifetime -----------------------------------------------------------------------------
     def close(self) -> None:

@@ -41,6 +41,10 @@ void msr_render_destroy(msr_render_ctx *ctx); /* NULL is fine */
 /* Comma-separated names of the built-in scenes (static string), default scene first. */
 const char *msr_render_scene_names(void);
 
+/* Extension for benchmarks: rays (primary, shadow, secondary, occlusion) cast by all pixel
+ * calls on ctx so far. */
+uint64_t msr_render_rays(const msr_render_ctx *ctx);
+
 #ifdef __cplusplus
 }
 #endif

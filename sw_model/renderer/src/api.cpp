@@ -3,6 +3,7 @@
 
 #include <xmmintrin.h>
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -16,6 +17,7 @@
 struct msr_render_ctx {
     RTCDevice device = nullptr;
     std::unique_ptr<msr::Renderer> renderer;  // owns the scene; released before the device
+    std::atomic<uint64_t> rays{0};            // rays cast by all calls so far
     ~msr_render_ctx() {
         renderer.reset();
         if (device) rtcReleaseDevice(device);
@@ -122,18 +124,24 @@ void msr_render_pixel(msr_render_ctx *ctx, int x, int y, uint8_t rgb[3]) {
     if (!rgb) return;
     if (!ctx || !ctx->renderer) { rgb[0] = rgb[1] = rgb[2] = 0; return; }
     FpState fp;
-    ctx->renderer->pixel(x, y, rgb);
+    uint64_t rays = 0;
+    ctx->renderer->pixel(x, y, rgb, &rays);
+    ctx->rays.fetch_add(rays, std::memory_order_relaxed);
 }
 
 void msr_render_pixels(msr_render_ctx *ctx, int n, const int32_t *xs, const int32_t *ys, uint8_t *rgb_out) {
     if (n <= 0 || !rgb_out) return;
     if (!ctx || !ctx->renderer || !xs || !ys) { std::memset(rgb_out, 0, size_t(n) * 3); return; }
     FpState fp;
-    for (int i = 0; i < n; ++i) ctx->renderer->pixel(xs[i], ys[i], rgb_out + 3 * size_t(i));
+    uint64_t rays = 0;
+    for (int i = 0; i < n; ++i) ctx->renderer->pixel(xs[i], ys[i], rgb_out + 3 * size_t(i), &rays);
+    ctx->rays.fetch_add(rays, std::memory_order_relaxed);
 }
 
 void msr_render_destroy(msr_render_ctx *ctx) { delete ctx; }
 
 const char *msr_render_scene_names(void) { return msr::builtin_scene_names(); }
+
+uint64_t msr_render_rays(const msr_render_ctx *ctx) { return ctx ? ctx->rays.load(std::memory_order_relaxed) : 0; }
 
 }  // extern "C"

@@ -59,8 +59,10 @@ float polygon_irradiance(Vec3 p, Vec3 n, const AreaLight &l) {
     return 0.5f * std::fabs(sum);
 }
 
-uint8_t srgb8(float v) {
-    // Binary search of the exact thresholds: 8 comparisons, no pow.
+namespace {
+
+// Search of the exact thresholds, used to build the bucket table below.
+uint8_t srgb8_search(float v) {
     int lo = 0, hi = 255;  // answer in [lo, hi]
     while (lo < hi) {
         int mid = (lo + hi + 1) / 2;
@@ -69,10 +71,33 @@ uint8_t srgb8(float v) {
     return uint8_t(lo);
 }
 
+// Code at the start of each of 4096 equal buckets of [0, 1]; the sRGB curve rises by less
+// than one code per bucket, so one or two threshold compares finish the job without the
+// unpredictable branches of a full binary search.
+constexpr int kBuckets = 4096;
+struct SrgbBuckets {
+    uint8_t start[kBuckets + 1];
+    SrgbBuckets() {
+        for (int i = 0; i <= kBuckets; ++i) start[i] = srgb8_search(float(i) / float(kBuckets));
+    }
+};
+const SrgbBuckets kSrgbBuckets;
+
+}  // namespace
+
+uint8_t srgb8(float v) {
+    if (!(v > 0.f)) return 0;  // also NaN
+    if (v >= 1.f) return 255;
+    int code = kSrgbBuckets.start[int(v * float(kBuckets))];  // v * 4096 is exact: v >= bucket start
+    while (code < 255 && v >= kSrgbThreshold[code]) ++code;
+    return uint8_t(code);
+}
+
 struct Renderer::Sample {
     uint32_t pix;  // hash of (x, y, seed)
     int index;     // sample number within the pixel
     int count;     // samples per pixel
+    mutable uint64_t rays = 0;  // rays cast so far (for the benchmark)
     float rnd(uint32_t purpose, int depth) const {
         return u01(hash_combine(hash_combine(pix, uint32_t(index)), purpose | (uint32_t(depth) << 8)));
     }
@@ -104,13 +129,15 @@ Vec3 Renderer::sky(Vec3 d) const {
 }
 
 // Transmission towards a light: 0 behind an opaque occluder, a tint behind glass, else 1.
-float Renderer::shadow(Vec3 org, Vec3 dir, float dist, Vec3 &tint) const {
+float Renderer::shadow(Vec3 org, Vec3 dir, float dist, Vec3 &tint, const Sample &s) const {
     const Scene &sc = *scene_;
     float tfar = dist * (1.f - 1e-4f) - sc.eps;
     tint = {1.f, 1.f, 1.f};
     if (tfar <= 0.f) return 1.f;
+    ++s.rays;
     if (sc.occluded(org, dir, 0.f, tfar, MASK_OPAQUE)) return 0.f;
     if (sc.has_glass()) {
+        ++s.rays;
         Hit g = sc.intersect(org, dir, 0.f, tfar, MASK_GLASS);
         if (g.hit) { tint = sc.materials[g.material].albedo; return kGlassShadow; }
     }
@@ -128,7 +155,7 @@ Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const
         Vec3 dir = d / dist;
         float c = dot(nf, dir);
         if (c <= 0.f || dot(ngf, dir) <= 0.f) continue;
-        float v = shadow(o, dir, dist, tint);
+        float v = shadow(o, dir, dist, tint, s);
         if (v > 0.f) irr += l.intensity * tint * (v * c / d2);
     }
     for (const AreaLight &l : sc.area_lights) {
@@ -147,7 +174,7 @@ Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const
             float t = 0.f;
             if (dist > 0.f && dot(ngf, d) > 0.f) {
                 Vec3 dir = d / dist;
-                t = shadow(o, dir, dist, tint);
+                t = shadow(o, dir, dist, tint, s);
                 if (t > 0.f) vis += tint * t;
             }
             tmin = std::fmin(tmin, t);
@@ -181,13 +208,19 @@ Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const
         Vec3 t, b;
         onb(nf, t, b);
         Vec3 dir = normalize(t * (float(cs) * sr) + b * (float(sn) * sr) + nf * std::sqrt(1.f - r2));
-        if (dot(dir, ngf) <= 0.f || sc.occluded(o, dir, 0.f, sc.ao_radius, MASK_ALL)) amb = {0.f, 0.f, 0.f};
+        if (dot(dir, ngf) <= 0.f) {
+            amb = {0.f, 0.f, 0.f};
+        } else {
+            ++s.rays;
+            if (sc.occluded(o, dir, 0.f, sc.ao_radius, MASK_ALL)) amb = {0.f, 0.f, 0.f};
+        }
     }
     return albedo * (irr * (1.f / kPi) + amb);
 }
 
 Vec3 Renderer::trace(Vec3 org, Vec3 dir, int depth, float weight, const Sample &s) const {
     const Scene &sc = *scene_;
+    ++s.rays;
     Hit h = sc.intersect(org, dir, 0.f, kInf, MASK_ALL);
     if (!h.hit) return sky(dir);
     const Material &m = sc.materials[h.material];
@@ -238,7 +271,7 @@ Vec3 Renderer::trace(Vec3 org, Vec3 dir, int depth, float weight, const Sample &
     return {0.f, 0.f, 0.f};
 }
 
-Vec3 Renderer::radiance(int x, int y) const {
+Vec3 Renderer::radiance(int x, int y, uint64_t *rays) const {
     Sample s;
     s.pix = hash_combine(hash_combine(kSeed, uint32_t(x)), uint32_t(y));
     s.count = spp_;
@@ -254,6 +287,7 @@ Vec3 Renderer::radiance(int x, int y) const {
         primary_ray(fx, fy, org, dir);
         sum += trace(org, dir, 0, 1.f, s);
     }
+    if (rays) *rays += s.rays;
     return sum * (1.f / float(spp_));
 }
 
@@ -264,12 +298,12 @@ void Renderer::encode(Vec3 c, float exposure, uint8_t rgb[3]) {
     }
 }
 
-void Renderer::pixel(int x, int y, uint8_t rgb[3]) const {
+void Renderer::pixel(int x, int y, uint8_t rgb[3], uint64_t *rays) const {
     if (x < 0 || y < 0 || x >= width_ || y >= height_) {
         rgb[0] = rgb[1] = rgb[2] = 0;
         return;
     }
-    encode(radiance(x, y), scene_->exposure, rgb);
+    encode(radiance(x, y, rays), scene_->exposure, rgb);
 }
 
 }  // namespace msr

@@ -23,10 +23,11 @@ public:
     // Takes a committed scene. width, height >= 1.
     Renderer(std::unique_ptr<Scene> scene, int width, int height, Quality q);
 
-    // Linear radiance of pixel (x, y) (averaged over its samples), before exposure.
-    Vec3 radiance(int x, int y) const;
+    // Linear radiance of pixel (x, y) (averaged over its samples), before exposure; adds the
+    // number of rays cast to *rays when given.
+    Vec3 radiance(int x, int y, uint64_t *rays = nullptr) const;
     // Final 8-bit sRGB colour; outside the frame: (0, 0, 0).
-    void pixel(int x, int y, uint8_t rgb[3]) const;
+    void pixel(int x, int y, uint8_t rgb[3], uint64_t *rays = nullptr) const;
 
     // Tone mapping (exposure, ACES fit) and sRGB encoding, rounded to 8 bits.
     static void encode(Vec3 linear, float exposure, uint8_t rgb[3]);
@@ -47,7 +48,7 @@ private:
     struct Sample;
     Vec3 trace(Vec3 org, Vec3 dir, int depth, float weight, const Sample &s) const;
     Vec3 shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const Sample &s) const;
-    float shadow(Vec3 org, Vec3 dir, float dist, Vec3 &tint) const;
+    float shadow(Vec3 org, Vec3 dir, float dist, Vec3 &tint, const Sample &s) const;
     Vec3 sky(Vec3 dir) const;
 
     std::unique_ptr<Scene> scene_;

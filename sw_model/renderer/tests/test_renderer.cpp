@@ -477,3 +477,22 @@ TEST(CApi, HeavyCostsMoreAndDiffersOnlyModestly) {
     EXPECT_GT(diff, 0.5);   // a different estimator (AA, AO, sampled penumbrae)...
     EXPECT_LT(diff, 25.0);  // ...of the same picture
 }
+
+TEST(CApi, RayCounter) {
+    char err[256];
+    Ctx f(msr_render_create("cornell", 64, 48, 0, err, sizeof err));
+    Ctx h(msr_render_create("cornell", 64, 48, 1, err, sizeof err));
+    ASSERT_NE(f.p, nullptr);
+    EXPECT_EQ(msr_render_rays(f.p), 0u);
+    uint8_t rgb[3];
+    msr_render_pixel(f.p, 0, 24, rgb);  // left of the box: one primary ray into the void
+    EXPECT_EQ(msr_render_rays(f.p), 1u);
+    msr_render_pixel(f.p, 18, 45, rgb);  // the floor, front left: primary + at least 4 shadow rays
+    EXPECT_GE(msr_render_rays(f.p), 1u + 5u);
+    EXPECT_LE(msr_render_rays(f.p), 1u + 1u + 20u);
+    msr_render_pixel(h.p, 0, 24, rgb);  // heavy: 16 samples, all into the void
+    EXPECT_EQ(msr_render_rays(h.p), 16u);
+    msr_render_pixel(f.p, 99, 99, rgb);  // outside the frame: nothing cast
+    EXPECT_LE(msr_render_rays(f.p), 22u);
+    EXPECT_EQ(msr_render_rays(nullptr), 0u);
+}
