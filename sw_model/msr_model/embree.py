@@ -109,6 +109,7 @@ class EmbreeRenderer:
         self.threads = max(1, int(threads)) if threads else _threads()
         self.calls = 0
         self.pixels_traced = 0
+        self._pool = None  # worker threads, started on the first multi-batch call
 
     # -- pixels -------------------------------------------------------------------------------
     def _check_open(self):
@@ -131,8 +132,9 @@ class EmbreeRenderer:
             for s in starts:
                 run(s)
         else:
-            with ThreadPoolExecutor(max_workers=self.threads) as pool:
-                list(pool.map(run, starts))
+            if self._pool is None:
+                self._pool = ThreadPoolExecutor(max_workers=self.threads, thread_name_prefix="msr_render")
+            list(self._pool.map(run, starts))
 
     def render(self, xs, ys) -> np.ndarray:
         """Colours of the pixels (xs[i], ys[i]) as an (N, 3) uint8 array."""
@@ -181,6 +183,10 @@ class EmbreeRenderer:
 
     # -- lifetime -----------------------------------------------------------------------------
     def close(self) -> None:
+        pool = getattr(self, "_pool", None)
+        if pool is not None:
+            pool.shutdown(wait=True)  # no call may still be running when the context goes
+            self._pool = None
         if getattr(self, "_ctx", None):
             self._lib.msr_render_destroy(self._ctx)
             self._ctx = None

@@ -96,7 +96,6 @@ uint8_t srgb8(float v) {
 struct Renderer::Sample {
     uint32_t pix;  // hash of (x, y, seed)
     int index;     // sample number within the pixel
-    int count;     // samples per pixel
     mutable uint64_t rays = 0;  // rays cast so far (for the benchmark)
     float rnd(uint32_t purpose, int depth) const {
         return u01(hash_combine(hash_combine(pix, uint32_t(index)), purpose | (uint32_t(depth) << 8)));
@@ -274,7 +273,6 @@ Vec3 Renderer::trace(Vec3 org, Vec3 dir, int depth, float weight, const Sample &
 Vec3 Renderer::radiance(int x, int y, uint64_t *rays) const {
     Sample s;
     s.pix = hash_combine(hash_combine(kSeed, uint32_t(x)), uint32_t(y));
-    s.count = spp_;
     Vec3 sum{0.f, 0.f, 0.f};
     for (int i = 0; i < spp_; ++i) {
         s.index = i;
