@@ -44,7 +44,7 @@ module msr_decide
   logic [USER_W-1:0] s1_user_q;
 
   function automatic chan_t absdiff(chan_t x, chan_t y);
-    return (x > y) ? chan_t'(x - y) : chan_t'(y - x);
+    return (x > y) ? x - y : y - x;
   endfunction
 
   always_comb begin
@@ -87,7 +87,7 @@ module msr_decide
     d_sum    = diff_t'(s1_abs_q[2]) + diff_t'(s1_abs_q[1]) + diff_t'(s1_abs_q[0]);
     d_sel    = (s1_metric_q == METRIC_SUM) ? d_sum : d_max;
     lhs      = LHS_W'(d_sel) << s1_nshift_q;
-    interp_d = LHS_W'(lhs) < LHS_W'(s1_rhs_q);
+    interp_d = lhs < LHS_W'(s1_rhs_q);
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin

@@ -1,0 +1,156 @@
+"""Tile engine throughput: cycles per 16x16 tile against render latency, and decisions per
+clock inside a pass. Runs the RTL (cocotb on Verilator) and writes out/bench/engine.json
+plus a Markdown table on stdout.
+
+    .venv/bin/python scripts/bench_engine.py
+
+Set-up per point: 8 tiles of 16x16 back to back, L = 2, metric max; the renderer answers a
+request exactly `latency` cycles after the cycle that accepted it (latency 0 = the next
+cycle), in order; req_ready and pix_ready always 1. Scenes: a smooth image with thr 8,16
+(a typical mix of traced and interpolated pixels) and thr 0,0 (every pixel traced: the
+worst case). Reported: steady-state cycles per tile (first descriptor to last pixel / 8),
+cycles of a lone tile (descriptor to last pixel), traced fraction, and the decision rate
+inside the H / V passes (issued positions / cycles from a pass's first to its last issue).
+"""
+from __future__ import annotations
+
+import json
+import os
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tb" / "common"))
+
+LATENCIES = (0, 16, 64, 256)
+OUTSTANDING = (16, 64)
+TILES = 8
+OUT = ROOT / "out" / "bench" / "engine.json"
+
+
+def scene_image(w=16 * TILES, h=16):
+    import numpy as np
+    yy, xx = np.mgrid[0:h, 0:w]
+    img = np.stack([128 + 100 * np.sin(0.07 * xx + 0.05 * yy),
+                    128 + 90 * np.cos(0.05 * xx - 0.08 * yy),
+                    100 + 0.8 * xx % 60 + 20 * (xx > w // 2)], axis=-1)
+    return np.clip(img, 0, 255).astype(np.uint8)
+
+
+try:
+    import cocotb
+    from cocotb.triggers import FallingEdge, ReadOnly
+except ImportError:  # pragma: no cover
+    cocotb = None
+
+def pack_desc(x0, y0, w, h, levels, metric, thr):
+    thr = list(thr) + [0] * (3 - len(thr))
+    v = x0
+    for val, width in ((y0, 12), (w, 6), (h, 6), (levels, 2), (int(metric == "sum"), 1),
+                       (thr[2], 8), (thr[1], 8), (thr[0], 8)):
+        v = (v << width) | val
+    return v
+
+
+if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
+    from msr_tb import pack_rgb, start_clock_and_reset
+
+    async def run_point(dut, latency, thr, img):
+        """Returns (cycles for all tiles, cycles of the first tile, traced, pass stats)."""
+        descs = [pack_desc(16 * i, 0, 16, 16, 2, "max", thr) for i in range(TILES)]
+        pending = []                       # (due cycle, tag, rgb) in request order
+        cycle = 0
+        start = None
+        first_done = None
+        di = pixels = traced = 0
+        rsp = None
+        issue_cycles, pass_log = [], []
+        while pixels < 256 * TILES:
+            dut.desc_valid_i.value = int(di < TILES)
+            if di < TILES:
+                dut.desc_i.value = descs[di]
+            if rsp is None and pending and pending[0][0] <= cycle:
+                rsp = pending.pop(0)
+            dut.rsp_valid_i.value = int(rsp is not None)
+            if rsp is not None:
+                dut.rsp_tag_i.value = rsp[1]
+                dut.rsp_rgb_i.value = rsp[2]
+            await ReadOnly()
+            if di < TILES and dut.desc_ready_o.value:
+                di += 1
+                if start is None:
+                    start = cycle
+            if dut.req_valid_o.value:
+                x, y = int(dut.req_x_o.value), int(dut.req_y_o.value)
+                pending.append((cycle + 1 + latency, int(dut.req_tag_o.value), pack_rgb(img[y, x])))
+                traced += 1
+            if rsp is not None and dut.rsp_ready_o.value:
+                rsp = None
+            if dut.issue.value:
+                if dut.step_first.value and dut.step_dir.value.to_unsigned() != 0:
+                    pass_log.append([cycle, cycle, 0])
+                if dut.step_dir.value.to_unsigned() != 0 and pass_log:
+                    pass_log[-1][1] = cycle
+                    pass_log[-1][2] += 1
+            if dut.pix_valid_o.value:
+                pixels += 1
+                if dut.pix_last_o.value and first_done is None:
+                    first_done = cycle - start + 1
+            cycle += 1
+            await FallingEdge(dut.clk_i)
+        return cycle - start, first_done, traced, pass_log
+
+    @cocotb.test()
+    async def bench(dut):
+        img = scene_image()
+        await start_clock_and_reset(dut, {"clear_i": 0, "desc_valid_i": 0, "desc_i": 0,
+                                          "req_ready_i": 1, "rsp_valid_i": 0, "rsp_tag_i": 0,
+                                          "rsp_rgb_i": 0, "pix_ready_i": 1})
+        results = []
+        for thr in ((8, 16), (0, 0)):
+            for lat in LATENCIES:
+                total, first, traced, passes = await run_point(dut, lat, thr, img)
+                dec = sum(p[2] for p in passes)
+                span = sum(p[1] - p[0] + 1 for p in passes)
+                results.append({"latency": lat, "thr": list(thr), "tiles": TILES,
+                                "cycles_per_tile": total / TILES, "lone_tile_cycles": first,
+                                "traced_fraction": traced / (256 * TILES),
+                                "decisions_per_clock_in_pass": dec / span if span else None,
+                                "passes": len(passes)})
+                dut.clear_i.value = 1
+                await ReadOnly()
+                await FallingEdge(dut.clk_i)
+                dut.clear_i.value = 0
+        Path(os.environ["MSR_BENCH_OUT"]).write_text(json.dumps(results))
+
+
+def main() -> int:
+    from msr_runner import run_cocotb
+    table = []
+    for max_out in OUTSTANDING:
+        part = ROOT / "build" / "bench" / f"engine_{max_out}.json"
+        part.parent.mkdir(parents=True, exist_ok=True)
+        run_cocotb("tile_engine", "bench_engine", ROOT / "scripts", {"MAX_OUTSTANDING": max_out}, tag="bench",
+                   extra_env={"MSR_BENCH_SIM": "1", "MSR_BENCH_OUT": part,
+                              "PYTHONPATH": os.pathsep.join([str(ROOT / "tb" / "common"),
+                                                            str(ROOT / "scripts")])})
+        for r in json.loads(part.read_text()):
+            r["max_outstanding"] = max_out
+            table.append(r)
+    OUT.parent.mkdir(parents=True, exist_ok=True)
+    OUT.write_text(json.dumps({"setup": __doc__.split("Set-up per point:")[1].strip(),
+                               "results": table}, indent=1))
+    print("| MAX_OUTSTANDING | thr | latency | cycles / 16x16 tile | lone tile | pixels / clock "
+          "| traced | decisions / clock in a pass |")
+    print("|---|---|---|---|---|---|---|---|")
+    for r in table:
+        print(f"| {r['max_outstanding']} | {','.join(map(str, r['thr']))} | {r['latency']} "
+              f"| {r['cycles_per_tile']:.0f} | {r['lone_tile_cycles']} "
+              f"| {256 / r['cycles_per_tile']:.3f} | {r['traced_fraction']:.2f} "
+              f"| {r['decisions_per_clock_in_pass']:.3f} |")
+    print(f"written {OUT.relative_to(ROOT)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

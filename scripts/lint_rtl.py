@@ -1,0 +1,83 @@
+"""make lint: every RTL module of rtl/msr.f through three linters, zero warnings allowed.
+
+- Verilator 5.048 --lint-only -Wall, one run per module as top (with the package and the
+  modules it instantiates); waivers are lint_off/lint_on comments per signal in the RTL.
+- Verible lint per file with rtl/verible.rules; waivers are `verilog_lint: waive` comments.
+- pyslang (slang) full elaboration per module as top, every warning an error.
+Exit status 1 on any warning or error; one line per finding."""
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tb" / "common"))
+from msr_runner import rtl_sources  # noqa: E402
+
+
+def modules(files):
+    """(module name, file) of every module defined in the file list."""
+    out = []
+    for f in files:
+        for m in re.finditer(r"^\s*module\s+(\w+)", f.read_text(), re.M):
+            out.append((m.group(1), f))
+    return out
+
+
+def run(cmd) -> tuple[int, str]:
+    p = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    return p.returncode, (p.stdout + p.stderr)
+
+
+def verilator(files, top) -> list[str]:
+    rc, out = run(["verilator", "--lint-only", "-Wall", "--top-module", top, *map(str, files)])
+    bad = [ln for ln in out.splitlines() if ln.startswith("%")]
+    return bad if bad or rc == 0 else [f"verilator exit {rc}"]
+
+
+def verible(files) -> list[str]:
+    rc, out = run(["verible-verilog-lint", "--rules_config=rtl/verible.rules", *map(str, files)])
+    bad = [ln for ln in out.splitlines() if ln.strip()]
+    return bad if bad or rc == 0 else [f"verible exit {rc}"]
+
+
+def slang(files, top) -> list[str]:
+    import pyslang
+    d = pyslang.driver.Driver()
+    d.addStandardArgs()
+    args = " ".join(["slang", "--top", top, "-Wextra", "-Wno-case-redundant-default", "--error-limit=100",
+                     *map(str, files)])
+    if not d.parseCommandLine(args, pyslang.driver.CommandLineOptions()) or not d.processOptions():
+        return [f"slang: bad command line for {top}"]
+    if not d.parseAllSources():
+        return [f"slang: parse errors for {top}"]
+    comp = d.createCompilation()
+    for diag in comp.getAllDiagnostics():
+        d.diagEngine.issue(diag)
+    text = d.textDiagClient.getString()
+    return [ln for ln in text.splitlines() if re.search(r"(warning|error):", ln)]
+
+
+def main() -> int:
+    files = rtl_sources()
+    missing = [f for f in files if not f.exists()]
+    if missing:
+        print(f"lint: {missing[0]} listed in rtl/msr.f does not exist")
+        return 1
+    findings = []
+    findings += [f"verible: {x}" for x in verible(files)]
+    for top, _ in modules(files):
+        findings += [f"verilator[{top}]: {x}" for x in verilator(files, top)]
+        findings += [f"slang[{top}]: {x}" for x in slang(files, top)]
+    n_mod = len(modules(files))
+    for f in findings:
+        print(f)
+    print(f"lint: {n_mod} modules, {len(files)} files: "
+          f"{'clean' if not findings else f'{len(findings)} findings'}")
+    return 1 if findings else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
