@@ -26,6 +26,23 @@ def modules(files):
     return out
 
 
+def closure(files, top_file):
+    """The files one module needs, in file-list order: the packages and modules it names,
+    recursively. So every module is linted by itself, not with unrelated neighbours."""
+    defs = {}
+    for f in files:
+        for m in re.finditer(r"^\s*(?:module|package)\s+(\w+)", f.read_text(), re.M):
+            defs[m.group(1)] = f
+    need, todo = {top_file}, [top_file]
+    while todo:
+        text = re.sub(r"//.*", "", todo.pop().read_text())
+        for name, f in defs.items():
+            if f not in need and re.search(rf"\b{name}\b", text):
+                need.add(f)
+                todo.append(f)
+    return [f for f in files if f in need]
+
+
 def run(cmd) -> tuple[int, str]:
     p = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     return p.returncode, (p.stdout + p.stderr)
@@ -68,9 +85,10 @@ def main() -> int:
         return 1
     findings = []
     findings += [f"verible: {x}" for x in verible(files)]
-    for top, _ in modules(files):
-        findings += [f"verilator[{top}]: {x}" for x in verilator(files, top)]
-        findings += [f"slang[{top}]: {x}" for x in slang(files, top)]
+    for top, top_file in modules(files):
+        own = closure(files, top_file)
+        findings += [f"verilator[{top}]: {x}" for x in verilator(own, top)]
+        findings += [f"slang[{top}]: {x}" for x in slang(own, top)]
     n_mod = len(modules(files))
     for f in findings:
         print(f)
