@@ -231,6 +231,39 @@ def test_cli_missing_library_is_one_line(tmp_path):
     assert not out.exists()
 
 
+def _limited():
+    """Child process guard: if the header check regressed, assimp would allocate gigabytes."""
+    import resource
+    resource.setrlimit(resource.RLIMIT_AS, (4 << 30, 4 << 30))
+
+
+@pytest.mark.parametrize("kind", ["ply_ascii", "ply_binary", "off", "assimp_oom_off"])
+def test_header_with_absurd_counts_is_rejected_fast(tmp_path, kind):
+    """OFF and PLY headers declaring 10^9 elements in a few hundred bytes: a one-line error at
+    once (assimp itself would allocate and loop for minutes)."""
+    if kind == "assimp_oom_off":
+        path = Path("/usr/share/assimp/models/invalid/OutOfMemory.off")
+        if not path.is_file():
+            pytest.skip("assimp-testmodels not installed")
+    else:
+        fmt = {"ply_ascii": "ascii", "ply_binary": "binary_little_endian"}.get(kind)
+        if fmt:
+            text = (f"ply\nformat {fmt} 1.0\nelement vertex 1500000000\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                    "0 0 0\n1 0 0\n")
+            path = tmp_path / "huge.ply"
+        else:
+            text = "OFF\n# a comment\n4000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"
+            path = tmp_path / "huge.off"
+        path.write_text(text)
+    out = tmp_path / "o.png"
+    r = subprocess.run([sys.executable, "-m", "msr_model", "render", "--scene", str(path), "--width", "8",
+                        "--height", "8", "--out", str(out)], capture_output=True, text=True, timeout=120,
+                       preexec_fn=_limited)
+    assert r.returncode == 2 and "malformed" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert not out.exists()
+
+
 # ---- model files the project never names ---------------------------------------------------------
 
 CUBE_V = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
@@ -303,6 +336,22 @@ def test_unnamed_model_file_renders_framed(tmp_path, writer, name):
     assert 0.04 < share < 0.6, share
     assert red_share(img[H // 4: 3 * H // 4, W // 4: 3 * W // 4]) > share
     assert len(np.unique(img.reshape(-1, 3), axis=0)) >= 100
+
+
+def test_valid_off_and_ascii_stl_pass_the_header_check(tmp_path):
+    off = tmp_path / "cube.off"
+    off.write_text("OFF\n8 6 0\n" + "".join(f"{x} {y} {z}\n" for x, y, z in CUBE_V)
+                   + "".join(f"4 {' '.join(str(i) for i in reversed(f))}\n" for f in CUBE_F))
+    stl = tmp_path / "tet.stl"
+    tris = [((0, 0, 0), (0, 1, 0), (1, 0, 0)), ((0, 0, 0), (1, 0, 0), (0, 0, 1)),
+            ((0, 0, 0), (0, 0, 1), (0, 1, 0)), ((1, 0, 0), (0, 1, 0), (0, 0, 1))]
+    stl.write_text("solid t\n" + "".join(
+        "facet normal 0 0 0\nouter loop\n" + "".join(f"vertex {a} {b} {c}\n" for a, b, c in t)
+        + "endloop\nendfacet\n" for t in tris) + "endsolid t\n")
+    for path in (off, stl):
+        with open_renderer(str(path), W, H) as r:
+            img = r.render_full()
+        assert len(np.unique(img.reshape(-1, 3), axis=0)) >= 100, path
 
 
 def test_framing_ignores_model_position_and_scale(tmp_path):

@@ -7,8 +7,12 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace msr {
 
@@ -55,6 +59,60 @@ Material convert_material(const aiMaterial *am) {
     return Material::diffuse(base);
 }
 
+// Formats whose header declares element counts (OFF, PLY) make assimp 5.2 allocate and loop
+// over whatever the header says: a 300-byte file claiming 10^9 vertices eats gigabytes and
+// minutes. Every element takes at least one byte, so a count beyond the file size is a lie.
+bool plausible_counts(const std::string &path, std::string &err) {
+    std::ifstream f(path, std::ios::binary);
+    std::error_code ec;
+    const unsigned long long size = std::filesystem::file_size(path, ec);
+    if (!f || ec) return true;  // the importer reports unreadable files itself
+    std::string head(65536, '\0');
+    f.read(&head[0], std::streamsize(head.size()));
+    head.resize(size_t(f.gcount()));
+    std::istringstream in(head);
+    std::string line;
+    unsigned long long total = 0;
+    bool overflow = false;
+    auto add = [&](const std::string &tok) {
+        errno = 0;
+        char *end = nullptr;
+        unsigned long long v = std::strtoull(tok.c_str(), &end, 10);
+        if (errno == ERANGE || tok.empty() || tok[0] == '-' || *end != '\0') { overflow = overflow || errno == ERANGE; return; }
+        if (total + v < total) overflow = true;
+        total += v;
+    };
+    if (!std::getline(in, line)) return true;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.rfind("ply", 0) == 0) {
+        while (std::getline(in, line)) {
+            std::istringstream ls(line);
+            std::string kw, name, count;
+            ls >> kw;
+            if (kw == "end_header") break;
+            if (kw == "element" && (ls >> name >> count)) add(count);
+        }
+    } else if (line.find("OFF") != std::string::npos && line.size() < 8) {
+        while (std::getline(in, line)) {  // first line that is not a comment: nv nf ne
+            std::istringstream ls(line);
+            std::string a, b;
+            if (!(ls >> a) || a[0] == '#') continue;
+            add(a);
+            if (ls >> b) add(b);
+            break;
+        }
+    } else {
+        return true;
+    }
+    if (overflow || total > size) {
+        err = "model file " + path + " is malformed: its header declares " +
+              (overflow ? std::string("more than 2^64") : std::to_string(total)) + " elements in " +
+              std::to_string(size) + " bytes";
+        return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 bool load_model(const std::string &path, Model &out, std::string &err) {
@@ -62,6 +120,8 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
     std::error_code ec;
     if (!fs::exists(path, ec)) { err = "cannot read model file " + path + ": no such file"; return false; }
     if (!fs::is_regular_file(path, ec)) { err = "cannot read model file " + path + ": not a regular file"; return false; }
+
+    if (!plausible_counts(path, err)) return false;
 
     Assimp::Importer imp;
     // Points and lines are dropped; degenerate triangles removed.
