@@ -25,6 +25,7 @@ def test_pareto_and_fraction_for_by_hand():
 def test_level_thresholds_and_fov_gain():
     assert ev.level_thr(3, 4) == (4, 8, 16)
     assert ev.level_thr(2, 200) == (200, 255)
+    assert ev.level_thr(3, 0.25) == (1, 1, 1) and ev.level_thr(3, 0.5) == (1, 1, 2)
     # 1920 / 16 = 120 tiles: r2 up to 119 half-tiles; gain 2 adds (2 * 119) >> 4 = 14 at the edge
     assert ev.fov_gain_for(1920, 1080, 16) == 2
 
@@ -32,7 +33,8 @@ def test_level_thresholds_and_fov_gain():
 def test_small_eval_run(tmp_path):
     """The quick run end to end on two scenes (Embree when built, else the test picture)."""
     t0 = time.perf_counter()
-    args = ["--width", "96", "--height", "64", "--max-scenes", "2", "--out", str(tmp_path)]
+    args = ["--width", "96", "--height", "64", "--max-scenes", "2", "--out", str(tmp_path),
+            "--all-metrics"]
     backend = ev.Backend("auto")
     if backend.embree:
         args += ["--modes", "fast"]
