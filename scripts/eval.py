@@ -534,11 +534,18 @@ def main(argv=None):
     ap.add_argument("--out", default=str(REPO / "out/eval"))
     ap.add_argument("--docs", action="store_true", help="also write docs/results.md and docs/img/")
     ap.add_argument("--docs-dir", default=str(REPO / "docs"), help="where --docs writes")
+    ap.add_argument("--report-only", action="store_true",
+                    help="only rewrite the docs from an existing OUT/results.json (no rendering)")
     ap.add_argument("--no-speedup", action="store_true")
     ap.add_argument("--all-metrics", action="store_true",
                     help="SSIM and FLIP for every setting (default: only the key settings)")
     a = ap.parse_args(argv)
 
+    if a.report_only:
+        from eval_report import write_docs  # noqa: PLC0415
+        result = json.loads((Path(a.out) / "results.json").read_text())
+        write_docs(result, Path(a.out), Path(a.docs_dir))
+        return result
     full = a.full
     W = a.width or (1920 if full else 192)
     H = a.height or (1080 if full else 108)
