@@ -83,7 +83,12 @@ module tile_engine
   assign desc_fire    = desc_valid_i && desc_ready_o;
 
   // ---- Level processing controller -----------------------------------------------------------
-  logic    step_valid, step_ready, step_first, step_reuse;
+  logic    step_valid, step_ready, step_reuse;
+  // The pass-start flag is not needed with the pixel scoreboard; kept for waveforms and
+  // the throughput benchmark, which counts decisions per pass with it.
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic    step_first;
+  /* verilator lint_on UNUSEDSIGNAL */
   lcoord_t step_x, step_y, step_ax, step_ay, step_bx, step_by;
   gap_t    step_gap, step_off;
   level_t  step_level;
@@ -124,10 +129,21 @@ module tile_engine
   logic s1_valid_q, s1_ready, unit_ready, unit_ready_i;
   logic issue, retire;
 
+  // Pixel scoreboard: final_q[{y, x}] is set when the pixel of the current tile is written
+  // (interpolated, or traced and answered). A position is issued as soon as both its
+  // neighbours are final; that is exactly what a pass barrier guarantees (a pass reads only
+  // pixels of earlier passes, which are written once and never change), without waiting
+  // for the rest of the previous pass. Positions still leave in order, so the render
+  // requests keep the golden model's order.
+  logic [DEPTH-1:0] final_q;
+  logic             nb_final;
+
+  assign nb_final   = (step_dir == DIR_INIT) ||
+                      (final_q[{step_ay, step_ax}] && final_q[{step_by, step_bx}]);
   assign drained    = (pipe_cnt_q == '0) && (32'(free_cnt_q) == MAX_OUTSTANDING);
   assign s1_ready   = !s1_valid_q || unit_ready;
-  assign issue      = step_valid && s1_ready && (!step_first || drained);
-  assign step_ready = s1_ready && (!step_first || drained);
+  assign issue      = step_valid && s1_ready && nb_final;
+  assign step_ready = s1_ready && nb_final;
 
   // Engine-side ports of the current buffer.
   logic                 e_re0, e_re1, e_we;
@@ -304,6 +320,17 @@ module tile_engine
   assign e_waddr = out_write ? {out_side.y, out_side.x} : tag_addr_q[rsp_tag_i];
   assign e_wdata = out_write ? {src_interp(out_side.level), out_rgb}
                              : {src_traced(tag_level_q[rsp_tag_i]), rsp_rgb_i};
+
+  // Scoreboard update: a written pixel is final.
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      final_q <= '0;
+    end else if (clear_i || desc_fire) begin
+      final_q <= '0;
+    end else if (e_we) begin
+      final_q[e_waddr] <= 1'b1;
+    end
+  end
 
   // ---- Pipeline occupancy, tile start / end --------------------------------------------------
   assign tile_done = active_q && !ctrl_busy && drained;
