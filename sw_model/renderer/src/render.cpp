@@ -25,7 +25,7 @@ Vec3 reflect(Vec3 d, Vec3 n) { return d - n * (2.f * dot(d, n)); }
 float aces(float x) {
     // Narkowicz's fit of the ACES filmic curve.
     float y = (x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f);
-    return std::fmin(1.f, std::fmax(0.f, y));
+    return minf(1.f, maxf(0.f, y));
 }
 
 }  // namespace
@@ -123,7 +123,7 @@ void Renderer::primary_ray(float fx, float fy, Vec3 &org, Vec3 &dir) const {
 Vec3 Renderer::sky(Vec3 d) const {
     const Scene &sc = *scene_;
     if (d.y >= 0.f) return sc.sky_horizon + (sc.sky_zenith - sc.sky_horizon) * std::sqrt(d.y);
-    float t = std::fmin(1.f, -d.y * 8.f);
+    float t = minf(1.f, -d.y * 8.f);
     return sc.sky_horizon + (sc.sky_ground - sc.sky_horizon) * t;
 }
 
@@ -176,8 +176,8 @@ Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const
                 t = shadow(o, dir, dist, tint, s);
                 if (t > 0.f) vis += tint * t;
             }
-            tmin = std::fmin(tmin, t);
-            tmax = std::fmax(tmax, t);
+            tmin = minf(tmin, t);
+            tmax = maxf(tmax, t);
         };
         if (quality_ == Quality::Fast) {
             // Fixed points, no noise: the 4 corners (if one convex occluder hides them all, it
@@ -247,7 +247,7 @@ Vec3 Renderer::trace(Vec3 org, Vec3 dir, int depth, float weight, const Sample &
     case MatType::Glass: {
         if (depth >= kMaxDepth) return sc.ambient * m.albedo;
         const float eta = front ? 1.f / m.ior : m.ior;  // n_incident / n_transmitted
-        const float cosi = std::fmin(1.f, std::fmax(0.f, -dot(dir, nf)));
+        const float cosi = minf(1.f, maxf(0.f, -dot(dir, nf)));
         const float sin2t = eta * eta * (1.f - cosi * cosi);
         Vec3 r = reflect(dir, nf);
         if (dot(r, ngf) <= 0.f) r = reflect(dir, ngf);
@@ -292,7 +292,7 @@ Vec3 Renderer::radiance(int x, int y, uint64_t *rays) const {
 void Renderer::encode(Vec3 c, float exposure, uint8_t rgb[3]) {
     for (int i = 0; i < 3; ++i) {
         float v = c[i] * exposure;
-        rgb[i] = std::isfinite(v) ? srgb8(aces(std::fmax(0.f, v))) : 0;  // NaN -> black
+        rgb[i] = std::isfinite(v) ? srgb8(aces(maxf(0.f, v))) : 0;  // NaN -> black
     }
 }
 

@@ -33,9 +33,13 @@ inline Vec3 normalize(Vec3 a) {
     float l = length(a);
     return l > 0.f ? a / l : Vec3{0.f, 0.f, 0.f};
 }
+// min/max that compile to one instruction (std::fmin is a libm call without -ffast-math);
+// NaN handling does not matter where they are used.
+inline float minf(float a, float b) { return b < a ? b : a; }
+inline float maxf(float a, float b) { return b > a ? b : a; }
 inline Vec3 vmin(Vec3 a, Vec3 b) { return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)}; }
 inline Vec3 vmax(Vec3 a, Vec3 b) { return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)}; }
-inline float max_component(Vec3 a) { return std::fmax(a.x, std::fmax(a.y, a.z)); }
+inline float max_component(Vec3 a) { return maxf(a.x, maxf(a.y, a.z)); }
 
 // Orthonormal basis around a unit normal (Duff et al. 2017, branchless up to the sign).
 inline void onb(Vec3 n, Vec3 &t, Vec3 &b) {
