@@ -139,12 +139,16 @@ class EmbreeRenderer:
     def render(self, xs, ys) -> np.ndarray:
         """Colours of the pixels (xs[i], ys[i]) as an (N, 3) uint8 array."""
         self._check_open()
-        xs = np.ascontiguousarray(np.asarray(xs).reshape(-1), dtype=np.int32)
-        ys = np.ascontiguousarray(np.asarray(ys).reshape(-1), dtype=np.int32)
+        xs, ys = np.asarray(xs).reshape(-1), np.asarray(ys).reshape(-1)
         if xs.shape != ys.shape:
             raise spec.SpecError(f"xs and ys differ in length ({xs.size} vs {ys.size})")
+        if xs.size and not (np.issubdtype(xs.dtype, np.integer) and np.issubdtype(ys.dtype, np.integer)):
+            raise spec.SpecError(f"pixel coordinates must be integers, got {xs.dtype} and {ys.dtype}")
+        # Checked before the cast to int32, so a huge coordinate cannot wrap into the frame.
         if xs.size and (xs.min() < 0 or xs.max() >= self.width or ys.min() < 0 or ys.max() >= self.height):
             raise spec.SpecError(f"pixel outside the {self.width}x{self.height} frame")
+        xs = np.ascontiguousarray(xs, dtype=np.int32)
+        ys = np.ascontiguousarray(ys, dtype=np.int32)
         out = np.empty((xs.size, 3), dtype=np.uint8)
         self.calls += 1
         self.pixels_traced += xs.size

@@ -178,7 +178,12 @@ def test_render_rejects_pixels_outside_the_frame_and_after_close():
         r.render([8], [0])
     with pytest.raises(spec.SpecError):
         r.render([0, 1], [0])
+    with pytest.raises(spec.SpecError):
+        r.render(np.array([2**32 + 1]), np.array([0]))  # would wrap to 1 as int32
+    with pytest.raises(spec.SpecError, match="integers"):
+        r.render(np.array([1.5]), np.array([0.0]))
     assert r.render([], []).shape == (0, 3)
+    assert (r.render(np.array([3], np.uint16), np.array([2], np.int64)) == r.render([3], [2])).all()
     r.close()
     r.close()  # twice is fine
     with pytest.raises(spec.SpecError, match="closed"):
