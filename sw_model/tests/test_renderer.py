@@ -409,3 +409,14 @@ def test_srgb_table_is_generated_from_the_exact_curve():
     gen = root / "sw_model" / "renderer" / "tools" / "gen_srgb_table.py"
     r = subprocess.run([sys.executable, str(gen)], capture_output=True, text=True, check=True)
     assert r.stdout == (root / "sw_model" / "renderer" / "src" / "srgb_table.h").read_text()
+
+
+def test_cli_render_heavy_and_bad_quality(tmp_path):
+    out = tmp_path / "h.png"
+    r = cli("render", "--scene", "showcase", "--width", 24, "--height", 18, "--quality", "heavy", "--out", out)
+    assert r.returncode == 0, r.stderr
+    with open_renderer("showcase", 24, 18, "heavy") as rr:
+        assert (np.asarray(Image.open(out)) == rr.render_full()).all()
+    bad = tmp_path / "b.png"
+    r = cli("render", "--scene", "showcase", "--width", 24, "--height", 18, "--quality", "best", "--out", bad)
+    assert r.returncode == 2 and "quality" in r.stderr and not bad.exists()
