@@ -169,9 +169,12 @@ Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const
             Vec3 q = l.corner + l.e1 * u + l.e2 * v;
             Vec3 d = q - o;
             float dist = length(d);
+            // A point below the shading horizon lies outside the clipped polygon that f
+            // already integrates: it says nothing about visibility, so it is not counted.
+            if (!(dist > 0.f) || dot(nf, d) <= 0.f) return;
             ++n;
             float t = 0.f;
-            if (dist > 0.f && dot(ngf, d) > 0.f) {
+            if (dot(ngf, d) > 0.f) {  // else the surface itself is in the way
                 Vec3 dir = d / dist;
                 t = shadow(o, dir, dist, tint, s);
                 if (t > 0.f) vis += tint * t;
@@ -195,6 +198,7 @@ Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const
             uint32_t st = (uint32_t(s.index) + (hash32(s.pix) & 15u) * 5u) % uint32_t(g * g);
             probe((float(st % g) + s.rnd(R_LIGHT_U, 0)) / float(g), (float(st / g) + s.rnd(R_LIGHT_V, 0)) / float(g));
         }
+        if (n == 0) vis = {1.f, 1.f, 1.f}, n = 1;  // a sliver above the horizon missed by every probe
         irr += l.radiance * vis * (f / float(n));
     }
     Vec3 amb = sc.ambient;

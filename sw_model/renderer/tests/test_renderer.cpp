@@ -245,6 +245,32 @@ TEST(Shading, AreaLightFloorPixel) {
     EXPECT_NEAR(c.z, 0.6 / kPi * 0.5 * e, 1e-4);
 }
 
+TEST(Shading, AreaLightCutByTheHorizonIsNotShadowedTwice) {
+    // A wall x = 0 facing +x; the light straddles its plane, so half of it is below the
+    // horizon of the wall points. Nothing occludes: the pixel must equal albedo / pi * L * E
+    // with E the irradiance of the visible half (numerical integration), in both modes.
+    for (Quality q : {Quality::Fast, Quality::Heavy}) {
+        auto s = std::make_unique<Scene>();
+        int m = s->add_material(Material::diffuse({0.6f, 0.6f, 0.6f}));
+        s->add_quad({0, -5, -5}, {0, -5, 5}, {0, 2, 5}, {0, 2, -5}, m);
+        AreaLight l;
+        l.corner = {-1.f, 3.f, -1.f};
+        l.e1 = {2.f, 0.f, 0.f};
+        l.e2 = {0.f, 0.f, 2.f};
+        l.radiance = {1.f, 1.f, 1.f};
+        s->add_area_light(l);
+        aim(*s, {2.f, 1.f, 0.f}, {0.f, 1.f, 0.f});
+        double e = irradiance_numeric({0, 1, 0}, {1, 0, 0}, l, 800);
+        Renderer r(committed(std::move(s)), 1, 1, q);
+        // Heavy mode jitters the primary ray inside the pixel: a 1x1 frame spans the whole
+        // 40 degree view, so compare the centre ray only in fast mode, and allow heavy mode
+        // the spread of its 16 hit points.
+        Vec3 c = r.radiance(0, 0);
+        if (q == Quality::Fast) EXPECT_NEAR(c.x, 0.6 / kPi * e, 1e-4);
+        else EXPECT_NEAR(c.x, 0.6 / kPi * e, 0.15 * 0.6 / kPi * e);
+    }
+}
+
 TEST(Shading, MirrorReflectsTheEmitterBehindTheCamera) {
     auto s = std::make_unique<Scene>();
     s->add_quad({-5, -5, 5}, {-5, 5, 5}, {5, 5, 5}, {5, -5, 5}, s->add_material(Material::mirror({0.8f, 0.7f, 0.6f})));
