@@ -58,10 +58,17 @@ void device_error(void *user, RTCError code, const char *str) {
 
 // The instruction set is pinned so that the same pixel comes out on every machine (the ISA
 // Embree picks can flip a hit exactly on a triangle edge). MSR_EMBREE_ISA overrides it.
+// Returns "" for an MSR_EMBREE_ISA that Embree does not know (Embree would silently ignore it
+// and pick the best ISA, which defeats the pin).
 std::string isa_config(bool &from_env) {
     const char *env = std::getenv("MSR_EMBREE_ISA");
     from_env = env && *env;
     std::string isa = from_env ? env : "avx2";
+    if (from_env) {
+        bool known = false;
+        for (const char *k : {"sse2", "sse4.2", "avx", "avx2", "avx512"}) known = known || isa == k;
+        if (!known) return "";
+    }
     if (!from_env && !__builtin_cpu_supports("avx2")) {
         static std::once_flag warned;
         std::call_once(warned, [] {
@@ -91,6 +98,11 @@ msr_render_ctx *msr_render_create(const char *scene, int width, int height, int 
     try {
         bool from_env = false;
         std::string cfg = isa_config(from_env);
+        if (cfg.empty()) {
+            set_err(err, errlen, std::string("MSR_EMBREE_ISA=") + std::getenv("MSR_EMBREE_ISA") +
+                                     " is not one of sse2, sse4.2, avx, avx2, avx512");
+            return nullptr;
+        }
         DeviceError derr;  // outlives ctx: the device reports into it until released
         auto ctx = std::make_unique<msr_render_ctx>();
         ctx->device = rtcNewDevice(cfg.c_str());
