@@ -184,8 +184,10 @@ Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const
         };
         if (quality_ == Quality::Fast) {
             // Fixed points, no noise: the 4 corners (if one convex occluder hides them all, it
-            // hides the whole light), and where they disagree (a penumbra) a 4x4 grid.
+            // hides the whole light) and the centre (catches a thin occluder, such as an ear,
+            // between the corners); where they disagree (a penumbra) a 4x4 grid.
             for (int i = 0; i < 4; ++i) probe(float(i & 1), float(i >> 1));
+            probe(0.5f, 0.5f);
             if (tmin != tmax) {
                 vis = {0.f, 0.f, 0.f};
                 n = 0;
