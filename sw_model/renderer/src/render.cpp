@@ -47,9 +47,11 @@ float polygon_irradiance(Vec3 p, Vec3 n, const AreaLight &l) {
         }
     }
     if (k < 3) return 0.f;
+    Vec3 u[5];
+    for (int i = 0; i < k; ++i) u[i] = normalize(out[i] - p);
     float sum = 0.f;
     for (int i = 0; i < k; ++i) {
-        Vec3 a = normalize(out[i] - p), b = normalize(out[(i + 1) % k] - p);
+        Vec3 a = u[i], b = u[(i + 1) % k];
         Vec3 g = cross(a, b);
         float s = length(g);
         if (s <= 0.f) continue;
