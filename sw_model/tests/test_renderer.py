@@ -438,3 +438,15 @@ def test_isa_override(tmp_path):
     got = np.asarray(Image.open(out))
     # Another ISA may flip a pixel exactly on a triangle edge, nothing more.
     assert (got != ref).any(axis=2).mean() < 0.01
+
+
+def test_tall_frame_fits_the_shorter_side():
+    """The field of view spans the shorter side: in a tall frame the box fills the width and
+    the void shows above and below (the transpose of the wide frame's layout)."""
+    with open_renderer("cornell", 36, 48) as r:
+        img = r.render_full().astype(int)
+    black = img.sum(axis=2) == 0
+    assert black[:3].all() and black[-3:].all()
+    assert not black[24, 2:-2].any()           # the middle row is box (the film is 0.7 mm wider)
+    left = img[24, 1]
+    assert left[0] > 2 * left[1], left          # red wall at the left edge
