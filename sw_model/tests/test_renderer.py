@@ -447,6 +447,6 @@ def test_tall_frame_fits_the_shorter_side():
         img = r.render_full().astype(int)
     black = img.sum(axis=2) == 0
     assert black[:3].all() and black[-3:].all()
-    assert not black[24, 2:-2].any()           # the middle row is box (the film is 0.7 mm wider)
+    assert not black[24, 2:-2].any()           # the middle row is box (the view is 8 mm wider)
     left = img[24, 1]
     assert left[0] > 2 * left[1], left          # red wall at the left edge
