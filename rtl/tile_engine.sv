@@ -8,9 +8,11 @@
 //   finished tile    -> msr_tile_stream --> pix stream (row-major)
 //
 // Decisions of one pass are independent, so positions are issued back to back while render
-// requests are outstanding; the first position of the next pass waits until the pipeline is
-// empty and every response of the pass is written (the pass barrier). Two tile buffers
-// (ping-pong): the streamer empties one while the engine fills the other.
+// requests are outstanding. Instead of a pass barrier, a pixel scoreboard lets a position go
+// as soon as its two neighbours are final (same values as after a barrier, in order). Two
+// tile buffers, each with its own tile context: the next tile starts as soon as every
+// position of the current one is issued, and the streamer empties a finished buffer while
+// the engine fills the other.
 //
 // inflight_o counts tags handed out and not yet answered (a request waiting for
 // req_ready_i counts as in flight).
@@ -64,22 +66,31 @@ module tile_engine
            $clog2(MAX_OUTSTANDING));
   end
 
-  // ---- Tile bookkeeping: ping-pong buffers -------------------------------------------------
-  logic       active_q;          // the engine is filling buffer eng_bank_q
-  logic       eng_bank_q;
+  // ---- Tile bookkeeping: two buffers, one tile context each ---------------------------------
+  // A buffer is free, computing (its tile's positions are being issued, or issued and
+  // waiting for their last results), or full (finished, waiting for / being streamed).
+  // The controller moves on to the next tile, in the other buffer, as soon as it has issued
+  // every position of the current one, so the tail of one tile overlaps the next.
+  localparam int unsigned PEND_W = $clog2(MAX_OUTSTANDING + 8) + 1;
+
+  logic       eng_bank_q;        // buffer of the tile the controller walks / will walk
+  logic [1:0] comp_q;            // buffer's tile is being computed
+  logic [1:0] issued_q;          // ... and all its positions are issued
   logic [1:0] full_q;            // buffer holds a finished tile not yet streamed out
   logic       str_bank_q;        // next buffer to stream (tiles leave in order)
   logic       streaming_q;
-  coord_t     x0_q, y0_q;
-  metric_e    metric_q;
-  thr_t [MAX_LEVELS-1:0] thr_q;
   coord_t [1:0] bank_x0_q, bank_y0_q;
   ldim_t  [1:0] bank_w_q, bank_h_q;
+  metric_e [1:0] bank_metric_q;
+  thr_t [1:0][MAX_LEVELS-1:0] bank_thr_q;
+  logic [1:0][PEND_W-1:0] pend_q; // positions issued and not yet final (pipeline or tag)
+  logic [1:0] bank_done;
 
-  logic ctrl_start_ready, ctrl_busy;
-  logic desc_fire, tile_done, stream_start, stream_done;
+  logic ctrl_start_ready, ctrl_busy, ctrl_fin;
+  logic desc_fire, stream_start, stream_done;
 
-  assign desc_ready_o = !active_q && !full_q[eng_bank_q] && ctrl_start_ready && !clear_i;
+  assign desc_ready_o = ctrl_start_ready && !comp_q[eng_bank_q] && !full_q[eng_bank_q] &&
+                        !clear_i;
   assign desc_fire    = desc_valid_i && desc_ready_o;
 
   // ---- Level processing controller -----------------------------------------------------------
@@ -122,12 +133,10 @@ module tile_engine
     .busy_o        (ctrl_busy)
   );
 
-  // ---- Issue: pass barrier and tile buffer reads ---------------------------------------------
-  logic [2:0] pipe_cnt_q;        // positions between issue and retirement (<= 4)
+  // ---- Issue: scoreboard and tile buffer reads ---------------------------------------------
   logic [CNT_W-1:0] free_cnt_q;  // free tags
-  logic drained;
   logic s1_valid_q, s1_ready, unit_ready, unit_ready_i;
-  logic issue, retire;
+  logic issue;
 
   // Pixel scoreboard: final_q[{y, x}] is set when the pixel of the current tile is written
   // (interpolated, or traced and answered). A position is issued as soon as both its
@@ -140,14 +149,14 @@ module tile_engine
 
   assign nb_final   = (step_dir == DIR_INIT) ||
                       (final_q[{step_ay, step_ax}] && final_q[{step_by, step_bx}]);
-  assign drained    = (pipe_cnt_q == '0) && (32'(free_cnt_q) == MAX_OUTSTANDING);
   assign s1_ready   = !s1_valid_q || unit_ready;
   assign issue      = step_valid && s1_ready && nb_final;
   assign step_ready = s1_ready && nb_final;
 
-  // Engine-side ports of the current buffer.
+  // Engine-side ports: reads go to the controller's buffer, writes to the position's.
   logic                 e_re0, e_re1, e_we;
   logic [TADDR_W-1:0]   e_raddr0, e_raddr1, e_waddr;
+  logic                 e_wbank;
   logic [WORD_W-1:0]    e_wdata;
   // A decision only needs the colours of its neighbours, not their source codes.
   /* verilator lint_off UNUSEDSIGNAL */
@@ -165,6 +174,7 @@ module tile_engine
     lcoord_t y;
     level_t  level;
     logic    init;
+    logic    bank;
   } side_t;
 
   side_t      s1_side_q;
@@ -188,7 +198,8 @@ module tile_engine
 
   always_ff @(posedge clk_i) begin
     if (issue) begin
-      s1_side_q   <= '{x: step_x, y: step_y, level: step_level, init: (step_dir == DIR_INIT)};
+      s1_side_q   <= '{x: step_x, y: step_y, level: step_level, init: (step_dir == DIR_INIT),
+                       bank: eng_bank_q};
       s1_gap_q    <= step_gap;
       s1_off_q    <= step_off;
       s1_nshift_q <= step_nshift;
@@ -211,7 +222,8 @@ module tile_engine
   rgb_t  out_rgb;
   thr_t  s1_thr;
 
-  assign s1_thr = (s1_side_q.level == '0) ? '0 : thr_q[s1_side_q.level - 1'b1];
+  assign s1_thr = (s1_side_q.level == '0) ? '0
+                                           : bank_thr_q[s1_side_q.bank][s1_side_q.level - 1'b1];
 
   msr_decide #(
     .USER_W ($bits(side_t))
@@ -223,7 +235,7 @@ module tile_engine
     .ready_o  (unit_ready),
     .a_i      (s1_a),
     .b_i      (s1_b),
-    .metric_i (metric_q),
+    .metric_i (bank_metric_q[s1_side_q.bank]),
     .thr_i    (s1_thr),
     .gap_i    (s1_side_q.init ? gap_t'(1) : s1_gap_q),
     .nshift_i (s1_nshift_q),
@@ -264,9 +276,8 @@ module tile_engine
   assign req_fire    = req_valid_o && req_ready_i;
   assign out_write   = out_valid && !out_trace;
   assign out_ready   = !out_trace || req_fire;
-  assign retire      = out_valid && out_ready;
-  assign req_x_o     = x0_q + coord_t'(out_side.x);
-  assign req_y_o     = y0_q + coord_t'(out_side.y);
+  assign req_x_o     = bank_x0_q[out_side.bank] + coord_t'(out_side.x);
+  assign req_y_o     = bank_y0_q[out_side.bank] + coord_t'(out_side.y);
   assign req_tag_o   = free_head;
 
   // ---- Tags: free list, and where each answer goes -------------------------------------------
@@ -274,6 +285,7 @@ module tile_engine
   logic [TAG_W-1:0] free_rptr_q, free_wptr_q;
   logic [MAX_OUTSTANDING-1:0][TADDR_W-1:0] tag_addr_q;
   level_t [MAX_OUTSTANDING-1:0] tag_level_q;
+  logic   [MAX_OUTSTANDING-1:0] tag_bank_q;
   logic [MAX_OUTSTANDING-1:0] tag_busy_q;
 
   assign free_head   = free_q[free_rptr_q];
@@ -312,77 +324,90 @@ module tile_engine
     if (req_fire) begin
       tag_addr_q[free_head]  <= {out_side.y, out_side.x};
       tag_level_q[free_head] <= out_side.level;
+      tag_bank_q[free_head]  <= out_side.bank;
     end
   end
 
   // One write port: an interpolated value, else a render response.
   assign e_we    = out_write || rsp_fire;
+  assign e_wbank = out_write ? out_side.bank : tag_bank_q[rsp_tag_i];
   assign e_waddr = out_write ? {out_side.y, out_side.x} : tag_addr_q[rsp_tag_i];
   assign e_wdata = out_write ? {src_interp(out_side.level), out_rgb}
                              : {src_traced(tag_level_q[rsp_tag_i]), rsp_rgb_i};
 
-  // Scoreboard update: a written pixel is final.
+  // Scoreboard update: a written pixel is final. It only tracks the controller's buffer
+  // (late results of the previous tile go to the other buffer).
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       final_q <= '0;
     end else if (clear_i || desc_fire) begin
       final_q <= '0;
-    end else if (e_we) begin
+    end else if (e_we && e_wbank == eng_bank_q) begin
       final_q[e_waddr] <= 1'b1;
     end
   end
 
-  // ---- Pipeline occupancy, tile start / end --------------------------------------------------
-  assign tile_done = active_q && !ctrl_busy && drained;
+  // ---- Tile start / end ----------------------------------------------------------------------
+  // The controller has issued every position of its tile (it goes idle only after the last).
+  assign ctrl_fin = comp_q[eng_bank_q] && !issued_q[eng_bank_q] && !ctrl_busy;
+
+  for (genvar b = 0; b < 2; b++) begin : g_done
+    assign bank_done[b] = comp_q[b] && issued_q[b] && (pend_q[b] == '0);
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      pipe_cnt_q  <= '0;
-      active_q    <= 1'b0;
-      eng_bank_q  <= 1'b0;
-      full_q      <= '0;
-      str_bank_q  <= 1'b0;
-      streaming_q <= 1'b0;
-      x0_q        <= '0;
-      y0_q        <= '0;
-      metric_q    <= METRIC_MAX;
-      thr_q       <= '0;
-      bank_x0_q   <= '0;
-      bank_y0_q   <= '0;
-      bank_w_q    <= '0;
-      bank_h_q    <= '0;
+      eng_bank_q    <= 1'b0;
+      comp_q        <= '0;
+      issued_q      <= '0;
+      full_q        <= '0;
+      pend_q        <= '0;
+      str_bank_q    <= 1'b0;
+      streaming_q   <= 1'b0;
+      bank_x0_q     <= '0;
+      bank_y0_q     <= '0;
+      bank_w_q      <= '0;
+      bank_h_q      <= '0;
+      bank_metric_q <= {2{METRIC_MAX}};
+      bank_thr_q    <= '0;
     end else if (clear_i) begin
-      pipe_cnt_q  <= '0;
-      active_q    <= 1'b0;
       eng_bank_q  <= 1'b0;
+      comp_q      <= '0;
+      issued_q    <= '0;
       full_q      <= '0;
+      pend_q      <= '0;
       str_bank_q  <= 1'b0;
       streaming_q <= 1'b0;
     end else begin
-      pipe_cnt_q <= pipe_cnt_q + 3'(issue) - 3'(retire);
       if (desc_fire) begin
-        active_q              <= 1'b1;
-        x0_q                  <= desc_i.x0;
-        y0_q                  <= desc_i.y0;
-        metric_q              <= desc_i.metric;
-        thr_q                 <= desc_i.thr;
-        bank_x0_q[eng_bank_q] <= desc_i.x0;
-        bank_y0_q[eng_bank_q] <= desc_i.y0;
-        bank_w_q[eng_bank_q]  <= desc_i.w;
-        bank_h_q[eng_bank_q]  <= desc_i.h;
+        comp_q[eng_bank_q]        <= 1'b1;
+        bank_x0_q[eng_bank_q]     <= desc_i.x0;
+        bank_y0_q[eng_bank_q]     <= desc_i.y0;
+        bank_w_q[eng_bank_q]      <= desc_i.w;
+        bank_h_q[eng_bank_q]      <= desc_i.h;
+        bank_metric_q[eng_bank_q] <= desc_i.metric;
+        bank_thr_q[eng_bank_q]    <= desc_i.thr;
       end
-      if (tile_done) begin
-        active_q   <= 1'b0;
-        eng_bank_q <= !eng_bank_q;
+      if (ctrl_fin) begin
+        issued_q[eng_bank_q] <= 1'b1;
+        eng_bank_q           <= !eng_bank_q;
+      end
+      for (int unsigned b = 0; b < 2; b++) begin
+        // issued +1; interpolated and written -1; trace answered and written -1
+        pend_q[b] <= pend_q[b] + PEND_W'(issue && eng_bank_q == 1'(b))
+                               - PEND_W'(out_write && out_side.bank == 1'(b))
+                               - PEND_W'(rsp_fire && tag_bank_q[rsp_tag_i] == 1'(b));
+        if (bank_done[b]) begin
+          comp_q[b]   <= 1'b0;
+          issued_q[b] <= 1'b0;
+          full_q[b]   <= 1'b1;
+        end
+        if (stream_done && str_bank_q == 1'(b)) full_q[b] <= 1'b0;
       end
       if (stream_start) streaming_q <= 1'b1;
       if (stream_done) begin
         streaming_q <= 1'b0;
         str_bank_q  <= !str_bank_q;
-      end
-      for (int unsigned b = 0; b < 2; b++) begin
-        if (tile_done && eng_bank_q == 1'(b)) full_q[b] <= 1'b1;
-        if (stream_done && str_bank_q == 1'(b)) full_q[b] <= 1'b0;
       end
     end
   end
@@ -418,7 +443,7 @@ module tile_engine
     .done_o        (stream_done)
   );
 
-  assign busy_o = active_q || (full_q != '0);
+  assign busy_o = (comp_q != '0) || (full_q != '0);
 
   // ---- Tile buffers (ping-pong) --------------------------------------------------------------
   // Port 0 of a buffer belongs to the streamer while it empties that buffer, else to the
@@ -441,14 +466,14 @@ module tile_engine
       .re1_i    (eng_owns && e_re1),
       .raddr1_i (e_raddr1),
       .rdata1_o (b_rdata1[b]),
-      .we_i     (eng_owns && e_we),
+      .we_i     (e_we && (e_wbank == 1'(b))),
       .waddr_i  (e_waddr),
       .wdata_i  (e_wdata)
     );
   end
 
-  assign e_rdata0 = b_rdata0[eng_bank_q];
-  assign e_rdata1 = b_rdata1[eng_bank_q];
+  assign e_rdata0 = b_rdata0[s1_side_q.bank];
+  assign e_rdata1 = b_rdata1[s1_side_q.bank];
   assign s_rdata  = b_rdata0[str_bank_q];
 
 `ifndef SYNTHESIS
@@ -489,27 +514,21 @@ module tile_engine
     else $error("tile_engine: decision and interpolation units out of step");
 
   // Invariant: every pixel of a tile is written exactly once, and only pixels of the tile.
-  logic [DEPTH-1:0] written_q;
-  ldim_t            cur_w_q, cur_h_q;
+  logic [1:0][DEPTH-1:0] written_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       written_q <= '0;
-      cur_w_q   <= '0;
-      cur_h_q   <= '0;
-    end else if (desc_fire) begin
-      written_q <= '0;
-      cur_w_q   <= desc_i.w;
-      cur_h_q   <= desc_i.h;
-    end else if (e_we) begin
-      written_q[e_waddr] <= 1'b1;
+    end else begin
+      if (desc_fire) written_q[eng_bank_q] <= '0;
+      if (e_we) written_q[e_wbank][e_waddr] <= 1'b1;
     end
   end
   a_write_once : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-      e_we |-> !written_q[e_waddr] &&
-        32'(e_waddr[LCOORD_W-1:0]) < 32'(cur_w_q) &&
-        32'(e_waddr[TADDR_W-1:LCOORD_W]) < 32'(cur_h_q))
-    else $error("tile_engine: pixel (%0d,%0d) written twice or outside the tile",
-                e_waddr[LCOORD_W-1:0], e_waddr[TADDR_W-1:LCOORD_W]);
+      e_we |-> comp_q[e_wbank] && !written_q[e_wbank][e_waddr] &&
+        32'(e_waddr[LCOORD_W-1:0]) < 32'(bank_w_q[e_wbank]) &&
+        32'(e_waddr[TADDR_W-1:LCOORD_W]) < 32'(bank_h_q[e_wbank]))
+    else $error("tile_engine: pixel (%0d,%0d) of buffer %0d written twice or outside the tile",
+                e_waddr[LCOORD_W-1:0], e_waddr[TADDR_W-1:LCOORD_W], e_wbank);
   function automatic logic all_written(logic [DEPTH-1:0] wr, ldim_t w, ldim_t h);
     logic ok = 1'b1;
     for (int unsigned y = 0; y < MAX_TILE; y++) begin
@@ -519,9 +538,14 @@ module tile_engine
     end
     return ok;
   endfunction
-  a_all_written : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-      tile_done |-> all_written(written_q, cur_w_q, cur_h_q))
-    else $error("tile_engine: tile finished with pixels never written");
+  for (genvar b = 0; b < 2; b++) begin : g_assert_bank
+    a_all_written : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
+        bank_done[b] |-> all_written(written_q[b], bank_w_q[b], bank_h_q[b]))
+      else $error("tile_engine: tile of buffer %0d finished with pixels never written", b);
+  end
+  a_reads_own : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
+      issue |-> comp_q[eng_bank_q] && !issued_q[eng_bank_q] && !full_q[eng_bank_q])
+    else $error("tile_engine: position issued into a buffer that is not being computed");
   /* verilator lint_on SYNCASYNCNET */
 `endif
 

@@ -113,13 +113,13 @@ class Driver:
 async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int):
     """Drive all tiles through the engine; check requests and pixels as they appear."""
     drv = Driver(dut)
-    exp_req, exp_pix = [], []
-    for t in tiles:
+    exp_req, exp_pix, req_tile = [], [], []
+    for i, t in enumerate(tiles):
         r = golden(t)
         exp_req += r.requests
+        req_tile += [i] * len(r.requests)
         stream = r.output_stream()
         exp_pix += [(x, y, rgb, code, i == len(stream) - 1) for i, (x, y, rgb, code) in enumerate(stream)]
-    renderers = []                                      # (x0, y0, w, h, img) per tile
     pending = {}                                        # tag -> (due cycle, rgb)
     rsp_cur = None
     desc_hold = False
@@ -127,11 +127,11 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int)
     cycle = 0
     limit = 200 + sum(t["w"] * t["h"] * (8 + prof.lat_max // 2) for t in tiles)
 
-    def render(x, y):
-        for x0, y0, w, h, img in renderers[-2:]:
-            if x0 <= x < x0 + w and y0 <= y < y0 + h:
-                return tuple(int(c) for c in img[y - y0, x - x0])
-        raise AssertionError(f"render request ({x},{y}) outside the tiles in flight")
+    def render(i, x, y):
+        """Request number i: answered from the image of the tile it belongs to."""
+        t = tiles[req_tile[i]]
+        assert req_tile[i] < di, f"request ({x},{y}) for a tile not accepted yet"
+        return tuple(int(c) for c in t["img"][y - t["y0"], x - t["x0"]])
 
     while pi < len(exp_pix):
         # ---- drive (after the falling edge) ----
@@ -161,8 +161,6 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int)
         # ---- sample (ReadOnly): what the rising edge will do ----
         await settle()
         if drv.last.get('desc_valid_i') and dut.desc_ready_o.value:
-            t = tiles[di]
-            renderers.append((t["x0"], t["y0"], t["w"], t["h"], t["img"]))
             di += 1
             desc_hold = False
         if req_ready and dut.req_valid_o.value:
@@ -170,7 +168,7 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int)
             assert ri < len(exp_req), f"extra render request ({x},{y})"
             assert (x, y) == exp_req[ri], f"request {ri}: got ({x},{y}), want {exp_req[ri]}"
             assert tag not in pending and (rsp_cur is None or rsp_cur[0] != tag), f"tag {tag} reused"
-            pending[tag] = (cycle + 1 + rng.randint(0, prof.lat_max), render(x, y))
+            pending[tag] = (cycle + 1 + rng.randint(0, prof.lat_max), render(ri, x, y))
             ri += 1
         if rsp_cur is not None and dut.rsp_ready_o.value:
             rsp_cur = None
