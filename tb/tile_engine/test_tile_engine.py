@@ -262,3 +262,20 @@ def test_tile_engine(max_out, counts, seed):
     run_cocotb("tile_engine", "test_tile_engine", Path(__file__).parent,
                {"MAX_OUTSTANDING": max_out},
                extra_env={"TILE_COUNTS": counts, "SEED": seed, "MAX_OUTSTANDING": max_out})
+
+
+@pytest.mark.parametrize("max_out,tag_w", [(12, None), (1, None), (128, None), (16, 3)])
+def test_bad_parameters_rejected(max_out, tag_w):
+    """The elaboration-time checks stop an illegal MAX_OUTSTANDING / TAG_W with a message."""
+    import subprocess
+
+    from msr_runner import ROOT, rtl_sources
+    srcs = [str(s) for s in rtl_sources() if s.name in
+            ("msr_pkg.sv", "msr_decide.sv", "msr_interp.sv", "msr_tile_sram.sv",
+             "msr_level_ctrl.sv", "msr_tile_stream.sv", "tile_engine.sv")]
+    cmd = ["verilator", "--lint-only", "--top-module", "tile_engine", f"-GMAX_OUTSTANDING={max_out}"]
+    if tag_w is not None:
+        cmd.append(f"-GTAG_W={tag_w}")
+    p = subprocess.run(cmd + srcs, cwd=ROOT, capture_output=True, text=True)
+    assert p.returncode != 0, "illegal parameters were accepted"
+    assert "tile_engine: " in p.stdout + p.stderr and "must be" in p.stdout + p.stderr, p.stderr
