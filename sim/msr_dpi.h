@@ -1,0 +1,29 @@
+/* msr_dpi.h: DPI-C bridge from the SystemVerilog rendering unit (sim/render_dpi.sv) to the
+ * rendering library's C API (sw_model/renderer/include/msr_render.h).
+ *
+ * The SV side holds the context as an opaque chandle, created once in an initial block and
+ * freed in a final block. Besides the Embree scenes, a binary PPM file (P6, 8-bit) given as
+ * the scene is answered pixel by pixel from the picture (image-as-renderer, for tests).
+ */
+#ifndef MSR_DPI_H
+#define MSR_DPI_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Open the rendering unit for a width x height frame; quality 0 fast, 1 heavy. On failure
+ * prints one line on stderr and returns NULL. */
+void *msr_dpi_open(const char *scene, int width, int height, int quality);
+
+/* Colour of pixel (x, y) as 0x00RRGGBB. */
+int msr_dpi_render(void *ctx, int x, int y);
+
+/* Free the context (NULL is fine). */
+void msr_dpi_close(void *ctx);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MSR_DPI_H */
