@@ -16,6 +16,7 @@
 #include "msr_render.h"
 #include "render.h"
 #include "scene.h"
+#include "scenes.h"
 
 using namespace msr;
 
@@ -521,4 +522,26 @@ TEST(CApi, RayCounter) {
     msr_render_pixel(f.p, 99, 99, rgb);  // outside the frame: nothing cast
     EXPECT_LE(msr_render_rays(f.p), 22u);
     EXPECT_EQ(msr_render_rays(nullptr), 0u);
+}
+
+TEST(Scenes, AreaLightsShineAtWhatTheCameraSees) {
+    // Every area light of every built-in scene faces the camera's target (an emitter turned
+    // the wrong way lights nothing); checked through the scene description itself.
+    std::string names = builtin_scene_names();
+    size_t start = 0;
+    int lights = 0;
+    while (start <= names.size()) {
+        size_t comma = names.find(',', start);
+        std::string name = names.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        start = comma == std::string::npos ? names.size() + 1 : comma + 1;
+        std::string err;
+        auto s = make_scene(name, err);
+        ASSERT_TRUE(s) << name << ": " << err;
+        for (const AreaLight &l : s->area_lights) {
+            Vec3 centre = l.corner + (l.e1 + l.e2) * 0.5f;
+            EXPECT_GT(dot(normalize(s->camera.target - centre), l.normal()), 0.1f) << name;
+            ++lights;
+        }
+    }
+    EXPECT_GE(lights, 6);
 }
