@@ -9,8 +9,8 @@ ENV  := source scripts/env.sh &&
 
 # make sim parameters (see ../shared/spec/contracts.md); empty means the tool's default.
 SCENE    ?= cornell
-WIDTH    ?= 320
-HEIGHT   ?= 240
+WIDTH    ?= 640
+HEIGHT   ?= 480
 TILE     ?= 16
 LEVELS   ?= 2
 THR      ?= 8,16

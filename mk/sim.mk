@@ -23,7 +23,8 @@ SIM_VFLAGS := --cc --exe --build -j 2 -O3 --x-assign fast --x-initial fast --noa
 
 $(SIM_BIN): $(SIM_RTL) $(SIM_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f mk/sim.mk build/renderer/libmsr_render.so
 	@mkdir -p $(SIM_BUILD)
-	$(ENV) verilator $(SIM_VFLAGS) -Mdir $(SIM_BUILD) -o Vmsr_sim_top $(SIM_RTL) $(SIM_CPP) > $(SIM_BUILD)/build.log 2>&1 || \
+	@echo "make sim: building the Verilator harness into $(SIM_BUILD) (log: $(SIM_BUILD)/build.log)"
+	@$(ENV) verilator $(SIM_VFLAGS) -Mdir $(SIM_BUILD) -o Vmsr_sim_top $(SIM_RTL) $(SIM_CPP) > $(SIM_BUILD)/build.log 2>&1 || \
 	    { tail -40 $(SIM_BUILD)/build.log; exit 1; }
 
 .PHONY: sim-build
@@ -37,4 +38,4 @@ sim: setup renderer $(SIM_BIN)
 
 waves:
 	@test -f "$(SIM_OUT)/waves.fst" || { echo "make waves: no $(SIM_OUT)/waves.fst: run make sim WAVES=1 first"; exit 2; }
-	gtkwave "$(SIM_OUT)/waves.fst" sim/waves.gtkw
+	gtkwave "$(SIM_OUT)/waves.fst" "$(SIM_OUT)/waves.gtkw"

@@ -142,6 +142,14 @@ def run(a) -> int:
         print(f"make sim: error: the RTL simulation failed (exit status {rc})", file=sys.stderr)
         return 1
 
+    if a.waves:
+        fst = out / "waves.fst"
+        if not fst.is_file():
+            print("make sim: error: the harness wrote no waves.fst (was the window ever reached?)", file=sys.stderr)
+            return 1
+        subprocess.run([sys.executable, str(ROOT / "scripts" / "gen_gtkw.py"), str(fst), str(out / "waves.gtkw")],
+                       check=True)
+
     frame = read_pnm(out / "rtl_frame.ppm")
     source = read_pnm(out / "rtl_source.pgm")
     rtl = json.loads((out / "rtl_stats.json").read_text())
@@ -215,7 +223,8 @@ def main(argv=None) -> int:
     try:
         return run(parse(argv))
     except (UsageError, SpecError) as e:
-        print(f"make sim: error: {str(e).splitlines()[0] if str(e) else e!r}", file=sys.stderr)
+        msg = str(e.args[0]) if e.args else repr(e)
+        print(f"make sim: error: {msg.splitlines()[0]}", file=sys.stderr)
         return EXIT_BAD_INPUT
 
 

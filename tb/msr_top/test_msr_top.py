@@ -1,0 +1,298 @@
+"""msr_top: the whole accelerator against the golden model.
+
+Registers through cocotbext-axi AxiLiteMaster, the frame buffer in an AxiRamWrite with random
+pauses on AW, W and B, and a Python rendering unit (an image: random latency, random order,
+random back-pressure). Checks: random small frames and configurations bit-exact with
+msr_model.golden.select (pixels and source map), the performance counters and the number of
+render requests against the golden model's statistics, the interrupt, every bad register
+value (error code, nothing started, nothing written), and a soft reset in the middle of a
+frame followed by a clean frame."""
+from __future__ import annotations
+
+import random
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent))
+
+import cocotb  # noqa: E402
+from cocotb.clock import Clock  # noqa: E402
+from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly  # noqa: E402
+from cocotbext.axi import AxiLiteBus, AxiLiteMaster, AxiRamWrite, AxiWriteBus  # noqa: E402
+
+import msr_regs as R  # noqa: E402  (generated from rtl/regs/msr_regs.rdl)
+
+MEM = 1 << 18
+FILL = 0xEE
+FB_BASE, SRC_BASE = 0x1000, 0x30000
+# STATUS.ERROR codes (rtl/regs/msr_regs.rdl).
+ERR_NONE, ERR_FRAME_SIZE, ERR_TILE, ERR_LEVELS = 0, 1, 2, 3
+ERR_FB_STRIDE, ERR_FB_BASE, ERR_SRC_STRIDE, ERR_SRC_BASE = 4, 5, 6, 7
+
+
+def pause(rng, p):
+    while True:
+        yield int(rng.random() < p)
+
+
+def make_image(rng, w, h):
+    """Smooth areas (interpolated), edges and noise (traced): every decision outcome occurs."""
+    yy, xx = np.mgrid[0:h, 0:w]
+    img = np.stack([(xx * 255 // max(1, w - 1)), (yy * 255 // max(1, h - 1)), ((xx + yy) * 3) % 256], axis=2)
+    for _ in range(3):
+        x0, y0 = rng.randrange(w), rng.randrange(h)
+        img[y0:y0 + rng.randint(1, 12), x0:x0 + rng.randint(1, 12)] = [rng.randrange(256) for _ in range(3)]
+    noise = np.array([[rng.randrange(-6, 7) for _ in range(w)] for _ in range(h)])
+    return np.clip(img + noise[..., None], 0, 255).astype(np.uint8)
+
+
+class RenderModel:
+    """The render port: takes requests (random ready), answers after a random latency, any order."""
+
+    def __init__(self, dut, rng):
+        self.dut, self.rng = dut, rng
+        self.image = None
+        self.pending = []          # [due_cycle, tag, rgb]
+        self.requests = []
+        self.ready_p, self.max_lat = 0.8, 20
+        dut.rnd_req_ready_i.value = 0
+        dut.rnd_rsp_valid_i.value = 0
+        cocotb.start_soon(self.run())
+
+    async def run(self):
+        dut, rng = self.dut, self.rng
+        cycle, current = 0, None
+        while True:
+            await RisingEdge(dut.clk_i)
+            cycle += 1
+            # Handshakes of this edge (values before the edge are still visible here).
+            if int(dut.rnd_req_valid_o.value) and int(dut.rnd_req_ready_i.value):
+                x, y, tag = int(dut.rnd_req_x_o.value), int(dut.rnd_req_y_o.value), int(dut.rnd_req_tag_o.value)
+                assert self.image is not None and y < self.image.shape[0] and x < self.image.shape[1], \
+                    f"request ({x},{y}) outside the frame"
+                self.requests.append((x, y))
+                rgb = self.image[y, x]
+                self.pending.append([cycle + rng.randint(1, self.max_lat), tag,
+                                     (int(rgb[0]) << 16) | (int(rgb[1]) << 8) | int(rgb[2])])
+            if current is not None and int(dut.rnd_rsp_ready_o.value):
+                current = None
+            if current is None:
+                due = [p for p in self.pending if p[0] <= cycle]
+                if due:
+                    current = rng.choice(due)
+                    self.pending.remove(current)
+            dut.rnd_rsp_valid_i.value = int(current is not None)
+            if current is not None:
+                dut.rnd_rsp_tag_i.value = current[1]
+                dut.rnd_rsp_rgb_i.value = current[2]
+            dut.rnd_req_ready_i.value = int(rng.random() < self.ready_p)
+
+
+class Env:
+    def __init__(self, dut, rng):
+        self.dut, self.rng = dut, rng
+        self.lite = AxiLiteMaster(AxiLiteBus.from_prefix(dut, "s_axil"), dut.clk_i, dut.rst_ni,
+                                  reset_active_level=False)
+        self.ram = AxiRamWrite(AxiWriteBus.from_prefix(dut, "m_axi"), dut.clk_i, dut.rst_ni,
+                               reset_active_level=False, size=MEM)
+        self.render = RenderModel(dut, rng)
+
+    async def wr(self, addr, value):
+        await self.lite.write_dword(addr, value)
+
+    async def rd(self, addr):
+        return await self.lite.read_dword(addr)
+
+    def set_pauses(self, p):
+        rng = self.rng
+        self.ram.aw_channel.set_pause_generator(pause(rng, p))
+        self.ram.w_channel.set_pause_generator(pause(rng, p))
+        self.ram.b_channel.set_pause_generator(pause(rng, p))
+        for ch in (self.lite.write_if.aw_channel, self.lite.write_if.w_channel, self.lite.write_if.b_channel,
+                   self.lite.read_if.ar_channel, self.lite.read_if.r_channel):
+            ch.set_pause_generator(pause(rng, p))
+
+    async def program(self, W, H, tile, levels, metric, thr, gain, fb_base=FB_BASE, fb_stride=None,
+                      src_en=1, src_base=SRC_BASE, src_stride=None):
+        fb_stride = 4 * W if fb_stride is None else fb_stride
+        src_stride = (W + 3) // 4 * 4 if src_stride is None else src_stride
+        thr = list(thr) + [0] * (3 - len(thr))
+        await self.wr(R.FRAME_SIZE, (W << R.FRAME_SIZE_WIDTH_LSB) | (H << R.FRAME_SIZE_HEIGHT_LSB))
+        await self.wr(R.CONFIG, (tile << R.CONFIG_TILE_LSB) | (levels << R.CONFIG_LEVELS_LSB)
+                      | (metric << R.CONFIG_METRIC_LSB))
+        await self.wr(R.THRESH, (thr[0] << R.THRESH_THR1_LSB) | (thr[1] << R.THRESH_THR2_LSB)
+                      | (thr[2] << R.THRESH_THR3_LSB))
+        await self.wr(R.FOV_GAIN, gain)
+        await self.wr(R.FB_BASE, fb_base)
+        await self.wr(R.FB_STRIDE, fb_stride)
+        await self.wr(R.SRC_BASE, src_base)
+        await self.wr(R.SRC_STRIDE, src_stride)
+        await self.wr(R.SRC_CTRL, src_en)
+        return fb_stride, src_stride
+
+    async def wait_idle(self, limit=400000):
+        for _ in range(limit // 64):
+            await ClockCycles(self.dut.clk_i, 64)
+            st = await self.rd(R.STATUS)
+            if not st & R.STATUS_BUSY_MASK:
+                return st
+        raise AssertionError("accelerator still busy")
+
+    async def frame(self, W, H, tile, levels, metric, thr, gain, src_en=1):
+        from msr_model import ImageRenderer, Params, select
+
+        img = make_image(self.rng, W, H)
+        self.render.image = img
+        self.render.requests = []
+        self.ram.write(0, bytes([FILL]) * MEM)
+        fb_stride, src_stride = await self.program(W, H, tile, levels, metric, thr, gain, src_en=src_en)
+        await self.wr(R.CTRL, R.CTRL_START_MASK | R.CTRL_IRQ_EN_MASK)
+        st = await self.wait_idle()
+        assert st & R.STATUS_DONE_MASK and (st & R.STATUS_ERROR_MASK) == 0, f"STATUS {st:#x}"
+        assert int(self.dut.irq_o.value) == 1, "interrupt not raised at DONE"
+
+        params = Params(tile=tile, levels=levels, thr=tuple(thr), metric=("max", "sum")[metric], fov_gain=gain)
+        gold = select(ImageRenderer(img), W, H, params)
+        mem = self.ram.read(0, MEM)
+        fb = np.frombuffer(mem[FB_BASE:FB_BASE + fb_stride * H], dtype="<u4").reshape(H, fb_stride // 4)[:, :W]
+        rgb = np.stack([(fb >> 16) & 0xFF, (fb >> 8) & 0xFF, fb & 0xFF], axis=2).astype(np.uint8)
+        bad = np.argwhere((rgb != gold.frame).any(axis=2))
+        assert not len(bad), f"{len(bad)} pixels differ from the golden model, first (y,x) {tuple(bad[0])}"
+        assert not (fb >> 24).any(), "frame-buffer pixel with a non-zero top byte"
+        if src_en:
+            src = np.frombuffer(mem[SRC_BASE:SRC_BASE + src_stride * H], dtype=np.uint8).reshape(H, src_stride)[:, :W]
+            bad = np.argwhere(src != gold.source)
+            assert not len(bad), f"{len(bad)} source codes differ, first (y,x) {tuple(bad[0])}"
+        else:
+            assert set(mem[SRC_BASE:SRC_BASE + 4096]) == {FILL}, "source plane written while disabled"
+        # Requests: exactly the golden model's traced pixels, each once.
+        assert len(self.render.requests) == gold.stats["traced"]
+        assert len(set(self.render.requests)) == len(self.render.requests), "a pixel traced twice"
+        # Performance counters against the golden model's statistics.
+        assert await self.rd(R.PERF_TRACED_0) == gold.stats["traced_initial"]
+        for k in range(1, 4):
+            assert await self.rd(getattr(R, f"PERF_TRACED_{k}")) == gold.stats.get(f"traced_level{k}", 0)
+            assert await self.rd(getattr(R, f"PERF_INTERP_{k - 1}")) == gold.stats.get(f"interpolated_level{k}", 0)
+        cycles = await self.rd(R.PERF_CYCLES)
+        assert cycles >= W * H, "fewer cycles than pixels is impossible with one pixel per beat"
+        # DONE is write-1-to-clear and takes the interrupt with it.
+        await self.wr(R.STATUS, R.STATUS_DONE_MASK)
+        assert (await self.rd(R.STATUS)) & R.STATUS_DONE_MASK == 0
+        await RisingEdge(self.dut.clk_i)
+        assert int(self.dut.irq_o.value) == 0
+        self.dut._log.info("frame %dx%d T%d L%d thr %s gain %d: bit-exact, %d traced, %d cycles",
+                           W, H, tile, levels, thr, gain, gold.stats["traced"], cycles)
+
+
+async def setup(dut, seed):
+    rng = random.Random(seed)
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    dut.rst_ni.value = 0
+    env = Env(dut, rng)
+    await ClockCycles(dut.clk_i, 4)
+    dut.rst_ni.value = 1
+    await ClockCycles(dut.clk_i, 2)
+    return env, rng
+
+
+def random_config(rng):
+    tile = rng.choice((8, 16, 32))
+    levels = rng.randint(1, 3)
+    return dict(W=rng.randint(1, 48), H=rng.randint(1, 40), tile=tile, levels=levels, metric=rng.randint(0, 1),
+                thr=[rng.choice((0, 4, 8, 16, 40, 255)) for _ in range(levels)], gain=rng.choice((0, 0, 30, 255)))
+
+
+@cocotb.test()
+async def test_random_frames(dut):
+    env, rng = await setup(dut, 11)
+    # Fixed corner cases first, then random ones; pauses on every channel vary per frame.
+    configs = [dict(W=37, H=21, tile=16, levels=2, metric=0, thr=[8, 16], gain=0),
+               dict(W=1, H=1, tile=8, levels=1, metric=0, thr=[8], gain=0),
+               dict(W=33, H=9, tile=32, levels=3, metric=1, thr=[4, 8, 16], gain=100)]
+    configs += [random_config(rng) for _ in range(5)]
+    for i, c in enumerate(configs):
+        env.set_pauses(rng.choice((0.0, 0.2, 0.5)))
+        env.render.ready_p = rng.choice((1.0, 0.7, 0.3))
+        env.render.max_lat = rng.choice((1, 8, 40))
+        await env.frame(c["W"], c["H"], c["tile"], c["levels"], c["metric"], c["thr"], c["gain"],
+                        src_en=int(i % 4 != 3))
+
+
+@cocotb.test()
+async def test_bad_registers(dut):
+    env, rng = await setup(dut, 12)
+    env.set_pauses(0.2)
+    good = dict(W=20, H=10, tile=16, levels=2, metric=0, thr=[8, 16], gain=0)
+    cases = [  # (what, register overrides, expected code)
+        ("width 0", dict(W=0), ERR_FRAME_SIZE), ("width 4097", dict(W=4097), ERR_FRAME_SIZE),
+        ("width 8191", dict(W=8191), ERR_FRAME_SIZE), ("height 0", dict(H=0), ERR_FRAME_SIZE),
+        ("height 4097", dict(H=4097), ERR_FRAME_SIZE),
+        ("tile 0", dict(tile=0), ERR_TILE), ("tile 12", dict(tile=12), ERR_TILE), ("tile 4", dict(tile=4), ERR_TILE),
+        ("tile 63", dict(tile=63), ERR_TILE), ("tile 24", dict(tile=24), ERR_TILE),
+        ("levels 0", dict(levels=0), ERR_LEVELS),
+        ("fb stride short", dict(fb_stride=4 * 20 - 4), ERR_FB_STRIDE),
+        ("fb stride 0", dict(fb_stride=0), ERR_FB_STRIDE),
+        ("fb stride unaligned", dict(fb_stride=4 * 20 + 2), ERR_FB_STRIDE),
+        ("fb base +1", dict(fb_base=FB_BASE + 1), ERR_FB_BASE), ("fb base +2", dict(fb_base=FB_BASE + 2), ERR_FB_BASE),
+        ("src stride short", dict(src_stride=16), ERR_SRC_STRIDE),
+        ("src stride unaligned", dict(src_stride=22), ERR_SRC_STRIDE),
+        ("src base +3", dict(src_base=SRC_BASE + 3), ERR_SRC_BASE),
+    ]
+    env.ram.write(0, bytes([FILL]) * MEM)
+    for what, over, code in cases:
+        cfg = dict(good)
+        regs = {k: over.pop(k) for k in list(over) if k in ("fb_base", "fb_stride", "src_base", "src_stride")}
+        cfg.update(over)
+        env.render.requests = []
+        await env.program(cfg["W"], cfg["H"], cfg["tile"], cfg["levels"], cfg["metric"], cfg["thr"], cfg["gain"],
+                          **regs)
+        await env.wr(R.CTRL, R.CTRL_START_MASK)
+        await ClockCycles(dut.clk_i, 50)
+        st = await env.rd(R.STATUS)
+        err = (st & R.STATUS_ERROR_MASK) >> R.STATUS_ERROR_LSB
+        assert err == code, f"{what}: error code {err}, want {code}"
+        assert not st & (R.STATUS_BUSY_MASK | R.STATUS_DONE_MASK), f"{what}: STATUS {st:#x}: something started"
+        assert not env.render.requests, f"{what}: render requests issued"
+        assert set(env.ram.read(0, MEM)) == {FILL}, f"{what}: memory written"
+    # The source-map checks apply only when the plane is enabled.
+    env.render.image = make_image(rng, 4, 2)
+    await env.program(4, 2, 8, 1, 0, [8], 0, src_en=0, src_stride=1, src_base=3)
+    await env.wr(R.CTRL, R.CTRL_START_MASK)
+    st = await env.wait_idle()
+    assert st & R.STATUS_DONE_MASK and not st & R.STATUS_ERROR_MASK, f"STATUS {st:#x}"
+    # A good START after errors clears the code and renders correctly.
+    await env.frame(**{**good, "W": 19})
+
+
+@cocotb.test()
+async def test_soft_reset(dut):
+    env, rng = await setup(dut, 13)
+    env.set_pauses(0.3)
+    env.render.max_lat = 30
+    env.render.ready_p = 0.6
+    for delay in (40, 300, 900):
+        img = make_image(rng, 40, 32)
+        env.render.image = img
+        await env.program(40, 32, 8, 2, 0, [8, 16], 0)
+        await env.wr(R.CTRL, R.CTRL_START_MASK)
+        await ClockCycles(dut.clk_i, delay)
+        st = await env.rd(R.STATUS)
+        assert st & R.STATUS_BUSY_MASK, "frame finished before the soft reset: make it bigger"
+        await env.wr(R.CTRL, R.CTRL_SOFT_RESET_MASK)
+        st = await env.wait_idle()
+        assert st == 0, f"STATUS after soft reset {st:#x}: want idle, not done, no error"
+        assert not env.render.pending, "cleared with render responses outstanding"
+        assert await env.rd(R.PERF_CYCLES) == 0, "counters not cleared"
+        # The next frame is clean and bit-exact.
+        await env.frame(27, 19, rng.choice((8, 16)), 2, 0, [8, 16], 20)
+
+
+@pytest.mark.parametrize("engines,outstanding", [(4, 16), (3, 4)])
+def test_msr_top(engines, outstanding):
+    from sys_tb import run_cocotb
+    run_cocotb("msr_top", "test_msr_top", HERE, {"NUM_ENGINES": engines, "MAX_OUTSTANDING": outstanding},
+               f"e{engines}_o{outstanding}")
