@@ -1,0 +1,30 @@
+# Hardware throughput of the whole accelerator (issue 6, `make bench`): msr_top through the
+# Verilator harness, one harness per (NUM_ENGINES, MAX_OUTSTANDING) under build/bench/, swept by
+# scripts/bench_hw.py -> out/bench/report.json and out/bench/pixels_per_clock.png.
+# Same flags as `make sim` (SIM_VFLAGS of mk/sim.mk, used in the recipe, so it is expanded late);
+# the source lists are repeated here because mk/sim.mk is included after this file and
+# prerequisites are expanded when the rule is read.
+BENCH_HW_RTL  := $(shell sed -e 's://.*::' rtl/msr.f) sim/render_dpi.sv sim/msr_sim_top.sv
+BENCH_HW_CPP  := sim/harness.cpp sim/msr_dpi.cpp
+# Harness builds: e<N>_mo<M> = NUM_ENGINES N, MAX_OUTSTANDING M (16 is the design's default).
+BENCH_HW_CFGS ?= e1_mo16 e2_mo16 e4_mo16
+BENCH_HW_BINS  = $(foreach c,$(BENCH_HW_CFGS),build/bench/hw_$(c)/Vmsr_sim_top)
+BENCH_HW_ARGS ?=
+
+build/bench/hw_%/Vmsr_sim_top: $(BENCH_HW_RTL) $(BENCH_HW_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f \
+        mk/sim.mk mk/bench.mk build/renderer/libmsr_render.so
+	@mkdir -p $(@D)
+	@echo "make bench: building the Verilator harness $* into $(@D) (log: $(@D)/build.log)"
+	@$(ENV) verilator $(SIM_VFLAGS) -GNUM_ENGINES=$(word 1,$(subst _mo, ,$(patsubst e%,%,$*))) \
+	    -GMAX_OUTSTANDING=$(word 2,$(subst _mo, ,$*)) -Mdir $(@D) -o Vmsr_sim_top \
+	    $(BENCH_HW_RTL) $(BENCH_HW_CPP) > $(@D)/build.log 2>&1 || { tail -40 $(@D)/build.log; exit 1; }
+
+.PHONY: bench-hw bench-hw-build
+bench-hw-build: setup renderer $(BENCH_HW_BINS)
+
+# After bench-engine: its out/bench/engine.json (decisions per clock in a pass) is merged in.
+bench-hw: setup renderer $(BENCH_HW_BINS) bench-engine
+	$(ENV) python scripts/bench_hw.py --configs "$(BENCH_HW_CFGS)" $(BENCH_HW_ARGS)
+BENCH_DEPS += bench-hw
+# scripts/tests/test_bench_hw.py runs a tiny sweep on the one-engine harness.
+TEST_DEPS += build/bench/hw_e1_mo16/Vmsr_sim_top

@@ -1,0 +1,364 @@
+"""Hardware throughput of the whole accelerator (msr_top) from simulation: `make bench-hw`.
+
+    python scripts/bench_hw.py [--configs "e1_mo16 e2_mo16 e4_mo16"] [--scene cornell]
+        [--width 256 --height 256] [--latencies 0,64,256] [--tiles 8,16,32] [--levels 1,2,3]
+        [--tl-engines 4] [--tl-latencies 0,256] [--out out/bench] [--no-tile-sweep]
+
+Each point runs one frame through the Verilator harness (sim/harness.cpp) built per
+(NUM_ENGINES, MAX_OUTSTANDING) into build/bench/hw_e<N>_mo<M>/ by mk/bench.mk; the rendering
+unit is Embree over DPI-C (render_dpi.sv) answering every request exactly `latency` cycles
+after it was taken (+rnd_latency, no jitter). Every RTL frame and source map is compared with
+the golden model (same scene, same renderer), so each point also says whether it is bit exact.
+
+Reported per point: cycles from START to DONE (PERF_CYCLES), pixels per clock = W*H / cycles,
+traced fraction (perf counters), render-port and memory stall counters, and three lower bounds
+on the cycles (what would limit the frame if nothing else did): the writer (its 32-bit AXI W
+channel carries one pixel, or four source codes, per beat and clock), the tags (traced * latency / (NUM_ENGINES * MAX_OUTSTANDING): each request
+holds one tag for at least the latency) and the shared render port (one request per clock).
+Writes out/bench/report.json (merging out/bench/engine.json from bench_engine.py when present)
+and out/bench/pixels_per_clock.png. Bad arguments: one line on stderr, exit status 2.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+EXIT_BAD_INPUT = 2
+DEFAULT_THR = (8, 16, 32)      # thresholds per level: thr_k = 8 * 2^(k-1), the defaults of make sim
+GOAL_DECISIONS = 0.95          # decisions per clock per engine inside a pass
+GOAL_PIXELS = 3.6              # pixels per clock, 4 engines, latency 256
+GOAL_ENGINES, GOAL_LATENCY = 4, 256
+
+
+class UsageError(Exception):
+    pass
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise UsageError(message)
+
+
+def int_list(text: str, what: str) -> list[int]:
+    try:
+        vals = [int(t) for t in str(text).split(",") if t.strip()]
+    except ValueError:
+        raise UsageError(f"{what} must be a comma-separated list of integers, got {text!r}") from None
+    if not vals:
+        raise UsageError(f"{what} is empty")
+    return vals
+
+
+def parse_cfg(name: str) -> tuple[int, int]:
+    """'e4_mo16' -> (NUM_ENGINES 4, MAX_OUTSTANDING 16)."""
+    try:
+        e, mo = name.split("_mo")
+        if not e.startswith("e"):
+            raise ValueError
+        return int(e[1:]), int(mo)
+    except ValueError:
+        raise UsageError(f"harness config {name!r} is not e<engines>_mo<outstanding> (e.g. e4_mo16)") from None
+
+
+def parse(argv):
+    ap = _Parser(prog="bench_hw", description=__doc__.splitlines()[0])
+    ap.add_argument("--configs", default="e1_mo16 e2_mo16 e4_mo16",
+                    help="harness builds e<NUM_ENGINES>_mo<MAX_OUTSTANDING>, space separated")
+    ap.add_argument("--build-dir", default=str(ROOT / "build" / "bench"))
+    ap.add_argument("--scene", default="cornell")
+    ap.add_argument("--width", type=int, default=256)
+    ap.add_argument("--height", type=int, default=256)
+    ap.add_argument("--latencies", default="0,64,256")
+    ap.add_argument("--tile", type=int, default=16, help="T of the engines x latency sweep")
+    ap.add_argument("--levels-main", type=int, default=2, help="L of the engines x latency sweep")
+    ap.add_argument("--tiles", default="8,16,32", help="T values of the cycles-per-tile sweep")
+    ap.add_argument("--levels", default="1,2,3", help="L values of the cycles-per-tile sweep")
+    ap.add_argument("--tl-engines", type=int, default=4, help="NUM_ENGINES of the cycles-per-tile sweep")
+    ap.add_argument("--tl-latencies", default="0,256")
+    ap.add_argument("--no-tile-sweep", action="store_true")
+    ap.add_argument("--out", default=str(ROOT / "out" / "bench"))
+    ap.add_argument("--engine-json", default=str(ROOT / "out" / "bench" / "engine.json"))
+    ap.add_argument("--no-plot", action="store_true")
+    ap.add_argument("--no-progress", action="store_true")
+    a = ap.parse_args(argv)
+    a.cfgs = [parse_cfg(c) for c in a.configs.split()]
+    if not a.cfgs:
+        raise UsageError("no harness configs given")
+    a.latencies = int_list(a.latencies, "--latencies")
+    a.tiles = int_list(a.tiles, "--tiles")
+    a.levels = int_list(a.levels, "--levels")
+    a.tl_latencies = int_list(a.tl_latencies, "--tl-latencies")
+    for v in a.latencies + a.tl_latencies:
+        if not 0 <= v <= 100000:
+            raise UsageError(f"render latency {v} outside 0..100000")
+    if not (1 <= a.width <= 4096 and 1 <= a.height <= 4096):
+        raise UsageError(f"frame {a.width}x{a.height} outside 1..4096")
+    return a
+
+
+def harness_path(build_dir: Path, engines: int, mo: int) -> Path:
+    return Path(build_dir) / f"hw_e{engines}_mo{mo}" / "Vmsr_sim_top"
+
+
+def params_for(tile: int, levels: int):
+    from msr_model import Params
+    return Params(tile=tile, levels=levels, thr=DEFAULT_THR[:levels], metric="max", fov_gain=0)
+
+
+def read_pnm(path: Path) -> np.ndarray:
+    from PIL import Image
+    with Image.open(path) as im:
+        return np.asarray(im)
+
+
+class Golden:
+    """The golden model's frame per (T, L) on the same renderer: one full render of the scene,
+    then `select` answers its trace requests from it (the renderer is deterministic)."""
+
+    def __init__(self, scene: str, width: int, height: int):
+        from msr_model.embree import open_renderer
+        r = open_renderer(scene, width, height, quality="fast")
+        try:
+            self.reference = r.render_full(progress=False)
+        finally:
+            r.close()
+        self.w, self.h = width, height
+        self._cache = {}
+
+    def frame(self, tile: int, levels: int):
+        key = (tile, levels)
+        if key not in self._cache:
+            from msr_model import ImageRenderer, select
+            self._cache[key] = select(ImageRenderer(self.reference), self.w, self.h, params_for(tile, levels))
+        return self._cache[key]
+
+
+def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, tile: int, levels: int,
+              latency: int, golden: Golden | None) -> dict:
+    """One frame through the harness; returns the measured point."""
+    from msr_model import spec
+    p = params_for(tile, levels)
+    thr3 = list(p.thr) + [0] * (3 - levels)
+    with tempfile.TemporaryDirectory(prefix="bench_hw_") as td:
+        td = Path(td)
+        cmd = [str(harness), "--width", str(w), "--height", str(h), "--tile", str(tile),
+               "--levels", str(levels), "--thr", ",".join(map(str, thr3)), "--metric", "max",
+               "--fov-gain", "0", "--frame", str(td / "f.ppm"), "--source", str(td / "s.pgm"),
+               "--stats", str(td / "s.json"), "--quiet",
+               f"+scene={scene}", f"+width={w}", f"+height={h}", "+quality=0",
+               f"+rnd_latency={latency}", "+rnd_jitter=0"]
+        t0 = time.perf_counter()
+        proc = subprocess.run(cmd, capture_output=True, text=True)
+        wall = time.perf_counter() - t0
+        if proc.returncode != 0:
+            tail = (proc.stderr.strip().splitlines() or ["(no output)"])[-1]
+            raise RuntimeError(f"harness {harness} (T={tile} L={levels} latency {latency}) failed "
+                               f"with status {proc.returncode}: {tail}")
+        st = json.loads((td / "s.json").read_text())
+        frame = read_pnm(td / "f.ppm") if golden else None
+        source = read_pnm(td / "s.pgm") if golden else None
+    pixels = w * h
+    traced = sum(st[f"traced_{k}"] for k in ("initial", "level1", "level2", "level3"))
+    interp = sum(st[f"interpolated_level{k}"] for k in (1, 2, 3))
+    cycles = st["cycles"]
+    ntx, nty = spec.tile_counts(w, h, tile)
+    tiles = ntx * nty
+    pt = {
+        "num_engines": engines, "max_outstanding": mo, "render_latency": latency,
+        "tile": tile, "levels": levels, "thr": list(p.thr),
+        "cycles": cycles, "pixels": pixels, "tiles": tiles,
+        "pixels_per_clock": pixels / cycles,
+        "pixels_per_clock_per_engine": pixels / cycles / engines,
+        "cycles_per_tile": cycles / tiles,                       # frame cycles / tiles (all engines)
+        "cycles_per_tile_per_engine": cycles * engines / tiles,  # what one engine spends on a tile
+        "traced": traced, "traced_fraction": traced / pixels,
+        "pixels_counted": traced + interp,
+        "render_stall_cycles": st["render_stall_cycles"],
+        "memory_stall_cycles": st["memory_stall_cycles"],
+        # Lower bounds on the frame's cycles, one per shared resource (see the module docstring).
+        "axi_w_beats": w_beats(w, h, tile),
+        "bound_writer_cycles": w_beats(w, h, tile),
+        "bound_tags_cycles": traced * latency / (engines * mo),
+        "bound_render_port_cycles": traced,
+        "bound_decisions_cycles": pixels / engines,
+        "sim_seconds": st["sim_seconds"], "wall_seconds": round(wall, 3),
+    }
+    if golden is not None:
+        g = golden.frame(tile, levels)
+        fe = bool(np.array_equal(frame, g.frame))
+        se = bool(np.array_equal(source, g.source))
+        pt["bit_exact"] = fe and se
+        pt["mismatched_pixels"] = int((frame != g.frame).any(axis=2).sum()) + int((source != g.source).sum())
+    return pt
+
+
+def w_beats(w: int, h: int, tile: int) -> int:
+    """AXI W beats of a frame: per tile row one burst of 32-bit pixels and one of packed 8-bit
+    source codes (the source map is on, as in make sim), i.e. wt + ceil(wt / 4) beats for a row
+    wt pixels wide. The W channel moves one beat per clock, so this is a lower bound on cycles."""
+    full, rest = divmod(w, tile)
+    per_row = full * (tile + (tile + 3) // 4) + (rest + (rest + 3) // 4 if rest else 0)
+    return h * per_row
+
+
+def bottleneck(pt: dict) -> str:
+    """The resource whose lower bound comes closest to the measured cycles."""
+    bounds = {"frame-buffer writer AXI W (32-bit beats: pixels + source codes)": pt["bound_writer_cycles"],
+              "render tags (MAX_OUTSTANDING per engine)": pt["bound_tags_cycles"],
+              "shared render port (1 request/clock)": pt["bound_render_port_cycles"],
+              "engine decisions (1 position/clock/engine)": pt["bound_decisions_cycles"]}
+    name, val = max(bounds.items(), key=lambda kv: kv[1])
+    return f"{name}: bound {val:.0f} of {pt['cycles']} cycles ({val / pt['cycles']:.0%})"
+
+
+def load_engine_bench(path: Path) -> dict | None:
+    if not path.is_file():
+        return None
+    data = json.loads(path.read_text())
+    res = data.get("results", [])
+    lat0 = [r for r in res if r["latency"] == 0 and r.get("decisions_per_clock_in_pass") is not None]
+    best = min((r["decisions_per_clock_in_pass"] for r in lat0), default=None)
+    return {"source": str(path.relative_to(ROOT)) if path.is_relative_to(ROOT) else str(path),
+            "setup": data.get("setup"),
+            "decisions_per_clock_in_pass_latency0_min": best,
+            "results": res}
+
+
+def plot(report: dict, path: Path) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    pts = report["engines_x_latency"]
+    fig, ax = plt.subplots(figsize=(6.4, 4.0), dpi=100)
+    for e in sorted({p["num_engines"] for p in pts}):
+        row = sorted((p for p in pts if p["num_engines"] == e), key=lambda p: p["render_latency"])
+        ax.plot([p["render_latency"] for p in row], [p["pixels_per_clock"] for p in row], "o-",
+                label=f"{e} engine{'s' if e > 1 else ''} (MAX_OUTSTANDING {row[0]['max_outstanding']})")
+    ax.axhline(GOAL_PIXELS, color="grey", ls="--", lw=1, label=f"goal {GOAL_PIXELS} (4 engines, latency 256)")
+    wl = pts[0]["pixels"] / pts[0]["bound_writer_cycles"]
+    ax.axhline(wl, color="red", ls=":", lw=1, label=f"frame-buffer writer limit ({wl:.2f} pixels/clock, 32-bit AXI)")
+    s = report["setup"]
+    ax.set_title(f"msr_top, {s['scene']} {s['width']}x{s['height']}, T={s['tile']} L={s['levels']} "
+                 f"thr {','.join(map(str, s['thr']))}", fontsize=10)
+    ax.set_xlabel("render latency (cycles)")
+    ax.set_ylabel("pixels per clock")
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def run(a) -> int:
+    from tqdm import tqdm
+    build = Path(a.build_dir)
+    for e, mo in a.cfgs:
+        if not harness_path(build, e, mo).is_file():
+            raise UsageError(f"harness {harness_path(build, e, mo)} not built (make bench-hw-build)")
+    tl_cfg = next(((e, mo) for e, mo in a.cfgs if e == a.tl_engines), None)
+    if not a.no_tile_sweep and tl_cfg is None:
+        raise UsageError(f"--tl-engines {a.tl_engines} has no harness among --configs {a.configs!r}")
+
+    jobs = [("main", e, mo, a.tile, a.levels_main, lat) for e, mo in a.cfgs for lat in a.latencies]
+    if not a.no_tile_sweep:
+        jobs += [("tl", tl_cfg[0], tl_cfg[1], t, l, lat)
+                 for t in a.tiles for l in a.levels for lat in a.tl_latencies]
+    golden = Golden(a.scene, a.width, a.height)
+    t0 = time.perf_counter()
+    main_pts, tl_pts = [], []
+    bar = tqdm(jobs, desc="bench_hw", unit="sim", disable=a.no_progress, file=sys.stderr)
+    for kind, e, mo, t, l, lat in bar:
+        bar.set_postfix_str(f"E={e} MO={mo} T={t} L={l} lat={lat}")
+        pt = run_point(harness_path(build, e, mo), e, mo, a.scene, a.width, a.height, t, l, lat, golden)
+        pt["bottleneck"] = bottleneck(pt)
+        (main_pts if kind == "main" else tl_pts).append(pt)
+    bar.close()
+
+    engine = load_engine_bench(Path(a.engine_json))
+    goal_pt = next((p for p in main_pts if p["num_engines"] == GOAL_ENGINES and p["render_latency"] == GOAL_LATENCY
+                    and p["max_outstanding"] == 16), None)
+    dec = engine["decisions_per_clock_in_pass_latency0_min"] if engine else None
+    report = {
+        "setup": {"scene": a.scene, "renderer": "Embree over DPI-C (render_dpi.sv), quality fast",
+                  "width": a.width, "height": a.height, "tile": a.tile, "levels": a.levels_main,
+                  "thr": list(DEFAULT_THR[:a.levels_main]), "metric": "max", "fov_gain": 0,
+                  "render_jitter": 0, "source_map": "enabled (SRC_CTRL.ENABLE, as make sim)",
+                  "memory": "AXI slave always ready (--mem-pause 0)",
+                  "pixels_per_clock": "W*H / PERF_CYCLES (START to DONE)",
+                  "cycles_per_tile_sweep": {"num_engines": a.tl_engines, "latencies": a.tl_latencies,
+                                            "thr": "8,16,32 truncated to L"}},
+        "engines_x_latency": main_pts,
+        "cycles_per_tile": tl_pts,
+        "engine_bench": engine,
+        "bit_exact": all(p.get("bit_exact", False) for p in main_pts + tl_pts),
+        "goals": {
+            "decisions_per_clock_per_engine_in_pass": {
+                "goal": GOAL_DECISIONS, "measured": dec,
+                "met": (dec >= GOAL_DECISIONS) if dec is not None else None,
+                "where": "tile_engine alone, latency 0, min over MAX_OUTSTANDING and thresholds (bench_engine.py)"},
+            "pixels_per_clock_4_engines_latency_256": {
+                "goal": GOAL_PIXELS, "measured": goal_pt["pixels_per_clock"] if goal_pt else None,
+                "met": (goal_pt["pixels_per_clock"] >= GOAL_PIXELS) if goal_pt else None,
+                "bottleneck": goal_pt["bottleneck"] if goal_pt else None},
+        },
+        "bench_seconds": round(time.perf_counter() - t0, 1),
+    }
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "report.json").write_text(json.dumps(report, indent=1) + "\n")
+    if not a.no_plot:
+        plot(report, out / "pixels_per_clock.png")
+    print_tables(report)
+    print(f"written {out / 'report.json'}" + ("" if a.no_plot else f" and {out / 'pixels_per_clock.png'}"))
+    return 0 if report["bit_exact"] else 1
+
+
+def print_tables(r: dict) -> None:
+    s = r["setup"]
+    print(f"\nPixels per clock, {s['scene']} {s['width']}x{s['height']}, T={s['tile']} L={s['levels']} "
+          f"thr {','.join(map(str, s['thr']))} (traced fraction, cycles):")
+    print("| engines | MAX_OUTSTANDING | latency | cycles | pixels / clock | traced | render stall | "
+          "memory stall | bound | bit exact |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for p in r["engines_x_latency"]:
+        print(f"| {p['num_engines']} | {p['max_outstanding']} | {p['render_latency']} | {p['cycles']} "
+              f"| {p['pixels_per_clock']:.3f} | {p['traced_fraction']:.3f} | {p['render_stall_cycles']} "
+              f"| {p['memory_stall_cycles']} | {p['bottleneck']} | {p.get('bit_exact')} |")
+    if r["cycles_per_tile"]:
+        e = r["setup"]["cycles_per_tile_sweep"]["num_engines"]
+        print(f"\nCycles per tile ({e} engines; frame cycles / tiles, and x{e} = per engine):")
+        print("| T | L | latency | tiles | cycles / tile | per engine | pixels / clock | traced | bit exact |")
+        print("|---|---|---|---|---|---|---|---|---|")
+        for p in r["cycles_per_tile"]:
+            print(f"| {p['tile']} | {p['levels']} | {p['render_latency']} | {p['tiles']} "
+                  f"| {p['cycles_per_tile']:.1f} | {p['cycles_per_tile_per_engine']:.0f} "
+                  f"| {p['pixels_per_clock']:.3f} | {p['traced_fraction']:.3f} | {p.get('bit_exact')} |")
+    for k, g in r["goals"].items():
+        print(f"goal {k}: {g['goal']} measured {g['measured']} -> {'met' if g['met'] else 'NOT met'}")
+
+
+def main(argv=None) -> int:
+    from msr_model import SpecError
+    try:
+        return run(parse(argv))
+    except (UsageError, SpecError) as e:
+        msg = str(e.args[0]) if e.args else repr(e)
+        print(f"bench_hw: error: {msg.splitlines()[0]}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except RuntimeError as e:
+        print(f"bench_hw: error: {e}", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,99 @@
+"""scripts/bench_hw.py: a tiny sweep (one engine, one small frame) through the real harness.
+
+The one-engine harness is built by `make test` (TEST_DEPS in mk/bench.mk); a plain pytest run
+without it fails with the make command to run.
+"""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "scripts"))
+import bench_hw  # noqa: E402
+
+HARNESS = bench_hw.harness_path(ROOT / "build" / "bench", 1, 16)
+
+
+def _need_harness():
+    if not HARNESS.is_file():
+        pytest.fail(f"{HARNESS} is not built: run `make build/bench/hw_e1_mo16/Vmsr_sim_top` (make test does)")
+
+
+def test_tiny_sweep_report(tmp_path):
+    _need_harness()
+    engine_json = tmp_path / "engine.json"
+    engine_json.write_text(json.dumps({"setup": "x", "results": [
+        {"latency": 0, "thr": [8, 16], "decisions_per_clock_in_pass": 0.97, "max_outstanding": 16},
+        {"latency": 0, "thr": [0, 0], "decisions_per_clock_in_pass": 0.99, "max_outstanding": 16},
+        {"latency": 64, "thr": [8, 16], "decisions_per_clock_in_pass": 0.5, "max_outstanding": 16}]}))
+    rc = bench_hw.main(["--configs", "e1_mo16", "--width", "48", "--height", "32", "--latencies", "0,40",
+                        "--tiles", "16", "--levels", "2", "--tl-engines", "1", "--tl-latencies", "0",
+                        "--out", str(tmp_path), "--engine-json", str(engine_json), "--no-progress"])
+    assert rc == 0
+    r = json.loads((tmp_path / "report.json").read_text())
+    assert (tmp_path / "pixels_per_clock.png").stat().st_size > 1000
+    assert r["bit_exact"] is True
+    pts = r["engines_x_latency"]
+    assert [(p["num_engines"], p["render_latency"]) for p in pts] == [(1, 0), (1, 40)]
+    for p in pts + r["cycles_per_tile"]:
+        assert p["bit_exact"] is True and p["mismatched_pixels"] == 0
+        assert p["pixels"] == 48 * 32 and p["tiles"] == 3 * 2
+        # Every pixel of the frame went through the writer exactly once.
+        assert p["pixels_counted"] == p["pixels"]
+        assert 0 < p["pixels_per_clock"] <= p["num_engines"]
+        # The writer's 32-bit W channel: per 16-pixel tile row 16 pixel beats + 4 source-code
+        # beats, 3 tiles a row, 32 rows = 1920 beats; no frame can take fewer cycles.
+        assert p["axi_w_beats"] == 3 * (16 + 4) * 32
+        assert p["cycles"] >= p["axi_w_beats"]
+        assert 0 < p["traced_fraction"] <= 1
+        assert p["cycles_per_tile"] == pytest.approx(p["cycles"] / 6)
+    # A longer render latency cannot make one engine with 16 tags faster.
+    assert pts[1]["cycles"] > pts[0]["cycles"]
+    # The tag bound is a true lower bound: traced * 40 / 16 cycles at latency 40.
+    assert pts[1]["cycles"] >= pts[1]["traced"] * 40 / 16
+    assert len(r["cycles_per_tile"]) == 1 and r["cycles_per_tile"][0]["tile"] == 16
+    # The engine bench is merged: the worst in-pass decision rate at latency 0.
+    g = r["goals"]["decisions_per_clock_per_engine_in_pass"]
+    assert g["measured"] == pytest.approx(0.97) and g["met"] is True
+    # No 4-engine point in this sweep: the pixel goal is not judged.
+    assert r["goals"]["pixels_per_clock_4_engines_latency_256"]["measured"] is None
+
+
+def test_traced_fraction_matches_golden_model(tmp_path):
+    """The perf counters' traced count equals the golden model's traced pixels."""
+    _need_harness()
+    from msr_model import spec
+    golden = bench_hw.Golden("cornell", 40, 24)
+    pt = bench_hw.run_point(HARNESS, 1, 16, "cornell", 40, 24, 8, 1, 5, golden)
+    g = golden.frame(8, 1)
+    assert pt["bit_exact"] is True
+    assert pt["traced"] == int((g.source < spec.SRC_INTERP_BASE).sum())
+
+
+def test_w_beats_hand_counts():
+    # 20 wide, T=8: tiles 8, 8, 4 wide -> (8+2) + (8+2) + (4+1) = 25 beats a row; 3 rows.
+    assert bench_hw.w_beats(20, 3, 8) == 75
+    # 35 wide, T=32: 32 + 8, then 3 + 1 -> 44 beats a row.
+    assert bench_hw.w_beats(35, 1, 32) == 44
+
+
+def test_bad_config_is_a_usage_error(capsys):
+    assert bench_hw.main(["--configs", "four_engines"]) == bench_hw.EXIT_BAD_INPUT
+    assert "e<engines>_mo<outstanding>" in capsys.readouterr().err
+
+
+def test_missing_harness_is_a_usage_error(tmp_path, capsys):
+    rc = bench_hw.main(["--configs", "e3_mo16", "--build-dir", str(tmp_path), "--out", str(tmp_path)])
+    assert rc == bench_hw.EXIT_BAD_INPUT
+    assert "not built" in capsys.readouterr().err
+
+
+def test_cli_runs_as_script():
+    proc = subprocess.run([sys.executable, str(ROOT / "scripts" / "bench_hw.py"), "--latencies", "x"],
+                          capture_output=True, text=True)
+    assert proc.returncode == 2 and "--latencies" in proc.stderr
