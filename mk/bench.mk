@@ -6,13 +6,14 @@
 # prerequisites are expanded when the rule is read.
 BENCH_HW_RTL  := $(shell sed -e 's://.*::' rtl/msr.f) sim/render_dpi.sv sim/msr_sim_top.sv
 BENCH_HW_CPP  := sim/harness.cpp sim/msr_dpi.cpp
-# Harness builds: e<N>_mo<M> = NUM_ENGINES N, MAX_OUTSTANDING M (16 is the design's default).
-BENCH_HW_CFGS ?= e1_mo16 e2_mo16 e4_mo16
+# Harness builds: e<N>_mo<M> = NUM_ENGINES N, MAX_OUTSTANDING M (16 is the default of msr_top;
+# e1_mo64 shows what more tags give one engine at long latencies).
+BENCH_HW_CFGS ?= e1_mo16 e2_mo16 e4_mo16 e1_mo64
 BENCH_HW_BINS  = $(foreach c,$(BENCH_HW_CFGS),build/bench/hw_$(c)/Vmsr_sim_top)
 BENCH_HW_ARGS ?=
 
 build/bench/hw_%/Vmsr_sim_top: $(BENCH_HW_RTL) $(BENCH_HW_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f \
-        mk/sim.mk mk/bench.mk build/renderer/libmsr_render.so
+        mk/sim.mk build/renderer/libmsr_render.so
 	@mkdir -p $(@D)
 	@echo "make bench: building the Verilator harness $* into $(@D) (log: $(@D)/build.log)"
 	@$(ENV) verilator $(SIM_VFLAGS) -GNUM_ENGINES=$(word 1,$(subst _mo, ,$(patsubst e%,%,$*))) \

@@ -1,6 +1,6 @@
 """Hardware throughput of the whole accelerator (msr_top) from simulation: `make bench-hw`.
 
-    python scripts/bench_hw.py [--configs "e1_mo16 e2_mo16 e4_mo16"] [--scene cornell]
+    python scripts/bench_hw.py [--configs "e1_mo16 e2_mo16 e4_mo16 e1_mo64"] [--scene cornell]
         [--width 256 --height 256] [--latencies 0,64,256] [--tiles 8,16,32] [--levels 1,2,3]
         [--tl-engines 4] [--tl-latencies 0,256] [--out out/bench] [--no-tile-sweep]
 
@@ -70,7 +70,7 @@ def parse_cfg(name: str) -> tuple[int, int]:
 
 def parse(argv):
     ap = _Parser(prog="bench_hw", description=__doc__.splitlines()[0])
-    ap.add_argument("--configs", default="e1_mo16 e2_mo16 e4_mo16",
+    ap.add_argument("--configs", default="e1_mo16 e2_mo16 e4_mo16 e1_mo64",
                     help="harness builds e<NUM_ENGINES>_mo<MAX_OUTSTANDING>, space separated")
     ap.add_argument("--build-dir", default=str(ROOT / "build" / "bench"))
     ap.add_argument("--scene", default="cornell")
@@ -219,6 +219,30 @@ def bottleneck(pt: dict) -> str:
     return f"{name}: bound {val:.0f} of {pt['cycles']} cycles ({val / pt['cycles']:.0%})"
 
 
+def analysis(pts: list[dict]) -> dict:
+    """Ceilings behind the measured numbers, from the sweep itself."""
+    if not pts:
+        return {}
+    p0 = pts[0]
+    out = {
+        # The writer's W channel moves one 32-bit beat per clock.
+        "writer_limit_pixels_per_clock": p0["pixels"] / p0["axi_w_beats"],
+        "w_beats_per_pixel": p0["axi_w_beats"] / p0["pixels"],
+        "w_beats_per_clock_needed_for_goal": GOAL_PIXELS * p0["axi_w_beats"] / p0["pixels"],
+        # One request per clock on the shared render port: only the traced pixels count.
+        "render_port_limit_pixels_per_clock": p0["pixels"] / max(p0["traced"], 1),
+    }
+    # A lone engine is not writer bound at long latencies: N engines with an ideal writer could
+    # at best do N times its rate (they share nothing else but the render port).
+    for p in pts:
+        if p["num_engines"] == 1 and p["cycles"] > 1.05 * p["axi_w_beats"]:
+            out[f"engine_limit_1_engine_mo{p['max_outstanding']}_latency{p['render_latency']}"] = {
+                "pixels_per_clock": p["pixels_per_clock"],
+                "cycles_per_16x16_equivalent_tile": p["cycles"] / (p["pixels"] / 256),
+                "times_4_engines_ideal_writer": 4 * p["pixels_per_clock"]}
+    return out
+
+
 def load_engine_bench(path: Path) -> dict | None:
     if not path.is_file():
         return None
@@ -238,10 +262,12 @@ def plot(report: dict, path: Path) -> None:
     import matplotlib.pyplot as plt
     pts = report["engines_x_latency"]
     fig, ax = plt.subplots(figsize=(6.4, 4.0), dpi=100)
-    for e in sorted({p["num_engines"] for p in pts}):
-        row = sorted((p for p in pts if p["num_engines"] == e), key=lambda p: p["render_latency"])
-        ax.plot([p["render_latency"] for p in row], [p["pixels_per_clock"] for p in row], "o-",
-                label=f"{e} engine{'s' if e > 1 else ''} (MAX_OUTSTANDING {row[0]['max_outstanding']})")
+    for e, mo in sorted({(p["num_engines"], p["max_outstanding"]) for p in pts}):
+        row = sorted((p for p in pts if (p["num_engines"], p["max_outstanding"]) == (e, mo)),
+                     key=lambda p: p["render_latency"])
+        ax.plot([p["render_latency"] for p in row], [p["pixels_per_clock"] for p in row],
+                "o-" if mo == 16 else "s--",
+                label=f"{e} engine{'s' if e > 1 else ''}, MAX_OUTSTANDING {mo}")
     ax.axhline(GOAL_PIXELS, color="grey", ls="--", lw=1, label=f"goal {GOAL_PIXELS} (4 engines, latency 256)")
     wl = pts[0]["pixels"] / pts[0]["bound_writer_cycles"]
     ax.axhline(wl, color="red", ls=":", lw=1, label=f"frame-buffer writer limit ({wl:.2f} pixels/clock, 32-bit AXI)")
@@ -311,6 +337,7 @@ def run(a) -> int:
                 "met": (goal_pt["pixels_per_clock"] >= GOAL_PIXELS) if goal_pt else None,
                 "bottleneck": goal_pt["bottleneck"] if goal_pt else None},
         },
+        "analysis": analysis(main_pts),
         "bench_seconds": round(time.perf_counter() - t0, 1),
     }
     out = Path(a.out)
