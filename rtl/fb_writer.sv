@@ -54,7 +54,7 @@ module fb_writer import msr_pkg::*; #(
   input  logic              m_axi_bvalid,
   output logic              m_axi_bready,
   // Status.
-  output logic              idle_o,          // no complete row waiting, no burst open or outstanding
+  output logic              idle_o,          // no complete row waiting, no burst open/outstanding
   output logic              tile_done_o,     // pulse: the last pixel of a tile was taken
   output logic              bresp_err_o      // pulse: a write response was SLVERR or DECERR
 );
@@ -175,7 +175,7 @@ module fb_writer import msr_pkg::*; #(
     .data_o  (cf_pop_data)
   );
 
-  // ---- AW: rows into bursts (split at 4 KiB) -----------------------------------------------------
+  // ---- AW: rows into bursts (split at 4 KiB) ----------------------------------------------------
   typedef enum logic [1:0] {
     AW_IDLE  = 2'd0,   // wait for a complete row
     AW_ISSUE = 2'd1,   // form the next burst
@@ -303,7 +303,7 @@ module fb_writer import msr_pkg::*; #(
     end
   end
 
-  // ---- W: the beats of each accepted burst, in order ---------------------------------------------
+  // ---- W: the beats of each accepted burst, in order --------------------------------------------
   logic [BEATS_W-1:0] wcnt_q, wcnt_d;
   logic               w_hs;
 
@@ -342,15 +342,18 @@ module fb_writer import msr_pkg::*; #(
     end
   end
 
-  // ---- B ------------------------------------------------------------------------------------------
+  // ---- B ----------------------------------------------------------------------------------------
   assign m_axi_bready = 1'b1;
   assign bresp_err_o  = b_hs && m_axi_bresp[1];
-  assign idle_o       = (aw_state_q == AW_IDLE) && !cf_pop_valid && !wq_pop_valid && (outst_q == '0);
+  assign idle_o       = (aw_state_q == AW_IDLE) && !cf_pop_valid && !wq_pop_valid &&
+                        (outst_q == '0);
 
   logic unused_b;
   assign unused_b = ^{m_axi_bid, m_axi_bresp[0]};   // single ID (in-order B); EXOKAY cannot occur
 
 `ifndef SYNTHESIS
+  // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
+  /* verilator lint_off SYNCASYNCNET */
   // AXI: an offered address stays until taken; a row never has more than 32 pixels.
   assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
                    m_axi_awvalid && !m_axi_awready |=> m_axi_awvalid && $stable(m_axi_awaddr));

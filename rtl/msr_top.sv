@@ -95,7 +95,7 @@ module msr_top import msr_pkg::*; #(
     ST_DRAIN = 2'd2    // soft reset: waiting for outstanding responses and writes
   } state_e;
 
-  // ---- Registers ---------------------------------------------------------------------------------
+  // ---- Registers --------------------------------------------------------------------------------
   msr_regs_pkg::msr_regs__in_t  hwif_in;
   msr_regs_pkg::msr_regs__out_t hwif_out;
 
@@ -171,12 +171,14 @@ module msr_top import msr_pkg::*; #(
       cfg_err = ERR_TILE;
     end else if (cfg_new.levels == '0) begin
       cfg_err = ERR_LEVELS;
-    end else if (cfg_new.fb_stride < {17'b0, cfg_new.width, 2'b0} || cfg_new.fb_stride[1:0] != '0) begin
+    end else if (cfg_new.fb_stride < {17'b0, cfg_new.width, 2'b0} ||
+                 cfg_new.fb_stride[1:0] != '0) begin
       cfg_err = ERR_FB_STRIDE;
     end else if (cfg_new.fb_base[1:0] != '0) begin
       cfg_err = ERR_FB_BASE;
     end else if (cfg_new.src_en &&
-                 (cfg_new.src_stride < {19'b0, cfg_new.width} || cfg_new.src_stride[1:0] != '0)) begin
+                 (cfg_new.src_stride < {19'b0, cfg_new.width} ||
+                  cfg_new.src_stride[1:0] != '0)) begin
       cfg_err = ERR_SRC_STRIDE;
     end else if (cfg_new.src_en && cfg_new.src_base[1:0] != '0) begin
       cfg_err = ERR_SRC_BASE;
@@ -237,7 +239,8 @@ module msr_top import msr_pkg::*; #(
     end
   end
 
-  assign frame_done = (state_q == ST_RUN) && tg_done && (tiles_written_q == tiles_given_q) && wr_idle;
+  assign frame_done = (state_q == ST_RUN) && tg_done && (tiles_written_q == tiles_given_q) &&
+                      wr_idle;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -279,7 +282,7 @@ module msr_top import msr_pkg::*; #(
     .done_o       (tg_done)
   );
 
-  // ---- Engines ------------------------------------------------------------------------------------
+  // ---- Engines ----------------------------------------------------------------------------------
   logic   [NUM_ENGINES-1:0] eng_req_valid, eng_req_ready;
   coord_t [NUM_ENGINES-1:0] eng_req_x, eng_req_y;
   logic   [NUM_ENGINES-1:0][ETAG_W-1:0] eng_req_tag;
@@ -331,14 +334,14 @@ module msr_top import msr_pkg::*; #(
   // Response demux: the engine named in the tag answers ready.
   assign rnd_rsp_ready_o = eng_rsp_ready[rsp_eid];
 
-  // ---- Round-robin pick: the first set bit at or after `ptr` -------------------------------------
+  // ---- Round-robin pick: the first set bit at or after `ptr` ------------------------------------
   function automatic logic [EID_W-1:0] rr_pick(logic [NUM_ENGINES-1:0] mask, logic [EID_W-1:0] ptr);
     logic [EID_W-1:0] sel;
     sel = ptr;
     for (int k = NUM_ENGINES - 1; k >= 0; k--) begin
-      int unsigned idx;
-      idx = (int'(ptr) + k) % NUM_ENGINES;
-      if (mask[idx]) sel = EID_W'(idx);
+      logic [EID_W-1:0] idx;
+      idx = EID_W'((int'(ptr) + k) % NUM_ENGINES);
+      if (mask[idx]) sel = idx;
     end
     return sel;
   endfunction
@@ -378,7 +381,12 @@ module msr_top import msr_pkg::*; #(
   end
 
   // ---- Pixel arbiter: round robin, locked on a tile row (one burst per row) ---------------
-  logic [EID_W-1:0] pix_ptr_q, pix_ptr_d, pix_sel, pix_lock_q, pix_lock_d;
+  // Lint: Verilator sees ready -> engine -> valid -> pix_sel as a loop over the whole vectors;
+  // an engine's pix_valid_o is a register (msr_tile_stream), so there is no real loop.
+  /* verilator lint_off UNOPTFLAT */
+  logic [EID_W-1:0] pix_sel;
+  /* verilator lint_on UNOPTFLAT */
+  logic [EID_W-1:0] pix_ptr_q, pix_ptr_d, pix_lock_q, pix_lock_d;
   logic             pix_locked_q, pix_locked_d;
   logic             wr_pix_valid, wr_pix_ready, wr_row_end, pix_hs;
 
@@ -415,7 +423,7 @@ module msr_top import msr_pkg::*; #(
     end
   end
 
-  // ---- Frame-buffer writer -----------------------------------------------------------------------
+  // ---- Frame-buffer writer ----------------------------------------------------------------------
   fb_writer #(.ID_W(AXI_ID_W)) u_fb_writer (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),
@@ -459,7 +467,7 @@ module msr_top import msr_pkg::*; #(
     .bresp_err_o   (wr_bresp_err)
   );
 
-  // ---- Tile accounting and performance counters ---------------------------------------------------
+  // ---- Tile accounting and performance counters -------------------------------------------------
   logic [31:0] perf_cycles_q, perf_rstall_q, perf_mstall_q;
   logic [3:0][31:0] perf_traced_q;
   logic [2:0][31:0] perf_interp_q;
@@ -493,8 +501,11 @@ module msr_top import msr_pkg::*; #(
       if (rnd_req_valid_o && !rnd_req_ready_i) perf_rstall_q <= perf_rstall_q + 1'b1;
       if ((|eng_pix_valid) && !pix_hs)          perf_mstall_q <= perf_mstall_q + 1'b1;
       if (pix_hs) begin
-        if (hs_src[4]) perf_interp_q[hs_src[1:0] - 2'd1] <= perf_interp_q[hs_src[1:0] - 2'd1] + 1'b1;
-        else           perf_traced_q[hs_src[1:0]]        <= perf_traced_q[hs_src[1:0]] + 1'b1;
+        if (hs_src[4]) begin
+          perf_interp_q[hs_src[1:0] - 2'd1] <= perf_interp_q[hs_src[1:0] - 2'd1] + 1'b1;
+        end else begin
+          perf_traced_q[hs_src[1:0]] <= perf_traced_q[hs_src[1:0]] + 1'b1;
+        end
       end
     end
   end
@@ -513,11 +524,15 @@ module msr_top import msr_pkg::*; #(
   assign unused_top = ^{tg_busy, eng_busy, hs_src[7:5], hs_src[3:2]};
 
 `ifndef SYNTHESIS
+  // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
+  /* verilator lint_off SYNCASYNCNET */
   // Render port: an offered request stays until taken (also across a soft reset).
   assert property (@(posedge clk_i) disable iff (!rst_ni || clear)
-                   rnd_req_valid_o && !rnd_req_ready_i |=> rnd_req_valid_o && $stable(rnd_req_tag_o));
+                   rnd_req_valid_o && !rnd_req_ready_i |=>
+                   rnd_req_valid_o && $stable(rnd_req_tag_o));
   // A response always names an engine that exists.
   assert property (@(posedge clk_i) disable iff (!rst_ni)
-                   rnd_rsp_valid_i |-> rsp_eid < EID_W'(NUM_ENGINES) || NUM_ENGINES == (1 << EID_W));
+                   rnd_rsp_valid_i |->
+                   rsp_eid < EID_W'(NUM_ENGINES) || NUM_ENGINES == (1 << EID_W));
 `endif
 endmodule

@@ -181,6 +181,8 @@ module tile_gen import msr_pkg::*; #(
   end
 
 `ifndef SYNTHESIS
+  // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
+  /* verilator lint_off SYNCASYNCNET */
   // At most one engine is offered a tile, and only one that is ready.
   assert property (@(posedge clk_i) disable iff (!rst_ni) $onehot0(desc_valid_o));
   assert property (@(posedge clk_i) disable iff (!rst_ni) (desc_valid_o & ~desc_ready_i) == '0);
