@@ -52,8 +52,8 @@ module msr_level_ctrl
   // ---- Mask helpers (small priority encoders) -----------------------------------------------
   function automatic mask_t initial_grid(ldim_t n, level_t levels);
     mask_t m;
-    for (int unsigned i = 0; i < N; i++) begin
-      m[i] = (i < 32'(n)) && (((i & ((32'd1 << levels) - 1)) == 0) || (i == 32'(n) - 1));
+    for (int unsigned bi = 0; bi < N; bi++) begin
+      m[bi] = (bi < 32'(n)) && (((bi & ((32'd1 << levels) - 1)) == 0) || (bi == 32'(n) - 1));
     end
     return m;
   endfunction
@@ -86,21 +86,21 @@ module msr_level_ctrl
 
   function automatic lcoord_t first_set(mask_t g);
     lcoord_t r = '0;
-    for (int i = N - 1; i >= 0; i--) if (g[i]) r = lcoord_t'(i);
+    for (int bi = N - 1; bi >= 0; bi--) if (g[bi]) r = lcoord_t'(bi);
     return r;
   endfunction
 
   // Lowest set bit above p; found = 0 if none.
   function automatic logic [LCOORD_W:0] next_set(mask_t g, lcoord_t p);
     logic [LCOORD_W:0] r = '0;
-    for (int i = N - 1; i >= 0; i--) if (g[i] && i > int'(p)) r = {1'b1, lcoord_t'(i)};
+    for (int bi = N - 1; bi >= 0; bi--) if (g[bi] && bi > int'(p)) r = {1'b1, lcoord_t'(bi)};
     return r;
   endfunction
 
   // Highest set bit below p (0 if none; the callers only ask where one exists).
   function automatic lcoord_t prev_set(mask_t g, lcoord_t p);
     lcoord_t r = '0;
-    for (int i = 0; i < N; i++) if (g[i] && i < int'(p)) r = lcoord_t'(i);
+    for (int bi = 0; bi < N; bi++) if (g[bi] && bi < int'(p)) r = lcoord_t'(bi);
     return r;
   endfunction
 
