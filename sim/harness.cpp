@@ -4,6 +4,7 @@
 //   Vmsr_sim_top --width W --height H [--tile T] [--levels L] [--thr a,b,c] [--metric max|sum]
 //       [--fov-gain G] [--frame OUT.ppm] [--source OUT.pgm] [--stats OUT.json]
 //       [--timeout CYCLES] [--mem-pause PERCENT] [--seed N] [--quiet]
+//       [--fb-base ADDR]   (override FB_BASE; memory stays where it is: error-path tests)
 //       [--waves FILE.fst --wave-tile TX,TY | --wave-cycles FROM,TO]   (waves build only)
 //       +scene=NAME|FILE +width=W +height=H [+rnd_latency=N] [+rnd_jitter=J]   (render_dpi)
 //
@@ -41,6 +42,7 @@ struct Options {
   uint64_t timeout = 0;  // 0: derived from the frame size
   int mem_pause = 0;     // percent of cycles each AXI channel is not ready
   unsigned seed = 1;
+  long long fb_base = -1;  // -1: the harness's own layout
   bool quiet = false;
   int wave_tx = -1, wave_ty = -1;
   uint64_t wave_from = 0, wave_to = 0;
@@ -75,6 +77,7 @@ Options parse(int argc, char **argv) {
     else if (a == "--timeout") o.timeout = to_int(next("--timeout"), "--timeout");
     else if (a == "--mem-pause") o.mem_pause = to_int(next("--mem-pause"), "--mem-pause");
     else if (a == "--seed") o.seed = to_int(next("--seed"), "--seed");
+    else if (a == "--fb-base") o.fb_base = to_int(next("--fb-base"), "--fb-base");
     else if (a == "--frame") o.frame_out = next("--frame");
     else if (a == "--source") o.source_out = next("--source");
     else if (a == "--stats") o.stats_out = next("--stats");
@@ -457,7 +460,7 @@ int main(int argc, char **argv) {
                             (uint32_t(o.thr[1]) << MSR_REGS__THRESH__THR2_bp) |
                             (uint32_t(o.thr[2]) << MSR_REGS__THRESH__THR3_bp));
     sim.write_reg(REG(FOV_GAIN), uint32_t(o.fov_gain));
-    sim.write_reg(REG(FB_BASE), sim.fb_base());
+    sim.write_reg(REG(FB_BASE), o.fb_base >= 0 ? uint32_t(o.fb_base) : sim.fb_base());
     sim.write_reg(REG(FB_STRIDE), sim.fb_stride());
     sim.write_reg(REG(SRC_BASE), sim.src_base());
     sim.write_reg(REG(SRC_STRIDE), sim.src_stride());

@@ -62,3 +62,13 @@ def test_unreadable_model_file(harness, tmp_path):
     assert r.returncode == 2
     assert len(r.stderr.strip().splitlines()) == 1 and "error" in r.stderr
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("fb_base,code", [(0x1002, 5), (0x40000000, 8)])
+def test_harness_error_paths(harness, fb_base, code):
+    """An unaligned FB_BASE is refused (code 5, nothing runs); a frame buffer outside the
+    memory is answered with SLVERR, which STATUS reports (code 8). Both: exit status 1."""
+    r = subprocess.run([str(harness), "--width", "24", "--height", "16", "--quiet", "--fb-base", hex(fb_base),
+                        "+scene=cornell", "+width=24", "+height=16"], capture_output=True, text=True)
+    assert r.returncode == 1, r.stderr
+    assert f"STATUS.ERROR = {code}" in r.stderr
