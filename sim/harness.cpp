@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "Vmsr_sim_top.h"
 #include "msr_regs.h"
 #include "verilated.h"
@@ -471,6 +473,7 @@ int main(int argc, char **argv) {
     const uint64_t timeout = o.timeout ? o.timeout : 100000 + 200 * pixels;
     const uint64_t start_cycle = sim.cycle();
     auto last_print = std::chrono::steady_clock::now();
+    const bool tty = isatty(2);  // the progress line rewrites itself: terminals only
     uint32_t status = 0;
     for (;;) {
       for (int i = 0; i < 512; ++i) sim.tick();
@@ -486,7 +489,7 @@ int main(int argc, char **argv) {
         return kExitFail;
       }
       const auto now = std::chrono::steady_clock::now();
-      if (!o.quiet && now - last_print > std::chrono::milliseconds(500)) {
+      if (!o.quiet && tty && now - last_print > std::chrono::milliseconds(500)) {
         last_print = now;
         const double secs = std::chrono::duration<double>(now - t0).count();
         std::fprintf(stderr, "\rharness: cycle %llu, %5.1f%% of pixels written, %.2f Mcycles/s ",
@@ -495,7 +498,7 @@ int main(int argc, char **argv) {
       }
     }
     const unsigned err = (status & MSR_REGS__STATUS__ERROR_bm) >> MSR_REGS__STATUS__ERROR_bp;
-    if (!o.quiet) std::fprintf(stderr, "\r%78s\r", "");
+    if (!o.quiet && tty) std::fprintf(stderr, "\r%78s\r", "");
     // Performance counters, read over the register port like a driver would.
     uint32_t perf_cycles = sim.read_reg(REG(PERF_CYCLES));
     uint32_t traced[4], interp[3];
