@@ -35,11 +35,13 @@ def _db(p):
     return "exact" if p is None else f"{p:.2f}"
 
 
-def _small_png(src: Path, dst: Path, max_w: int, colors: int = 128):
+def _small_png(src: Path, dst: Path, max_w: int, colors: int | None = 128):
+    """Downscaled PNG; plots are palette-quantised, example frames are not (banding)."""
     im = Image.open(src).convert("RGB")
     if im.width > max_w:
         im = im.resize((max_w, round(im.height * max_w / im.width)), Image.LANCZOS)
-    im = im.quantize(colors=colors, method=Image.Quantize.MEDIANCUT)
+    if colors:
+        im = im.quantize(colors=colors, method=Image.Quantize.MEDIANCUT)
     dst.parent.mkdir(parents=True, exist_ok=True)
     im.save(dst, optimize=True)
 
@@ -56,7 +58,7 @@ def write_docs(result: dict, out: Path, docs: Path):
                 _small_png(src, img / f"eval_{kind}_{mode}.png", 900)
                 figs.append((kind, mode, f"img/eval_{kind}_{mode}.png"))
     for ex in result["examples"]:
-        _small_png(out / ex["file"], img / f"eval_{ex['file']}", 960, 160)
+        _small_png(out / ex["file"], img / f"eval_{ex['file']}", 968, None)
         ex["doc_file"] = f"img/eval_{ex['file']}"
 
     L = []
