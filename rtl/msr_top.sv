@@ -7,8 +7,10 @@
 // dropped, open bursts complete; then every unit is cleared (docs/architecture_system.md).
 module msr_top import msr_pkg::*; #(
   parameter int unsigned NUM_ENGINES     = 4,    // parallel tile engines (claim 11)
-  parameter int unsigned MAX_OUTSTANDING = 16,   // render requests in flight per engine
+  parameter int unsigned MAX_OUTSTANDING = 64,   // render requests in flight per engine (tags)
+  parameter int unsigned NUM_CTX         = 8,    // tile contexts per engine (2..16)
   parameter int unsigned AXI_ID_W        = 4,    // frame-buffer AXI ID width
+  parameter int unsigned AXI_DATA_W      = 256,  // frame-buffer AXI data width (32..256)
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned ETAG_W = $clog2(MAX_OUTSTANDING),
   localparam int unsigned RTAG_W = EID_W + ETAG_W
@@ -57,8 +59,8 @@ module msr_top import msr_pkg::*; #(
   output logic [2:0]        m_axi_awprot,
   output logic              m_axi_awvalid,
   input  logic              m_axi_awready,
-  output logic [31:0]       m_axi_wdata,
-  output logic [3:0]        m_axi_wstrb,
+  output logic [AXI_DATA_W-1:0]   m_axi_wdata,
+  output logic [AXI_DATA_W/8-1:0] m_axi_wstrb,
   output logic              m_axi_wlast,
   output logic              m_axi_wvalid,
   input  logic              m_axi_wready,
@@ -195,7 +197,7 @@ module msr_top import msr_pkg::*; #(
   logic    frame_done;
   logic    drain;
   logic    tg_done;
-  logic    wr_idle, wr_tile_done, wr_bresp_err;
+  logic    wr_idle, wr_bresp_err;
   logic [23:0] tiles_given_q, tiles_written_q;     // up to 512 x 512 tiles
   logic [NUM_ENGINES-1:0] eng_desc_valid, eng_desc_ready, eng_busy;
   logic    tg_busy;
@@ -297,7 +299,10 @@ module msr_top import msr_pkg::*; #(
   assign rsp_eid = rnd_rsp_tag_i[RTAG_W-1 -: EID_W];
 
   for (genvar i = 0; i < NUM_ENGINES; i++) begin : gen_engine
-    tile_engine #(.MAX_OUTSTANDING(MAX_OUTSTANDING)) u_engine (
+    tile_engine #(
+      .NUM_CTX         (NUM_CTX),
+      .MAX_OUTSTANDING (MAX_OUTSTANDING)
+    ) u_engine (
       .clk_i        (clk_i),
       .rst_ni       (rst_ni),
       .clear_i      (clear),
@@ -346,20 +351,47 @@ module msr_top import msr_pkg::*; #(
     return sel;
   endfunction
 
-  // ---- Render request arbiter: round robin, held while offered and not taken ----------------
+  // ---- Render request queues: a short FIFO per engine ---------------------------------------
+  // An engine whose request waits for the shared port stalls its decision pipeline; a queue
+  // per engine lets it go on deciding while other engines' requests go first (its tag is
+  // already counted in flight). During a soft reset no new request enters, queued ones go
+  // out, so every tag in flight comes home.
+  typedef struct packed {
+    coord_t              x;
+    coord_t              y;
+    logic [ETAG_W-1:0]   tag;
+  } rreq_t;
+  logic  [NUM_ENGINES-1:0] rq_valid, rq_pop, rq_push_ready;
+  rreq_t [NUM_ENGINES-1:0] rq_data;
+
+  for (genvar i = 0; i < NUM_ENGINES; i++) begin : gen_req_queue
+    sys_fifo #(.WIDTH($bits(rreq_t)), .DEPTH(4)) u_req_fifo (
+      .clk_i   (clk_i),
+      .rst_ni  (rst_ni),
+      .flush_i (clear),
+      .valid_i (eng_req_valid[i] && !drain),
+      .ready_o (rq_push_ready[i]),
+      .data_i  ({eng_req_x[i], eng_req_y[i], eng_req_tag[i]}),
+      .valid_o (rq_valid[i]),
+      .ready_i (rq_pop[i]),
+      .data_o  (rq_data[i])
+    );
+    assign eng_req_ready[i] = rq_push_ready[i] && !drain;
+  end
+
+  // ---- Render request arbiter: round robin over the queues, held while offered -------------
   logic [EID_W-1:0] req_ptr_q, req_ptr_d, req_sel, req_lock_q;
   logic             req_hs;
 
   always_comb begin
-    req_sel         = req_pending_q ? req_lock_q : rr_pick(eng_req_valid, req_ptr_q);
-    // During a soft reset only a request already on the port may complete.
-    rnd_req_valid_o = eng_req_valid[req_sel] && (!drain || req_pending_q) && (state_q != ST_IDLE);
-    rnd_req_x_o     = eng_req_x[req_sel];
-    rnd_req_y_o     = eng_req_y[req_sel];
-    rnd_req_tag_o   = {req_sel, eng_req_tag[req_sel]};
+    req_sel         = req_pending_q ? req_lock_q : rr_pick(rq_valid, req_ptr_q);
+    rnd_req_valid_o = rq_valid[req_sel] && (state_q != ST_IDLE);
+    rnd_req_x_o     = rq_data[req_sel].x;
+    rnd_req_y_o     = rq_data[req_sel].y;
+    rnd_req_tag_o   = {req_sel, rq_data[req_sel].tag};
     req_hs          = rnd_req_valid_o && rnd_req_ready_i;
-    eng_req_ready   = '0;
-    eng_req_ready[req_sel] = rnd_req_ready_i && rnd_req_valid_o;
+    rq_pop          = '0;
+    rq_pop[req_sel] = req_hs;
     req_ptr_d       = req_ptr_q;
     if (req_hs) req_ptr_d = (req_sel == EID_W'(NUM_ENGINES - 1)) ? '0 : req_sel + 1'b1;
   end
@@ -380,51 +412,19 @@ module msr_top import msr_pkg::*; #(
     end
   end
 
-  // ---- Pixel arbiter: round robin, locked on a tile row (one burst per row) ---------------
-  // Lint: Verilator sees ready -> engine -> valid -> pix_sel as a loop over the whole vectors;
-  // an engine's pix_valid_o is a register (msr_tile_stream), so there is no real loop.
-  /* verilator lint_off UNOPTFLAT */
-  logic [EID_W-1:0] pix_sel;
-  /* verilator lint_on UNOPTFLAT */
-  logic [EID_W-1:0] pix_ptr_q, pix_ptr_d, pix_lock_q, pix_lock_d;
-  logic             pix_locked_q, pix_locked_d;
-  logic             wr_pix_valid, wr_pix_ready, wr_row_end, pix_hs;
+  // ---- Pixel path: every engine has its own writer input (no arbitration) -----------------
+  logic [NUM_ENGINES-1:0] wr_pix_valid, wr_pix_ready, pix_hs, wr_tile_done;
 
-  always_comb begin
-    pix_sel       = pix_locked_q ? pix_lock_q : rr_pick(eng_pix_valid, pix_ptr_q);
-    wr_pix_valid  = eng_pix_valid[pix_sel] && !drain;
-    pix_hs        = wr_pix_valid && wr_pix_ready;
-    eng_pix_ready = '0;
-    eng_pix_ready[pix_sel] = wr_pix_ready;
-    if (drain) eng_pix_ready = '1;     // soft reset: finished pixels are dropped
-    pix_ptr_d    = pix_ptr_q;
-    pix_lock_d   = pix_lock_q;
-    pix_locked_d = pix_locked_q;
-    if (pix_hs) begin
-      pix_locked_d = !wr_row_end;
-      pix_lock_d   = pix_sel;
-      if (wr_row_end) pix_ptr_d = (pix_sel == EID_W'(NUM_ENGINES - 1)) ? '0 : pix_sel + 1'b1;
-    end
-  end
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      pix_ptr_q    <= '0;
-      pix_lock_q   <= '0;
-      pix_locked_q <= 1'b0;
-    end else if (clear) begin
-      pix_ptr_q    <= '0;
-      pix_lock_q   <= '0;
-      pix_locked_q <= 1'b0;
-    end else begin
-      pix_ptr_q    <= pix_ptr_d;
-      pix_lock_q   <= pix_lock_d;
-      pix_locked_q <= pix_locked_d;
-    end
-  end
+  assign wr_pix_valid  = drain ? '0 : eng_pix_valid;
+  assign eng_pix_ready = drain ? '1 : wr_pix_ready;     // soft reset: finished pixels are dropped
+  assign pix_hs        = wr_pix_valid & wr_pix_ready;
 
   // ---- Frame-buffer writer ----------------------------------------------------------------------
-  fb_writer #(.ID_W(AXI_ID_W)) u_fb_writer (
+  fb_writer #(
+    .NUM_IN     (NUM_ENGINES),
+    .AXI_DATA_W (AXI_DATA_W),
+    .ID_W       (AXI_ID_W)
+  ) u_fb_writer (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),
     .clear_i       (clear),
@@ -437,12 +437,11 @@ module msr_top import msr_pkg::*; #(
     .src_stride_i  (cfg_q.src_stride),
     .pix_valid_i   (wr_pix_valid),
     .pix_ready_o   (wr_pix_ready),
-    .pix_x_i       (eng_pix_x[pix_sel]),
-    .pix_y_i       (eng_pix_y[pix_sel]),
-    .pix_rgb_i     (eng_pix_rgb[pix_sel]),
-    .pix_src_i     (eng_pix_src[pix_sel]),
-    .pix_last_i    (eng_pix_last[pix_sel]),
-    .pix_row_end_o (wr_row_end),
+    .pix_x_i       (eng_pix_x),
+    .pix_y_i       (eng_pix_y),
+    .pix_rgb_i     (eng_pix_rgb),
+    .pix_src_i     (eng_pix_src),
+    .pix_last_i    (eng_pix_last),
     .m_axi_awid    (m_axi_awid),
     .m_axi_awaddr  (m_axi_awaddr),
     .m_axi_awlen   (m_axi_awlen),
@@ -472,10 +471,26 @@ module msr_top import msr_pkg::*; #(
   logic [3:0][31:0] perf_traced_q;
   logic [2:0][31:0] perf_interp_q;
   logic        count_en;
-  src_t        hs_src;
 
   assign count_en = (state_q == ST_RUN);
-  assign hs_src   = eng_pix_src[pix_sel];
+
+  // Pixels taken this clock, per kind (up to NUM_ENGINES per clock).
+  logic [3:0][EID_W:0] n_traced;
+  logic [2:0][EID_W:0] n_interp;
+  logic [EID_W:0]      n_tiles;
+  always_comb begin
+    n_traced = '0;
+    n_interp = '0;
+    n_tiles  = '0;
+    for (int unsigned i = 0; i < NUM_ENGINES; i++) begin
+      n_tiles += (EID_W + 1)'(wr_tile_done[i]);
+      if (pix_hs[i]) begin
+        // source codes: 0..3 traced at level k, 17..19 interpolated at level 1..3
+        if (eng_pix_src[i][4]) n_interp[eng_pix_src[i][1:0] - 2'd1] += 1'b1;
+        else                   n_traced[eng_pix_src[i][1:0]] += 1'b1;
+      end
+    end
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -496,17 +511,13 @@ module msr_top import msr_pkg::*; #(
       perf_interp_q   <= '0;
     end else if (count_en) begin
       if (|eng_desc_valid) tiles_given_q <= tiles_given_q + 1'b1;   // valid only to a ready engine
-      if (wr_tile_done)    tiles_written_q <= tiles_written_q + 1'b1;
+      tiles_written_q <= tiles_written_q + 24'(n_tiles);
       perf_cycles_q <= perf_cycles_q + 1'b1;
       if (rnd_req_valid_o && !rnd_req_ready_i) perf_rstall_q <= perf_rstall_q + 1'b1;
-      if ((|eng_pix_valid) && !pix_hs)          perf_mstall_q <= perf_mstall_q + 1'b1;
-      if (pix_hs) begin
-        if (hs_src[4]) begin
-          perf_interp_q[hs_src[1:0] - 2'd1] <= perf_interp_q[hs_src[1:0] - 2'd1] + 1'b1;
-        end else begin
-          perf_traced_q[hs_src[1:0]] <= perf_traced_q[hs_src[1:0]] + 1'b1;
-        end
-      end
+      // memory stall: some engine offers a pixel the writer cannot take
+      if ((eng_pix_valid & ~wr_pix_ready) != '0) perf_mstall_q <= perf_mstall_q + 1'b1;
+      for (int unsigned k = 0; k < 4; k++) perf_traced_q[k] <= perf_traced_q[k] + 32'(n_traced[k]);
+      for (int unsigned k = 0; k < 3; k++) perf_interp_q[k] <= perf_interp_q[k] + 32'(n_interp[k]);
     end
   end
 
@@ -521,7 +532,7 @@ module msr_top import msr_pkg::*; #(
   end
 
   logic unused_top;
-  assign unused_top = ^{tg_busy, eng_busy, hs_src[7:5], hs_src[3:2]};
+  assign unused_top = ^{tg_busy, eng_busy};
 
 `ifndef SYNTHESIS
   // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.

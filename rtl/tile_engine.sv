@@ -1,24 +1,34 @@
-// Tile engine: one tile in, its final pixels out (spec ../shared/spec/algorithm.md).
+// Tile engine: tiles in, their final pixels out (spec ../shared/spec/algorithm.md).
 //
-//   desc --> msr_level_ctrl --issue--> S1 (tile buffer read data) --> msr_decide ---+
-//                 positions    |                                    \-> msr_interp -+-> out
-//                              +-- port 0: B, port 1: A (if not reused)            |
-//   out: interpolate -> tile buffer write; trace -> render request {x, y, tag}      |
-//   rsp {tag, rgb}   -> tile buffer write (when the write port is free)  <----------+
-//   finished tile    -> msr_tile_stream --> pix stream (row-major)
+//   desc --> context c (ring): msr_level_ctrl[c], pixel scoreboard[c], tile buffer[c]
+//   issue arbiter (oldest context first) --> S1 (tile buffer read data, A / B)
+//            --> msr_decide / msr_interp (shared, one decision per clock) --+
+//   interpolate -> tile buffer[c] write; trace -> render request {x, y, tag} |
+//   rsp {tag, rgb} -> tile buffer[tag's c] write (in the same clock as an    |
+//                     interpolated write when the two go to other contexts) <+
+//   finished contexts, in ring order --> msr_tile_stream --> pix stream (row-major)
 //
-// Decisions of one pass are independent, so positions are issued back to back while render
-// requests are outstanding. Instead of a pass barrier, a pixel scoreboard lets a position go
-// as soon as its two neighbours are final (same values as after a barrier, in order). Two
-// tile buffers, each with its own tile context: the next tile starts as soon as every
-// position of the current one is issued, and the streamer empties a finished buffer while
-// the engine fills the other.
+// Why contexts: the decisions of one pass are independent, but a pass needs the pixels of
+// the passes before it, so a tile is a chain of 5-7 dependent passes, each waiting up to one
+// render latency for its traced neighbours. One tile keeps the decision pipeline busy only
+// when renders answer at once. NUM_CTX tiles are worked on at the same time, each with its
+// own level controller, scoreboard and tile buffer; every clock the arbiter issues the next
+// position of the oldest context whose two neighbours are final, so one tile's waits are
+// filled with other tiles' decisions. The per-context pixel scoreboard replaces the pass
+// barrier: a position goes as soon as its two neighbours are final (the values a barrier
+// would give: a pass reads only pixels of earlier passes, each written once). Positions of
+// one context leave in order, so each tile's render requests keep the golden model's order;
+// requests of different tiles interleave. Contexts are taken and emptied in ring order, so
+// tiles leave the engine in the order they came.
 //
 // inflight_o counts tags handed out and not yet answered (a request waiting for
 // req_ready_i counts as in flight).
 module tile_engine
   import msr_pkg::*;
 #(
+  // Tile contexts. 8 keeps one engine near one pixel per clock with a render latency of 256
+  // cycles and 64 tags (docs/architecture.md); 2 suffice when renders answer within ~16.
+  parameter int unsigned NUM_CTX         = 8,
   parameter int unsigned MAX_OUTSTANDING = 16,  // render requests in flight (power of two, 2..64)
   parameter int unsigned TAG_W = $clog2(MAX_OUTSTANDING)
 ) (
@@ -54,6 +64,11 @@ module tile_engine
   localparam int unsigned CNT_W  = $clog2(MAX_OUTSTANDING) + 1;
   localparam int unsigned WORD_W = $bits(src_t) + $bits(rgb_t);
   localparam int unsigned DEPTH  = MAX_TILE * MAX_TILE;
+  localparam int unsigned CTX_W  = (NUM_CTX > 1) ? $clog2(NUM_CTX) : 1;
+  // Positions of one context issued and not yet written: at most the pipeline plus its tags.
+  localparam int unsigned PEND_W = $clog2(MAX_OUTSTANDING + 8) + 1;
+
+  typedef logic [CTX_W-1:0] ctx_t;
 
   // ---- Elaboration-time parameter checks ---------------------------------------------------
   if (MAX_OUTSTANDING < 2 || MAX_OUTSTANDING > 64 ||
@@ -65,108 +80,142 @@ module tile_engine
     $fatal(1, "tile_engine: TAG_W %0d must be $clog2(MAX_OUTSTANDING) = %0d", TAG_W,
            $clog2(MAX_OUTSTANDING));
   end
+  if (NUM_CTX < 2 || NUM_CTX > 16) begin : g_check_ctx
+    $fatal(1, "tile_engine: NUM_CTX %0d must be in 2..16", NUM_CTX);
+  end
 
-  // ---- Tile bookkeeping: two buffers, one tile context each ---------------------------------
-  // A buffer is free, computing (its tile's positions are being issued, or issued and
-  // waiting for their last results), or full (finished, waiting for / being streamed).
-  // The controller moves on to the next tile, in the other buffer, as soon as it has issued
-  // every position of the current one, so the tail of one tile overlaps the next.
-  localparam int unsigned PEND_W = $clog2(MAX_OUTSTANDING + 8) + 1;
+  function automatic ctx_t ctx_inc(ctx_t c);
+    return (32'(c) == NUM_CTX - 1) ? '0 : c + 1'b1;
+  endfunction
 
-  logic       eng_bank_q;        // buffer of the tile the controller walks / will walk
-  logic [1:0] comp_q;            // buffer's tile is being computed
-  logic [1:0] issued_q;          // ... and all its positions are issued
-  logic [1:0] full_q;            // buffer holds a finished tile not yet streamed out
-  logic       str_bank_q;        // next buffer to stream (tiles leave in order)
-  logic       streaming_q;
-  coord_t [1:0] bank_x0_q, bank_y0_q;
-  ldim_t  [1:0] bank_w_q, bank_h_q;
-  metric_e [1:0] bank_metric_q;
-  thr_t [1:0][MAX_LEVELS-1:0] bank_thr_q;
-  logic [1:0][PEND_W-1:0] pend_q; // positions issued and not yet final (pipeline or tag)
-  logic [1:0] bank_done;
+  // ---- Context bookkeeping ------------------------------------------------------------------
+  // A context is free, computing (its controller walks the tile, or all positions are
+  // issued and the last results are outstanding), or full (finished, waiting for / being
+  // streamed out). New tiles take the context at alloc_q, the streamer empties the one at
+  // str_q; both walk the ring, so the oldest tile is always at str_q.
+  ctx_t                      alloc_q, str_q;
+  logic                      streaming_q;
+  logic    [NUM_CTX-1:0]     comp_q, issued_q, full_q, ctx_done;
+  coord_t  [NUM_CTX-1:0]     ctx_x0_q, ctx_y0_q;
+  ldim_t   [NUM_CTX-1:0]     ctx_w_q, ctx_h_q;
+  metric_e [NUM_CTX-1:0]     ctx_metric_q;
+  thr_t    [NUM_CTX-1:0][MAX_LEVELS-1:0] ctx_thr_q;
+  logic    [NUM_CTX-1:0][PEND_W-1:0]     pend_q;
+  rgb_t    [NUM_CTX-1:0]     last_b_q;       // B of the context's last decision (A of its next)
 
-  logic ctrl_start_ready, ctrl_busy, ctrl_fin;
   logic desc_fire, stream_start, stream_done;
+  logic [NUM_CTX-1:0] ctrl_start_ready, ctrl_busy;
 
-  assign desc_ready_o = ctrl_start_ready && !comp_q[eng_bank_q] && !full_q[eng_bank_q] &&
+  assign desc_ready_o = !comp_q[alloc_q] && !full_q[alloc_q] && ctrl_start_ready[alloc_q] &&
                         !clear_i;
   assign desc_fire    = desc_valid_i && desc_ready_o;
 
-  // ---- Level processing controller -----------------------------------------------------------
-  logic    step_valid, step_ready, step_reuse;
-  // The pass-start flag is not needed with the pixel scoreboard; kept for waveforms and
-  // the throughput benchmark, which counts decisions per pass with it.
+  // ---- Level processing controllers, one per context ---------------------------------------
+  logic    [NUM_CTX-1:0] step_valid, step_ready, step_reuse, nb_final, cand;
+  // The pass-start flag is not needed with the pixel scoreboard; kept for waveforms.
   /* verilator lint_off UNUSEDSIGNAL */
-  logic    step_first;
+  logic    [NUM_CTX-1:0] step_first;
   /* verilator lint_on UNUSEDSIGNAL */
-  lcoord_t step_x, step_y, step_ax, step_ay, step_bx, step_by;
-  gap_t    step_gap, step_off;
-  level_t  step_level;
-  logic [1:0] step_nshift;
-  dir_e    step_dir;
+  lcoord_t [NUM_CTX-1:0] step_x, step_y, step_ax, step_ay, step_bx, step_by;
+  gap_t    [NUM_CTX-1:0] step_gap, step_off;
+  level_t  [NUM_CTX-1:0] step_level;
+  logic    [NUM_CTX-1:0][1:0] step_nshift;
+  dir_e    [NUM_CTX-1:0] step_dir;
 
-  msr_level_ctrl u_ctrl (
-    .clk_i         (clk_i),
-    .rst_ni        (rst_ni),
-    .clear_i       (clear_i),
-    .start_valid_i (desc_valid_i && desc_ready_o),
-    .start_ready_o (ctrl_start_ready),
-    .w_i           (desc_i.w),
-    .h_i           (desc_i.h),
-    .levels_i      (desc_i.levels),
-    .step_valid_o  (step_valid),
-    .step_ready_i  (step_ready),
-    .step_x_o      (step_x),
-    .step_y_o      (step_y),
-    .step_ax_o     (step_ax),
-    .step_ay_o     (step_ay),
-    .step_bx_o     (step_bx),
-    .step_by_o     (step_by),
-    .step_gap_o    (step_gap),
-    .step_off_o    (step_off),
-    .step_level_o  (step_level),
-    .step_nshift_o (step_nshift),
-    .step_dir_o    (step_dir),
-    .step_first_o  (step_first),
-    .step_reuse_o  (step_reuse),
-    .busy_o        (ctrl_busy)
-  );
+  // Pixel scoreboards: final_q[c][{y, x}] is set when the pixel of context c's tile is
+  // written (interpolated, or traced and answered).
+  logic [NUM_CTX-1:0][DEPTH-1:0] final_q;
 
-  // ---- Issue: scoreboard and tile buffer reads ---------------------------------------------
-  logic [CNT_W-1:0] free_cnt_q;  // free tags
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_ctrl
+    msr_level_ctrl u_ctrl (
+      .clk_i         (clk_i),
+      .rst_ni        (rst_ni),
+      .clear_i       (clear_i),
+      .start_valid_i (desc_fire && (alloc_q == ctx_t'(c))),
+      .start_ready_o (ctrl_start_ready[c]),
+      .w_i           (desc_i.w),
+      .h_i           (desc_i.h),
+      .levels_i      (desc_i.levels),
+      .step_valid_o  (step_valid[c]),
+      .step_ready_i  (step_ready[c]),
+      .step_x_o      (step_x[c]),
+      .step_y_o      (step_y[c]),
+      .step_ax_o     (step_ax[c]),
+      .step_ay_o     (step_ay[c]),
+      .step_bx_o     (step_bx[c]),
+      .step_by_o     (step_by[c]),
+      .step_gap_o    (step_gap[c]),
+      .step_off_o    (step_off[c]),
+      .step_level_o  (step_level[c]),
+      .step_nshift_o (step_nshift[c]),
+      .step_dir_o    (step_dir[c]),
+      .step_first_o  (step_first[c]),
+      .step_reuse_o  (step_reuse[c]),
+      .busy_o        (ctrl_busy[c])
+    );
+    assign nb_final[c] = (step_dir[c] == DIR_INIT) ||
+                         (final_q[c][{step_ay[c], step_ax[c]}] &&
+                          final_q[c][{step_by[c], step_bx[c]}]);
+    assign cand[c]     = step_valid[c] && nb_final[c];
+  end
+
+  // ---- Issue arbiter: oldest context first (ring order from str_q) -------------------------
   logic s1_valid_q, s1_ready, unit_ready, unit_ready_i;
   logic issue;
+  ctx_t gnt;
 
-  // Pixel scoreboard: final_q[{y, x}] is set when the pixel of the current tile is written
-  // (interpolated, or traced and answered). A position is issued as soon as both its
-  // neighbours are final; that is exactly what a pass barrier guarantees (a pass reads only
-  // pixels of earlier passes, which are written once and never change), without waiting
-  // for the rest of the previous pass. Positions still leave in order, so the render
-  // requests keep the golden model's order.
-  logic [DEPTH-1:0] final_q;
-  logic             nb_final;
+  always_comb begin
+    gnt   = str_q;
+    issue = 1'b0;
+    for (int unsigned i = NUM_CTX; i > 0; i--) begin
+      // str_q + i - 1 (mod NUM_CTX); the loop runs backwards so the oldest candidate wins
+      int unsigned c;
+      c = 32'(str_q) + i - 1;
+      if (c >= NUM_CTX) c -= NUM_CTX;
+      if (cand[c]) begin
+        gnt   = ctx_t'(c);
+        issue = s1_ready;
+      end
+    end
+  end
 
-  assign nb_final   = (step_dir == DIR_INIT) ||
-                      (final_q[{step_ay, step_ax}] && final_q[{step_by, step_bx}]);
-  assign s1_ready   = !s1_valid_q || unit_ready;
-  assign issue      = step_valid && s1_ready && nb_final;
-  assign step_ready = s1_ready && nb_final;
+  assign s1_ready = !s1_valid_q || unit_ready;
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_step_ready
+    assign step_ready[c] = issue && (gnt == ctx_t'(c));
+  end
 
-  // Engine-side ports: reads go to the controller's buffer, writes to the position's.
-  logic                 e_re0, e_re1, e_we;
-  logic [TADDR_W-1:0]   e_raddr0, e_raddr1, e_waddr;
-  logic                 e_wbank;
-  logic [WORD_W-1:0]    e_wdata;
+  // The granted position.
+  lcoord_t g_x, g_y, g_ax, g_ay, g_bx, g_by;
+  gap_t    g_gap, g_off;
+  level_t  g_level;
+  logic [1:0] g_nshift;
+  dir_e    g_dir;
+  logic    g_reuse;
+  assign g_x      = step_x[gnt];
+  assign g_y      = step_y[gnt];
+  assign g_ax     = step_ax[gnt];
+  assign g_ay     = step_ay[gnt];
+  assign g_bx     = step_bx[gnt];
+  assign g_by     = step_by[gnt];
+  assign g_gap    = step_gap[gnt];
+  assign g_off    = step_off[gnt];
+  assign g_level  = step_level[gnt];
+  assign g_nshift = step_nshift[gnt];
+  assign g_dir    = step_dir[gnt];
+  assign g_reuse  = step_reuse[gnt];
+
+  // Engine-side read ports: both go to the granted context's buffer.
+  logic                 e_re0, e_re1;
+  logic [TADDR_W-1:0]   e_raddr0, e_raddr1;
   // A decision only needs the colours of its neighbours, not their source codes.
   /* verilator lint_off UNUSEDSIGNAL */
   logic [WORD_W-1:0]    e_rdata0, e_rdata1;
   /* verilator lint_on UNUSEDSIGNAL */
 
-  assign e_re0    = issue && (step_dir != DIR_INIT);
-  assign e_re1    = issue && (step_dir != DIR_INIT) && !step_reuse;
-  assign e_raddr0 = {step_by, step_bx};
-  assign e_raddr1 = {step_ay, step_ax};
+  assign e_re0    = issue && (g_dir != DIR_INIT);
+  assign e_re1    = issue && (g_dir != DIR_INIT) && !g_reuse;
+  assign e_raddr0 = {g_by, g_bx};
+  assign e_raddr1 = {g_ay, g_ax};
 
   // ---- S1: read data arrives, A / B formed ---------------------------------------------------
   typedef struct packed {
@@ -174,17 +223,17 @@ module tile_engine
     lcoord_t y;
     level_t  level;
     logic    init;
-    logic    bank;
+    ctx_t    ctx;
   } side_t;
 
   side_t      s1_side_q;
   gap_t       s1_gap_q, s1_off_q;
   logic [1:0] s1_nshift_q;
   logic       s1_reuse_q;
-  rgb_t       last_b_q, s1_a, s1_b;
+  rgb_t       s1_a, s1_b;
 
   assign s1_b = rgb_t'(e_rdata0[$bits(rgb_t)-1:0]);
-  assign s1_a = s1_reuse_q ? last_b_q : rgb_t'(e_rdata1[$bits(rgb_t)-1:0]);
+  assign s1_a = s1_reuse_q ? last_b_q[s1_side_q.ctx] : rgb_t'(e_rdata1[$bits(rgb_t)-1:0]);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -198,16 +247,15 @@ module tile_engine
 
   always_ff @(posedge clk_i) begin
     if (issue) begin
-      s1_side_q   <= '{x: step_x, y: step_y, level: step_level, init: (step_dir == DIR_INIT),
-                       bank: eng_bank_q};
-      s1_gap_q    <= step_gap;
-      s1_off_q    <= step_off;
-      s1_nshift_q <= step_nshift;
-      s1_reuse_q  <= step_reuse;
+      s1_side_q   <= '{x: g_x, y: g_y, level: g_level, init: (g_dir == DIR_INIT), ctx: gnt};
+      s1_gap_q    <= g_gap;
+      s1_off_q    <= g_off;
+      s1_nshift_q <= g_nshift;
+      s1_reuse_q  <= g_reuse;
     end
-    // B of this decision is A of the next one along the row / column.
+    // B of this decision is A of the context's next one along the row / column.
     if (s1_valid_q && unit_ready && !s1_side_q.init) begin
-      last_b_q <= s1_b;
+      last_b_q[s1_side_q.ctx] <= s1_b;
     end
   end
 
@@ -223,7 +271,7 @@ module tile_engine
   thr_t  s1_thr;
 
   assign s1_thr = (s1_side_q.level == '0) ? '0
-                                           : bank_thr_q[s1_side_q.bank][s1_side_q.level - 1'b1];
+                                           : ctx_thr_q[s1_side_q.ctx][s1_side_q.level - 1'b1];
 
   msr_decide #(
     .USER_W ($bits(side_t))
@@ -235,7 +283,7 @@ module tile_engine
     .ready_o  (unit_ready),
     .a_i      (s1_a),
     .b_i      (s1_b),
-    .metric_i (bank_metric_q[s1_side_q.bank]),
+    .metric_i (ctx_metric_q[s1_side_q.ctx]),
     .thr_i    (s1_thr),
     .gap_i    (s1_side_q.init ? gap_t'(1) : s1_gap_q),
     .nshift_i (s1_nshift_q),
@@ -269,6 +317,7 @@ module tile_engine
   // ---- Output: interpolate -> write, trace -> render request ---------------------------------
   logic out_trace, out_write, req_fire, rsp_fire, tag_avail;
   logic [TAG_W-1:0] free_head;
+  logic [CNT_W-1:0] free_cnt_q;  // free tags
 
   assign out_trace   = out_side.init || !out_interp;
   assign tag_avail   = (free_cnt_q != '0);
@@ -276,8 +325,8 @@ module tile_engine
   assign req_fire    = req_valid_o && req_ready_i;
   assign out_write   = out_valid && !out_trace;
   assign out_ready   = !out_trace || req_fire;
-  assign req_x_o     = bank_x0_q[out_side.bank] + coord_t'(out_side.x);
-  assign req_y_o     = bank_y0_q[out_side.bank] + coord_t'(out_side.y);
+  assign req_x_o     = ctx_x0_q[out_side.ctx] + coord_t'(out_side.x);
+  assign req_y_o     = ctx_y0_q[out_side.ctx] + coord_t'(out_side.y);
   assign req_tag_o   = free_head;
 
   // ---- Tags: free list, and where each answer goes -------------------------------------------
@@ -285,11 +334,14 @@ module tile_engine
   logic [TAG_W-1:0] free_rptr_q, free_wptr_q;
   logic [MAX_OUTSTANDING-1:0][TADDR_W-1:0] tag_addr_q;
   level_t [MAX_OUTSTANDING-1:0] tag_level_q;
-  logic   [MAX_OUTSTANDING-1:0] tag_bank_q;
+  ctx_t   [MAX_OUTSTANDING-1:0] tag_ctx_q;
   logic [MAX_OUTSTANDING-1:0] tag_busy_q;
+  ctx_t rsp_ctx;
 
   assign free_head   = free_q[free_rptr_q];
-  assign rsp_ready_o = !out_write;           // the decision pipeline has the write port first
+  assign rsp_ctx     = tag_ctx_q[rsp_tag_i];
+  // Each context's buffer has one write port: the decision pipeline has it first.
+  assign rsp_ready_o = !(out_write && (out_side.ctx == rsp_ctx));
   assign rsp_fire    = rsp_valid_i && rsp_ready_o;
   assign inflight_o  = CNT_W'(MAX_OUTSTANDING) - free_cnt_q;
 
@@ -324,90 +376,104 @@ module tile_engine
     if (req_fire) begin
       tag_addr_q[free_head]  <= {out_side.y, out_side.x};
       tag_level_q[free_head] <= out_side.level;
-      tag_bank_q[free_head]  <= out_side.bank;
+      tag_ctx_q[free_head]   <= out_side.ctx;
     end
   end
 
-  // One write port: an interpolated value, else a render response.
-  assign e_we    = out_write || rsp_fire;
-  assign e_wbank = out_write ? out_side.bank : tag_bank_q[rsp_tag_i];
-  assign e_waddr = out_write ? {out_side.y, out_side.x} : tag_addr_q[rsp_tag_i];
-  assign e_wdata = out_write ? {src_interp(out_side.level), out_rgb}
-                             : {src_traced(tag_level_q[rsp_tag_i]), rsp_rgb_i};
+  // Writes: an interpolated value to its context, a render response to its tag's context.
+  logic [NUM_CTX-1:0]              b_we;
+  logic [NUM_CTX-1:0][TADDR_W-1:0] b_waddr;
+  logic [NUM_CTX-1:0][WORD_W-1:0]  b_wdata;
 
-  // Scoreboard update: a written pixel is final. It only tracks the controller's buffer
-  // (late results of the previous tile go to the other buffer).
+  always_comb begin
+    for (int unsigned c = 0; c < NUM_CTX; c++) begin
+      b_we[c]    = 1'b0;
+      b_waddr[c] = tag_addr_q[rsp_tag_i];
+      b_wdata[c] = {src_traced(tag_level_q[rsp_tag_i]), rsp_rgb_i};
+      if (rsp_fire && rsp_ctx == ctx_t'(c)) b_we[c] = 1'b1;
+      if (out_write && out_side.ctx == ctx_t'(c)) begin
+        b_we[c]    = 1'b1;
+        b_waddr[c] = {out_side.y, out_side.x};
+        b_wdata[c] = {src_interp(out_side.level), out_rgb};
+      end
+    end
+  end
+
+  // Scoreboard update: a written pixel is final; a new tile starts with none.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       final_q <= '0;
-    end else if (clear_i || desc_fire) begin
+    end else if (clear_i) begin
       final_q <= '0;
-    end else if (e_we && e_wbank == eng_bank_q) begin
-      final_q[e_waddr] <= 1'b1;
+    end else begin
+      for (int unsigned c = 0; c < NUM_CTX; c++) begin
+        if (desc_fire && alloc_q == ctx_t'(c)) begin
+          final_q[c] <= '0;
+        end else if (b_we[c]) begin
+          final_q[c][b_waddr[c]] <= 1'b1;
+        end
+      end
     end
   end
 
   // ---- Tile start / end ----------------------------------------------------------------------
-  // The controller has issued every position of its tile (it goes idle only after the last).
-  assign ctrl_fin = comp_q[eng_bank_q] && !issued_q[eng_bank_q] && !ctrl_busy;
-
-  for (genvar b = 0; b < 2; b++) begin : g_done
-    assign bank_done[b] = comp_q[b] && issued_q[b] && (pend_q[b] == '0);
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_done
+    assign ctx_done[c] = comp_q[c] && issued_q[c] && (pend_q[c] == '0);
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      eng_bank_q    <= 1'b0;
-      comp_q        <= '0;
-      issued_q      <= '0;
-      full_q        <= '0;
-      pend_q        <= '0;
-      str_bank_q    <= 1'b0;
-      streaming_q   <= 1'b0;
-      bank_x0_q     <= '0;
-      bank_y0_q     <= '0;
-      bank_w_q      <= '0;
-      bank_h_q      <= '0;
-      bank_metric_q <= {2{METRIC_MAX}};
-      bank_thr_q    <= '0;
+      alloc_q      <= '0;
+      str_q        <= '0;
+      streaming_q  <= 1'b0;
+      comp_q       <= '0;
+      issued_q     <= '0;
+      full_q       <= '0;
+      pend_q       <= '0;
+      ctx_x0_q     <= '0;
+      ctx_y0_q     <= '0;
+      ctx_w_q      <= '0;
+      ctx_h_q      <= '0;
+      ctx_metric_q <= {NUM_CTX{METRIC_MAX}};
+      ctx_thr_q    <= '0;
     end else if (clear_i) begin
-      eng_bank_q  <= 1'b0;
+      alloc_q     <= '0;
+      str_q       <= '0;
+      streaming_q <= 1'b0;
       comp_q      <= '0;
       issued_q    <= '0;
       full_q      <= '0;
       pend_q      <= '0;
-      str_bank_q  <= 1'b0;
-      streaming_q <= 1'b0;
     end else begin
       if (desc_fire) begin
-        comp_q[eng_bank_q]        <= 1'b1;
-        bank_x0_q[eng_bank_q]     <= desc_i.x0;
-        bank_y0_q[eng_bank_q]     <= desc_i.y0;
-        bank_w_q[eng_bank_q]      <= desc_i.w;
-        bank_h_q[eng_bank_q]      <= desc_i.h;
-        bank_metric_q[eng_bank_q] <= desc_i.metric;
-        bank_thr_q[eng_bank_q]    <= desc_i.thr;
+        comp_q[alloc_q]       <= 1'b1;
+        ctx_x0_q[alloc_q]     <= desc_i.x0;
+        ctx_y0_q[alloc_q]     <= desc_i.y0;
+        ctx_w_q[alloc_q]      <= desc_i.w;
+        ctx_h_q[alloc_q]      <= desc_i.h;
+        ctx_metric_q[alloc_q] <= desc_i.metric;
+        ctx_thr_q[alloc_q]    <= desc_i.thr;
+        alloc_q               <= ctx_inc(alloc_q);
       end
-      if (ctrl_fin) begin
-        issued_q[eng_bank_q] <= 1'b1;
-        eng_bank_q           <= !eng_bank_q;
-      end
-      for (int unsigned b = 0; b < 2; b++) begin
+      for (int unsigned c = 0; c < NUM_CTX; c++) begin
+        // the controller has issued every position of its tile (it goes idle after the last;
+        // it is busy from the clock after the start, when comp_q is set)
+        if (comp_q[c] && !issued_q[c] && !ctrl_busy[c]) issued_q[c] <= 1'b1;
         // issued +1; interpolated and written -1; trace answered and written -1
-        pend_q[b] <= pend_q[b] + PEND_W'(issue && eng_bank_q == 1'(b))
-                               - PEND_W'(out_write && out_side.bank == 1'(b))
-                               - PEND_W'(rsp_fire && tag_bank_q[rsp_tag_i] == 1'(b));
-        if (bank_done[b]) begin
-          comp_q[b]   <= 1'b0;
-          issued_q[b] <= 1'b0;
-          full_q[b]   <= 1'b1;
+        pend_q[c] <= pend_q[c] + PEND_W'(issue && gnt == ctx_t'(c))
+                               - PEND_W'(out_write && out_side.ctx == ctx_t'(c))
+                               - PEND_W'(rsp_fire && rsp_ctx == ctx_t'(c));
+        if (ctx_done[c]) begin
+          comp_q[c]   <= 1'b0;
+          issued_q[c] <= 1'b0;
+          full_q[c]   <= 1'b1;
         end
-        if (stream_done && str_bank_q == 1'(b)) full_q[b] <= 1'b0;
       end
+      if (stream_done) full_q[str_q] <= 1'b0;
       if (stream_start) streaming_q <= 1'b1;
       if (stream_done) begin
         streaming_q <= 1'b0;
-        str_bank_q  <= !str_bank_q;
+        str_q       <= ctx_inc(str_q);
       end
     end
   end
@@ -417,18 +483,18 @@ module tile_engine
   logic [TADDR_W-1:0] s_raddr;
   logic [WORD_W-1:0]  s_rdata;
 
-  assign stream_start = !streaming_q && full_q[str_bank_q] && s_start_ready;
+  assign stream_start = !streaming_q && full_q[str_q] && s_start_ready;
 
   msr_tile_stream u_stream (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),
     .clear_i       (clear_i),
-    .start_valid_i (!streaming_q && full_q[str_bank_q]),
+    .start_valid_i (!streaming_q && full_q[str_q]),
     .start_ready_o (s_start_ready),
-    .x0_i          (bank_x0_q[str_bank_q]),
-    .y0_i          (bank_y0_q[str_bank_q]),
-    .w_i           (bank_w_q[str_bank_q]),
-    .h_i           (bank_h_q[str_bank_q]),
+    .x0_i          (ctx_x0_q[str_q]),
+    .y0_i          (ctx_y0_q[str_q]),
+    .w_i           (ctx_w_q[str_q]),
+    .h_i           (ctx_h_q[str_q]),
     .re_o          (s_re),
     .raddr_o       (s_raddr),
     .rdata_rgb_i   (rgb_t'(s_rdata[$bits(rgb_t)-1:0])),
@@ -445,15 +511,15 @@ module tile_engine
 
   assign busy_o = (comp_q != '0) || (full_q != '0);
 
-  // ---- Tile buffers (ping-pong) --------------------------------------------------------------
+  // ---- Tile buffers, one per context ---------------------------------------------------------
   // Port 0 of a buffer belongs to the streamer while it empties that buffer, else to the
-  // engine; the engine never works on a buffer that is full, so the two never collide.
-  logic [1:0][WORD_W-1:0] b_rdata0, b_rdata1;
+  // decision reads; a full buffer is never read for decisions, so the two never collide.
+  logic [NUM_CTX-1:0][WORD_W-1:0] b_rdata0, b_rdata1;
 
-  for (genvar b = 0; b < 2; b++) begin : g_bank
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_buf
     logic str_owns, eng_owns;
-    assign str_owns = streaming_q && (str_bank_q == 1'(b));
-    assign eng_owns = (eng_bank_q == 1'(b));
+    assign str_owns = streaming_q && (str_q == ctx_t'(c));
+    assign eng_owns = (gnt == ctx_t'(c));
 
     msr_tile_sram #(
       .DEPTH  (DEPTH),
@@ -462,19 +528,19 @@ module tile_engine
       .clk_i    (clk_i),
       .re0_i    (str_owns ? s_re : (eng_owns && e_re0)),
       .raddr0_i (str_owns ? s_raddr : e_raddr0),
-      .rdata0_o (b_rdata0[b]),
+      .rdata0_o (b_rdata0[c]),
       .re1_i    (eng_owns && e_re1),
       .raddr1_i (e_raddr1),
-      .rdata1_o (b_rdata1[b]),
-      .we_i     (e_we && (e_wbank == 1'(b))),
-      .waddr_i  (e_waddr),
-      .wdata_i  (e_wdata)
+      .rdata1_o (b_rdata1[c]),
+      .we_i     (b_we[c]),
+      .waddr_i  (b_waddr[c]),
+      .wdata_i  (b_wdata[c])
     );
   end
 
-  assign e_rdata0 = b_rdata0[s1_side_q.bank];
-  assign e_rdata1 = b_rdata1[s1_side_q.bank];
-  assign s_rdata  = b_rdata0[str_bank_q];
+  assign e_rdata0 = b_rdata0[s1_side_q.ctx];
+  assign e_rdata1 = b_rdata1[s1_side_q.ctx];
+  assign s_rdata  = b_rdata0[str_q];
 
 `ifndef SYNTHESIS
   // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
@@ -512,23 +578,22 @@ module tile_engine
   a_units_lockstep : assert property (@(posedge clk_i) disable iff (!rst_ni)
       unit_ready == unit_ready_i && out_valid == out_valid_i)
     else $error("tile_engine: decision and interpolation units out of step");
+  a_reads_own : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
+      issue |-> comp_q[gnt] && !issued_q[gnt] && !full_q[gnt])
+    else $error("tile_engine: position issued into a context that is not being computed");
 
   // Invariant: every pixel of a tile is written exactly once, and only pixels of the tile.
-  logic [1:0][DEPTH-1:0] written_q;
+  logic [NUM_CTX-1:0][DEPTH-1:0] written_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       written_q <= '0;
     end else begin
-      if (desc_fire) written_q[eng_bank_q] <= '0;
-      if (e_we) written_q[e_wbank][e_waddr] <= 1'b1;
+      for (int unsigned c = 0; c < NUM_CTX; c++) begin
+        if (desc_fire && alloc_q == ctx_t'(c)) written_q[c] <= '0;
+        if (b_we[c]) written_q[c][b_waddr[c]] <= 1'b1;
+      end
     end
   end
-  a_write_once : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-      e_we |-> comp_q[e_wbank] && !written_q[e_wbank][e_waddr] &&
-        32'(e_waddr[LCOORD_W-1:0]) < 32'(bank_w_q[e_wbank]) &&
-        32'(e_waddr[TADDR_W-1:LCOORD_W]) < 32'(bank_h_q[e_wbank]))
-    else $error("tile_engine: pixel (%0d,%0d) of buffer %0d written twice or outside the tile",
-                e_waddr[LCOORD_W-1:0], e_waddr[TADDR_W-1:LCOORD_W], e_wbank);
   function automatic logic all_written(logic [DEPTH-1:0] wr, ldim_t w, ldim_t h);
     logic ok = 1'b1;
     for (int unsigned y = 0; y < MAX_TILE; y++) begin
@@ -538,14 +603,17 @@ module tile_engine
     end
     return ok;
   endfunction
-  for (genvar b = 0; b < 2; b++) begin : g_assert_bank
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_assert_ctx
+    a_write_once : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
+        b_we[c] |-> comp_q[c] && !written_q[c][b_waddr[c]] &&
+          32'(b_waddr[c][LCOORD_W-1:0]) < 32'(ctx_w_q[c]) &&
+          32'(b_waddr[c][TADDR_W-1:LCOORD_W]) < 32'(ctx_h_q[c]))
+      else $error("tile_engine: pixel (%0d,%0d) of context %0d written twice or outside the tile",
+                  b_waddr[c][LCOORD_W-1:0], b_waddr[c][TADDR_W-1:LCOORD_W], c);
     a_all_written : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-        bank_done[b] |-> all_written(written_q[b], bank_w_q[b], bank_h_q[b]))
-      else $error("tile_engine: tile of buffer %0d finished with pixels never written", b);
+        ctx_done[c] |-> all_written(written_q[c], ctx_w_q[c], ctx_h_q[c]))
+      else $error("tile_engine: tile of context %0d finished with pixels never written", c);
   end
-  a_reads_own : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-      issue |-> comp_q[eng_bank_q] && !issued_q[eng_bank_q] && !full_q[eng_bank_q])
-    else $error("tile_engine: position issued into a buffer that is not being computed");
   /* verilator lint_on SYNCASYNCNET */
 `endif
 

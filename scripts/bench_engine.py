@@ -4,7 +4,7 @@ plus a Markdown table on stdout.
 
     .venv/bin/python scripts/bench_engine.py
 
-Set-up per point: 8 tiles of 16x16 back to back, L = 2, metric max; the renderer answers a
+Set-up per point: 32 tiles of 16x16 back to back, L = 2, metric max; the renderer answers a
 request exactly `latency` cycles after the cycle that accepted it (latency 0 = the next
 cycle), in order; req_ready and pix_ready always 1. Scenes: a smooth image with thr 8,16
 (a typical mix of traced and interpolated pixels) and thr 0,0 (every pixel traced: the
@@ -24,7 +24,7 @@ sys.path.insert(0, str(ROOT / "tb" / "common"))
 
 LATENCIES = (0, 16, 64, 256)
 OUTSTANDING = (16, 64)
-TILES = 8
+TILES = 32
 OUT = ROOT / "out" / "bench" / "engine.json"
 
 

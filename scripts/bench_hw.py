@@ -1,7 +1,7 @@
 """Hardware throughput of the whole accelerator (msr_top) from simulation: `make bench-hw`.
 
-    python scripts/bench_hw.py [--configs "e1_mo16 e2_mo16 e4_mo16 e1_mo64"] [--scene cornell]
-        [--width 256 --height 256] [--latencies 0,64,256] [--tiles 8,16,32] [--levels 1,2,3]
+    python scripts/bench_hw.py [--configs "e1_mo16 e1_mo64 e2_mo64 e4_mo64"] [--scene cornell]
+        [--width 640 --height 480] [--latencies 0,64,256] [--tiles 8,16,32] [--levels 1,2,3]
         [--tl-engines 4] [--tl-latencies 0,256] [--out out/bench] [--no-tile-sweep]
 
 Each point runs one frame through the Verilator harness (sim/harness.cpp) built per
@@ -12,8 +12,8 @@ the golden model (same scene, same renderer), so each point also says whether it
 
 Reported per point: cycles from START to DONE (PERF_CYCLES), pixels per clock = W*H / cycles,
 traced fraction (perf counters), render-port and memory stall counters, and three lower bounds
-on the cycles (what would limit the frame if nothing else did): the writer (its 32-bit AXI W
-channel carries one pixel, or four source codes, per beat and clock), the tags (traced * latency / (NUM_ENGINES * MAX_OUTSTANDING): each request
+on the cycles (what would limit the frame if nothing else did): the writer (its 256-bit AXI W
+channel carries eight pixels, or 32 source codes, per beat and clock), the tags (traced * latency / (NUM_ENGINES * MAX_OUTSTANDING): each request
 holds one tag for at least the latency) and the shared render port (one request per clock).
 Writes out/bench/report.json (merging out/bench/engine.json from bench_engine.py when present)
 and out/bench/pixels_per_clock.png. Bad arguments: one line on stderr, exit status 2.
@@ -70,12 +70,12 @@ def parse_cfg(name: str) -> tuple[int, int]:
 
 def parse(argv):
     ap = _Parser(prog="bench_hw", description=__doc__.splitlines()[0])
-    ap.add_argument("--configs", default="e1_mo16 e2_mo16 e4_mo16 e1_mo64",
+    ap.add_argument("--configs", default="e1_mo16 e1_mo64 e2_mo64 e4_mo64",
                     help="harness builds e<NUM_ENGINES>_mo<MAX_OUTSTANDING>, space separated")
     ap.add_argument("--build-dir", default=str(ROOT / "build" / "bench"))
     ap.add_argument("--scene", default="cornell")
-    ap.add_argument("--width", type=int, default=256)
-    ap.add_argument("--height", type=int, default=256)
+    ap.add_argument("--width", type=int, default=640)
+    ap.add_argument("--height", type=int, default=480)
     ap.add_argument("--latencies", default="0,64,256")
     ap.add_argument("--tile", type=int, default=16, help="T of the engines x latency sweep")
     ap.add_argument("--levels-main", type=int, default=2, help="L of the engines x latency sweep")
@@ -200,18 +200,32 @@ def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, 
     return pt
 
 
-def w_beats(w: int, h: int, tile: int) -> int:
-    """AXI W beats of a frame: per tile row one burst of 32-bit pixels and one of packed 8-bit
-    source codes (the source map is on, as in make sim), i.e. wt + ceil(wt / 4) beats for a row
-    wt pixels wide. The W channel moves one beat per clock, so this is a lower bound on cycles."""
-    full, rest = divmod(w, tile)
-    per_row = full * (tile + (tile + 3) // 4) + (rest + (rest + 3) // 4 if rest else 0)
-    return h * per_row
+BEAT_BYTES = 32                # msr_top's AXI_DATA_W = 256 bits (the harness's W channel)
+
+
+def w_beats(w: int, h: int, tile: int, beat: int = BEAT_BYTES) -> int:
+    """AXI W beats of a frame in the harness's memory layout (sim/harness.cpp: frame buffer at
+    0x1000 with a stride of 4*W bytes, source plane on the next 4 KiB page with a stride of W
+    rounded up to 4): per tile row one run of 32-bit pixels and one of 8-bit codes, each
+    from the bus-aligned address below its start (the writer's bursts), i.e.
+    ceil((start % beat + bytes) / beat) beats per run. The W channel moves one beat per clock,
+    so this is a lower bound on cycles."""
+    fb_base, fb_stride, src_stride = 0x1000, 4 * w, (w + 3) & ~3
+    src_base = (fb_base + fb_stride * h + 0xFFF) & ~0xFFF
+    total = 0
+    for y in range(h):
+        for x0 in range(0, w, tile):
+            wt = min(tile, w - x0)
+            a = fb_base + y * fb_stride + 4 * x0
+            total += -(-(a % beat + 4 * wt) // beat)
+            s = src_base + y * src_stride + x0
+            total += -(-(s % beat + 4 * -(-wt // 4)) // beat)
+    return total
 
 
 def bottleneck(pt: dict) -> str:
     """The resource whose lower bound comes closest to the measured cycles."""
-    bounds = {"frame-buffer writer AXI W (32-bit beats: pixels + source codes)": pt["bound_writer_cycles"],
+    bounds = {"frame-buffer writer AXI W (256-bit beats: pixels + source codes)": pt["bound_writer_cycles"],
               "render tags (MAX_OUTSTANDING per engine)": pt["bound_tags_cycles"],
               "shared render port (1 request/clock)": pt["bound_render_port_cycles"],
               "engine decisions (1 position/clock/engine)": pt["bound_decisions_cycles"]}
@@ -225,7 +239,7 @@ def analysis(pts: list[dict]) -> dict:
         return {}
     p0 = pts[0]
     out = {
-        # The writer's W channel moves one 32-bit beat per clock.
+        # The writer's W channel moves one 256-bit beat per clock.
         "writer_limit_pixels_per_clock": p0["pixels"] / p0["axi_w_beats"],
         "w_beats_per_pixel": p0["axi_w_beats"] / p0["pixels"],
         "w_beats_per_clock_needed_for_goal": GOAL_PIXELS * p0["axi_w_beats"] / p0["pixels"],
@@ -270,7 +284,7 @@ def plot(report: dict, path: Path) -> None:
                 label=f"{e} engine{'s' if e > 1 else ''}, MAX_OUTSTANDING {mo}")
     ax.axhline(GOAL_PIXELS, color="grey", ls="--", lw=1, label=f"goal {GOAL_PIXELS} (4 engines, latency 256)")
     wl = pts[0]["pixels"] / pts[0]["bound_writer_cycles"]
-    ax.axhline(wl, color="red", ls=":", lw=1, label=f"frame-buffer writer limit ({wl:.2f} pixels/clock, 32-bit AXI)")
+    ax.axhline(wl, color="red", ls=":", lw=1, label=f"frame-buffer writer limit ({wl:.2f} pixels/clock, 256-bit AXI)")
     s = report["setup"]
     ax.set_title(f"msr_top, {s['scene']} {s['width']}x{s['height']}, T={s['tile']} L={s['levels']} "
                  f"thr {','.join(map(str, s['thr']))}", fontsize=10)

@@ -70,21 +70,29 @@ def verible(files) -> list[str]:
     return bad if bad or rc == 0 else [f"verible exit {rc}"]
 
 
+# pyslang's driver prints some diagnostics straight to the process's stdout instead of its
+# text client, so slang runs in a child process and everything it prints is searched.
+SLANG_CHILD = """
+import sys, pyslang
+d = pyslang.driver.Driver()
+d.addStandardArgs()
+if not d.parseCommandLine(" ".join(sys.argv[1:]), pyslang.driver.CommandLineOptions()) or not d.processOptions():
+    print("error: bad slang command line"); sys.exit(1)
+if not d.parseAllSources():
+    print("error: parse errors"); sys.exit(1)
+comp = d.createCompilation()
+for diag in comp.getAllDiagnostics():
+    d.diagEngine.issue(diag)
+print(d.textDiagClient.getString())
+"""
+
+
 def slang(files, top) -> list[str]:
-    import pyslang
-    d = pyslang.driver.Driver()
-    d.addStandardArgs()
-    args = " ".join(["slang", "--top", top, "-Wextra", "-Wno-case-redundant-default", "--error-limit=100",
-                     *map(str, files)])
-    if not d.parseCommandLine(args, pyslang.driver.CommandLineOptions()) or not d.processOptions():
-        return [f"slang: bad command line for {top}"]
-    if not d.parseAllSources():
-        return [f"slang: parse errors for {top}"]
-    comp = d.createCompilation()
-    for diag in comp.getAllDiagnostics():
-        d.diagEngine.issue(diag)
-    text = d.textDiagClient.getString()
-    return [ln for ln in text.splitlines() if re.search(r"(warning|error):", ln)]
+    args = ["slang", "--top", top, "-Wextra", "-Wno-case-redundant-default", "--error-limit=100",
+            *map(str, files)]
+    p = subprocess.run([sys.executable, "-c", SLANG_CHILD, *args], cwd=ROOT, capture_output=True, text=True)
+    bad = [ln for ln in (p.stdout + p.stderr).splitlines() if re.search(r"(warning|error):", ln)]
+    return bad if bad or p.returncode == 0 else [f"slang exit {p.returncode}"]
 
 
 def main() -> int:

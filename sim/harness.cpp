@@ -26,6 +26,10 @@
 #include "Vmsr_sim_top.h"
 #include "msr_regs.h"
 #include "verilated.h"
+
+// Frame-buffer AXI data width of msr_sim_top (msr_top's default AXI_DATA_W = 256 bits).
+constexpr unsigned kBeatBytes = 32;
+static_assert(sizeof(Vmsr_sim_top::m_axi_wdata) == kBeatBytes, "harness expects a 256-bit W channel");
 #if VM_TRACE
 #include "verilated_fst_c.h"
 #endif
@@ -166,6 +170,10 @@ class Sim {
   }
 
   void reset() {
+    // The tile the FST window follows (if any); the top reports when its last pixel leaves.
+    top_->dbg_watch_tx_i = o_.wave_tx >= 0 ? o_.wave_tx : 0xFFF;
+    top_->dbg_watch_ty_i = o_.wave_ty >= 0 ? o_.wave_ty : 0xFFF;
+    top_->dbg_watch_t_i = o_.tile;
     top_->rst_ni = 0;
     for (int i = 0; i < 4; ++i) tick();
     top_->rst_ni = 1;
@@ -275,12 +283,21 @@ class Sim {
         std::exit(kExitFail);
       }
       const Burst &b = aw_q_.front();
-      const uint32_t a = b.addr + 4 * w_beat_;
-      bool ok = static_cast<uint64_t>(a) + 4 <= mem_.size();
-      if (ok) {
-        for (int k = 0; k < 4; ++k)
-          if (pre_.wstrb & (1u << k)) mem_[a + k] = static_cast<uint8_t>(pre_.wdata >> (8 * k));
-        if (a >= fb_base_ && a < src_base_ && pre_.wstrb == 0xF) ++pixels_written_;
+      // One beat = kBeatBytes bytes at the burst's bus-aligned address; strobed bytes only.
+      const uint64_t a = static_cast<uint64_t>(b.addr) + kBeatBytes * w_beat_;
+      bool ok = true;
+      for (unsigned k = 0; k < kBeatBytes; ++k) {
+        if (!(pre_.wstrb & (1u << k))) continue;
+        if (a + k >= mem_.size()) {
+          ok = false;
+          continue;
+        }
+        mem_[a + k] = static_cast<uint8_t>(pre_.wdata[k / 4] >> (8 * (k % 4)));
+      }
+      for (unsigned lane = 0; lane < kBeatBytes / 4; ++lane) {
+        const uint64_t la = a + 4 * lane;
+        if (ok && la >= fb_base_ && la < src_base_ && ((pre_.wstrb >> (4 * lane)) & 0xFu) == 0xFu)
+          ++pixels_written_;
       }
       burst_err_ |= !ok;
       ++w_beat_;
@@ -318,7 +335,7 @@ class Sim {
     unsigned bresp;
     uint32_t rdata;
     bool awvalid, wvalid, wlast, bready, bvalid_out;
-    uint32_t awaddr, wdata;
+    uint32_t awaddr, wdata[kBeatBytes / 4];
     unsigned awlen, wstrb;
   } pre_{};
 
@@ -334,7 +351,7 @@ class Sim {
     pre_.awaddr = top_->m_axi_awaddr;
     pre_.awlen = top_->m_axi_awlen;
     pre_.wvalid = top_->m_axi_wvalid;
-    pre_.wdata = top_->m_axi_wdata;
+    for (unsigned i = 0; i < kBeatBytes / 4; ++i) pre_.wdata[i] = top_->m_axi_wdata[i];
     pre_.wstrb = top_->m_axi_wstrb;
     pre_.wlast = top_->m_axi_wlast;
     pre_.bready = top_->m_axi_bready;
@@ -342,9 +359,7 @@ class Sim {
     dbg_fire_ = top_->dbg_desc_fire_o;
     dbg_x0_ = top_->dbg_desc_x0_o;
     dbg_y0_ = top_->dbg_desc_y0_o;
-    dbg_done_ = top_->dbg_tile_done_o;
-    dbg_dx_ = top_->dbg_done_x_o;
-    dbg_dy_ = top_->dbg_done_y_o;
+    dbg_done_ = top_->dbg_watch_done_o;
   }
 
   void dump() {
@@ -365,8 +380,7 @@ class Sim {
         tracing_ = true;
         trace_from_ = cycle_;
       }
-      if (tracing_ && dbg_done_ && dbg_dx_ / o_.tile == unsigned(o_.wave_tx) &&
-          dbg_dy_ / o_.tile == unsigned(o_.wave_ty)) {
+      if (tracing_ && dbg_done_) {
         tile_traced_ = true;
         tail_ = 20;  // a few cycles after, for the last bursts
       }
@@ -393,7 +407,7 @@ class Sim {
   int tail_ = 0;
   uint64_t trace_from_ = 0;
   bool dbg_fire_ = false, dbg_done_ = false;
-  unsigned dbg_x0_ = 0, dbg_y0_ = 0, dbg_dx_ = 0, dbg_dy_ = 0;
+  unsigned dbg_x0_ = 0, dbg_y0_ = 0;
   uint64_t cycle_ = 0, pixels_written_ = 0;
   std::vector<uint8_t> mem_;
   uint32_t fb_base_, fb_stride_, src_base_, src_stride_;

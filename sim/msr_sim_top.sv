@@ -4,7 +4,8 @@
 // and when its last pixel is written, for the FST tile window.
 module msr_sim_top import msr_pkg::*; #(
   parameter int unsigned NUM_ENGINES     = 4,
-  parameter int unsigned MAX_OUTSTANDING = 16,
+  parameter int unsigned MAX_OUTSTANDING = 64,
+  parameter int unsigned NUM_CTX         = 8,
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned RTAG_W = EID_W + $clog2(MAX_OUTSTANDING)
 ) (
@@ -30,8 +31,8 @@ module msr_sim_top import msr_pkg::*; #(
   output logic [7:0]  m_axi_awlen,
   output logic        m_axi_awvalid,
   input  logic        m_axi_awready,
-  output logic [31:0] m_axi_wdata,
-  output logic [3:0]  m_axi_wstrb,
+  output logic [255:0] m_axi_wdata,   // msr_top's default AXI_DATA_W (the harness expects 256)
+  output logic [31:0] m_axi_wstrb,
   output logic        m_axi_wlast,
   output logic        m_axi_wvalid,
   input  logic        m_axi_wready,
@@ -42,9 +43,10 @@ module msr_sim_top import msr_pkg::*; #(
   output logic        dbg_desc_fire_o,   // a tile was handed to an engine
   output coord_t      dbg_desc_x0_o,     // its origin
   output coord_t      dbg_desc_y0_o,
-  output logic        dbg_tile_done_o,   // the last pixel of a tile went to the writer
-  output coord_t      dbg_done_x_o,      // that pixel
-  output coord_t      dbg_done_y_o
+  input  coord_t      dbg_watch_tx_i,    // a tile column / row the harness watches
+  input  coord_t      dbg_watch_ty_i,
+  input  logic [5:0]  dbg_watch_t_i,     // the frame's tile size
+  output logic        dbg_watch_done_o   // the last pixel of the watched tile went to the writer
 );
   logic              req_valid, req_ready, rsp_valid, rsp_ready;
   coord_t            req_x, req_y;
@@ -58,7 +60,8 @@ module msr_sim_top import msr_pkg::*; #(
 
   msr_top #(
     .NUM_ENGINES     (NUM_ENGINES),
-    .MAX_OUTSTANDING (MAX_OUTSTANDING)
+    .MAX_OUTSTANDING (MAX_OUTSTANDING),
+    .NUM_CTX         (NUM_CTX)
   ) u_top (
     .clk_i           (clk_i),
     .rst_ni          (rst_ni),
@@ -130,9 +133,17 @@ module msr_sim_top import msr_pkg::*; #(
   assign dbg_desc_fire_o = |u_top.eng_desc_valid;
   assign dbg_desc_x0_o   = u_top.desc.x0;
   assign dbg_desc_y0_o   = u_top.desc.y0;
-  assign dbg_tile_done_o = u_top.wr_tile_done;
-  assign dbg_done_x_o    = u_top.eng_pix_x[u_top.pix_sel];
-  assign dbg_done_y_o    = u_top.eng_pix_y[u_top.pix_sel];
+  // Engines finish tiles in parallel: look for the watched one among them.
+  always_comb begin
+    dbg_watch_done_o = 1'b0;
+    for (int unsigned i = 0; i < NUM_ENGINES; i++) begin
+      if (u_top.wr_tile_done[i] &&
+          32'(u_top.eng_pix_x[i]) / 32'(dbg_watch_t_i) == 32'(dbg_watch_tx_i) &&
+          32'(u_top.eng_pix_y[i]) / 32'(dbg_watch_t_i) == 32'(dbg_watch_ty_i)) begin
+        dbg_watch_done_o = 1'b1;
+      end
+    end
+  end
 
   logic unused_sim;
   assign unused_sim = ^{awsize, awprot, awburst, awlock, awcache};

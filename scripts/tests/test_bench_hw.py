@@ -46,9 +46,10 @@ def test_tiny_sweep_report(tmp_path):
         # Every pixel of the frame went through the writer exactly once.
         assert p["pixels_counted"] == p["pixels"]
         assert 0 < p["pixels_per_clock"] <= p["num_engines"]
-        # The writer's 32-bit W channel: per 16-pixel tile row 16 pixel beats + 4 source-code
-        # beats, 3 tiles a row, 32 rows = 1920 beats; no frame can take fewer cycles.
-        assert p["axi_w_beats"] == 3 * (16 + 4) * 32
+        # The writer's 256-bit W channel: per 16-pixel tile row 2 pixel beats (64 bytes from
+        # a 32-byte aligned start: stride 192) + 1 source-code beat (16 bytes from offset 0 or
+        # 16: stride 48), 3 tiles a row, 32 rows = 288 beats; no frame can take fewer cycles.
+        assert p["axi_w_beats"] == 3 * (2 + 1) * 32
         assert p["cycles"] >= p["axi_w_beats"]
         assert 0 < p["traced_fraction"] <= 1
         assert p["cycles_per_tile"] == pytest.approx(p["cycles"] / 6)
@@ -76,10 +77,13 @@ def test_traced_fraction_matches_golden_model(tmp_path):
 
 
 def test_w_beats_hand_counts():
-    # 20 wide, T=8: tiles 8, 8, 4 wide -> (8+2) + (8+2) + (4+1) = 25 beats a row; 3 rows.
-    assert bench_hw.w_beats(20, 3, 8) == 75
-    # 35 wide, T=32: 32 + 8, then 3 + 1 -> 44 beats a row.
-    assert bench_hw.w_beats(35, 1, 32) == 44
+    # 20 wide, T=8 (tiles 8, 8, 4 wide), 3 rows, 32-byte beats. Pixel rows start at
+    # 0x1000 + 80y (+0, +32, +64): row 1 starts 16 bytes into a beat, so its two 8-pixel runs
+    # take 2 beats each: 3 + 5 + 3 = 11. Codes at 0x2000 + 20y + x0: offsets 0/8/16, 20/28/36,
+    # 40/48/56 (mod 32); only (y=1, x0=8) crosses a beat (28 + 8 bytes): 3 + 4 + 3 = 10.
+    assert bench_hw.w_beats(20, 3, 8) == 21
+    # 35 wide, T=32, one row: 128 pixel bytes (4 beats) + 12 (1); codes 32 bytes (1) + 4 (1).
+    assert bench_hw.w_beats(35, 1, 32) == 7
 
 
 def test_bad_config_is_a_usage_error(capsys):

@@ -1,10 +1,11 @@
-"""fb_writer: random frames written as tile rows (rows of different tiles interleaved as the
-engines would), random pauses on AW, W and B, odd strides and bases so rows cross 4 KiB.
+"""fb_writer: random frames, the tiles dealt to NUM_IN parallel input streams (one per engine,
+each stream whole tiles row-major, random gaps), random pauses on AW, W and B, odd strides
+and bases so rows start on any lane of a wide beat and cross 4 KiB; every AXI data width.
 Checks every frame-buffer word and source byte, that nothing outside the frame is touched,
-one burst per row part, no burst across 4 KiB, and the tile-done count."""
+burst size / alignment, no burst across 4 KiB, and the tile-done count."""
 from __future__ import annotations
 
-import itertools
+import os
 import random
 import sys
 from pathlib import Path
@@ -30,26 +31,27 @@ def pause(rng, p):
         yield int(rng.random() < p)
 
 
-def row_stream(rng, W, H, T):
-    """Tile rows of the frame, tiles interleaved at row granularity, each tile's rows in order."""
-    tiles = []
+def tile_streams(W, H, T, n_in):
+    """The frame's tiles dealt round robin to n_in inputs; per input, its pixels in order."""
+    streams = [[] for _ in range(n_in)]
+    k = 0
     for y0 in range(0, H, T):
         for x0 in range(0, W, T):
             w, h = min(T, W - x0), min(T, H - y0)
-            tiles.append([[(x0 + x, y0 + y, y == h - 1 and x == w - 1) for x in range(w)] for y in range(h)])
-    active = []
-    out = []
-    while tiles or active:
-        while tiles and len(active) < 4:
-            active.append(tiles.pop(0))
-        t = rng.choice(active)
-        out.append(t.pop(0))
-        if not t:
-            active.remove(t)
-    return out
+            streams[k % n_in] += [(x0 + x, y0 + y, y == h - 1 and x == w - 1)
+                                  for y in range(h) for x in range(w)]
+            k += 1
+    return streams
 
 
-async def run_frame(dut, ram, rng, W, H, T, fb_base, fb_stride, src_en, src_base, src_stride, gap_p):
+def pack(values, width):
+    v = 0
+    for i, x in enumerate(values):
+        v |= x << (width * i)
+    return v
+
+
+async def run_frame(dut, ram, rng, n_in, W, H, T, fb_base, fb_stride, src_en, src_base, src_stride, gap_p):
     dut.width_i.value = W
     dut.tile_i.value = TILE_ENC[T]
     dut.fb_base_i.value = fb_base
@@ -60,30 +62,37 @@ async def run_frame(dut, ram, rng, W, H, T, fb_base, fb_stride, src_en, src_base
     await RisingEdge(dut.clk_i)
     pixels = {}
     tiles_done = 0
-    for row in row_stream(rng, W, H, T):
-        for x, y, last in row:
-            while rng.random() < gap_p:
-                dut.pix_valid_i.value = 0
-                await RisingEdge(dut.clk_i)
-            rgb = (rng.randrange(256), rng.randrange(256), rng.randrange(256))
-            code = rng.choice(CODES)
-            pixels[(x, y)] = (rgb, code)
-            dut.pix_valid_i.value = 1
-            dut.pix_x_i.value = x
-            dut.pix_y_i.value = y
-            dut.pix_rgb_i.value = (rgb[0] << 16) | (rgb[1] << 8) | rgb[2]
-            dut.pix_src_i.value = code
-            dut.pix_last_i.value = int(last)
-            for _ in range(5000):
-                await ReadOnly()
-                assert int(dut.pix_row_end_o.value) == int(x == row[-1][0]), f"row end at x={x}"
-                hs = int(dut.pix_ready_o.value)
-                tiles_done += int(dut.tile_done_o.value)
-                await RisingEdge(dut.clk_i)
-                if hs:
-                    break
-            else:
-                raise AssertionError(f"pixel ({x},{y}) never taken")
+    streams = tile_streams(W, H, T, n_in)
+    pos = [0] * n_in
+    offer = [None] * n_in                      # (x, y, last, rgb, code) held until taken
+    idle = 0
+    while any(pos[i] < len(streams[i]) for i in range(n_in)):
+        for i in range(n_in):
+            if offer[i] is None and pos[i] < len(streams[i]) and rng.random() >= gap_p:
+                x, y, last = streams[i][pos[i]]
+                offer[i] = (x, y, last, rng.randrange(1 << 24), rng.choice(CODES))
+        valid = [int(o is not None) for o in offer]
+        z = (0, 0, 0, 0, 0)
+        dut.pix_valid_i.value = pack(valid, 1)
+        dut.pix_x_i.value = pack([(o or z)[0] for o in offer], 12)
+        dut.pix_y_i.value = pack([(o or z)[1] for o in offer], 12)
+        dut.pix_last_i.value = pack([int((o or z)[2]) for o in offer], 1)
+        dut.pix_rgb_i.value = pack([(o or z)[3] for o in offer], 24)
+        dut.pix_src_i.value = pack([(o or z)[4] for o in offer], 8)
+        await ReadOnly()
+        ready = int(dut.pix_ready_o.value)
+        tiles_done += bin(int(dut.tile_done_o.value)).count("1")
+        await RisingEdge(dut.clk_i)
+        taken = False
+        for i in range(n_in):
+            if offer[i] is not None and (ready >> i) & 1:
+                x, y, _, rgb, code = offer[i]
+                pixels[(x, y)] = (rgb, code)
+                offer[i] = None
+                pos[i] += 1
+                taken = True
+        idle = 0 if taken else idle + 1
+        assert idle < 5000, "no pixel taken for 5000 cycles"
     dut.pix_valid_i.value = 0
     for _ in range(20000):
         await RisingEdge(dut.clk_i)
@@ -100,7 +109,7 @@ async def run_frame(dut, ram, rng, W, H, T, fb_base, fb_stride, src_en, src_base
     for (x, y), (rgb, code) in pixels.items():
         a = fb_base + y * fb_stride + 4 * x
         word = int.from_bytes(mem[a:a + 4], "little")
-        assert word == (rgb[0] << 16) | (rgb[1] << 8) | rgb[2], f"pixel ({x},{y}) at {a:#x}: {word:#010x}"
+        assert word == rgb, f"pixel ({x},{y}) at {a:#x}: {word:#010x} want {rgb:#08x}"
         touched[a:a + 4] = b"\1\1\1\1"
         if src_en:
             s = src_base + y * src_stride + x
@@ -110,20 +119,22 @@ async def run_frame(dut, ram, rng, W, H, T, fb_base, fb_stride, src_en, src_base
     assert not stray, f"{len(stray)} bytes written outside the frame, first at {stray[0]:#x}"
 
 
-async def aw_monitor(dut, log):
-    """Every burst: INCR, 4-byte beats, never across a 4 KiB boundary."""
+async def aw_monitor(dut, log, beat):
+    """Every burst: INCR, full-width beats from a bus-aligned address, never across 4 KiB."""
     while True:
         await RisingEdge(dut.clk_i)
         if int(dut.m_axi_awvalid.value) and int(dut.m_axi_awready.value):
             a, n = int(dut.m_axi_awaddr.value), int(dut.m_axi_awlen.value) + 1
-            assert int(dut.m_axi_awsize.value) == 2 and int(dut.m_axi_awburst.value) == 1
-            assert a % 4 == 0 and a >> 12 == (a + 4 * n - 1) >> 12, f"burst {a:#x}+{n} crosses 4 KiB"
+            assert 1 << int(dut.m_axi_awsize.value) == beat and int(dut.m_axi_awburst.value) == 1
+            assert a % beat == 0, f"burst address {a:#x} not aligned to {beat} bytes"
+            assert a >> 12 == (a + beat * n - 1) >> 12, f"burst {a:#x}+{n} crosses 4 KiB"
             log.append((a, n))
 
 
 @cocotb.test()
 async def test_random_frames(dut):
-    rng = random.Random(77)
+    rng = random.Random(int(os.environ["SEED"]))
+    n_in, beat = int(os.environ["NUM_IN"]), int(os.environ["AXI_DATA_W"]) // 8
     cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
     dut.rst_ni.value = 0
     dut.clear_i.value = 0
@@ -133,7 +144,7 @@ async def test_random_frames(dut):
     await ClockCycles(dut.clk_i, 3)
     dut.rst_ni.value = 1
     bursts = []
-    cocotb.start_soon(aw_monitor(dut, bursts))
+    cocotb.start_soon(aw_monitor(dut, bursts, beat))
     cases = [(40, 20, 8, 0x0FE0, 4 * 40 + 20, 1, 0x80FFC, 48, 0.0, 0.0),   # bursts across 4 KiB
              (33, 17, 16, 0x100, 4 * 33, 1, 0x90000, 36, 0.3, 0.5),
              (70, 9, 32, 0xFF0, 4 * 72, 0, 0, 0, 0.5, 0.2),
@@ -149,14 +160,19 @@ async def test_random_frames(dut):
         ram.w_channel.set_pause_generator(pause(rng, chan_p))
         ram.b_channel.set_pause_generator(pause(rng, chan_p))
         bursts.clear()
-        await run_frame(dut, ram, rng, W, H, T, fb_base, fb_stride, src_en, src_base, src_stride, gap_p)
+        await run_frame(dut, ram, rng, n_in, W, H, T, fb_base, fb_stride, src_en, src_base, src_stride, gap_p)
         rows = sum(min(T, H - y0) for y0 in range(0, H, T)) * len(range(0, W, T))
         assert len(bursts) >= rows * (1 + src_en)
+        beats = sum(n for _, n in bursts)
+        assert beats <= rows * (1 + src_en) * (2 + 32 * 4 // beat) + 2 * len(bursts), "too many beats"
         dut._log.info("frame %dx%d T%d: %d bursts for %d rows", W, H, T, len(bursts), rows)
 
 
-@pytest.mark.parametrize("max_out", [1, 8])
-def test_fb_writer(max_out):
+@pytest.mark.parametrize("n_in,width,max_out,seed", [(4, 256, 8, 77), (3, 128, 1, 78), (1, 32, 8, 79),
+                                                   (2, 64, 4, 80)])
+def test_fb_writer(n_in, width, max_out, seed):
     from sys_tb import RTL, run_cocotb
-    run_cocotb("fb_writer", "test_fb_writer", HERE, {"MAX_OUT": max_out}, f"o{max_out}",
-               sources=[RTL / "msr_pkg.sv", RTL / "sys_fifo.sv", RTL / "fb_writer.sv"])
+    run_cocotb("fb_writer", "test_fb_writer", HERE,
+               {"MAX_OUT": max_out, "NUM_IN": n_in, "AXI_DATA_W": width}, f"i{n_in}_w{width}_o{max_out}",
+               sources=[RTL / "msr_pkg.sv", RTL / "sys_fifo.sv", RTL / "fb_writer.sv"],
+               extra_env={"SEED": str(seed), "NUM_IN": str(n_in), "AXI_DATA_W": str(width)})

@@ -4,12 +4,14 @@ Random tiles (smooth, noisy and blocky images, every L, both metrics, random thr
 w and h 1..32) are pushed through the engine back to back; a Python rendering model answers
 each render request from the tile's image after a random latency, in random order, with
 random req_ready back-pressure, while the output stream stalls at random. Checked, bit for
-bit: the render requests (order and coordinates), every output pixel (order, coordinates,
+bit: the render requests (coordinates, and their order within each tile: tiles in flight at
+the same time interleave), every output pixel (order, coordinates,
 colour, source code, last flag). The spec's worked example is a separate test with values
 computed by hand. The RTL's own SVA (handshakes, tags, write-once) run all the time."""
 from __future__ import annotations
 
 import os
+import itertools
 import random
 import sys
 from pathlib import Path
@@ -58,6 +60,9 @@ def make_image(rng: random.Random, w: int, h: int) -> np.ndarray:
     return np.clip(out, 0, 255).astype(np.uint8)
 
 
+_SLOTS = itertools.count()
+
+
 def random_tile(rng: random.Random):
     T = rng.choice([8, 16, 32])
     full = rng.random() < 0.5
@@ -72,8 +77,11 @@ def random_tile(rng: random.Random):
         thr = [255] * levels                              # interpolate everything possible
     else:
         thr = sorted(rng.randrange(0, 256 if metric == "sum" else 64) for _ in range(levels))
-    x0 = rng.randrange(0, 4096 - w + 1)
-    y0 = rng.randrange(0, 4096 - h + 1)
+    # Every tile of a run gets its own 40x40 slot of the 4096x4096 frame: tiles in flight at
+    # the same time never share a pixel, so a render request names its tile by position.
+    slot = next(_SLOTS)
+    x0 = (slot % 100) * 40 + rng.randrange(0, 40 - w + 1)
+    y0 = (slot // 100 % 100) * 40 + rng.randrange(0, 40 - h + 1)
     return dict(x0=x0, y0=y0, w=w, h=h, levels=levels, metric=metric, thr=thr,
                 img=make_image(rng, w, h))
 
@@ -113,11 +121,10 @@ class Driver:
 async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int):
     """Drive all tiles through the engine; check requests and pixels as they appear."""
     drv = Driver(dut)
-    exp_req, exp_pix, req_tile = [], [], []
-    for i, t in enumerate(tiles):
+    exp_req, exp_pix = [], []                           # per tile: its requests in order
+    for t in tiles:
         r = golden(t)
-        exp_req += r.requests
-        req_tile += [i] * len(r.requests)
+        exp_req.append(list(r.requests))
         stream = r.output_stream()
         exp_pix += [(x, y, rgb, code, i == len(stream) - 1) for i, (x, y, rgb, code) in enumerate(stream)]
     pending = {}                                        # tag -> (due cycle, rgb)
@@ -127,10 +134,24 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int)
     cycle = 0
     limit = 200 + sum(t["w"] * t["h"] * (8 + prof.lat_max // 2) for t in tiles)
 
-    def render(i, x, y):
-        """Request number i: answered from the image of the tile it belongs to."""
-        t = tiles[req_tile[i]]
-        assert req_tile[i] < di, f"request ({x},{y}) for a tile not accepted yet"
+    req_next = [0] * len(tiles)                         # per tile: requests seen so far
+    n_req = sum(len(r) for r in exp_req)
+
+    def tile_of(x, y):
+        for i, t in enumerate(tiles):
+            if t["x0"] <= x < t["x0"] + t["w"] and t["y0"] <= y < t["y0"] + t["h"]:
+                return i
+        raise AssertionError(f"render request ({x},{y}) outside every tile")
+
+    def render(x, y):
+        """A render request: in its tile's golden order, answered from the tile's image."""
+        i = tile_of(x, y)
+        assert i < di, f"request ({x},{y}) for tile {i}, not accepted yet"
+        k = req_next[i]
+        assert k < len(exp_req[i]), f"tile {i}: extra render request ({x},{y})"
+        assert (x, y) == exp_req[i][k], f"tile {i} request {k}: got ({x},{y}), want {exp_req[i][k]}"
+        req_next[i] += 1
+        t = tiles[i]
         return tuple(int(c) for c in t["img"][y - t["y0"], x - t["x0"]])
 
     while pi < len(exp_pix):
@@ -165,10 +186,8 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int)
             desc_hold = False
         if req_ready and dut.req_valid_o.value:
             x, y, tag = int(dut.req_x_o.value), int(dut.req_y_o.value), int(dut.req_tag_o.value)
-            assert ri < len(exp_req), f"extra render request ({x},{y})"
-            assert (x, y) == exp_req[ri], f"request {ri}: got ({x},{y}), want {exp_req[ri]}"
             assert tag not in pending and (rsp_cur is None or rsp_cur[0] != tag), f"tag {tag} reused"
-            pending[tag] = (cycle + 1 + rng.randint(0, prof.lat_max), render(ri, x, y))
+            pending[tag] = (cycle + 1 + rng.randint(0, prof.lat_max), render(x, y))
             ri += 1
         if rsp_cur is not None and dut.rsp_ready_o.value:
             rsp_cur = None
@@ -179,9 +198,9 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int)
             pi += 1
         assert int(dut.inflight_o.value) <= max_out
         cycle += 1
-        assert cycle < limit, f"timeout: {ri}/{len(exp_req)} requests, {pi}/{len(exp_pix)} pixels"
+        assert cycle < limit, f"timeout: {ri}/{n_req} requests, {pi}/{len(exp_pix)} pixels"
         await next_cycle()
-    assert ri == len(exp_req)
+    assert ri == n_req and req_next == [len(r) for r in exp_req]
     # after the last pixel the engine is idle and holds no tags
     drv['pix_ready_i'] = 1
     drv['desc_valid_i'] = 0
@@ -250,32 +269,34 @@ async def worked_example(dut):
 
 
 BUILDS = [
-    # (MAX_OUTSTANDING, tiles per profile fast,jitter,long, seed)
-    (16, "900,450,60", 11),
-    (2, "300,150,20", 12),
-    (64, "300,150,30", 13),
+    # (MAX_OUTSTANDING, NUM_CTX, tiles per profile fast,jitter,long, seed)
+    (16, 8, "900,450,60", 11),
+    (2, 2, "300,150,20", 12),
+    (64, 5, "300,150,30", 13),        # a ring that is not a power of two
 ]
 
 
-@pytest.mark.parametrize("max_out,counts,seed", BUILDS)
-def test_tile_engine(max_out, counts, seed):
+@pytest.mark.parametrize("max_out,ctx,counts,seed", BUILDS)
+def test_tile_engine(max_out, ctx, counts, seed):
     run_cocotb("tile_engine", "test_tile_engine", Path(__file__).parent,
-               {"MAX_OUTSTANDING": max_out},
+               {"MAX_OUTSTANDING": max_out, "NUM_CTX": ctx},
                extra_env={"TILE_COUNTS": counts, "SEED": seed, "MAX_OUTSTANDING": max_out})
 
 
-@pytest.mark.parametrize("max_out,tag_w", [(12, None), (1, None), (128, None), (16, 3)])
-def test_bad_parameters_rejected(max_out, tag_w):
-    """The elaboration-time checks stop an illegal MAX_OUTSTANDING / TAG_W with a message."""
+@pytest.mark.parametrize("params", [{"MAX_OUTSTANDING": 12}, {"MAX_OUTSTANDING": 1},
+                                    {"MAX_OUTSTANDING": 128}, {"MAX_OUTSTANDING": 16, "TAG_W": 3},
+                                    {"NUM_CTX": 1}, {"NUM_CTX": 17}])
+def test_bad_parameters_rejected(params):
+    """The elaboration-time checks stop an illegal MAX_OUTSTANDING / TAG_W / NUM_CTX with a
+    message."""
     import subprocess
 
     from msr_runner import ROOT, rtl_sources
     srcs = [str(s) for s in rtl_sources() if s.name in
             ("msr_pkg.sv", "msr_decide.sv", "msr_interp.sv", "msr_tile_sram.sv",
              "msr_level_ctrl.sv", "msr_tile_stream.sv", "tile_engine.sv")]
-    cmd = ["verilator", "--lint-only", "--top-module", "tile_engine", f"-GMAX_OUTSTANDING={max_out}"]
-    if tag_w is not None:
-        cmd.append(f"-GTAG_W={tag_w}")
+    cmd = ["verilator", "--lint-only", "--top-module", "tile_engine"]
+    cmd += [f"-G{k}={v}" for k, v in params.items()]
     p = subprocess.run(cmd + srcs, cwd=ROOT, capture_output=True, text=True)
     assert p.returncode != 0, "illegal parameters were accepted"
     assert "tile_engine: " in p.stdout + p.stderr and "must be" in p.stdout + p.stderr, p.stderr
