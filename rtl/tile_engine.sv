@@ -1,25 +1,26 @@
 // Tile engine: tiles in, their final pixels out (spec ../shared/spec/algorithm.md).
 //
-//   desc --> context c (ring): msr_level_ctrl[c], pixel scoreboard[c], tile buffer[c]
-//   issue arbiter (oldest context first) --> S1 (tile buffer read data, A / B)
+//   desc --> a free context c: msr_level_ctrl[c], pixel scoreboard[c], tile buffer[c]
+//   issue arbiter (round robin) --> S1 (tile buffer read data, A / B)
 //            --> msr_decide / msr_interp (shared, one decision per clock) --+
 //   interpolate -> tile buffer[c] write; trace -> render request {x, y, tag} |
 //   rsp {tag, rgb} -> tile buffer[tag's c] write (in the same clock as an    |
 //                     interpolated write when the two go to other contexts) <+
-//   finished contexts, in ring order --> msr_tile_stream --> pix stream (row-major)
+//   finished contexts, round robin --> msr_tile_stream --> pix stream (row-major, whole tiles)
 //
 // Why contexts: the decisions of one pass are independent, but a pass needs the pixels of
 // the passes before it, so a tile is a chain of 5-7 dependent passes, each waiting up to one
 // render latency for its traced neighbours. One tile keeps the decision pipeline busy only
 // when renders answer at once. NUM_CTX tiles are worked on at the same time, each with its
-// own level controller, scoreboard and tile buffer; every clock the arbiter issues the next
-// position of the oldest context whose two neighbours are final, so one tile's waits are
-// filled with other tiles' decisions. The per-context pixel scoreboard replaces the pass
+// own level controller, scoreboard and tile buffer; every clock the arbiter issues, round
+// robin, the next position of a context whose two neighbours are final, so one tile's waits
+// are filled with other tiles' decisions. The per-context pixel scoreboard replaces the pass
 // barrier: a position goes as soon as its two neighbours are final (the values a barrier
 // would give: a pass reads only pixels of earlier passes, each written once). Positions of
 // one context leave in order, so each tile's render requests keep the golden model's order;
-// requests of different tiles interleave. Contexts are taken and emptied in ring order, so
-// tiles leave the engine in the order they came.
+// requests of different tiles interleave. Finished tiles are streamed out whole, one after
+// another, in the order they finish (roughly): a tile that waits long for its renders does
+// not hold up the tiles behind it (with in-order output it did, and the engine ran dry).
 //
 // inflight_o counts tags handed out and not yet answered (a request waiting for
 // req_ready_i counts as in flight).
@@ -91,9 +92,11 @@ module tile_engine
   // ---- Context bookkeeping ------------------------------------------------------------------
   // A context is free, computing (its controller walks the tile, or all positions are
   // issued and the last results are outstanding), or full (finished, waiting for / being
-  // streamed out). New tiles take the context at alloc_q, the streamer empties the one at
-  // str_q; both walk the ring, so the oldest tile is always at str_q.
-  ctx_t                      alloc_q, str_q;
+  // streamed out). A new tile takes the lowest free context; the streamer takes the full
+  // contexts round robin, so a tile that waits long for its renders never holds up the
+  // tiles behind it (tiles may leave in another order than they came).
+  ctx_t                      alloc, str_q, str_sel, str_rr_q;
+  logic                      any_free;
   logic                      streaming_q;
   logic    [NUM_CTX-1:0]     comp_q, issued_q, full_q, ctx_done;
   coord_t  [NUM_CTX-1:0]     ctx_x0_q, ctx_y0_q;
@@ -106,8 +109,18 @@ module tile_engine
   logic desc_fire, stream_start, stream_done;
   logic [NUM_CTX-1:0] ctrl_start_ready, ctrl_busy;
 
-  assign desc_ready_o = !comp_q[alloc_q] && !full_q[alloc_q] && ctrl_start_ready[alloc_q] &&
-                        !clear_i;
+  always_comb begin
+    alloc    = '0;
+    any_free = 1'b0;
+    for (int unsigned i = NUM_CTX; i > 0; i--) begin
+      if (!comp_q[i-1] && !full_q[i-1] && ctrl_start_ready[i-1]) begin
+        alloc    = ctx_t'(i - 1);
+        any_free = 1'b1;
+      end
+    end
+  end
+
+  assign desc_ready_o = any_free && !clear_i;
   assign desc_fire    = desc_valid_i && desc_ready_o;
 
   // ---- Level processing controllers, one per context ---------------------------------------
@@ -131,7 +144,7 @@ module tile_engine
       .clk_i         (clk_i),
       .rst_ni        (rst_ni),
       .clear_i       (clear_i),
-      .start_valid_i (desc_fire && (alloc_q == ctx_t'(c))),
+      .start_valid_i (desc_fire && (alloc == ctx_t'(c))),
       .start_ready_o (ctrl_start_ready[c]),
       .w_i           (desc_i.w),
       .h_i           (desc_i.h),
@@ -159,23 +172,36 @@ module tile_engine
     assign cand[c]     = step_valid[c] && nb_final[c];
   end
 
-  // ---- Issue arbiter: oldest context first (ring order from str_q) -------------------------
+  // ---- Issue arbiter: round robin over the contexts with a ready position -------------------
+  // Round robin, not oldest first: a young context's initial-grid traces start its first
+  // render latency early; under oldest-first priority they waited behind the old contexts'
+  // interpolations, and one engine topped out at ~0.8 pixels per clock at latency 256.
   logic s1_valid_q, s1_ready, unit_ready, unit_ready_i;
   logic issue;
-  ctx_t gnt;
+  ctx_t gnt, rr_q;
 
   always_comb begin
-    gnt   = str_q;
+    gnt   = rr_q;
     issue = 1'b0;
     for (int unsigned i = NUM_CTX; i > 0; i--) begin
-      // str_q + i - 1 (mod NUM_CTX); the loop runs backwards so the oldest candidate wins
+      // rr_q + i - 1 (mod NUM_CTX); the loop runs backwards so the first candidate wins
       int unsigned c;
-      c = 32'(str_q) + i - 1;
+      c = 32'(rr_q) + i - 1;
       if (c >= NUM_CTX) c -= NUM_CTX;
       if (cand[c]) begin
         gnt   = ctx_t'(c);
         issue = s1_ready;
       end
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      rr_q <= '0;
+    end else if (clear_i) begin
+      rr_q <= '0;
+    end else if (issue) begin
+      rr_q <= ctx_inc(gnt);
     end
   end
 
@@ -407,7 +433,7 @@ module tile_engine
       final_q <= '0;
     end else begin
       for (int unsigned c = 0; c < NUM_CTX; c++) begin
-        if (desc_fire && alloc_q == ctx_t'(c)) begin
+        if (desc_fire && alloc == ctx_t'(c)) begin
           final_q[c] <= '0;
         end else if (b_we[c]) begin
           final_q[c][b_waddr[c]] <= 1'b1;
@@ -423,8 +449,8 @@ module tile_engine
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      alloc_q      <= '0;
       str_q        <= '0;
+      str_rr_q     <= '0;
       streaming_q  <= 1'b0;
       comp_q       <= '0;
       issued_q     <= '0;
@@ -437,8 +463,8 @@ module tile_engine
       ctx_metric_q <= {NUM_CTX{METRIC_MAX}};
       ctx_thr_q    <= '0;
     end else if (clear_i) begin
-      alloc_q     <= '0;
       str_q       <= '0;
+      str_rr_q    <= '0;
       streaming_q <= 1'b0;
       comp_q      <= '0;
       issued_q    <= '0;
@@ -446,14 +472,13 @@ module tile_engine
       pend_q      <= '0;
     end else begin
       if (desc_fire) begin
-        comp_q[alloc_q]       <= 1'b1;
-        ctx_x0_q[alloc_q]     <= desc_i.x0;
-        ctx_y0_q[alloc_q]     <= desc_i.y0;
-        ctx_w_q[alloc_q]      <= desc_i.w;
-        ctx_h_q[alloc_q]      <= desc_i.h;
-        ctx_metric_q[alloc_q] <= desc_i.metric;
-        ctx_thr_q[alloc_q]    <= desc_i.thr;
-        alloc_q               <= ctx_inc(alloc_q);
+        comp_q[alloc]       <= 1'b1;
+        ctx_x0_q[alloc]     <= desc_i.x0;
+        ctx_y0_q[alloc]     <= desc_i.y0;
+        ctx_w_q[alloc]      <= desc_i.w;
+        ctx_h_q[alloc]      <= desc_i.h;
+        ctx_metric_q[alloc] <= desc_i.metric;
+        ctx_thr_q[alloc]    <= desc_i.thr;
       end
       for (int unsigned c = 0; c < NUM_CTX; c++) begin
         // the controller has issued every position of its tile (it goes idle after the last;
@@ -469,12 +494,13 @@ module tile_engine
           full_q[c]   <= 1'b1;
         end
       end
-      if (stream_done) full_q[str_q] <= 1'b0;
-      if (stream_start) streaming_q <= 1'b1;
-      if (stream_done) begin
-        streaming_q <= 1'b0;
-        str_q       <= ctx_inc(str_q);
+      if (stream_done) full_q[str_q] <= 1'b0;   // the streamed context is free again
+      if (stream_start) begin
+        streaming_q <= 1'b1;
+        str_q       <= str_sel;
+        str_rr_q    <= ctx_inc(str_sel);
       end
+      if (stream_done) streaming_q <= 1'b0;
     end
   end
 
@@ -483,18 +509,29 @@ module tile_engine
   logic [TADDR_W-1:0] s_raddr;
   logic [WORD_W-1:0]  s_rdata;
 
-  assign stream_start = !streaming_q && full_q[str_q] && s_start_ready;
+  // Next tile to stream: the first full context from str_rr_q on.
+  always_comb begin
+    str_sel = str_rr_q;
+    for (int unsigned i = NUM_CTX; i > 0; i--) begin
+      int unsigned c;
+      c = 32'(str_rr_q) + i - 1;
+      if (c >= NUM_CTX) c -= NUM_CTX;
+      if (full_q[c]) str_sel = ctx_t'(c);
+    end
+  end
+
+  assign stream_start = !streaming_q && (full_q != '0) && s_start_ready;
 
   msr_tile_stream u_stream (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),
     .clear_i       (clear_i),
-    .start_valid_i (!streaming_q && full_q[str_q]),
+    .start_valid_i (!streaming_q && (full_q != '0)),
     .start_ready_o (s_start_ready),
-    .x0_i          (ctx_x0_q[str_q]),
-    .y0_i          (ctx_y0_q[str_q]),
-    .w_i           (ctx_w_q[str_q]),
-    .h_i           (ctx_h_q[str_q]),
+    .x0_i          (ctx_x0_q[str_sel]),
+    .y0_i          (ctx_y0_q[str_sel]),
+    .w_i           (ctx_w_q[str_sel]),
+    .h_i           (ctx_h_q[str_sel]),
     .re_o          (s_re),
     .raddr_o       (s_raddr),
     .rdata_rgb_i   (rgb_t'(s_rdata[$bits(rgb_t)-1:0])),
@@ -589,7 +626,7 @@ module tile_engine
       written_q <= '0;
     end else begin
       for (int unsigned c = 0; c < NUM_CTX; c++) begin
-        if (desc_fire && alloc_q == ctx_t'(c)) written_q[c] <= '0;
+        if (desc_fire && alloc == ctx_t'(c)) written_q[c] <= '0;
         if (b_we[c]) written_q[c][b_waddr[c]] <= 1'b1;
       end
     end

@@ -6,11 +6,13 @@ plus a Markdown table on stdout.
 
 Set-up per point: 32 tiles of 16x16 back to back, L = 2, metric max; the renderer answers a
 request exactly `latency` cycles after the cycle that accepted it (latency 0 = the next
-cycle), in order; req_ready and pix_ready always 1. Scenes: a smooth image with thr 8,16
-(a typical mix of traced and interpolated pixels) and thr 0,0 (every pixel traced: the
-worst case). Reported: steady-state cycles per tile (first descriptor to last pixel / 8),
-cycles of a lone tile (descriptor to last pixel), traced fraction, and the decision rate
-inside the H / V passes (issued positions / cycles from a pass's first to its last issue).
+cycle), in order; req_ready and pix_ready always 1; NUM_CTX 8 unless MSR_BENCH_NUM_CTX says
+otherwise. Scenes: a smooth image with thr 8,16 (31 % traced), 26,52 (17 %, like the
+default cornell frame) and 0,0 (every pixel traced: the worst case). Reported: steady-state
+cycles per tile (between the last pixels of tile 8 and tile 32, so the ramp while the
+contexts fill is left out), the same with the ramp, cycles of a lone tile (descriptor to last
+pixel, the engine otherwise empty), traced fraction, and the decision rate inside the lone
+tile's H / V passes (issued positions / cycles from a pass's first to its last issue).
 """
 from __future__ import annotations
 
@@ -22,8 +24,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tb" / "common"))
 
-LATENCIES = (0, 16, 64, 256)
-OUTSTANDING = (16, 64)
+# MSR_BENCH_LATENCIES / MSR_BENCH_OUTSTANDING / MSR_BENCH_NUM_CTX narrow or change the sweep.
+LATENCIES = tuple(int(v) for v in os.environ.get("MSR_BENCH_LATENCIES", "0,16,64,256").split(","))
+OUTSTANDING = tuple(int(v) for v in os.environ.get("MSR_BENCH_OUTSTANDING", "16,64").split(","))
+NUM_CTX = int(os.environ.get("MSR_BENCH_NUM_CTX", "8"))
+THRS = tuple(tuple(int(v) for v in s.split(",")) for s in os.environ.get("MSR_BENCH_THR", "8,16 26,52 0,0").split())
 TILES = 32
 OUT = ROOT / "out" / "bench" / "engine.json"
 
@@ -52,22 +57,25 @@ def pack_desc(x0, y0, w, h, levels, metric, thr):
     return v
 
 
+PROBE = {} if os.environ.get("MSR_BENCH_PROBE") == "1" else None
+
 if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
     from msr_tb import pack_rgb, start_clock_and_reset
 
-    async def run_point(dut, latency, thr, img):
-        """Returns (cycles for all tiles, cycles of the first tile, traced, pass stats)."""
-        descs = [pack_desc(16 * i, 0, 16, 16, 2, "max", thr) for i in range(TILES)]
+    async def run_point(dut, latency, thr, img, n_tiles=TILES):
+        """Returns (cycle of each tile's last pixel from the first descriptor, traced, pass
+        stats of the issued positions)."""
+        descs = [pack_desc(16 * i, 0, 16, 16, 2, "max", thr) for i in range(n_tiles)]
         pending = []                       # (due cycle, tag, rgb) in request order
         cycle = 0
         start = None
-        first_done = None
+        done = []
         di = pixels = traced = 0
         rsp = None
         issue_cycles, pass_log = [], []
-        while pixels < 256 * TILES:
-            dut.desc_valid_i.value = int(di < TILES)
-            if di < TILES:
+        while pixels < 256 * n_tiles:
+            dut.desc_valid_i.value = int(di < n_tiles)
+            if di < n_tiles:
                 dut.desc_i.value = descs[di]
             if rsp is None and pending and pending[0][0] <= cycle:
                 rsp = pending.pop(0)
@@ -76,7 +84,7 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
                 dut.rsp_tag_i.value = rsp[1]
                 dut.rsp_rgb_i.value = rsp[2]
             await ReadOnly()
-            if di < TILES and dut.desc_ready_o.value:
+            if di < n_tiles and dut.desc_ready_o.value:
                 di += 1
                 if start is None:
                     start = cycle
@@ -87,18 +95,44 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
             if rsp is not None and dut.rsp_ready_o.value:
                 rsp = None
             if dut.issue.value:
-                if dut.step_first.value and dut.step_dir.value.to_unsigned() != 0:
+                # the granted context's position: its pass-start flag and direction
+                g_first = (int(dut.step_first.value) >> int(dut.gnt.value)) & 1
+                if g_first and dut.g_dir.value.to_unsigned() != 0:
                     pass_log.append([cycle, cycle, 0])
-                if dut.step_dir.value.to_unsigned() != 0 and pass_log:
+                if dut.g_dir.value.to_unsigned() != 0 and pass_log:
                     pass_log[-1][1] = cycle
                     pass_log[-1][2] += 1
+            if PROBE is not None:
+                comp = bin(int(dut.comp_q.value)).count("1")
+                full = bin(int(dut.full_q.value)).count("1")
+                key = ("issue" if int(dut.issue.value) else
+                       "s1_stall" if not int(dut.s1_ready.value) else
+                       "no_ctx" if comp == 0 else
+                       "blocked_nb" if int(dut.step_valid.value) else "ctrl_idle")
+                PROBE[key] = PROBE.get(key, 0) + 1
+                PROBE[f"comp{comp}"] = PROBE.get(f"comp{comp}", 0) + 1
+                PROBE[f"full{full}"] = PROBE.get(f"full{full}", 0) + 1
+                PROBE["stream"] = PROBE.get("stream", 0) + int(dut.streaming_q.value)
+                if not int(dut.streaming_q.value):
+                    sq = int(dut.str_q.value)
+                    k = ("sidle_hol" if full and not (int(dut.full_q.value) >> sq) & 1 else
+                         "sidle_empty" if not full else "sidle_start")
+                    PROBE[k] = PROBE.get(k, 0) + 1
+                if int(dut.pix_valid_o.value) == 0 and int(dut.streaming_q.value):
+                    PROBE["s_gap"] = PROBE.get("s_gap", 0) + 1
             if dut.pix_valid_o.value:
                 pixels += 1
-                if dut.pix_last_o.value and first_done is None:
-                    first_done = cycle - start + 1
+                if dut.pix_last_o.value:
+                    done.append(cycle - start + 1)
             cycle += 1
             await FallingEdge(dut.clk_i)
-        return cycle - start, first_done, traced, pass_log
+        return done, traced, pass_log
+
+    async def clear(dut):
+        dut.clear_i.value = 1
+        await ReadOnly()
+        await FallingEdge(dut.clk_i)
+        dut.clear_i.value = 0
 
     @cocotb.test()
     async def bench(dut):
@@ -107,21 +141,28 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
                                           "req_ready_i": 1, "rsp_valid_i": 0, "rsp_tag_i": 0,
                                           "rsp_rgb_i": 0, "pix_ready_i": 1})
         results = []
-        for thr in ((8, 16), (0, 0)):
+        for thr in THRS:
             for lat in LATENCIES:
-                total, first, traced, passes = await run_point(dut, lat, thr, img)
+                # A lone tile: its latency, and the decision rate inside its passes.
+                lone, _, passes = await run_point(dut, lat, thr, img, 1)
                 dec = sum(p[2] for p in passes)
                 span = sum(p[1] - p[0] + 1 for p in passes)
+                await clear(dut)
+                # A stream of tiles: steady state after the first quarter (the ramp while the
+                # contexts fill is left out), and the whole run.
+                done, traced, _ = await run_point(dut, lat, thr, img)
+                s = TILES // 4
                 results.append({"latency": lat, "thr": list(thr), "tiles": TILES,
-                                "cycles_per_tile": total / TILES, "lone_tile_cycles": first,
+                                "cycles_per_tile": (done[-1] - done[s - 1]) / (TILES - s),
+                                "cycles_per_tile_with_ramp": done[-1] / TILES,
+                                "lone_tile_cycles": lone[0],
                                 "traced_fraction": traced / (256 * TILES),
                                 "decisions_per_clock_in_pass": dec / span if span else None,
                                 "passes": len(passes)})
-                dut.clear_i.value = 1
-                await ReadOnly()
-                await FallingEdge(dut.clk_i)
-                dut.clear_i.value = 0
+                await clear(dut)
         Path(os.environ["MSR_BENCH_OUT"]).write_text(json.dumps(results))
+        if PROBE is not None:
+            print("PROBE", sorted(PROBE.items()))
 
 
 def main() -> int:
@@ -130,7 +171,8 @@ def main() -> int:
     for max_out in OUTSTANDING:
         part = ROOT / "build" / "bench" / f"engine_{max_out}.json"
         part.parent.mkdir(parents=True, exist_ok=True)
-        run_cocotb("tile_engine", "bench_engine", ROOT / "scripts", {"MAX_OUTSTANDING": max_out}, tag="bench",
+        run_cocotb("tile_engine", "bench_engine", ROOT / "scripts",
+                   {"MAX_OUTSTANDING": max_out, "NUM_CTX": NUM_CTX}, tag="bench",
                    extra_env={"MSR_BENCH_SIM": "1", "MSR_BENCH_OUT": part,
                               "PYTHONPATH": os.pathsep.join([str(ROOT / "tb" / "common"),
                                                             str(ROOT / "scripts")])})
@@ -140,12 +182,12 @@ def main() -> int:
     OUT.parent.mkdir(parents=True, exist_ok=True)
     OUT.write_text(json.dumps({"setup": __doc__.split("Set-up per point:")[1].strip(),
                                "results": table}, indent=1))
-    print("| MAX_OUTSTANDING | thr | latency | cycles / 16x16 tile | lone tile | pixels / clock "
+    print("| MAX_OUTSTANDING | thr | latency | cycles / 16x16 tile (steady) | with ramp | lone tile | pixels / clock "
           "| traced | decisions / clock in a pass |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|")
     for r in table:
         print(f"| {r['max_outstanding']} | {','.join(map(str, r['thr']))} | {r['latency']} "
-              f"| {r['cycles_per_tile']:.0f} | {r['lone_tile_cycles']} "
+              f"| {r['cycles_per_tile']:.0f} | {r['cycles_per_tile_with_ramp']:.0f} | {r['lone_tile_cycles']} "
               f"| {256 / r['cycles_per_tile']:.3f} | {r['traced_fraction']:.2f} "
               f"| {r['decisions_per_clock_in_pass']:.3f} |")
     print(f"written {OUT.relative_to(ROOT)}")
