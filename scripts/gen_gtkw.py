@@ -13,17 +13,19 @@ import subprocess
 import sys
 from pathlib import Path
 
-ENGINE_SIGS = ["desc_valid_i", "desc_ready_o", "busy_o", "req_valid_o", "req_ready_i", "req_x_o", "req_y_o",
-               "req_tag_o", "rsp_valid_i", "rsp_tag_i", "inflight_o", "pix_valid_o", "pix_ready_i", "pix_x_o",
-               "pix_y_o", "pix_src_o", "pix_last_o"]
+ENGINE_SIGS = ["desc_valid_i", "desc_ready_o", "alloc", "busy_o", "comp_q", "full_q", "issue", "gnt", "g_dir",
+               "req_valid_o", "req_ready_i", "req_x_o", "req_y_o", "req_tag_o", "rsp_valid_i", "rsp_tag_i",
+               "inflight_o", "streaming_q", "str_q", "pix_valid_o", "pix_ready_i", "pix_x_o", "pix_y_o",
+               "pix_src_o", "pix_last_o"]
 GROUPS = [
     ("Clock and control", "u_top", ["clk_i", "rst_ni", "state_q", "err_q", "tiles_given_q", "tiles_written_q",
                                     "irq_o"]),
     ("Tile generation", "u_top.u_tile_gen", ["state_q", "tx_q", "ty_q", "desc_valid_o", "desc_ready_i"]),
     ("Render port", "u_top", ["rnd_req_valid_o", "rnd_req_ready_i", "rnd_req_x_o", "rnd_req_y_o", "rnd_req_tag_o",
                               "rnd_rsp_valid_i", "rnd_rsp_ready_o", "rnd_rsp_tag_i", "rnd_rsp_rgb_i"]),
-    ("Frame-buffer writer", "u_top.u_fb_writer", ["pix_valid_i", "pix_ready_o", "pix_x_i", "pix_y_i", "pix_src_i",
-                                                  "pix_row_end_o", "pix_last_i", "aw_state_q", "outst_q", "idle_o"]),
+    ("Frame-buffer writer", "u_top.u_fb_writer", ["pix_valid_i", "pix_ready_o", "pix_last_i", "buf_full_q",
+                                                  "gen_valid_q", "gen_in_q", "gen_src_q", "gen_k_q", "outst_q",
+                                                  "idle_o"]),
     ("AXI write", "u_top", ["m_axi_awvalid", "m_axi_awready", "m_axi_awaddr", "m_axi_awlen", "m_axi_wvalid",
                             "m_axi_wready", "m_axi_wdata", "m_axi_wstrb", "m_axi_wlast", "m_axi_bvalid",
                             "m_axi_bresp"]),
