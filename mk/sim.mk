@@ -29,6 +29,9 @@ $(SIM_BIN): $(SIM_RTL) $(SIM_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f mk/sim.
 
 .PHONY: sim-build
 sim-build: setup renderer $(SIM_BIN)
+# tb/msr_sim runs the harness: it is built before pytest starts, not inside a pytest worker
+# next to the cocotb builds (two 2-3 GB compilers at once on a 2-core machine).
+TEST_DEPS += build/sim/fast/Vmsr_sim_top
 
 sim: setup renderer $(SIM_BIN)
 	@$(ENV) python scripts/run_sim.py --harness $(SIM_BIN) --scene "$(SCENE)" --width "$(WIDTH)" \
