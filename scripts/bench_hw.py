@@ -325,8 +325,9 @@ def run(a) -> int:
     bar.close()
 
     engine = load_engine_bench(Path(a.engine_json))
-    goal_pt = next((p for p in main_pts if p["num_engines"] == GOAL_ENGINES and p["render_latency"] == GOAL_LATENCY
-                    and p["max_outstanding"] == 16), None)
+    # The goal is judged on msr_top's defaults (MAX_OUTSTANDING 64), else the most tags swept.
+    goal_cands = [p for p in main_pts if p["num_engines"] == GOAL_ENGINES and p["render_latency"] == GOAL_LATENCY]
+    goal_pt = max(goal_cands, key=lambda p: (p["max_outstanding"] == 64, p["max_outstanding"]), default=None)
     dec = engine["decisions_per_clock_in_pass_latency0_min"] if engine else None
     report = {
         "setup": {"scene": a.scene, "renderer": "Embree over DPI-C (render_dpi.sv), quality fast",
@@ -353,6 +354,7 @@ def run(a) -> int:
             "pixels_per_clock_4_engines_latency_256": {
                 "goal": GOAL_PIXELS, "measured": goal_pt["pixels_per_clock"] if goal_pt else None,
                 "met": (goal_pt["pixels_per_clock"] >= GOAL_PIXELS) if goal_pt else None,
+                "max_outstanding": goal_pt["max_outstanding"] if goal_pt else None,
                 "bottleneck": goal_pt["bottleneck"] if goal_pt else None},
         },
         "analysis": analysis(main_pts),
