@@ -1,0 +1,43 @@
+"""The synthesis report's bookkeeping (no Yosys run): parameters read from the RTL, the
+bottom-up roll-up of the top, memory bits from an RTLIL dump."""
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import synth  # noqa: E402
+
+
+def test_default_params_read_from_the_module_headers():
+    files = synth.read_filelist()
+    top = synth.default_params(files, "msr_top")
+    assert {"NUM_ENGINES", "MAX_OUTSTANDING", "NUM_CTX", "AXI_DATA_W"} <= set(top)
+    eng = synth.default_params(files, "tile_engine")
+    assert {"NUM_CTX", "MAX_OUTSTANDING"} <= set(eng)
+    with pytest.raises(ValueError):
+        synth.default_params(files, "no_such_module")
+
+
+def part(cells, ffs, mem, levels, bb_inst=0, latches=0):
+    return {"cells": cells, "flip_flops": ffs, "latches": latches, "memory_bits": mem, "logic_levels": levels,
+            "blackbox": None, "blackbox_instances": bb_inst, "params": {}, "seconds": 1.0}
+
+
+def test_top_is_glue_plus_n_engines():
+    top = synth.compose(part(1000, 100, 50, 40, bb_inst=4), part(300, 30, 7, 60, latches=0), 4, "inferred")
+    assert (top["cells"], top["flip_flops"], top["memory_bits"], top["logic_levels"]) == (2200, 220, 78, 60)
+    assert synth.compose(part(1, 1, 0, 90, bb_inst=2), part(1, 1, 0, 10, latches=3), 2, "x")["latches"] == 6
+    assert synth.compose(part(1, 1, 0, 90, bb_inst=2), part(1, 1, 0, 10), 2, "x")["logic_levels"] == 90
+
+
+def test_compose_refuses_a_glue_with_the_wrong_number_of_engines():
+    with pytest.raises(RuntimeError, match="expected 4"):
+        synth.compose(part(1000, 100, 0, 40, bb_inst=3), part(300, 30, 0, 60), 4, "inferred")
+
+
+def test_memory_bits_sum_every_memory_cell():
+    rtlil = ("cell $mem_v2 $a\n  parameter \\SIZE 1024\n  parameter \\WIDTH 29\nend\n"
+             "cell $mem_v2 $b\n  parameter \\WIDTH 8\n  parameter \\SIZE 4\nend\n")
+    assert synth.memory_bits(rtlil) == 1024 * 29 + 32
+    assert synth.memory_bits("") == 0
