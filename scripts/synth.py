@@ -39,8 +39,9 @@ ECP5_DEVICE = ("--85k", "CABGA381", "LFE5U-85F-CABGA381")
 ECP5_LUTS = 83_640          # LUT4s of the LFE5U-85F
 ECP5_TARGET_MHZ = 100
 # The default top (4 engines x 8 tile contexts) needs about four times the engine's LUTs,
-# more than the largest ECP5 has; its FPGA build keeps 4 engines with 2 contexts each.
-ECP5_TOP_PARAMS = {"NUM_CTX": 2}
+# more than the largest ECP5 has; with 2 contexts per engine 4 engines fill 92 % of its LUTs
+# (placement alone took over an hour), so the FPGA build of the top has 2 engines x 2 contexts.
+ECP5_TOP_PARAMS = {"NUM_ENGINES": 2, "NUM_CTX": 2}
 
 
 def read_filelist(path: Path = FILELIST) -> list[str]:
