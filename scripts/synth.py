@@ -40,7 +40,7 @@ ECP5_LUTS = 83_640          # LUT4s of the LFE5U-85F
 ECP5_TARGET_MHZ = 100
 # The default top (4 engines x 8 tile contexts) needs about four times the engine's LUTs,
 # more than the largest ECP5 has; with 2 contexts per engine 4 engines fill 92 % of its LUTs
-# (placement alone took over an hour), so the FPGA build of the top has 2 engines x 2 contexts.
+# (nextpnr was still placing after 56 min), so the FPGA build of the top has 2 engines x 2 contexts.
 ECP5_TOP_PARAMS = {"NUM_ENGINES": 2, "NUM_CTX": 2}
 
 
