@@ -243,8 +243,11 @@ latches in all runs: {report['latches_total']}.
 free), a single clock, speed grade 6 (nextpnr's default), one seed, no retiming. Fmax is
 nextpnr's post-route estimate: a planning figure, not a signed-off timing. The engine is
 placed with the top's parameters; the top with its defaults needs about NUM_ENGINES times
-the engine's LUTs, more than the LFE5U-85F's {fmt(ECP5_LUTS)}, so the top is placed with
-{params_text(ECP5_TOP_PARAMS)} (everything else at its default).
+the engine's LUTs, more than the LFE5U-85F's {fmt(ECP5_LUTS)}; with NUM_CTX 2 four engines still
+fill 92 % of its LUTs (nextpnr had not finished placing after 56 min), so the top is placed
+with {params_text(ECP5_TOP_PARAMS)} (everything else at its default). nextpnr's critical
+path report (the end of `build/synth/*_ecp5_pnr.log`) names the path; see docs/handoff.md,
+"Timing expectations", for where it runs and how to cut it.
 
 {chr(10).join(fpga)}
 """)
