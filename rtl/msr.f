@@ -1,13 +1,19 @@
+// The one source-of-truth file list (package first, then primitives, engine, system).
+// Every flow reads it: cocotb, the Verilator harness, make lint, make synth, msr.core.
++incdir+rtl/prim
 rtl/msr_pkg.sv
-rtl/msr_decide.sv
-rtl/msr_interp.sv
-rtl/msr_tile_sram.sv
-rtl/msr_level_ctrl.sv
-rtl/msr_tile_stream.sv
-rtl/tile_engine.sv
+rtl/prim/msr_lzc.sv
+rtl/prim/msr_rr_arb.sv
+rtl/prim/msr_fifo.sv
+rtl/prim/msr_spill_reg.sv
+rtl/prim/msr_tile_sram.sv
+rtl/engine/msr_decide.sv
+rtl/engine/msr_interp.sv
+rtl/engine/msr_level_ctrl.sv
+rtl/engine/msr_tile_stream.sv
+rtl/engine/msr_tile_engine.sv
 rtl/regs/msr_regs_pkg.sv
 rtl/regs/msr_regs.sv
-rtl/sys_fifo.sv
-rtl/tile_gen.sv
-rtl/fb_writer.sv
-rtl/msr_top.sv
+rtl/system/msr_tile_gen.sv
+rtl/system/msr_fb_writer.sv
+rtl/system/msr_top.sv

@@ -171,7 +171,7 @@ def main() -> int:
     for max_out in OUTSTANDING:
         part = ROOT / "build" / "bench" / f"engine_{max_out}.json"
         part.parent.mkdir(parents=True, exist_ok=True)
-        run_cocotb("tile_engine", "bench_engine", ROOT / "scripts",
+        run_cocotb("msr_tile_engine", "bench_engine", ROOT / "scripts",
                    {"MAX_OUTSTANDING": max_out, "NUM_CTX": NUM_CTX}, tag="bench",
                    extra_env={"MSR_BENCH_SIM": "1", "MSR_BENCH_OUT": part,
                               "PYTHONPATH": os.pathsep.join([str(ROOT / "tb" / "common"),

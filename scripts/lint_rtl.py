@@ -57,7 +57,7 @@ VERIBLE_WAIVERS = ROOT / "rtl" / "regs" / "verible.waiver"
 
 
 def verilator(files, top) -> list[str]:
-    rc, out = run(["verilator", "--lint-only", "-Wall", "--top-module", top, str(VERILATOR_WAIVERS),
+    rc, out = run(["verilator", "--lint-only", "-Wall", "-Irtl/prim", "--top-module", top, str(VERILATOR_WAIVERS),
                    *map(str, files)])
     bad = [ln for ln in out.splitlines() if ln.startswith("%")]
     return bad if bad or rc == 0 else [f"verilator exit {rc}"]
@@ -88,7 +88,7 @@ print(d.textDiagClient.getString())
 
 
 def slang(files, top) -> list[str]:
-    args = ["slang", "--top", top, "-Wextra", "-Wno-case-redundant-default", "--error-limit=100",
+    args = ["slang", "--top", top, "-I", "rtl/prim", "-Wextra", "-Wno-case-redundant-default", "--error-limit=100",
             *map(str, files)]
     p = subprocess.run([sys.executable, "-c", SLANG_CHILD, *args], cwd=ROOT, capture_output=True, text=True)
     bad = [ln for ln in (p.stdout + p.stderr).splitlines() if re.search(r"(warning|error):", ln)]

@@ -33,7 +33,7 @@ OUT = ROOT / "build" / "synth"
 DOC = ROOT / "docs" / "synthesis.md"
 
 TOP = "msr_top"
-ENGINE = "tile_engine"
+ENGINE = "msr_tile_engine"
 SRAM_HINT = "sram"          # the tile buffer's behavioural memory: the module whose name has this
 ECP5_DEVICE = ("--85k", "CABGA381", "LFE5U-85F-CABGA381")
 ECP5_LUTS = 83_640          # LUT4s of the LFE5U-85F
@@ -93,7 +93,7 @@ def run_yosys(script: str, tag: str) -> str:
 def read_cmd(files, top, blackbox=None, params=None):
     # the level controller's grid loops unroll past slang's default limit of 4000
     overrides = "".join(f" -G {k}={v}" for k, v in (params or {}).items())
-    return ("slang_defaults -add --threads 1\n" + f"read_slang --unroll-limit=100000 {' '.join(files)} --top {top}"
+    return ("slang_defaults -add --threads 1\n" + f"read_slang --unroll-limit=100000 -I rtl/prim {' '.join(files)} --top {top}"
             + overrides + (f" --blackboxed-module {blackbox}" if blackbox else "") + "\n")
 
 

@@ -32,6 +32,7 @@ def run_cocotb(top: str, test_module: str, test_dir: Path, params: dict, tag: st
     runner.build(
         sources=[str(s) for s in (sources or rtl_files())],
         hdl_toplevel=top,
+        includes=[str(ROOT / "rtl" / "prim")],
         parameters=params,
         build_dir=str(build_dir),
         # Lint is `make lint`; here warnings must not stop a simulation build.

@@ -13,7 +13,7 @@ def test_default_params_read_from_the_module_headers():
     files = synth.read_filelist()
     top = synth.default_params(files, "msr_top")
     assert {"NUM_ENGINES", "MAX_OUTSTANDING", "NUM_CTX", "AXI_DATA_W"} <= set(top)
-    eng = synth.default_params(files, "tile_engine")
+    eng = synth.default_params(files, "msr_tile_engine")
     assert {"NUM_CTX", "MAX_OUTSTANDING"} <= set(eng)
     with pytest.raises(ValueError):
         synth.default_params(files, "no_such_module")

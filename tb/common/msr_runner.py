@@ -38,6 +38,7 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
     runner.build(
         sources=[str(s) for s in rtl_sources()],
         hdl_toplevel=toplevel,
+        includes=[str(ROOT / "rtl" / "prim")],
         parameters=parameters,
         build_dir=str(build_dir),
         build_args=["-Wno-fatal", "--assert", "-O2"],

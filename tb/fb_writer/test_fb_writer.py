@@ -172,7 +172,7 @@ async def test_random_frames(dut):
                                                    (2, 64, 4, 80)])
 def test_fb_writer(n_in, width, max_out, seed):
     from sys_tb import RTL, run_cocotb
-    run_cocotb("fb_writer", "test_fb_writer", HERE,
+    run_cocotb("msr_fb_writer", "test_fb_writer", HERE,
                {"MAX_OUT": max_out, "NUM_IN": n_in, "AXI_DATA_W": width}, f"i{n_in}_w{width}_o{max_out}",
-               sources=[RTL / "msr_pkg.sv", RTL / "sys_fifo.sv", RTL / "fb_writer.sv"],
+               sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_fifo.sv", RTL / "system/msr_fb_writer.sv"],
                extra_env={"SEED": str(seed), "NUM_IN": str(n_in), "AXI_DATA_W": str(width)})

@@ -23,7 +23,7 @@ from msr_tb import next_cycle, pack_rgb, settle, start_clock_and_reset, unpack_r
 
 from msr_model import spec  # noqa: E402
 
-SRC = ROOT / "rtl" / "msr_interp.sv"
+SRC = ROOT / "rtl" / "engine" / "msr_interp.sv"
 
 
 def rtl_reciprocals() -> tuple[int, dict[int, int]]:

@@ -289,7 +289,7 @@ BUILDS = [
 
 @pytest.mark.parametrize("max_out,ctx,counts,seed", BUILDS)
 def test_tile_engine(max_out, ctx, counts, seed):
-    run_cocotb("tile_engine", "test_tile_engine", Path(__file__).parent,
+    run_cocotb("msr_tile_engine", "test_tile_engine", Path(__file__).parent,
                {"MAX_OUTSTANDING": max_out, "NUM_CTX": ctx},
                extra_env={"TILE_COUNTS": counts, "SEED": seed, "MAX_OUTSTANDING": max_out})
 
@@ -306,8 +306,8 @@ def test_bad_parameters_rejected(params):
     srcs = [str(s) for s in rtl_sources() if s.name in
             ("msr_pkg.sv", "msr_decide.sv", "msr_interp.sv", "msr_tile_sram.sv",
              "msr_level_ctrl.sv", "msr_tile_stream.sv", "tile_engine.sv")]
-    cmd = ["verilator", "--lint-only", "--top-module", "tile_engine"]
+    cmd = ["verilator", "--lint-only", "--top-module", "msr_tile_engine"]
     cmd += [f"-G{k}={v}" for k, v in params.items()]
     p = subprocess.run(cmd + srcs, cwd=ROOT, capture_output=True, text=True)
     assert p.returncode != 0, "illegal parameters were accepted"
-    assert "tile_engine: " in p.stdout + p.stderr and "must be" in p.stdout + p.stderr, p.stderr
+    assert "msr_tile_engine: " in p.stdout + p.stderr and "must be" in p.stdout + p.stderr, p.stderr

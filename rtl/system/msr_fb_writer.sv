@@ -16,7 +16,7 @@
 // Width: a 16-pixel row with its codes takes 2 + 1 beats of 256 bits when the frame buffer is
 // 32-byte aligned, so four engines at one pixel per clock each (4 pixels per clock) fit with
 // room (5.3 pixels per clock); 128 bits would cap the writer at 3.2 pixels per clock.
-module fb_writer import msr_pkg::*; #(
+module msr_fb_writer import msr_pkg::*; #(
   parameter int unsigned NUM_IN     = 4,     // pixel streams (engines)
   parameter int unsigned AXI_DATA_W = 256,   // AXI data width: 32, 64, 128 or 256
   parameter int unsigned ID_W       = 4,     // AXI ID width (a single ID is used: in-order B)
@@ -77,13 +77,13 @@ module fb_writer import msr_pkg::*; #(
 
   if (AXI_DATA_W != 32 && AXI_DATA_W != 64 && AXI_DATA_W != 128 && AXI_DATA_W != 256)
   begin : gen_bad_width
-    $fatal(1, "fb_writer: AXI_DATA_W must be 32, 64, 128 or 256, got %0d", AXI_DATA_W);
+    $fatal(1, "msr_fb_writer: AXI_DATA_W must be 32, 64, 128 or 256, got %0d", AXI_DATA_W);
   end
   if (MAX_OUT < 1 || MAX_OUT > 255) begin : gen_bad_out
-    $fatal(1, "fb_writer: MAX_OUT must be 1..255, got %0d", MAX_OUT);
+    $fatal(1, "msr_fb_writer: MAX_OUT must be 1..255, got %0d", MAX_OUT);
   end
   if (NUM_IN < 1 || NUM_IN > 16) begin : gen_bad_in
-    $fatal(1, "fb_writer: NUM_IN must be 1..16, got %0d", NUM_IN);
+    $fatal(1, "msr_fb_writer: NUM_IN must be 1..16, got %0d", NUM_IN);
   end
 
   typedef logic [IN_W-1:0] in_t;
@@ -282,7 +282,7 @@ module fb_writer import msr_pkg::*; #(
   assign wq_push_data = '{in: gen_in_q, bsel: gen_bsel_q, src: gen_src_q, k0: gen_k_q,
                           beats: burst_beats, ow: gen_ow_q, row_last: row_last};
 
-  sys_fifo #(.WIDTH($bits(burst_t)), .DEPTH(4)) u_burst_fifo (
+  msr_fifo #(.WIDTH($bits(burst_t)), .DEPTH(4)) u_burst_fifo (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
     .flush_i (clear_i),
@@ -291,7 +291,8 @@ module fb_writer import msr_pkg::*; #(
     .data_i  (wq_push_data),
     .valid_o (wq_pop_valid),
     .ready_i (wq_pop),
-    .data_o  (wq_pop_data)
+    .data_o  (wq_pop_data),
+      .count_o ()
   );
 
   // ---- W: the beats of each addressed burst, in order ---------------------------------------------

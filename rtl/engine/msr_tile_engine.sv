@@ -24,7 +24,7 @@
 //
 // inflight_o counts tags handed out and not yet answered (a request waiting for
 // req_ready_i counts as in flight).
-module tile_engine
+module msr_tile_engine
   import msr_pkg::*;
 #(
   // Tile contexts. 8 keeps one engine near one pixel per clock with a render latency of 256
@@ -74,15 +74,15 @@ module tile_engine
   // ---- Elaboration-time parameter checks ---------------------------------------------------
   if (MAX_OUTSTANDING < 2 || MAX_OUTSTANDING > 64 ||
       (MAX_OUTSTANDING & (MAX_OUTSTANDING - 1)) != 0) begin : g_check_outstanding
-    $fatal(1, "tile_engine: MAX_OUTSTANDING %0d must be a power of two in 2..64",
+    $fatal(1, "msr_tile_engine: MAX_OUTSTANDING %0d must be a power of two in 2..64",
            MAX_OUTSTANDING);
   end
   if (TAG_W != $clog2(MAX_OUTSTANDING)) begin : g_check_tag_w
-    $fatal(1, "tile_engine: TAG_W %0d must be $clog2(MAX_OUTSTANDING) = %0d", TAG_W,
+    $fatal(1, "msr_tile_engine: TAG_W %0d must be $clog2(MAX_OUTSTANDING) = %0d", TAG_W,
            $clog2(MAX_OUTSTANDING));
   end
   if (NUM_CTX < 2 || NUM_CTX > 16) begin : g_check_ctx
-    $fatal(1, "tile_engine: NUM_CTX %0d must be in 2..16", NUM_CTX);
+    $fatal(1, "msr_tile_engine: NUM_CTX %0d must be in 2..16", NUM_CTX);
   end
 
   function automatic ctx_t ctx_inc(ctx_t c);
@@ -585,39 +585,39 @@ module tile_engine
   // Handshakes (outputs): valid held until ready, data stable.
   a_req_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
       req_valid_o && !req_ready_i |=> req_valid_o && $stable({req_x_o, req_y_o, req_tag_o}))
-    else $error("tile_engine: render request changed while stalled");
+    else $error("msr_tile_engine: render request changed while stalled");
   a_pix_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
       pix_valid_o && !pix_ready_i |=> pix_valid_o &&
         $stable({pix_x_o, pix_y_o, pix_rgb_o, pix_src_o, pix_last_o}))
-    else $error("tile_engine: pixel changed while stalled");
+    else $error("msr_tile_engine: pixel changed while stalled");
   // Handshakes (inputs): the environment holds what it offers.
   a_desc_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
       desc_valid_i && !desc_ready_o |=> desc_valid_i && $stable(desc_i))
-    else $error("tile_engine: descriptor changed while waiting");
+    else $error("msr_tile_engine: descriptor changed while waiting");
   a_rsp_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
       rsp_valid_i && !rsp_ready_o |=> rsp_valid_i && $stable({rsp_tag_i, rsp_rgb_i}))
-    else $error("tile_engine: response changed while waiting");
+    else $error("msr_tile_engine: response changed while waiting");
   // Tags: no response without a request, no tag reused while in flight.
   a_rsp_known : assert property (@(posedge clk_i) disable iff (!rst_ni)
       rsp_valid_i |-> tag_busy_q[rsp_tag_i])
-    else $error("tile_engine: response with tag %0d that is not in flight", rsp_tag_i);
+    else $error("msr_tile_engine: response with tag %0d that is not in flight", rsp_tag_i);
   a_tag_free : assert property (@(posedge clk_i) disable iff (!rst_ni)
       req_valid_o |-> !tag_busy_q[req_tag_o])
-    else $error("tile_engine: tag %0d reused while in flight", req_tag_o);
+    else $error("msr_tile_engine: tag %0d reused while in flight", req_tag_o);
   a_clear_idle : assert property (@(posedge clk_i) disable iff (!rst_ni)
       clear_i |-> inflight_o == '0)
-    else $error("tile_engine: clear_i with %0d requests in flight", inflight_o);
+    else $error("msr_tile_engine: clear_i with %0d requests in flight", inflight_o);
   a_desc_legal : assert property (@(posedge clk_i) disable iff (!rst_ni)
       desc_fire |-> desc_i.w inside {[1 : MAX_TILE]} && desc_i.h inside {[1 : MAX_TILE]} &&
         desc_i.levels inside {[1 : MAX_LEVELS]})
-    else $error("tile_engine: descriptor %0dx%0d L=%0d out of range", desc_i.w, desc_i.h,
+    else $error("msr_tile_engine: descriptor %0dx%0d L=%0d out of range", desc_i.w, desc_i.h,
                 desc_i.levels);
   a_units_lockstep : assert property (@(posedge clk_i) disable iff (!rst_ni)
       unit_ready == unit_ready_i && out_valid == out_valid_i)
-    else $error("tile_engine: decision and interpolation units out of step");
+    else $error("msr_tile_engine: decision and interpolation units out of step");
   a_reads_own : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
       issue |-> comp_q[gnt] && !issued_q[gnt] && !full_q[gnt])
-    else $error("tile_engine: position issued into a context that is not being computed");
+    else $error("msr_tile_engine: position issued into a context that is not being computed");
 
   // Invariant: every pixel of a tile is written exactly once, and only pixels of the tile.
   logic [NUM_CTX-1:0][DEPTH-1:0] written_q;
@@ -645,13 +645,13 @@ module tile_engine
         b_we[c] |-> comp_q[c] && !written_q[c][b_waddr[c]] &&
           32'(b_waddr[c][LCOORD_W-1:0]) < 32'(ctx_w_q[c]) &&
           32'(b_waddr[c][TADDR_W-1:LCOORD_W]) < 32'(ctx_h_q[c]))
-      else $error("tile_engine: pixel (%0d,%0d) of context %0d written twice or outside the tile",
+      else $error("msr_tile_engine: pixel (%0d,%0d) of context %0d written twice or outside the tile",
                   b_waddr[c][LCOORD_W-1:0], b_waddr[c][TADDR_W-1:LCOORD_W], c);
     a_all_written : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
         ctx_done[c] |-> all_written(written_q[c], ctx_w_q[c], ctx_h_q[c]))
-      else $error("tile_engine: tile of context %0d finished with pixels never written", c);
+      else $error("msr_tile_engine: tile of context %0d finished with pixels never written", c);
   end
   /* verilator lint_on SYNCASYNCNET */
 `endif
 
-endmodule : tile_engine
+endmodule : msr_tile_engine

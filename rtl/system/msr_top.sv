@@ -265,7 +265,7 @@ module msr_top import msr_pkg::*; #(
   // ---- Tile generation -------------------------------------------------------------------------
   tile_desc_t desc;
 
-  tile_gen #(.NUM_ENGINES(NUM_ENGINES)) u_tile_gen (
+  msr_tile_gen #(.NUM_ENGINES(NUM_ENGINES)) u_tile_gen (
     .clk_i        (clk_i),
     .rst_ni       (rst_ni),
     .clear_i      (clear || (hwif_out.CTRL.SOFT_RESET.value)),
@@ -299,7 +299,7 @@ module msr_top import msr_pkg::*; #(
   assign rsp_eid = rnd_rsp_tag_i[RTAG_W-1 -: EID_W];
 
   for (genvar i = 0; i < NUM_ENGINES; i++) begin : gen_engine
-    tile_engine #(
+    msr_tile_engine #(
       .NUM_CTX         (NUM_CTX),
       .MAX_OUTSTANDING (MAX_OUTSTANDING)
     ) u_engine (
@@ -365,7 +365,7 @@ module msr_top import msr_pkg::*; #(
   rreq_t [NUM_ENGINES-1:0] rq_data;
 
   for (genvar i = 0; i < NUM_ENGINES; i++) begin : gen_req_queue
-    sys_fifo #(.WIDTH($bits(rreq_t)), .DEPTH(4)) u_req_fifo (
+    msr_fifo #(.WIDTH($bits(rreq_t)), .DEPTH(4)) u_req_fifo (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
       .flush_i (clear),
@@ -374,7 +374,8 @@ module msr_top import msr_pkg::*; #(
       .data_i  ({eng_req_x[i], eng_req_y[i], eng_req_tag[i]}),
       .valid_o (rq_valid[i]),
       .ready_i (rq_pop[i]),
-      .data_o  (rq_data[i])
+      .data_o  (rq_data[i]),
+      .count_o ()
     );
     assign eng_req_ready[i] = rq_push_ready[i] && !drain;
   end
@@ -420,7 +421,7 @@ module msr_top import msr_pkg::*; #(
   assign pix_hs        = wr_pix_valid & wr_pix_ready;
 
   // ---- Frame-buffer writer ----------------------------------------------------------------------
-  fb_writer #(
+  msr_fb_writer #(
     .NUM_IN     (NUM_ENGINES),
     .AXI_DATA_W (AXI_DATA_W),
     .ID_W       (AXI_ID_W)

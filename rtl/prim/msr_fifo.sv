@@ -1,7 +1,10 @@
-// Synchronous FIFO of the system units (fb_writer): first-word fall-through, one push and
-// one pop per cycle, synchronous flush. Storage is a plain array without reset so a
-// hand-off can map it to a register file or SRAM macro.
-module sys_fifo #(
+// Synchronous FIFO with a fill count, in the manner of common_cells' fifo_v3: first-word
+// fall-through, one push and one pop per cycle (a push into a full FIFO waits for ready_o even
+// when a pop happens in the same cycle, so ready_o is a register compare), synchronous flush.
+// Storage is a plain array without reset so a hand-off can map it to a register file or SRAM.
+`include "msr_assert.svh"
+
+module msr_fifo #(
   parameter int unsigned WIDTH = 8,    // bits per entry
   parameter int unsigned DEPTH = 4     // entries, a power of two >= 2
 ) (
@@ -13,12 +16,13 @@ module sys_fifo #(
   input  logic [WIDTH-1:0] data_i,     // pushed entry
   output logic             valid_o,    // not empty
   input  logic             ready_i,    // pop request
-  output logic [WIDTH-1:0] data_o      // oldest entry
+  output logic [WIDTH-1:0] data_o,     // oldest entry
+  output logic [$clog2(DEPTH):0] count_o  // entries held
 );
   localparam int unsigned PTR_W = $clog2(DEPTH);
 
   if (DEPTH < 2 || (1 << PTR_W) != DEPTH) begin : gen_bad_depth
-    $fatal(1, "sys_fifo: DEPTH must be a power of two >= 2, got %0d", DEPTH);
+    $fatal(1, "msr_fifo: DEPTH must be a power of two >= 2, got %0d", DEPTH);
   end
 
   logic [WIDTH-1:0] mem_q [DEPTH];
@@ -31,6 +35,7 @@ module sys_fifo #(
   assign data_o  = mem_q[rptr_q];
   assign push    = valid_i && ready_o;
   assign pop     = valid_o && ready_i;
+  assign count_o = count_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -53,4 +58,8 @@ module sys_fifo #(
     if (push) mem_q[wptr_q] <= data_i;
   end
 
-endmodule
+  /* verilator lint_off SYNCASYNCNET */
+  `MSR_ASSERT(a_count_range, count_q <= DEPTH[PTR_W:0])
+  /* verilator lint_on SYNCASYNCNET */
+
+endmodule : msr_fifo

@@ -5,7 +5,7 @@
 // Timing: one cycle computes a descriptor into a register (the 8x10 multiplier of the
 // foveation term stays off the engines' input paths), the next offers it; a tile costs at
 // least two cycles, far below an engine's time per tile.
-module tile_gen import msr_pkg::*; #(
+module msr_tile_gen import msr_pkg::*; #(
   parameter int unsigned NUM_ENGINES = 4
 ) (
   input  logic                   clk_i,         // clock
@@ -28,7 +28,7 @@ module tile_gen import msr_pkg::*; #(
   output logic                   done_o         // every tile of the frame handed out
 );
   if (NUM_ENGINES < 1 || NUM_ENGINES > 16) begin : gen_bad_engines
-    $fatal(1, "tile_gen: NUM_ENGINES must be 1..16, got %0d", NUM_ENGINES);
+    $fatal(1, "msr_tile_gen: NUM_ENGINES must be 1..16, got %0d", NUM_ENGINES);
   end
 
   typedef enum logic [1:0] {

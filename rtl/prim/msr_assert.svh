@@ -1,0 +1,32 @@
+// Assertion macros of the accelerator, in the manner of OpenTitan's prim_assert.sv: the label,
+// the clock, the reset and the message are written once here, not at every use.
+//
+//   `MSR_ASSERT(name, prop)            concurrent assertion, clocked by clk_i, off in reset
+//   `MSR_ASSERT(name, prop, clk, rst)  the same with another clock / disable condition
+//   `MSR_ASSUME(...)                   the same as an assumption (formal environments)
+//   `MSR_COVER(name, prop)             cover property (coverage and formal non-vacuity)
+//
+// Every macro expands to nothing when SYNTHESIS is defined, so synthesis drops them. A failing
+// assertion prints its label and its property text. Files that use them wrap the block in
+// `/* verilator lint_off SYNCASYNCNET */` (disable iff reads the asynchronous reset).
+`ifndef MSR_ASSERT_SVH
+`define MSR_ASSERT_SVH
+
+`define MSR_ASSERT(__name, __prop, __clk = clk_i, __rst = !rst_ni) \
+`ifndef SYNTHESIS \
+  __name : assert property (@(posedge __clk) disable iff (__rst) (__prop)) \
+    else $error("%m: assertion %s failed: %s", `"__name`", `"__prop`"); \
+`endif
+
+`define MSR_ASSUME(__name, __prop, __clk = clk_i, __rst = !rst_ni) \
+`ifndef SYNTHESIS \
+  __name : assume property (@(posedge __clk) disable iff (__rst) (__prop)) \
+    else $error("%m: assumption %s failed: %s", `"__name`", `"__prop`"); \
+`endif
+
+`define MSR_COVER(__name, __prop, __clk = clk_i, __rst = !rst_ni) \
+`ifndef SYNTHESIS \
+  __name : cover property (@(posedge __clk) disable iff (__rst) (__prop)); \
+`endif
+
+`endif // MSR_ASSERT_SVH

@@ -1,0 +1,85 @@
+// Round-robin arbiter, in the manner of common_cells' rr_arb_tree: a request vector in, a
+// one-hot grant and its index out. The requester after the last one served has priority, so
+// every requester is served within N grants. The pointer moves only when the grant is taken
+// (valid_o && ready_i); with LOCK set, a grant that was offered and not taken is held while
+// its request stays up, so a valid/ready consumer sees stable data.
+//
+// Timing: the "requests above the last winner" mask is a register (a thermometer code), and
+// the lowest set bit of a vector is isolated with x & -x (a carry chain), so the grant is a
+// handful of LUT levels for any N.
+`include "msr_assert.svh"
+
+module msr_rr_arb #(
+  parameter int unsigned N     = 4,                      // requesters, >= 1
+  parameter bit          LOCK  = 1'b0,                   // hold an offered, untaken grant
+  parameter int unsigned IDX_W = (N > 1) ? $clog2(N) : 1
+) (
+  input  logic             clk_i,     // clock
+  input  logic             rst_ni,    // asynchronous reset, active low
+  input  logic             clear_i,   // synchronous: pointer back to requester 0
+  input  logic [N-1:0]     req_i,     // requests
+  output logic [N-1:0]     gnt_o,     // one-hot grant (0 when no request)
+  output logic [IDX_W-1:0] idx_o,     // index of the granted requester
+  output logic             valid_o,   // some request is granted
+  input  logic             ready_i    // the grant is taken this cycle
+);
+
+  if (N < 1) begin : g_check_n
+    $fatal(1, "msr_rr_arb: N must be >= 1, got %0d", N);
+  end
+
+  logic [N-1:0] above_q, above_d;   // requesters strictly after the last winner
+  logic [N-1:0] masked, pick_from, gnt;
+
+  assign masked    = req_i & above_q;
+  assign pick_from = (masked != '0) ? masked : req_i;
+  assign gnt       = pick_from & (~pick_from + 1'b1);     // lowest set bit
+
+  if (LOCK) begin : g_lock
+    logic [N-1:0] locked_q;   // the grant offered last cycle
+    logic         lock_q;     // ... and not taken
+    assign gnt_o = (lock_q && (req_i & locked_q) != '0) ? locked_q : gnt;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        lock_q   <= 1'b0;
+        locked_q <= '0;
+      end else if (clear_i) begin
+        lock_q   <= 1'b0;
+        locked_q <= '0;
+      end else begin
+        lock_q   <= valid_o && !ready_i;
+        locked_q <= gnt_o;
+      end
+    end
+  end else begin : g_no_lock
+    assign gnt_o = gnt;
+  end
+
+  assign valid_o = (req_i != '0);
+  // after a winner w: every requester above w (thermometer ~(w | (w - 1)))
+  assign above_d = ~(gnt_o | (gnt_o - 1'b1));
+
+  always_comb begin
+    idx_o = '0;
+    for (int unsigned i = 0; i < N; i++) begin
+      if (gnt_o[i]) idx_o |= IDX_W'(i);
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      above_q <= '0;
+    end else if (clear_i) begin
+      above_q <= '0;
+    end else if (valid_o && ready_i) begin
+      above_q <= above_d;
+    end
+  end
+
+  /* verilator lint_off SYNCASYNCNET */
+  `MSR_ASSERT(a_gnt_onehot, $onehot0(gnt_o))
+  `MSR_ASSERT(a_gnt_requested, (gnt_o & ~req_i) == '0)
+  `MSR_ASSERT(a_gnt_when_req, (req_i != '0) == (gnt_o != '0))
+  /* verilator lint_on SYNCASYNCNET */
+
+endmodule : msr_rr_arb
