@@ -4,11 +4,22 @@
 //                  rest of G0(w) x G0(h) row-major;
 //   level k, H   : rows y of Gy(k-1) top to bottom, new x of the level left to right;
 //   level k, V   : columns x of Gx(k) left to right, new y of the level top to bottom.
-// Each axis is kept as bit masks G(0..L) (bit i set = position i sampled), computed when the
-// tile is accepted: G0 from the stride, G(k) = G(k-1) plus the midpoints of its gaps >= 2.
-// Neighbours are the nearest set bits of G(k-1) on either side of the new position.
-// A position whose row mask is empty (a hole, only in the initial pass) or an empty pass
-// costs one idle cycle; otherwise a position is offered every clock.
+//
+// No bit masks and no priority encoders over the tile: an axis of extent n with stride
+// S = 2^L splits into a regular part, the multiples of S up to p = (n-1) & ~(S-1), and a
+// border region [p, n-1] of r = (n-1) & (S-1) < 8 pixels. In the regular part G(k) is the
+// multiples of S >> k and the new positions of level k are the odd multiples of n_k / 2 with
+// neighbours m -+ n_k / 2; the border region's positions and gaps depend only on (r, k) and
+// come from small constant tables (border_set, border_gap below, computed at elaboration).
+// So the next position is an add, a compare and an 8-bit lowest-set-bit search.
+//
+// Pipeline: the walk state (which pass, line, position) runs one position ahead of the
+// output register, which holds the position on offer with its neighbours; both are computed
+// from registers only. Each pass starts with one set-up cycle that loads the pass's list
+// parameters; an invalid corner, an empty row of the initial grid and an empty pass cost one
+// idle cycle each. Inside a pass a position is offered every clock.
+`include "msr_assert.svh"
+
 module msr_level_ctrl
   import msr_pkg::*;
 (
@@ -20,7 +31,7 @@ module msr_level_ctrl
   input  ldim_t   w_i,            // tile width 1..MAX_TILE
   input  ldim_t   h_i,            // tile height 1..MAX_TILE
   input  level_t  levels_i,       // L, 1..MAX_LEVELS
-  output logic    step_valid_o,   // one position of one pass
+  output logic    step_valid_o,   // one position of one pass (registered)
   input  logic    step_ready_i,
   output lcoord_t step_x_o,       // the position
   output lcoord_t step_y_o,
@@ -33,334 +44,420 @@ module msr_level_ctrl
   output level_t  step_level_o,   // k (0 in the initial pass)
   output logic [1:0] step_nshift_o, // log2(n_k), n_k = S >> (k-1)
   output dir_e    step_dir_o,
-  output logic    step_first_o,   // first position of a pass (the engine's barrier)
-  output logic    step_reuse_o,   // A is the B of the position before (same row / column)
+  output logic    step_first_o,   // first position of a pass (the engine's pass barrier)
   output logic    busy_o          // a tile is accepted and not all positions are out
 );
 
-  localparam int unsigned N = MAX_TILE;
-  typedef logic [N-1:0] mask_t;
+  // ---- Border-region tables (offsets from p, 0..7) ---------------------------------------
+  typedef logic [7:0] bmask_t;
 
-  typedef enum logic [2:0] {
-    PH_IDLE   = 3'd0,
-    PH_CORNER = 3'd1,
-    PH_GRID   = 3'd2,
-    PH_H      = 3'd3,
-    PH_V      = 3'd4
-  } phase_e;
+  // The helpers below take whole values or structs and use a part of them.
+  /* verilator lint_off UNUSEDSIGNAL */
 
-  // ---- Mask helpers (small priority encoders) -----------------------------------------------
-  function automatic mask_t initial_grid(ldim_t n, level_t levels);
-    mask_t m;
-    for (int unsigned bi = 0; bi < N; bi++) begin
-      m[bi] = (bi < 32'(n)) && (((bi & ((32'd1 << levels) - 1)) == 0) || (bi == 32'(n) - 1));
-    end
-    return m;
-  endfunction
-
-  // Midpoints of every gap >= 2 of g: m = a + floor((b - a) / 2). Gaps are at most 8, so
-  // m - a is 1..4 and only a window of 9 positions matters.
-  function automatic mask_t split(mask_t g);
-    mask_t s;
-    logic  clear_lo, clear_hi;
+  // border_set(r, k): offsets of G(k) inside a border region of r + 1 pixels.
+  function automatic bmask_t border_set(int unsigned r, int unsigned k);
+    bmask_t s, n;
     s = '0;
-    for (int unsigned m = 1; m < N; m++) begin
-      for (int unsigned d = 1; d <= 4; d++) begin
-        if (m >= d && !g[m]) begin
-          // a = m - d must be the nearest sampled position below m ...
-          clear_lo = g[m-d];
-          for (int unsigned j = 1; j < d; j++) clear_lo &= !g[m-j];
-          // ... and b = a + 2d or a + 2d + 1 the nearest above it
-          for (int unsigned e = 0; e <= 1; e++) begin
-            if (m - d + 2 * d + e < N) begin
-              clear_hi = g[m-d+2*d+e];
-              for (int unsigned j = m + 1; j < m - d + 2 * d + e; j++) clear_hi &= !g[j];
-              if (clear_lo && clear_hi) s[m] = 1'b1;
+    s[0] = 1'b1;
+    s[r] = 1'b1;
+    for (int unsigned lv = 1; lv <= k; lv++) begin
+      n = s;
+      for (int unsigned a = 0; a < 8; a++) begin
+        if (s[a]) begin
+          for (int unsigned b = a + 1; b < 8; b++) begin
+            if (s[b]) begin
+              if (b - a >= 2) n[a + (b - a) / 2] = 1'b1;
+              break;
             end
           end
         end
       end
+      s = n;
     end
     return s;
   endfunction
 
-  function automatic lcoord_t first_set(mask_t g);
-    lcoord_t r = '0;
-    for (int bi = N - 1; bi >= 0; bi--) if (g[bi]) r = lcoord_t'(bi);
-    return r;
+  // border_gap(r, k, o): gap b - a of the new position o of level k (0 if o is not new).
+  function automatic gap_t border_gap(int unsigned r, int unsigned k, int unsigned o);
+    bmask_t prev, cur;
+    int unsigned a, b;
+    prev = border_set(r, k - 1);
+    cur  = border_set(r, k);
+    if (!cur[o] || prev[o]) return '0;
+    a = 0;
+    b = 0;
+    for (int unsigned i = 0; i < o; i++) if (prev[i]) a = i;
+    for (int unsigned i = 7; i > o; i--) if (prev[i]) b = i;
+    return gap_t'(b - a);
   endfunction
 
-  // Lowest set bit above p; found = 0 if none.
-  function automatic logic [LCOORD_W:0] next_set(mask_t g, lcoord_t p);
-    logic [LCOORD_W:0] r = '0;
-    for (int bi = N - 1; bi >= 0; bi--) if (g[bi] && bi > int'(p)) r = {1'b1, lcoord_t'(bi)};
-    return r;
+  typedef bmask_t [MAX_LEVELS:0] bset_row_t;
+  typedef gap_t   [7:0]          gap_row_t;
+
+  function automatic bset_row_t bset_row(int unsigned r);
+    bset_row_t t;
+    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_set(r, k);
+    return t;
   endfunction
 
-  // Highest set bit below p (0 if none; the callers only ask where one exists).
-  function automatic lcoord_t prev_set(mask_t g, lcoord_t p);
-    lcoord_t r = '0;
-    for (int bi = 0; bi < N; bi++) if (g[bi] && bi < int'(p)) r = lcoord_t'(bi);
-    return r;
+  function automatic gap_row_t gap_row(int unsigned r, int unsigned k);
+    gap_row_t t;
+    for (int unsigned o = 0; o < 8; o++) t[o] = (k == 0) ? '0 : border_gap(r, k, o);
+    return t;
   endfunction
 
-  // ---- State --------------------------------------------------------------------------------
-  mask_t [MAX_LEVELS:0] gx_q, gy_q, gx_d, gy_d;
-  ldim_t   w_q, h_q;
-  level_t  levels_q;
-  phase_e  phase_q, phase_d;
-  level_t  k_q, k_d;            // level of the H / V pass
-  logic [1:0] corner_q, corner_d;
-  lcoord_t line_q, line_d;      // row y (grid, H) or column x (V)
-  lcoord_t pos_q, pos_d;        // x (grid, H) or y (V)
-  logic    first_q, first_d;
-  lcoord_t last_b_q, last_line_q;
+  localparam bset_row_t BSET [8] = '{bset_row(0), bset_row(1), bset_row(2), bset_row(3),
+                                     bset_row(4), bset_row(5), bset_row(6), bset_row(7)};
+  localparam gap_row_t BGAP [8][MAX_LEVELS+1] = '{
+    '{gap_row(0, 0), gap_row(0, 1), gap_row(0, 2), gap_row(0, 3)},
+    '{gap_row(1, 0), gap_row(1, 1), gap_row(1, 2), gap_row(1, 3)},
+    '{gap_row(2, 0), gap_row(2, 1), gap_row(2, 2), gap_row(2, 3)},
+    '{gap_row(3, 0), gap_row(3, 1), gap_row(3, 2), gap_row(3, 3)},
+    '{gap_row(4, 0), gap_row(4, 1), gap_row(4, 2), gap_row(4, 3)},
+    '{gap_row(5, 0), gap_row(5, 1), gap_row(5, 2), gap_row(5, 3)},
+    '{gap_row(6, 0), gap_row(6, 1), gap_row(6, 2), gap_row(6, 3)},
+    '{gap_row(7, 0), gap_row(7, 1), gap_row(7, 2), gap_row(7, 3)}};
 
-  // ---- Masks of the current pass --------------------------------------------------------------
-  mask_t lineset, newmask, oldmask, linemask;
-  logic  pass_empty;
-  lcoord_t wm1, hm1;
+  // ---- One ordered list of positions on an axis ------------------------------------------
+  // Regular part first .. p in steps of st (from first), then p + o for each set bit o >= 1
+  // of the border mask bm.
+  typedef struct packed {
+    lcoord_t first;   // first regular value (0 for grids, n_k / 2 for new positions)
+    logic    reg_ok;  // first <= p (the regular part is not empty)
+    lcoord_t st;      // regular step
+    lcoord_t p;       // last multiple of S on the axis
+    bmask_t  bm;      // border offsets (bit 0 never set)
+  } list_t;
 
-  always_comb begin
-    wm1 = lcoord_t'(w_q - 1'b1);
-    hm1 = lcoord_t'(h_q - 1'b1);
-    lineset = '0;
-    newmask = '0;
-    oldmask = '0;
-    unique case (phase_q)
-      PH_GRID: begin
-        lineset = gy_q[0];
-        newmask = gx_q[0];
-      end
-      PH_H: begin
-        lineset = gy_q[k_q-1];
-        newmask = gx_q[k_q] & ~gx_q[k_q-1];
-        oldmask = gx_q[k_q-1];
-      end
-      PH_V: begin
-        lineset = gx_q[k_q];
-        newmask = gy_q[k_q] & ~gy_q[k_q-1];
-        oldmask = gy_q[k_q-1];
-      end
-      default: ;
-    endcase
-    pass_empty = (newmask == '0);
-  end
+  typedef struct packed {
+    logic    ok;
+    lcoord_t v;
+  } opt_t;
 
-  // Positions of one line; the corners are left out of the grid phase's edge rows.
-  function automatic mask_t line_mask(phase_e ph, mask_t nm, lcoord_t line, lcoord_t lw,
-                                      lcoord_t lh);
-    mask_t m = nm;
-    if (ph == PH_GRID && (line == '0 || line == lh)) begin
-      m[0]  = 1'b0;
-      m[lw] = 1'b0;
+  // Lowest set bit of a border mask above offset `after` (all bits when `all`).
+  function automatic opt_t border_next(lcoord_t p, bmask_t bm, logic [2:0] after, logic all);
+    bmask_t above;
+    opt_t   r;
+    above = all ? bm : (bm & ~((bmask_t'(2) << after) - 1'b1));
+    r = '{ok: 1'b0, v: '0};
+    for (int i = 7; i >= 1; i--) begin
+      if (above[i]) r = '{ok: 1'b1, v: p + lcoord_t'(i)};
     end
-    return m;
+    return r;
   endfunction
 
-  assign linemask = line_mask(phase_q, newmask, line_q, wm1, hm1);
+  function automatic opt_t list_first(list_t l);
+    return l.reg_ok ? '{ok: 1'b1, v: l.first} : border_next(l.p, l.bm, '0, 1'b1);
+  endfunction
 
-  // ---- The position on offer ---------------------------------------------------------------
-  logic    cur_valid;
-  lcoord_t cur_x, cur_y, cur_a, cur_b;
+  function automatic opt_t list_next(list_t l, lcoord_t v);
+    logic [LCOORD_W:0] nv;
+    nv = {1'b0, v} + {1'b0, l.st};
+    if (v <= l.p && nv <= {1'b0, l.p}) return '{ok: 1'b1, v: lcoord_t'(nv)};
+    if (v <= l.p) return border_next(l.p, l.bm, '0, 1'b1);
+    return border_next(l.p, l.bm, 3'(v - l.p), 1'b0);
+  endfunction
+
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  // ---- Tile registers (set at start) -----------------------------------------------------
+  level_t  levels_q;
+  lcoord_t wm1_q, hm1_q;             // w - 1, h - 1
+  lcoord_t px_q, py_q;               // p of each axis
+  logic [2:0] rx_q, ry_q;            // border length of each axis
+
+  // ---- Walk state: the candidate after the one in the output register ---------------------
+  typedef enum logic [2:0] {
+    WS_IDLE   = 3'd0,
+    WS_CORNER = 3'd1,
+    WS_SETUP  = 3'd2,    // load the pass's lists (one idle cycle)
+    WS_WALK   = 3'd3,
+    WS_DONE   = 3'd4     // every position has left the walk state
+  } wstate_e;
+
+  wstate_e    ws_q, ws_d;
+  dir_e       dir_q, dir_d;          // pass of the walk (DIR_INIT = initial grid)
+  level_t     k_q, k_d;
+  logic [1:0] corner_q, corner_d;
+  lcoord_t    line_q, line_d, pos_q, pos_d;
+  logic       pos_ok_q, pos_ok_d;    // (line, pos) is a real position
+  logic       first_q, first_d;      // no position of this pass has been offered yet
+  list_t      lines_q, lines_d, poss_q, poss_d;
+  gap_row_t   gaps_q, gaps_d;        // border gaps of the pass's new positions
+  opt_t       pfirst_q, pfirst_d;    // first position of a line
+  opt_t       pedge_q, pedge_d;      // first position of an edge row of the initial grid
+
+  // Lists of a pass (set-up cycle).
+  function automatic list_t grid_list(lcoord_t p, lcoord_t st, lcoord_t first, bmask_t bm);
+    list_t l;
+    l.first  = first;
+    l.reg_ok = (first <= p);
+    l.st     = st;
+    l.p      = p;
+    l.bm     = bm & 8'hFE;
+    return l;
+  endfunction
+
+  lcoord_t s_full, nk, nk_half;        // S, n_k, n_k / 2 of the pass being set up
+  list_t   set_lines, set_poss;
+  gap_row_t set_gaps;
+  logic    edge_row;                   // the candidate row is the first or last of the grid
 
   always_comb begin
-    cur_valid = 1'b0;
-    cur_x     = '0;
-    cur_y     = '0;
-    cur_a     = prev_set(oldmask, pos_q);
-    cur_b     = lcoord_t'(next_set(oldmask, pos_q));
-    unique case (phase_q)
-      PH_CORNER: begin
-        cur_x     = corner_q[0] ? wm1 : '0;
-        cur_y     = corner_q[1] ? hm1 : '0;
-        unique case (corner_q)
-          2'd0:    cur_valid = 1'b1;
-          2'd1:    cur_valid = (w_q > 1);
-          2'd2:    cur_valid = (h_q > 1);
-          default: cur_valid = (w_q > 1) && (h_q > 1);
-        endcase
+    s_full  = lcoord_t'(1) << levels_q;
+    nk      = (dir_q == DIR_INIT) ? s_full : (s_full >> (k_q - 1'b1));
+    nk_half = nk >> 1;
+    unique case (dir_q)
+      DIR_H: begin   // rows of Gy(k-1), new x of level k
+        set_lines = grid_list(py_q, nk, '0, BSET[ry_q][k_q - 1'b1]);
+        set_poss  = grid_list(px_q, nk, nk_half, BSET[rx_q][k_q] & ~BSET[rx_q][k_q - 1'b1]);
+        set_gaps  = BGAP[rx_q][k_q];
       end
-      PH_GRID, PH_H: begin
-        cur_x     = pos_q;
-        cur_y     = line_q;
-        cur_valid = linemask[pos_q];
+      DIR_V: begin   // columns of Gx(k), new y of level k
+        set_lines = grid_list(px_q, nk_half, '0, BSET[rx_q][k_q]);
+        set_poss  = grid_list(py_q, nk, nk_half, BSET[ry_q][k_q] & ~BSET[ry_q][k_q - 1'b1]);
+        set_gaps  = BGAP[ry_q][k_q];
       end
-      PH_V: begin
-        cur_x     = line_q;
-        cur_y     = pos_q;
-        cur_valid = linemask[pos_q];
+      default: begin // initial grid: rows of Gy(0), x of Gx(0)
+        set_lines = grid_list(py_q, s_full, '0, BSET[ry_q][0]);
+        set_poss  = grid_list(px_q, s_full, '0, BSET[rx_q][0]);
+        set_gaps  = '0;
       end
-      default: ;
     endcase
   end
 
-  assign step_valid_o  = cur_valid;
-  assign step_x_o      = cur_x;
-  assign step_y_o      = cur_y;
-  assign step_ax_o     = (phase_q == PH_V) ? line_q : cur_a;
-  assign step_ay_o     = (phase_q == PH_V) ? cur_a : line_q;
-  assign step_bx_o     = (phase_q == PH_V) ? line_q : cur_b;
-  assign step_by_o     = (phase_q == PH_V) ? cur_b : line_q;
-  assign step_dir_o    = (phase_q == PH_H) ? DIR_H : (phase_q == PH_V) ? DIR_V : DIR_INIT;
-  assign step_level_o  = (phase_q == PH_H || phase_q == PH_V) ? k_q : '0;
-  assign step_gap_o    = (phase_q == PH_H || phase_q == PH_V) ? gap_t'(cur_b - cur_a) : '0;
-  assign step_off_o    = (phase_q == PH_H || phase_q == PH_V) ? gap_t'(pos_q - cur_a) : '0;
-  assign step_nshift_o = 2'(levels_q - k_q + 1'b1);
-  assign step_first_o  = first_q;
-  assign step_reuse_o  = !first_q && (phase_q == PH_H || phase_q == PH_V) &&
-                         (line_q == last_line_q) && (cur_a == last_b_q);
-  assign start_ready_o = (phase_q == PH_IDLE);
-  assign busy_o        = (phase_q != PH_IDLE);
+  // ---- Walk: next candidate ------------------------------------------------------------------
+  logic advance;                       // the output register takes the candidate
+  opt_t nx, nl, ex;
+  logic out_valid_q;
 
-  // ---- Next position -------------------------------------------------------------------------
-  logic              advance;
-  logic [LCOORD_W:0] nx, nl;
+  assign nx       = list_next(poss_q, pos_q);
+  assign nl       = list_next(lines_q, line_q);
+  assign ex       = list_next(set_poss, '0);     // after x = 0 in an edge row (set-up only)
+  assign edge_row = (dir_q == DIR_INIT) && (line_q == '0 || line_q == hm1_q);
+  assign advance  = !out_valid_q || step_ready_i;
 
-  assign advance = !cur_valid || step_ready_i;
-  assign nx      = next_set(linemask, pos_q);
-  assign nl      = next_set(lineset, line_q);
-
-  // The pass after this one: H(1) after the initial pass, V(k) after H(k), H(k+1) after V(k).
-  phase_e  np_phase;
-  level_t  np_k;
-  logic    np_done;
-  mask_t   np_lineset, np_newmask;
-
+  // The pass after (dir_q, k_q): H(1) after the initial grid, V(k) after H(k), H(k+1) after V(k).
   always_comb begin
-    np_done  = 1'b0;
-    np_phase = PH_H;
-    np_k     = k_q;
-    unique case (phase_q)
-      PH_GRID: np_k = level_t'(1);
-      PH_H:    np_phase = PH_V;
-      default: begin
-        np_k    = k_q + 1'b1;
-        np_done = (k_q == levels_q);
-      end
-    endcase
-    np_lineset = (np_phase == PH_H) ? gy_q[np_k-1] : gx_q[np_k];
-    np_newmask = (np_phase == PH_H) ? (gx_q[np_k] & ~gx_q[np_k-1])
-                                    : (gy_q[np_k] & ~gy_q[np_k-1]);
-  end
-
-  always_comb begin
-    phase_d  = phase_q;
+    ws_d     = ws_q;
+    dir_d    = dir_q;
     k_d      = k_q;
     corner_d = corner_q;
     line_d   = line_q;
     pos_d    = pos_q;
+    pos_ok_d = pos_ok_q;
     first_d  = first_q;
-    gx_d     = gx_q;
-    gy_d     = gy_q;
-    if (cur_valid && step_ready_i) first_d = 1'b0;
-    unique case (phase_q)
-      PH_IDLE: begin
-        if (start_valid_i) begin
-          gx_d[0] = initial_grid(w_i, levels_i);
-          gy_d[0] = initial_grid(h_i, levels_i);
-          for (int unsigned k = 1; k <= MAX_LEVELS; k++) begin
-            gx_d[k] = gx_d[k-1] | split(gx_d[k-1]);
-            gy_d[k] = gy_d[k-1] | split(gy_d[k-1]);
-          end
-          phase_d  = PH_CORNER;
-          corner_d = '0;
-          first_d  = 1'b1;
-        end
-      end
-      PH_CORNER: begin
-        if (advance) begin
+    lines_d  = lines_q;
+    poss_d   = poss_q;
+    gaps_d   = gaps_q;
+    pfirst_d = pfirst_q;
+    pedge_d  = pedge_q;
+    if (advance) begin
+      unique case (ws_q)
+        WS_CORNER: begin
+          first_d = 1'b0;
           if (corner_q == 2'd3) begin
-            phase_d = PH_GRID;
-            line_d  = '0;
-            pos_d   = first_set(line_mask(PH_GRID, gx_q[0], '0, wm1, hm1));
-          end else begin
-            corner_d = corner_q + 1'b1;
+            ws_d  = WS_SETUP;
+            dir_d = DIR_INIT;
           end
+          corner_d = corner_q + 1'b1;
         end
-      end
-      PH_GRID, PH_H, PH_V: begin
-        if (advance) begin
-          if (pass_empty || (!nx[LCOORD_W] && !nl[LCOORD_W])) begin
-            // end of this pass: on to the next one (it may be empty), or done
-            if (np_done) begin
-              phase_d = PH_IDLE;
+        WS_SETUP: begin
+          lines_d  = set_lines;
+          poss_d   = set_poss;
+          gaps_d   = set_gaps;
+          pfirst_d = list_first(set_poss);
+          pedge_d  = '{ok: ex.ok && ex.v != wm1_q, v: ex.v};
+          line_d   = '0;                                 // every line list starts at 0
+          if (dir_q == DIR_INIT) begin                   // row 0 is an edge row
+            pos_d    = ex.v;
+            pos_ok_d = ex.ok && ex.v != wm1_q;
+          end else begin
+            pos_d    = list_first(set_poss).v;
+            pos_ok_d = list_first(set_poss).ok;
+          end
+          first_d = (dir_q != DIR_INIT);
+          ws_d    = WS_WALK;
+        end
+        WS_WALK: begin
+          if (pos_ok_q) first_d = 1'b0;
+          if (pos_ok_q && nx.ok && !(edge_row && nx.v == wm1_q)) begin
+            pos_d = nx.v;                                // next position of the line
+          end else if ((pos_ok_q || dir_q == DIR_INIT) && nl.ok) begin
+            line_d = nl.v;                               // first position of the next line
+            if (dir_q == DIR_INIT && nl.v == hm1_q) begin
+              pos_d    = pedge_q.v;
+              pos_ok_d = pedge_q.ok;
             end else begin
-              phase_d = np_phase;
-              k_d     = np_k;
-              line_d  = first_set(np_lineset);
-              pos_d   = first_set(np_newmask);
-              first_d = 1'b1;
+              pos_d    = pfirst_q.v;
+              pos_ok_d = pfirst_q.ok;
             end
-          end else if (nx[LCOORD_W]) begin
-            pos_d = lcoord_t'(nx);
-          end else begin
-            line_d = lcoord_t'(nl);
-            pos_d  = first_set(line_mask(phase_q, newmask, lcoord_t'(nl), wm1, hm1));
+          end else begin                                 // end of the pass (or an empty pass)
+            pos_ok_d = 1'b0;
+            if (dir_q == DIR_INIT) begin
+              dir_d = DIR_H;
+              k_d   = level_t'(1);
+              ws_d  = WS_SETUP;
+            end else if (dir_q == DIR_H) begin
+              dir_d = DIR_V;
+              ws_d  = WS_SETUP;
+            end else if (k_q == levels_q) begin
+              ws_d  = WS_DONE;
+            end else begin
+              dir_d = DIR_H;
+              k_d   = k_q + 1'b1;
+              ws_d  = WS_SETUP;
+            end
           end
         end
+        WS_DONE: ws_d = WS_IDLE;
+        default: ;
+      endcase
+    end
+    if (ws_q == WS_IDLE && start_valid_i) begin
+      ws_d     = WS_CORNER;
+      dir_d    = DIR_INIT;
+      k_d      = '0;
+      corner_d = '0;
+      first_d  = 1'b1;
+      pos_ok_d = 1'b0;
+    end
+  end
+
+  // ---- Candidate -> output register ------------------------------------------------------
+  logic    cand_valid;
+  lcoord_t cand_x, cand_y, cand_a, cand_b, cand_m;
+  gap_t    cand_gap, cand_off;
+  logic [2:0] cand_o;
+
+  always_comb begin
+    cand_valid = 1'b0;
+    cand_x     = '0;
+    cand_y     = '0;
+    cand_m     = pos_q;
+    cand_o     = 3'(pos_q - poss_q.p);
+    cand_gap   = (pos_q > poss_q.p) ? gaps_q[cand_o] : gap_t'(poss_q.st);
+    cand_off   = cand_gap >> 1;
+    cand_a     = cand_m - lcoord_t'(cand_off);
+    cand_b     = cand_m + lcoord_t'(cand_gap - cand_off);
+    unique case (ws_q)
+      WS_CORNER: begin
+        cand_x = corner_q[0] ? wm1_q : '0;
+        cand_y = corner_q[1] ? hm1_q : '0;
+        unique case (corner_q)
+          2'd0:    cand_valid = 1'b1;
+          2'd1:    cand_valid = (wm1_q != '0);
+          2'd2:    cand_valid = (hm1_q != '0);
+          default: cand_valid = (wm1_q != '0) && (hm1_q != '0);
+        endcase
       end
-      default: phase_d = PH_IDLE;
+      WS_WALK: begin
+        cand_valid = pos_ok_q;
+        cand_x     = (dir_q == DIR_V) ? line_q : pos_q;
+        cand_y     = (dir_q == DIR_V) ? pos_q : line_q;
+      end
+      default: ;
     endcase
   end
 
+  logic       out_first_q;
+  lcoord_t    out_x_q, out_y_q, out_ax_q, out_ay_q, out_bx_q, out_by_q;
+  gap_t       out_gap_q, out_off_q;
+  level_t     out_level_q;
+  logic [1:0] out_nshift_q;
+  dir_e       out_dir_q;
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      phase_q     <= PH_IDLE;
+      ws_q        <= WS_IDLE;
+      dir_q       <= DIR_INIT;
       k_q         <= '0;
       corner_q    <= '0;
       line_q      <= '0;
       pos_q       <= '0;
+      pos_ok_q    <= 1'b0;
       first_q     <= 1'b0;
-      gx_q        <= '0;
-      gy_q        <= '0;
-      w_q         <= '0;
-      h_q         <= '0;
-      levels_q    <= '0;
-      last_b_q    <= '0;
-      last_line_q <= '0;
+      out_valid_q <= 1'b0;
+      out_first_q <= 1'b0;
     end else if (clear_i) begin
-      phase_q     <= PH_IDLE;
-      first_q     <= 1'b0;
+      ws_q        <= WS_IDLE;
+      pos_ok_q    <= 1'b0;
+      out_valid_q <= 1'b0;
+      out_first_q <= 1'b0;
     end else begin
-      phase_q  <= phase_d;
+      ws_q     <= ws_d;
+      dir_q    <= dir_d;
       k_q      <= k_d;
       corner_q <= corner_d;
       line_q   <= line_d;
       pos_q    <= pos_d;
+      pos_ok_q <= pos_ok_d;
       first_q  <= first_d;
-      gx_q     <= gx_d;
-      gy_q     <= gy_d;
-      if (start_valid_i && start_ready_o) begin
-        w_q      <= w_i;
-        h_q      <= h_i;
-        levels_q <= levels_i;
-      end
-      if (cur_valid && step_ready_i) begin
-        last_b_q    <= cur_b;
-        last_line_q <= line_q;
+      if (advance) begin
+        out_valid_q <= cand_valid;
+        out_first_q <= cand_valid && first_q;
       end
     end
   end
 
-`ifndef SYNTHESIS
-  // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
+  // Data registers: gated by the valid bits above, no reset needed.
+  always_ff @(posedge clk_i) begin
+    lines_q  <= lines_d;
+    poss_q   <= poss_d;
+    gaps_q   <= gaps_d;
+    pfirst_q <= pfirst_d;
+    pedge_q  <= pedge_d;
+    if (ws_q == WS_IDLE && start_valid_i) begin
+      levels_q <= levels_i;
+      wm1_q    <= lcoord_t'(w_i - 1'b1);
+      hm1_q    <= lcoord_t'(h_i - 1'b1);
+      px_q     <= lcoord_t'(w_i - 1'b1) & ~((lcoord_t'(1) << levels_i) - 1'b1);
+      py_q     <= lcoord_t'(h_i - 1'b1) & ~((lcoord_t'(1) << levels_i) - 1'b1);
+      rx_q     <= 3'(lcoord_t'(w_i - 1'b1) & ((lcoord_t'(1) << levels_i) - 1'b1));
+      ry_q     <= 3'(lcoord_t'(h_i - 1'b1) & ((lcoord_t'(1) << levels_i) - 1'b1));
+    end
+    if (advance) begin
+      out_x_q      <= cand_x;
+      out_y_q      <= cand_y;
+      out_ax_q     <= (dir_q == DIR_V) ? line_q : cand_a;
+      out_ay_q     <= (dir_q == DIR_V) ? cand_a : line_q;
+      out_bx_q     <= (dir_q == DIR_V) ? line_q : cand_b;
+      out_by_q     <= (dir_q == DIR_V) ? cand_b : line_q;
+      out_gap_q    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_gap : '0;
+      out_off_q    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_off : '0;
+      out_level_q  <= (ws_q == WS_WALK) ? k_q : '0;
+      out_nshift_q <= 2'(levels_q - k_q + 1'b1);
+      out_dir_q    <= (ws_q == WS_WALK) ? dir_q : DIR_INIT;
+    end
+  end
+
+  assign step_valid_o  = out_valid_q;
+  assign step_x_o      = out_x_q;
+  assign step_y_o      = out_y_q;
+  assign step_ax_o     = out_ax_q;
+  assign step_ay_o     = out_ay_q;
+  assign step_bx_o     = out_bx_q;
+  assign step_by_o     = out_by_q;
+  assign step_gap_o    = out_gap_q;
+  assign step_off_o    = out_off_q;
+  assign step_level_o  = out_level_q;
+  assign step_nshift_o = out_nshift_q;
+  assign step_dir_o    = out_dir_q;
+  assign step_first_o  = out_first_q;
+  assign start_ready_o = (ws_q == WS_IDLE);
+  assign busy_o        = (ws_q != WS_IDLE) || out_valid_q;
+
   /* verilator lint_off SYNCASYNCNET */
-  a_start_args : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      start_valid_i && start_ready_o |->
-        w_i inside {[1 : MAX_TILE]} && h_i inside {[1 : MAX_TILE]} &&
-        levels_i inside {[1 : MAX_LEVELS]})
-    else $error("msr_level_ctrl: tile %0dx%0d L=%0d out of range", w_i, h_i, levels_i);
-  a_step_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-      step_valid_o && !step_ready_i |=>
-        step_valid_o && $stable({step_x_o, step_y_o, step_ax_o, step_ay_o, step_bx_o,
-                                 step_by_o, step_gap_o, step_dir_o, step_first_o}))
-    else $error("msr_level_ctrl: step changed while stalled");
-  a_gap : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      step_valid_o && step_dir_o != DIR_INIT |-> step_gap_o inside {[2 : 8]} &&
-        step_off_o == (step_gap_o >> 1))
-    else $error("msr_level_ctrl: gap %0d offset %0d", step_gap_o, step_off_o);
+  `MSR_ASSERT(a_start_args, start_valid_i && start_ready_o |->
+      w_i inside {[1 : MAX_TILE]} && h_i inside {[1 : MAX_TILE]} &&
+      levels_i inside {[1 : MAX_LEVELS]})
+  `MSR_ASSERT(a_step_hold, step_valid_o && !step_ready_i |=> step_valid_o &&
+      $stable({step_x_o, step_y_o, step_ax_o, step_ay_o, step_bx_o, step_by_o, step_gap_o,
+               step_dir_o, step_first_o}), clk_i, !rst_ni || clear_i)
+  `MSR_ASSERT(a_gap, step_valid_o && step_dir_o != DIR_INIT |->
+      step_gap_o inside {[2 : 8]} && step_off_o == (step_gap_o >> 1))
+  `MSR_COVER(c_border_gap3, step_valid_o && step_gap_o == 4'd3)
+  `MSR_COVER(c_level3, step_valid_o && step_level_o == 2'd3)
   /* verilator lint_on SYNCASYNCNET */
-`endif
 
 endmodule : msr_level_ctrl
