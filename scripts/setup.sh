@@ -8,7 +8,7 @@ cd "$root"
 # Debian packages the project uses (build, renderer, models, waves).
 DEB_PKGS=(build-essential cmake pkg-config perl python3-venv
           liblz4-dev zlib1g-dev libembree-dev libassimp-dev
-          glmark2-data assimp-testmodels gtkwave libgtest-dev)
+          glmark2-data assimp-testmodels gtkwave libgtest-dev libstb-dev)
 
 missing=()
 for p in "${DEB_PKGS[@]}"; do

@@ -28,6 +28,14 @@ typedef struct msr_render_ctx msr_render_ctx; /* opaque */
 msr_render_ctx *msr_render_create(const char *scene, int width, int height, int quality,
                                   char *err, size_t errlen);
 
+/* The same, seen from a given view: camera "EX,EY,EZ,TX,TY,TZ,FOV" (eye and target in model
+ * units, i.e. the coordinates of the model file or of the built-in scene; vertical field of
+ * view in degrees, 0 < FOV < 180; up is +y). NULL or "" keeps the scene's own view (the
+ * file's camera, else the automatic framing). A malformed camera is an error like a bad
+ * scene. msr_render_create(s, ...) is msr_render_create_view(s, NULL, ...). */
+msr_render_ctx *msr_render_create_view(const char *scene, const char *camera, int width, int height,
+                                       int quality, char *err, size_t errlen);
+
 /* Colour of pixel (x, y), (0, 0) top left, as 8-bit sRGB. A pixel outside the frame (or a NULL
  * context) gives (0, 0, 0). */
 void msr_render_pixel(msr_render_ctx *ctx, int x, int y, uint8_t rgb[3]);

@@ -85,6 +85,11 @@ std::string isa_config(bool &from_env) {
 extern "C" {
 
 msr_render_ctx *msr_render_create(const char *scene, int width, int height, int quality, char *err, size_t errlen) {
+    return msr_render_create_view(scene, nullptr, width, height, quality, err, errlen);
+}
+
+msr_render_ctx *msr_render_create_view(const char *scene, const char *camera, int width, int height, int quality,
+                                       char *err, size_t errlen) {
     set_err(err, errlen, "");
     if (!scene) { set_err(err, errlen, "scene is NULL"); return nullptr; }
     if (width < 1 || width > kMaxSize || height < 1 || height > kMaxSize) {
@@ -113,8 +118,11 @@ msr_render_ctx *msr_render_create(const char *scene, int width, int height, int 
         }
         rtcSetDeviceErrorFunction(ctx->device, device_error, &derr);
         std::string msg;
+        float view[7];
+        if (camera && *camera && !msr::parse_view(camera, view, msg)) { set_err(err, errlen, msg); return nullptr; }
         std::unique_ptr<msr::Scene> sc = msr::make_scene(scene, msg);
         if (!sc) { set_err(err, errlen, msg); return nullptr; }
+        if (camera && *camera && !msr::set_view(*sc, camera, msg)) { set_err(err, errlen, msg); return nullptr; }
         bool ok = sc->commit(ctx->device, msg);
         rtcSetDeviceErrorFunction(ctx->device, nullptr, nullptr);
         if (!ok || !derr.msg.empty()) {

@@ -7,8 +7,11 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -26,16 +29,16 @@ Vec3 clamp_albedo(Vec3 c) {
     return c;
 }
 
-Material convert_material(const aiMaterial *am) {
+// Material colours and factors (textures are attached by load_model).
+Material convert_material(const aiMaterial *am, bool textured) {
     aiColor4D c;
     Vec3 base{0.75f, 0.75f, 0.75f};
     if (aiGetMaterialColor(am, AI_MATKEY_BASE_COLOR, &c) == AI_SUCCESS ||
         aiGetMaterialColor(am, AI_MATKEY_COLOR_DIFFUSE, &c) == AI_SUCCESS)
         base = {c.r, c.g, c.b};
-    // A textured material often leaves its constant colour black or white: without texture
-    // sampling a light grey reads better than a black hole.
-    bool textured = am->GetTextureCount(aiTextureType_DIFFUSE) > 0 || am->GetTextureCount(aiTextureType_BASE_COLOR) > 0;
-    if (textured && max_component(base) < 0.05f) base = {0.75f, 0.75f, 0.75f};
+    // A textured material often leaves its constant colour black: the map alone then gives
+    // the colour (and a light grey when the map is missing, rather than a black hole).
+    if (textured && max_component(base) < 0.05f) base = {1.f, 1.f, 1.f};
     base = clamp_albedo(base);
 
     ai_real f = 0;
@@ -56,7 +59,54 @@ Material convert_material(const aiMaterial *am) {
         return Material::glass(tint, ior);
     }
     if (metallic >= 0.9f && roughness <= 0.2f) return Material::mirror(base * 0.8f + Vec3{0.15f, 0.15f, 0.15f});
-    return Material::diffuse(base);
+    Material m = Material::diffuse(base);
+    // Specular colour and shininess (Phong and Blinn files: OBJ Ks/Ns, Collada, 3ds, FBX).
+    // A highlight needs an exponent of at least 2; the colour is capped so that diffuse plus
+    // specular stays below 1.
+    float shin = 0.f;
+    if (aiGetMaterialFloat(am, AI_MATKEY_SHININESS, &f) == AI_SUCCESS && std::isfinite(f)) shin = float(f);
+    ai_real sstr = 1;
+    if (aiGetMaterialFloat(am, AI_MATKEY_SHININESS_STRENGTH, &f) == AI_SUCCESS && std::isfinite(f) && f >= 0) sstr = f;
+    if (shin >= 2.f && aiGetMaterialColor(am, AI_MATKEY_COLOR_SPECULAR, &c) == AI_SUCCESS) {
+        Vec3 sp = clamp_albedo(Vec3{c.r, c.g, c.b} * float(sstr));
+        const float cap = minf(0.5f, maxf(0.f, 1.f - max_component(base)));
+        const float peak = max_component(sp);
+        if (peak > 0.01f && cap > 0.f) {
+            m.specular = peak > cap ? sp * (cap / peak) : sp;
+            m.shininess = minf(1024.f, shin);
+        }
+    }
+    return m;
+}
+
+Wrap wrap_of(const aiMaterial *am, aiTextureType type, bool v_axis) {
+    int mode = aiTextureMapMode_Wrap;
+    if (v_axis) aiGetMaterialInteger(am, AI_MATKEY_MAPPINGMODE_V(type, 0), &mode);
+    else aiGetMaterialInteger(am, AI_MATKEY_MAPPINGMODE_U(type, 0), &mode);
+    switch (mode) {
+    case aiTextureMapMode_Clamp:
+    case aiTextureMapMode_Decal: return Wrap::Clamp;
+    case aiTextureMapMode_Mirror: return Wrap::Mirror;
+    default: return Wrap::Repeat;
+    }
+}
+
+std::string percent_decode(const std::string &s) {
+    std::string out;
+    for (size_t i = 0; i < s.size(); ++i) {
+        if (s[i] == '%' && i + 2 < s.size() && std::isxdigit((unsigned char)s[i + 1]) && std::isxdigit((unsigned char)s[i + 2])) {
+            out += char(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += s[i];
+        }
+    }
+    return out;
+}
+
+std::string lower(std::string s) {
+    for (char &ch : s) ch = char(std::tolower((unsigned char)ch));
+    return s;
 }
 
 // Formats whose header declares element counts (OFF, PLY) make assimp 5.2 allocate and loop
@@ -113,7 +163,181 @@ bool plausible_counts(const std::string &path, std::string &err) {
     return true;
 }
 
+// Loads the diffuse map of a material: an embedded aiTexture (compressed or raw texels) or
+// a file next to the model. nullptr (with a warning) when it cannot.
+std::shared_ptr<const Texture> load_texture(const aiScene *sc, const aiMaterial *am, aiTextureType type,
+                                            const std::string &model_path, std::map<std::string, std::shared_ptr<const Texture>> &cache,
+                                            std::vector<std::string> &warnings) {
+    aiString written;
+    if (am->GetTexture(type, 0, &written) != AI_SUCCESS) return nullptr;
+    const std::string name = written.C_Str();
+    const Wrap wu = wrap_of(am, type, false), wv = wrap_of(am, type, true);
+    std::vector<uint8_t> rgba;
+    int w = 0, h = 0;
+    std::string why, key;
+    const aiTexture *emb = name.empty() ? nullptr : sc->GetEmbeddedTexture(name.c_str());
+    if (emb) {
+        key = "embedded:" + name;
+    } else {
+        std::string dir = std::filesystem::path(model_path).parent_path().string();
+        key = find_texture_file(dir.empty() ? "." : dir, name);
+        if (key.empty()) {
+            warnings.push_back("texture '" + name + "' of " + model_path + " not found; using the material colour");
+            return nullptr;
+        }
+    }
+    const std::string ckey = key + "|" + std::to_string(int(wu)) + std::to_string(int(wv));
+    auto it = cache.find(ckey);
+    if (it != cache.end()) return it->second;
+    bool ok;
+    if (emb && emb->mHeight == 0) {
+        ok = decode_image(reinterpret_cast<const uint8_t *>(emb->pcData), emb->mWidth, rgba, w, h, why);
+    } else if (emb) {  // raw BGRA texels, row 0 at the top
+        w = int(emb->mWidth);
+        h = int(emb->mHeight);
+        rgba.resize(size_t(w) * size_t(h) * 4);
+        for (size_t i = 0; i < size_t(w) * size_t(h); ++i) {
+            const aiTexel &t = emb->pcData[i];
+            rgba[4 * i] = t.r; rgba[4 * i + 1] = t.g; rgba[4 * i + 2] = t.b; rgba[4 * i + 3] = t.a;
+        }
+        ok = w > 0 && h > 0;
+        if (!ok) why = "empty texture";
+    } else {
+        ok = decode_image_file(key, rgba, w, h, why);
+    }
+    if (ok && (w < 1 || h < 1 || w > 16384 || h > 16384)) { ok = false; why = "size " + std::to_string(w) + "x" + std::to_string(h); }
+    if (!ok) {
+        warnings.push_back("texture '" + name + "' of " + model_path + " cannot be decoded (" + why +
+                           "); using the material colour");
+        cache[ckey] = nullptr;
+        return nullptr;
+    }
+    auto tex = std::make_shared<const Texture>(w, h, 4, rgba.data(), wu, wv);
+    cache[ckey] = tex;
+    return tex;
+}
+
+Vec3 v3(const aiVector3D &v) { return {v.x, v.y, v.z}; }
+
+// Absolute transformation of the node called `name` (identity when there is none).
+aiMatrix4x4 node_transform(const aiScene *sc, const aiString &name) {
+    aiMatrix4x4 m;
+    const aiNode *n = sc->mRootNode ? sc->mRootNode->FindNode(name) : nullptr;
+    for (; n; n = n->mParent) m = n->mTransformation * m;
+    return m;
+}
+Vec3 xform_point(const aiMatrix4x4 &m, const aiVector3D &p) { return v3(m * p); }
+Vec3 xform_dir(const aiMatrix4x4 &m, const aiVector3D &d) { return v3(aiMatrix3x3(m) * d); }
+
+// The first perspective camera, in model units, placed by its node (read before the node
+// hierarchy is flattened). assimp 5.2 gives mHorizontalFOV as the full horizontal angle in
+// radians and mAspect = width / height, except for glTF: there mHorizontalFOV is
+// yfov * aspect and mPosition repeats the node's translation (a glTF camera sits at its
+// node's origin by definition).
+bool convert_camera(const aiScene *sc, bool gltf, Camera &cam) {
+    for (unsigned i = 0; i < sc->mNumCameras; ++i) {
+        const aiCamera *c = sc->mCameras[i];
+        const aiMatrix4x4 t = node_transform(sc, c->mName);
+        Vec3 pos = xform_point(t, gltf ? aiVector3D(0, 0, 0) : c->mPosition), look = normalize(xform_dir(t, c->mLookAt)),
+             up = normalize(xform_dir(t, c->mUp));
+        float hfov = float(c->mHorizontalFOV);
+        if (!(hfov > 1e-3f && hfov < 3.1f) || !finite(pos) || !(dot(look, look) > 0.5f)) continue;  // orthographic or broken
+        double s, co;
+        float aspect = c->mAspect > 0.01f && c->mAspect < 100.f ? c->mAspect : 1.f;
+        if (gltf) {
+            det_sincos(0.5 * double(hfov / aspect), s, co);
+            cam.tan_half = float(s / co);
+        } else {
+            det_sincos(0.5 * double(hfov), s, co);
+            cam.tan_half = float(s / co) / aspect;
+        }
+        cam.eye = pos;
+        cam.target = pos + look;
+        cam.up = dot(up, up) > 0.5f ? up : Vec3{0.f, 1.f, 0.f};
+        cam.vertical = true;
+        return true;
+    }
+    return false;
+}
+
+// Point and spot lights, in model units (directional, ambient and area lights are left out).
+std::vector<PointLight> convert_lights(const aiScene *sc, bool gltf) {
+    std::vector<PointLight> out;
+    for (unsigned i = 0; i < sc->mNumLights; ++i) {
+        const aiLight *l = sc->mLights[i];
+        if (l->mType != aiLightSource_POINT && l->mType != aiLightSource_SPOT) continue;
+        PointLight p;
+        const aiMatrix4x4 t = node_transform(sc, l->mName);
+        p.pos = xform_point(t, gltf ? aiVector3D(0, 0, 0) : l->mPosition);
+        p.intensity = {l->mColorDiffuse.r, l->mColorDiffuse.g, l->mColorDiffuse.b};
+        if (!finite(p.pos) || !finite(p.intensity) || !(max_component(p.intensity) > 0.f)) continue;
+        for (int k = 0; k < 3; ++k) p.intensity[k] = maxf(0.f, p.intensity[k]);
+        if (l->mType == aiLightSource_SPOT) {
+            Vec3 d = normalize(xform_dir(t, l->mDirection));
+            float outer = float(l->mAngleOuterCone), inner = float(l->mAngleInnerCone);
+            if (dot(d, d) > 0.5f && outer > 0.f && outer < 3.14f) {
+                // assimp's cone angles are full angles (Collada falloff, glTF outerConeAngle x 2).
+                double s, ci, co;
+                det_sincos(0.5 * double(outer), s, co);
+                det_sincos(0.5 * double(minf(inner, outer)), s, ci);
+                p.dir = d;
+                p.cos_outer = float(co);
+                p.cos_inner = float(ci);
+            }
+        }
+        out.push_back(p);
+    }
+    return out;
+}
+
 }  // namespace
+
+std::string find_texture_file(const std::string &model_dir, const std::string &written) {
+    namespace fs = std::filesystem;
+    std::string p = written;
+    if (p.rfind("file://", 0) == 0) p = p.substr(7);
+    for (char &ch : p)
+        if (ch == '\\') ch = '/';
+    std::error_code ec;
+    auto regular = [&](const fs::path &q) { return fs::is_regular_file(q, ec); };
+    std::vector<std::string> tries{p};
+    std::string dec = percent_decode(p);
+    if (dec != p) tries.push_back(dec);
+    for (const std::string &t : tries) {
+        fs::path q(t);
+        if (q.is_absolute() && regular(q)) return q.string();
+        if (!q.is_absolute() && regular(fs::path(model_dir) / q)) return (fs::path(model_dir) / q).lexically_normal().string();
+    }
+    // Component by component, ignoring case (files written on Windows).
+    auto match_in = [&](const fs::path &dir, const std::string &name) -> fs::path {
+        if (name == "." || name == "..") return dir / name;
+        if (fs::exists(dir / name, ec)) return dir / name;
+        const std::string want = lower(name);
+        for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+            if (lower(it->path().filename().string()) == want) return it->path();
+        return {};
+    };
+    for (const std::string &t : tries) {
+        fs::path q(t);
+        fs::path cur = q.is_absolute() ? fs::path("/") : fs::path(model_dir);
+        bool ok = true;
+        for (const fs::path &part : q.relative_path()) {
+            if (part.empty()) continue;
+            fs::path next = match_in(cur, part.string());
+            if (next.empty()) { ok = false; break; }
+            cur = next;
+        }
+        if (ok && regular(cur)) return cur.lexically_normal().string();
+    }
+    // The bare file name next to the model (absolute paths from another machine).
+    for (const std::string &t : tries) {
+        std::string base = fs::path(t).filename().string();
+        if (base.empty()) continue;
+        fs::path q = match_in(fs::path(model_dir), base);
+        if (!q.empty() && regular(q)) return q.lexically_normal().string();
+    }
+    return "";
+}
 
 bool load_model(const std::string &path, Model &out, std::string &err) {
     namespace fs = std::filesystem;
@@ -131,7 +355,19 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
     const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
                            aiProcess_FindDegenerates | aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices |
                            aiProcess_ValidateDataStructure;
-    const aiScene *sc = imp.ReadFile(path, flags);
+    // Parsed first without post-processing, so that cameras and lights are read with their
+    // nodes' transformations; then the same steps ReadFile(path, flags) would run.
+    Camera file_camera;
+    bool has_camera = false;
+    std::vector<PointLight> file_lights;
+    const aiScene *sc = imp.ReadFile(path, 0);
+    if (sc) {
+        std::string ext = lower(std::filesystem::path(path).extension().string());
+        const bool gltf = ext == ".gltf" || ext == ".glb";
+        has_camera = convert_camera(sc, gltf, file_camera);
+        file_lights = convert_lights(sc, gltf);
+        sc = imp.ApplyPostProcessing(flags);
+    }
     if (!sc) {
         std::string why = imp.GetErrorString();
         for (char &ch : why)
@@ -147,8 +383,40 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
     }
 
     out = Model{};
-    for (unsigned i = 0; i < sc->mNumMaterials; ++i) out.materials.push_back(convert_material(sc->mMaterials[i]));
-    if (out.materials.empty()) out.materials.push_back(Material::diffuse({0.75f, 0.75f, 0.75f}));
+    std::map<std::string, std::shared_ptr<const Texture>> cache;
+    std::vector<unsigned> uv_channel;  // per material: the diffuse map's UV set
+    for (unsigned i = 0; i < sc->mNumMaterials; ++i) {
+        const aiMaterial *am = sc->mMaterials[i];
+        // glTF's base colour map comes as both BASE_COLOR and DIFFUSE; the first one found wins.
+        aiTextureType type = am->GetTextureCount(aiTextureType_BASE_COLOR) > 0 ? aiTextureType_BASE_COLOR
+                             : aiTextureType_DIFFUSE;
+        const bool textured = am->GetTextureCount(type) > 0;
+        std::shared_ptr<const Texture> tex;
+        unsigned uvi = 0;
+        if (textured) {
+            tex = load_texture(sc, am, type, path, cache, out.warnings);
+            aiGetMaterialInteger(am, AI_MATKEY_UVWSRC(type, 0), reinterpret_cast<int *>(&uvi));
+        }
+        Material m = convert_material(am, textured);
+        if (textured && !tex && max_component(m.albedo) >= 0.9f && m.type == MatType::Diffuse)
+            m.albedo = {0.75f, 0.75f, 0.75f};  // no map and no colour: light grey, as before textures
+        if (tex && m.type == MatType::Diffuse) {
+            size_t k = 0;
+            while (k < out.textures.size() && out.textures[k] != tex) ++k;
+            if (k == out.textures.size()) out.textures.push_back(tex);
+            m.texture = int(k);
+        }
+        out.materials.push_back(m);
+        uv_channel.push_back(uvi < AI_MAX_NUMBER_OF_TEXTURECOORDS ? uvi : 0);
+    }
+    if (out.materials.empty()) {
+        out.materials.push_back(Material::diffuse({0.75f, 0.75f, 0.75f}));
+        uv_channel.push_back(0);
+    }
+    for (const std::string &w : out.warnings) std::fprintf(stderr, "msr_render: warning: %s\n", w.c_str());
+    out.has_camera = has_camera;
+    out.camera = file_camera;
+    out.lights = file_lights;
 
     for (unsigned mi = 0; mi < sc->mNumMeshes; ++mi) {
         const aiMesh *am = sc->mMeshes[mi];
@@ -160,6 +428,17 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
         if (am->mNormals) {
             m.nrm.resize(am->mNumVertices);
             for (unsigned v = 0; v < am->mNumVertices; ++v) m.nrm[v] = {am->mNormals[v].x, am->mNormals[v].y, am->mNormals[v].z};
+        }
+        const Material &mat = out.materials[size_t(m.material)];
+        const unsigned ch = uv_channel[size_t(m.material)];
+        const unsigned set = am->mTextureCoords[ch] ? ch : 0;
+        if (mat.texture >= 0 && am->mTextureCoords[set]) {
+            m.uv.resize(2 * size_t(am->mNumVertices));
+            for (unsigned v = 0; v < am->mNumVertices; ++v) {
+                float u = am->mTextureCoords[set][v].x, t = am->mTextureCoords[set][v].y;
+                m.uv[2 * v] = std::isfinite(u) ? u : 0.f;
+                m.uv[2 * v + 1] = std::isfinite(t) ? t : 0.f;
+            }
         }
         if (am->mColors[0]) {
             m.col.resize(am->mNumVertices);
@@ -188,15 +467,25 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
 void add_model(Scene &scene, const Model &model, Vec3 pivot, float scale, float yaw_deg, Vec3 offset) {
     double sd, cd;
     det_sincos_deg(yaw_deg, sd, cd);
-    const float cs = float(cd), sn = float(sd);
-    auto rot = [&](Vec3 v) { return Vec3{cs * v.x + sn * v.z, v.y, -sn * v.x + cs * v.z}; };
+    Placement pl;
+    pl.pivot = pivot;
+    pl.offset = offset;
+    pl.scale = scale;
+    pl.cos_yaw = float(cd);
+    pl.sin_yaw = float(sd);
+    scene.model_placement = pl;
+    const int tex_base = int(scene.textures.size());
+    for (const auto &t : model.textures) scene.textures.push_back(t);
     std::vector<int> mat_map;
-    for (const Material &m : model.materials) mat_map.push_back(scene.add_material(m));
+    for (Material m : model.materials) {
+        if (m.texture >= 0) m.texture += tex_base;
+        mat_map.push_back(scene.add_material(m));
+    }
     for (const Mesh &src : model.meshes) {
         Mesh m = src;
         m.material = mat_map[size_t(src.material)];
-        for (Vec3 &p : m.pos) p = rot(p - pivot) * scale + offset;
-        for (Vec3 &n : m.nrm) n = rot(n);
+        for (Vec3 &p : m.pos) p = pl.point(p);
+        for (Vec3 &n : m.nrm) n = pl.rotate(n);
         scene.add_mesh(std::move(m));
     }
 }

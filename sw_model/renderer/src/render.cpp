@@ -61,6 +61,23 @@ float polygon_irradiance(Vec3 p, Vec3 n, const AreaLight &l) {
     return 0.5f * std::fabs(sum);
 }
 
+float ipow(float x, int n) {
+    float r = 1.f;
+    while (n > 0) {
+        if (n & 1) r *= x;
+        x *= x;
+        n >>= 1;
+    }
+    return r;
+}
+
+float spot_falloff(const PointLight &l, float c) {
+    if (l.cos_inner <= l.cos_outer) return c >= l.cos_outer ? 1.f : 0.f;
+    float t = (c - l.cos_outer) / (l.cos_inner - l.cos_outer);
+    t = minf(1.f, maxf(0.f, t));
+    return t * t * (3.f - 2.f * t);
+}
+
 namespace {
 
 // Search of the exact thresholds, used to build the bucket table below.
@@ -112,7 +129,12 @@ Renderer::Renderer(std::unique_ptr<Scene> scene, int width, int height, Quality 
     fwd_ = normalize(c.target - c.eye);
     right_ = normalize(cross(fwd_, c.up));
     up_ = cross(right_, fwd_);
-    scale_ = c.tan_half / (0.5f * float(std::min(width, height)));
+    if (!(dot(right_, right_) > 0.5f)) {  // looking along up: take the world axis least aligned
+        Vec3 a = std::fabs(fwd_.z) < 0.9f ? Vec3{0.f, 0.f, 1.f} : Vec3{1.f, 0.f, 0.f};
+        right_ = normalize(cross(fwd_, a));
+        up_ = cross(right_, fwd_);
+    }
+    scale_ = c.tan_half / (0.5f * float(c.vertical ? height : std::min(width, height)));
 }
 
 void Renderer::primary_ray(float fx, float fy, Vec3 &org, Vec3 &dir) const {
@@ -145,19 +167,40 @@ float Renderer::shadow(Vec3 org, Vec3 dir, float dist, Vec3 &tint, const Sample 
     return 1.f;
 }
 
-Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const Sample &s) const {
+Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 view, Vec3 nf, Vec3 ngf, Vec3 albedo, const Material &m,
+                             const Sample &s) const {
     const Scene &sc = *scene_;
     const Vec3 o = h.p + ngf * sc.eps;
     Vec3 irr{0.f, 0.f, 0.f};
     Vec3 tint;
+    // Blinn-Phong highlight (energy-normalised lobe), from point lights and the area lights'
+    // centres, weighted by the irradiance each one gives.
+    const bool glossy = max_component(m.specular) > 0.f && m.shininess >= 1.f;
+    const int shin = glossy ? int(minf(1024.f, m.shininess) + 0.5f) : 0;
+    const float spec_norm = (float(shin) + 8.f) / (8.f * kPi);
+    Vec3 spec{0.f, 0.f, 0.f};
+    auto highlight = [&](Vec3 l, Vec3 e) {
+        Vec3 hv = normalize(l - view);
+        float c = dot(nf, hv);
+        if (c > 0.f) spec += e * (spec_norm * ipow(c, shin));
+    };
     for (const PointLight &l : sc.point_lights) {
         Vec3 d = l.pos - h.p;
         float d2 = dot(d, d), dist = std::sqrt(d2);
         Vec3 dir = d / dist;
         float c = dot(nf, dir);
         if (c <= 0.f || dot(ngf, dir) <= 0.f) continue;
+        float spot = 1.f;
+        if (l.dir.x != 0.f || l.dir.y != 0.f || l.dir.z != 0.f) {
+            spot = spot_falloff(l, -dot(dir, l.dir));
+            if (spot <= 0.f) continue;
+        }
         float v = shadow(o, dir, dist, tint, s);
-        if (v > 0.f) irr += l.intensity * tint * (v * c / d2);
+        if (v > 0.f) {
+            Vec3 e = l.intensity * tint * (spot * v * c / d2);
+            irr += e;
+            if (glossy) highlight(dir, e);
+        }
     }
     for (const AreaLight &l : sc.area_lights) {
         float f = polygon_irradiance(h.p, nf, l);
@@ -203,7 +246,9 @@ Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const
             probe((float(st % g) + s.rnd(R_LIGHT_U, 0)) / float(g), (float(st / g) + s.rnd(R_LIGHT_V, 0)) / float(g));
         }
         if (n == 0) vis = {1.f, 1.f, 1.f}, n = 1;  // a sliver above the horizon missed by every probe
-        irr += l.radiance * vis * (f / float(n));
+        Vec3 e = l.radiance * vis * (f / float(n));
+        irr += e;
+        if (glossy) highlight(normalize(l.corner + (l.e1 + l.e2) * 0.5f - h.p), e);
     }
     Vec3 amb = sc.ambient;
     if (quality_ == Quality::Heavy && sc.ao_radius > 0.f) {
@@ -222,10 +267,12 @@ Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const
             if (sc.occluded(o, dir, 0.f, sc.ao_radius, MASK_ALL)) amb = {0.f, 0.f, 0.f};
         }
     }
-    return albedo * (irr * (1.f / kPi) + amb);
+    Vec3 c = albedo * (irr * (1.f / kPi) + amb);
+    if (glossy) c += m.specular * spec;
+    return c;
 }
 
-Vec3 Renderer::trace(Vec3 org, Vec3 dir, int depth, float weight, const Sample &s) const {
+Vec3 Renderer::trace(Vec3 org, Vec3 dir, int depth, float weight, float path, const Sample &s) const {
     const Scene &sc = *scene_;
     ++s.rays;
     Hit h = sc.intersect(org, dir, 0.f, kInf, MASK_ALL);
@@ -243,14 +290,21 @@ Vec3 Renderer::trace(Vec3 org, Vec3 dir, int depth, float weight, const Sample &
             long cx = long(std::floor(h.p.x / m.checker)), cz = long(std::floor(h.p.z / m.checker));
             if ((cx + cz) & 1) a = m.albedo2;
         }
-        return shade_diffuse(h, nf, ngf, a * h.color, s);
+        if (m.texture >= 0 && h.has_uv) {
+            // Footprint: a pixel's width at the ray's path length, widened by the surface's
+            // slant (the square root of 1 / cos: the footprint's area grows with 1 / cos).
+            float cosv = maxf(1e-3f, std::fabs(dot(dir, ngf)));
+            float texels = (path + h.t) * scale_ * h.texel_density / std::sqrt(cosv);
+            a = a * sc.textures[size_t(m.texture)]->sample(h.tu, h.tv, texels);
+        }
+        return shade_diffuse(h, dir, nf, ngf, a * h.color, m, s);
     }
     case MatType::Mirror: {
         float w = weight * max_component(m.albedo);
         if (depth >= kMaxDepth || w < kMinWeight) return sc.ambient * m.albedo;
         Vec3 r = reflect(dir, nf);
         if (dot(r, ngf) <= 0.f) r = reflect(dir, ngf);
-        return m.albedo * h.color * trace(h.p + ngf * sc.eps, r, depth + 1, w, s);
+        return m.albedo * h.color * trace(h.p + ngf * sc.eps, r, depth + 1, w, path + h.t, s);
     }
     case MatType::Glass: {
         if (depth >= kMaxDepth) return sc.ambient * m.albedo;
@@ -260,17 +314,17 @@ Vec3 Renderer::trace(Vec3 org, Vec3 dir, int depth, float weight, const Sample &
         Vec3 r = reflect(dir, nf);
         if (dot(r, ngf) <= 0.f) r = reflect(dir, ngf);
         if (sin2t >= 1.f)  // total internal reflection
-            return trace(h.p + ngf * sc.eps, r, depth + 1, weight, s);
+            return trace(h.p + ngf * sc.eps, r, depth + 1, weight, path + h.t, s);
         const float cost = std::sqrt(1.f - sin2t);
         const float rs = (eta * cosi - cost) / (eta * cosi + cost);
         const float rp = (cosi - eta * cost) / (cosi + eta * cost);
         const float F = 0.5f * (rs * rs + rp * rp);  // exact dielectric Fresnel, unpolarised
         Vec3 c{0.f, 0.f, 0.f};
-        if (weight * F >= kMinWeight) c += trace(h.p + ngf * sc.eps, r, depth + 1, weight * F, s) * F;
+        if (weight * F >= kMinWeight) c += trace(h.p + ngf * sc.eps, r, depth + 1, weight * F, path + h.t, s) * F;
         const float wt = weight * (1.f - F) * max_component(m.albedo);
         if (wt >= kMinWeight) {
             Vec3 t = normalize(dir * eta + nf * (eta * cosi - cost));
-            c += m.albedo * trace(h.p - ngf * sc.eps, t, depth + 1, wt, s) * (1.f - F);
+            c += m.albedo * trace(h.p - ngf * sc.eps, t, depth + 1, wt, path + h.t, s) * (1.f - F);
         }
         return c;
     }
@@ -291,7 +345,7 @@ Vec3 Renderer::radiance(int x, int y, uint64_t *rays) const {
         }
         Vec3 org, dir;
         primary_ray(fx, fy, org, dir);
-        sum += trace(org, dir, 0, 1.f, s);
+        sum += trace(org, dir, 0, 1.f, 0.f, s);
     }
     if (rays) *rays += s.rays;
     return sum * (1.f / float(spp_));

@@ -46,8 +46,10 @@ public:
 
 private:
     struct Sample;
-    Vec3 trace(Vec3 org, Vec3 dir, int depth, float weight, const Sample &s) const;
-    Vec3 shade_diffuse(const Hit &h, Vec3 nf, Vec3 ngf, Vec3 albedo, const Sample &s) const;
+    // path: distance from the eye to org along the ray path (texture footprint).
+    Vec3 trace(Vec3 org, Vec3 dir, int depth, float weight, float path, const Sample &s) const;
+    Vec3 shade_diffuse(const Hit &h, Vec3 dir, Vec3 nf, Vec3 ngf, Vec3 albedo, const Material &m,
+                       const Sample &s) const;
     float shadow(Vec3 org, Vec3 dir, float dist, Vec3 &tint, const Sample &s) const;
     Vec3 sky(Vec3 dir) const;
 
@@ -56,7 +58,13 @@ private:
     Quality quality_;
     int spp_;
     Vec3 eye_, fwd_, right_, up_;
-    float scale_;  // tan(fov/2) / (shorter side / 2)
+    float scale_;  // tan(fov/2) / (shorter side / 2): a pixel's width at unit distance
 };
+
+// x^n for an integer n >= 0 by repeated squaring (no libm pow).
+float ipow(float x, int n);
+
+// Smoothstep falloff of a spot light for the cosine c of the angle to its axis.
+float spot_falloff(const PointLight &l, float c);
 
 }  // namespace msr

@@ -100,13 +100,35 @@ bool Scene::commit(RTCDevice device, std::string &err) {
             return false;
         }
         if (m.idx.size() % 3 != 0 || (!m.nrm.empty() && m.nrm.size() != m.pos.size()) ||
-            (!m.col.empty() && m.col.size() != m.pos.size())) {
+            (!m.col.empty() && m.col.size() != m.pos.size()) || (!m.uv.empty() && m.uv.size() != 2 * m.pos.size())) {
             err = "mesh " + std::to_string(gi) + " has inconsistent buffers";
             return false;
         }
         for (uint32_t i : m.idx)
             if (i >= m.pos.size()) { err = "mesh " + std::to_string(gi) + " indexes a missing vertex"; return false; }
         for (Vec3 p : m.pos) bounds_.add(p);
+        const int tex = materials[m.material].texture;
+        if (tex >= 0 && size_t(tex) >= textures.size()) {
+            err = "mesh " + std::to_string(gi) + " uses a missing texture";
+            return false;
+        }
+        meshes[gi].texel_density.clear();
+        if (tex >= 0 && !m.uv.empty()) {
+            // Texel density per triangle: sqrt(texel area / world area), texels of level 0.
+            const Texture &t = *textures[size_t(tex)];
+            const float texels = float(t.width()) * float(t.height());
+            std::vector<float> dens(m.idx.size() / 3, 0.f);
+            for (size_t f = 0; f < dens.size(); ++f) {
+                const uint32_t a = m.idx[3 * f], b = m.idx[3 * f + 1], c = m.idx[3 * f + 2];
+                float world = length(cross(m.pos[b] - m.pos[a], m.pos[c] - m.pos[a]));
+                float du1 = m.uv[2 * b] - m.uv[2 * a], dv1 = m.uv[2 * b + 1] - m.uv[2 * a + 1];
+                float du2 = m.uv[2 * c] - m.uv[2 * a], dv2 = m.uv[2 * c + 1] - m.uv[2 * a + 1];
+                float tex_area = std::fabs(du1 * dv2 - du2 * dv1) * texels;
+                float d = world > 0.f ? std::sqrt(tex_area / world) : 0.f;
+                dens[f] = std::isfinite(d) ? d : 0.f;
+            }
+            meshes[gi].texel_density = std::move(dens);
+        }
 
         RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
         auto *vb = static_cast<float *>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -165,6 +187,12 @@ Hit Scene::intersect(Vec3 org, Vec3 dir, float tnear, float tfar, unsigned mask)
         if (std::isfinite(n.x) && dot(n, n) > 0.5f) h.ns = dot(n, h.ng) < 0.f ? -n : n;
     }
     if (!m.col.empty()) h.color = m.col[tri[0]] * w + m.col[tri[1]] * u + m.col[tri[2]] * v;
+    if (!m.uv.empty()) {
+        h.has_uv = true;
+        h.tu = m.uv[2 * tri[0]] * w + m.uv[2 * tri[1]] * u + m.uv[2 * tri[2]] * v;
+        h.tv = m.uv[2 * tri[0] + 1] * w + m.uv[2 * tri[1] + 1] * u + m.uv[2 * tri[2] + 1] * v;
+        if (!m.texel_density.empty()) h.texel_density = m.texel_density[rh.hit.primID];
+    }
     h.material = m.material;
     h.geom = rh.hit.geomID;
     h.prim = rh.hit.primID;

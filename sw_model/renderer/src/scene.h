@@ -5,9 +5,11 @@
 
 #include <embree3/rtcore.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "texture.h"
 #include "vec.h"
 
 namespace msr {
@@ -21,6 +23,9 @@ struct Material {
     float checker = 0.f;               // checker cell size in world units on x/z, 0 = plain
     Vec3 emission{0.f, 0.f, 0.f};      // radiance of an emissive surface (front side)
     float ior = 1.5f;                  // glass index of refraction
+    int texture = -1;                  // diffuse map (Scene::textures), multiplying the albedo; -1 = none
+    Vec3 specular{0.f, 0.f, 0.f};      // Blinn-Phong highlight colour from the lights (diffuse only)
+    float shininess = 0.f;             // Blinn-Phong exponent (rounded to an integer, 1..1024)
 
     static Material diffuse(Vec3 a) { Material m; m.albedo = a; return m; }
     static Material mirror(Vec3 tint) { Material m; m.type = MatType::Mirror; m.albedo = tint; return m; }
@@ -35,12 +40,20 @@ struct Mesh {
     std::vector<Vec3> nrm;     // per-vertex shading normals; empty = flat shading
     std::vector<Vec3> col;     // per-vertex colour multiplying the albedo; empty = white
     std::vector<uint32_t> idx; // 3 vertex indices per triangle
+    std::vector<float> uv;     // texture coordinates, 2 per vertex; empty = none
     int material = 0;
+    // Set by Scene::commit for meshes with uv and a textured material: level-0 texels per
+    // world unit along the surface, per triangle (square root of the texel/world area ratio).
+    std::vector<float> texel_density;
 };
 
 struct PointLight {
     Vec3 pos;
     Vec3 intensity;  // radiant intensity: irradiance = intensity * cos / d^2
+    // A spot light when dir is non-zero: full intensity inside cos_inner, none outside
+    // cos_outer, smoothstep between (cosines of the angles to the unit axis dir).
+    Vec3 dir{0.f, 0.f, 0.f};
+    float cos_inner = -1.f, cos_outer = -1.f;
 };
 
 // A one-sided parallelogram emitter: corner + s*e1 + t*e2, s, t in [0, 1], emitting towards
@@ -54,6 +67,18 @@ struct AreaLight {
 struct Camera {
     Vec3 eye{0.f, 0.f, 0.f}, target{0.f, 0.f, 1.f}, up{0.f, 1.f, 0.f};
     float tan_half = 0.36397f;  // tan(half the field of view across the shorter image side)
+    bool vertical = false;      // tan_half spans the image height instead of the shorter side
+};
+
+// Placement of an imported model in the scene: p' = R_yaw (p - pivot) * scale + offset. Kept in
+// the scene so that a camera given in model units (msr_render_create_view) lands in the same
+// place as the model.
+struct Placement {
+    Vec3 pivot{0.f, 0.f, 0.f}, offset{0.f, 0.f, 0.f};
+    float scale = 1.f;
+    float cos_yaw = 1.f, sin_yaw = 0.f;
+    Vec3 rotate(Vec3 v) const { return {cos_yaw * v.x + sin_yaw * v.z, v.y, -sin_yaw * v.x + cos_yaw * v.z}; }
+    Vec3 point(Vec3 p) const { return rotate(p - pivot) * scale + offset; }
 };
 
 struct Bounds {
@@ -71,6 +96,9 @@ struct Hit {
     Vec3 ng;       // unit geometric normal (as wound, not flipped towards the ray)
     Vec3 ns;       // unit shading normal (interpolated, same hemisphere as ng)
     Vec3 color{1.f, 1.f, 1.f};  // interpolated vertex colour
+    bool has_uv = false;
+    float tu = 0.f, tv = 0.f;   // interpolated texture coordinates
+    float texel_density = 0.f;  // level-0 texels per world unit (Mesh::texel_density)
     int material = -1;
     unsigned geom = RTC_INVALID_GEOMETRY_ID, prim = RTC_INVALID_GEOMETRY_ID;
 };
@@ -111,7 +139,9 @@ public:
     std::vector<Mesh> meshes;
     std::vector<PointLight> point_lights;
     std::vector<AreaLight> area_lights;
+    std::vector<std::shared_ptr<const Texture>> textures;  // Material::texture indexes these
     Camera camera;
+    Placement model_placement;  // model units -> world (identity for scenes built in world units)
     Vec3 sky_zenith{0.f, 0.f, 0.f}, sky_horizon{0.f, 0.f, 0.f}, sky_ground{0.f, 0.f, 0.f};
     Vec3 ambient{0.f, 0.f, 0.f};  // constant ambient radiance (times albedo; times AO in heavy mode)
     float ao_radius = 1.f;        // ambient-occlusion ray length (heavy mode)

@@ -1,8 +1,10 @@
 #include "scenes.h"
 
+#include <charconv>
 #include <cmath>
 #include <functional>
 
+#include "detmath.h"
 #include "importer.h"
 
 namespace msr {
@@ -138,6 +140,7 @@ std::unique_ptr<Scene> bunny(std::string &err) {
     Vec3 pivot{c.x, m.bounds.lo.y, c.z};
     float scale = 330.f / m.bounds.size().y;
     add_model(*s, m, pivot, scale, -30.f, {290.f, 0.f, 290.f});
+    s->model_placement = Placement{};  // a view of this scene is given in the box's millimetres
     return s;
 }
 
@@ -165,23 +168,53 @@ std::unique_ptr<Scene> framed_model(const Model &m, float yaw_deg) {
     const float sin_half = kTan20 / std::sqrt(1.f + kTan20 * kTan20);
     const float dist = 1.08f / sin_half;
     s->camera.eye = target + normalize({0.55f, 0.42f, 1.f}) * dist;
+    const Placement &pl = s->model_placement;
+    if (m.has_camera) {  // the file's own view, in the model's new place
+        s->camera.eye = pl.point(m.camera.eye);
+        s->camera.target = pl.point(m.camera.target);
+        s->camera.up = pl.rotate(m.camera.up);
+        s->camera.tan_half = m.camera.tan_half;
+        s->camera.vertical = true;
+    }
 
-    // Key light: a 0.8 x 0.8 square above front-left, facing the model, giving an irradiance
-    // of about pi at the model centre (a white surface facing it shows radiance ~ albedo).
-    const float d = 3.5f, side = 0.8f;
-    Vec3 lc = target + normalize({-0.6f, 1.2f, 0.8f}) * d;
-    Vec3 n = normalize(target - lc);
-    Vec3 e1 = normalize(cross(n, {0.f, 1.f, 0.f})) * side;
-    Vec3 e2 = normalize(cross(n, e1)) * side;  // cross(e1, cross(n, e1)) = n |e1|^2: shines at the model
-    AreaLight key;
-    key.corner = lc - (e1 + e2) * 0.5f;
-    key.e1 = e1;
-    key.e2 = e2;
-    key.radiance = Vec3{1.f, 0.96f, 0.9f} * (kPi * d * d / (side * side));
-    s->add_area_light(key);
-    // Fill: a point light right of the camera with a third of the key's irradiance.
-    Vec3 fp = target + normalize({1.f, 0.5f, 0.6f}) * 4.f;
-    s->add_point_light({fp, Vec3{0.85f, 0.9f, 1.f} * (kPi * 16.f / 3.f)});
+    if (!m.lights.empty()) {
+        // The file's point and spot lights instead of the automatic key and fill. Their units
+        // vary from file to file (watts, candela, plain colours), so they are scaled together
+        // to give the model centre the automatic rig's unoccluded irradiance (4/3 pi).
+        float sum = 0.f;
+        std::vector<PointLight> ls;
+        for (const PointLight &fl : m.lights) {
+            PointLight l = fl;
+            l.pos = pl.point(fl.pos);
+            l.dir = pl.rotate(fl.dir);
+            Vec3 dv = target - l.pos;
+            float d2 = maxf(dot(dv, dv), 1e-4f);
+            sum += (l.intensity.x + l.intensity.y + l.intensity.z) * (1.f / 3.f) / d2;
+            ls.push_back(l);
+        }
+        const float k = sum > 0.f ? (4.f * kPi / 3.f) / sum : 1.f;
+        for (PointLight &l : ls) {
+            l.intensity = l.intensity * k;
+            s->add_point_light(l);
+        }
+    } else {
+        // Key light: a 0.8 x 0.8 square above front-left, facing the model, giving an irradiance
+        // of about pi at the model centre (a white surface facing it shows radiance ~ albedo).
+        const float d = 3.5f, side = 0.8f;
+        Vec3 lc = target + normalize({-0.6f, 1.2f, 0.8f}) * d;
+        Vec3 n = normalize(target - lc);
+        Vec3 e1 = normalize(cross(n, {0.f, 1.f, 0.f})) * side;
+        Vec3 e2 = normalize(cross(n, e1)) * side;  // cross(e1, cross(n, e1)) = n |e1|^2: shines at the model
+        AreaLight key;
+        key.corner = lc - (e1 + e2) * 0.5f;
+        key.e1 = e1;
+        key.e2 = e2;
+        key.radiance = Vec3{1.f, 0.96f, 0.9f} * (kPi * d * d / (side * side));
+        s->add_area_light(key);
+        // Fill: a point light right of the camera with a third of the key's irradiance.
+        Vec3 fp = target + normalize({1.f, 0.5f, 0.6f}) * 4.f;
+        s->add_point_light({fp, Vec3{0.85f, 0.9f, 1.f} * (kPi * 16.f / 3.f)});
+    }
 
     s->sky_zenith = {0.2f, 0.35f, 0.7f};
     s->sky_horizon = {0.78f, 0.82f, 0.9f};
@@ -225,6 +258,47 @@ std::unique_ptr<Scene> model_file_scene(const std::string &path, std::string &er
     Model m;
     if (!load_model(path, m, err)) return nullptr;
     return framed_model(m, 0.f);
+}
+
+bool parse_view(const std::string &text, float v[7], std::string &err) {
+    const std::string form = " (want EX,EY,EZ,TX,TY,TZ,FOV: eye, target, vertical field of view in degrees)";
+    int n = 0;
+    size_t pos = 0;
+    while (true) {
+        size_t end = text.find(',', pos);
+        std::string tok = text.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+        size_t a = tok.find_first_not_of(" \t"), b = tok.find_last_not_of(" \t");
+        tok = a == std::string::npos ? std::string() : tok.substr(a, b - a + 1);
+        if (!tok.empty() && tok[0] == '+') tok = tok.substr(1);
+        float x = 0.f;
+        auto r = std::from_chars(tok.data(), tok.data() + tok.size(), x);
+        if (tok.empty() || r.ec != std::errc() || r.ptr != tok.data() + tok.size() || !std::isfinite(x)) {
+            err = "camera '" + text + "': '" + tok + "' is not a finite number" + form;
+            return false;
+        }
+        if (n == 7) { err = "camera '" + text + "' has more than 7 values" + form; return false; }
+        v[n++] = x;
+        if (end == std::string::npos) break;
+        pos = end + 1;
+    }
+    if (n != 7) { err = "camera '" + text + "' has " + std::to_string(n) + " values, not 7" + form; return false; }
+    if (!(v[6] > 0.f && v[6] < 180.f)) { err = "camera '" + text + "': field of view must be in (0, 180) degrees"; return false; }
+    if (v[0] == v[3] && v[1] == v[4] && v[2] == v[5]) { err = "camera '" + text + "': eye and target are the same point"; return false; }
+    return true;
+}
+
+bool set_view(Scene &s, const std::string &text, std::string &err) {
+    float v[7];
+    if (!parse_view(text, v, err)) return false;
+    const Placement &pl = s.model_placement;
+    s.camera.eye = pl.point({v[0], v[1], v[2]});
+    s.camera.target = pl.point({v[3], v[4], v[5]});
+    s.camera.up = {0.f, 1.f, 0.f};
+    double sn, cs;
+    det_sincos_deg(0.5 * double(v[6]), sn, cs);
+    s.camera.tan_half = float(sn / cs);
+    s.camera.vertical = true;
+    return true;
 }
 
 std::unique_ptr<Scene> make_scene(const std::string &name, std::string &err) {

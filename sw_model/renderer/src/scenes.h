@@ -19,4 +19,11 @@ std::unique_ptr<Scene> make_scene(const std::string &name, std::string &err);
 // plane, camera on the bounding sphere, a key area light, a fill point light and a sky.
 std::unique_ptr<Scene> model_file_scene(const std::string &path, std::string &err);
 
+// A view "EX,EY,EZ,TX,TY,TZ,FOV": eye and target in model units (the scene's
+// model_placement maps them into the scene), vertical field of view in degrees (0 < FOV <
+// 180), up +y. parse_view checks the text (one-line message on failure); set_view also
+// applies it to the scene's camera.
+bool parse_view(const std::string &text, float v[7], std::string &err);
+bool set_view(Scene &s, const std::string &text, std::string &err);
+
 }  // namespace msr
