@@ -76,6 +76,8 @@ def _add_scene_flags(p, required):
     p.add_argument("--width", type=_int_in(1, spec.MAX_FRAME, "--width"))
     p.add_argument("--height", type=_int_in(1, spec.MAX_FRAME, "--height"))
     p.add_argument("--quality", default="fast", help="renderer quality mode (fast|heavy)")
+    p.add_argument("--camera", default=None, metavar="EX,EY,EZ,TX,TY,TZ,FOV",
+                   help="view: eye, target (model units), vertical field of view in degrees; up is +Y")
 
 
 def build_parser():
@@ -114,7 +116,8 @@ def _open_scene(args):
     if args.width is None or args.height is None:
         raise UsageError("--scene needs --width and --height")
     from .embree import open_renderer  # the Embree rendering unit (C++ library through ctypes)
-    return open_renderer(args.scene, args.width, args.height, quality=args.quality)
+    return open_renderer(args.scene, args.width, args.height, quality=args.quality,
+                         camera=getattr(args, "camera", None))
 
 
 def cmd_select(args) -> int:

@@ -6,6 +6,10 @@ the hardware flow see bit-identical colours. Build it with `make renderer`.
     with open_renderer("cornell", 320, 240) as r:
         rgb = r.render(xs, ys)      # (N, 3) uint8, any pixel order, any batch split
         img = r.render_full()       # (H, W, 3) uint8
+
+A view: open_renderer(scene, w, h, camera="EX,EY,EZ,TX,TY,TZ,FOV") (eye, target in model
+units, vertical field of view in degrees, up +y); the same string gives the same pixels in
+every flow (the RTL simulation passes it to the library unchanged).
 """
 from __future__ import annotations
 
@@ -51,6 +55,9 @@ def _load():
         lib.msr_render_create.restype = ctypes.c_void_p
         lib.msr_render_create.argtypes = [ctypes.c_char_p, ctypes.c_int, ctypes.c_int, ctypes.c_int,
                                           ctypes.c_char_p, ctypes.c_size_t]
+        lib.msr_render_create_view.restype = ctypes.c_void_p
+        lib.msr_render_create_view.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int, ctypes.c_int,
+                                               ctypes.c_int, ctypes.c_char_p, ctypes.c_size_t]
         lib.msr_render_pixel.restype = None
         lib.msr_render_pixel.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.c_int, ctypes.POINTER(ctypes.c_uint8)]
         lib.msr_render_pixels.restype = None
@@ -71,6 +78,28 @@ def scene_names() -> list[str]:
     return _load().msr_render_scene_names().decode().split(",")
 
 
+def check_camera(text: str) -> str:
+    """The view string EX,EY,EZ,TX,TY,TZ,FOV, checked (the library checks it again); returns it
+    unchanged, so that every flow hands the library the same string. SpecError when malformed."""
+    form = "want EX,EY,EZ,TX,TY,TZ,FOV: eye, target, vertical field of view in degrees"
+    if not isinstance(text, str):
+        raise spec.SpecError(f"camera must be a string ({form}), got {text!r}")
+    parts = text.split(",")
+    if len(parts) != 7:
+        raise spec.SpecError(f"camera {text!r} has {len(parts)} values, not 7 ({form})")
+    try:
+        vals = [float(p) for p in parts]
+    except ValueError:
+        raise spec.SpecError(f"camera {text!r}: not 7 numbers ({form})") from None
+    if not all(np.isfinite(vals)):
+        raise spec.SpecError(f"camera {text!r}: values must be finite ({form})")
+    if not 0 < vals[6] < 180:
+        raise spec.SpecError(f"camera {text!r}: field of view must be in (0, 180) degrees")
+    if vals[0:3] == vals[3:6]:
+        raise spec.SpecError(f"camera {text!r}: eye and target are the same point")
+    return text
+
+
 def _threads() -> int:
     try:
         n = len(os.sched_getaffinity(0))
@@ -83,7 +112,7 @@ class EmbreeRenderer:
     """A renderer object for the golden model: `.render(xs, ys) -> (N, 3) uint8`."""
 
     def __init__(self, scene: str, width: int, height: int, quality: str | int = "fast",
-                 threads: int | None = None):
+                 threads: int | None = None, camera: str | None = None):
         spec.check_frame_size(width, height)
         if isinstance(quality, str):
             if quality not in QUALITIES:
@@ -95,14 +124,18 @@ class EmbreeRenderer:
             raise spec.SpecError(f"quality must be 'fast' or 'heavy', got {quality!r}")
         if not isinstance(scene, (str, os.PathLike)) or not str(scene):
             raise spec.SpecError(f"scene must be a built-in name or a model file path, got {scene!r}")
+        if camera is not None and camera != "":
+            check_camera(camera)
         self._lib = _load()
         err = ctypes.create_string_buffer(512)
-        handle = self._lib.msr_render_create(os.fsencode(str(scene)), int(width), int(height), q, err, len(err))
+        handle = self._lib.msr_render_create_view(os.fsencode(str(scene)), camera.encode() if camera else None,
+                                                  int(width), int(height), q, err, len(err))
         if not handle:
             msg = err.value.decode(errors="replace") or f"cannot open scene {scene}"
             raise spec.SpecError(msg)
         self._ctx = handle
         self.scene = str(scene)
+        self.camera = camera or None
         self.width = int(width)
         self.height = int(height)
         self.quality = [k for k, v in QUALITIES.items() if v == q][0]
@@ -209,10 +242,11 @@ class EmbreeRenderer:
 
 
 def open_renderer(scene: str, width: int, height: int, quality: str | int = "fast",
-                  threads: int | None = None) -> EmbreeRenderer:
-    """Open the Embree rendering unit on a built-in scene name or a model file path.
+                  threads: int | None = None, camera: str | None = None) -> EmbreeRenderer:
+    """Open the Embree rendering unit on a built-in scene name or a model file path, seen from
+    the scene's own view or from `camera` ("EX,EY,EZ,TX,TY,TZ,FOV", model units, degrees).
 
     Raises spec.SpecError with a one-line message for an unknown scene, an unreadable file,
-    a file without triangles or a bad frame size.
+    a file without triangles, a malformed camera or a bad frame size.
     """
-    return EmbreeRenderer(scene, width, height, quality, threads)
+    return EmbreeRenderer(scene, width, height, quality, threads, camera)
