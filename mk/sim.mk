@@ -36,7 +36,7 @@ TEST_DEPS += build/sim/fast/Vmsr_sim_top
 sim: setup renderer $(SIM_BIN)
 	@$(ENV) python scripts/run_sim.py --harness $(SIM_BIN) --scene "$(SCENE)" --width "$(WIDTH)" \
 	    --height "$(HEIGHT)" --tile "$(TILE)" --levels "$(LEVELS)" --thr "$(THR)" --metric "$(METRIC)" \
-	    --fov-gain "$(FOV_GAIN)" --out "$(SIM_OUT)" $(if $(SIM_WAVES_ON),--waves) \
+	    --fov-gain "$(FOV_GAIN)" --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
 	    $(if $(WAVE_TILE),--wave-tile $(WAVE_TILE)) $(if $(WAVE_CYCLES),--wave-cycles $(WAVE_CYCLES))
 
 waves:

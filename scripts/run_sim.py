@@ -50,6 +50,7 @@ def parse(argv):
     ap.add_argument("--fov-gain", default="0")
     ap.add_argument("--out", default="")
     ap.add_argument("--quality", default="fast")
+    ap.add_argument("--camera", default="", help="EX,EY,EZ,TX,TY,TZ,FOV (model units, degrees); empty: the scene's view")
     ap.add_argument("--waves", action="store_true", help="FST of a window (harness built with tracing)")
     ap.add_argument("--wave-tile", default="", help="TX,TY: trace one tile's life (default: the centre tile)")
     ap.add_argument("--wave-cycles", default="", help="FROM,TO: trace a cycle range instead")
@@ -107,7 +108,7 @@ def run(a) -> int:
     # The scene must open in Python before anything runs: a bad model file is exit status 2.
     from msr_model.embree import open_renderer
     t0 = time.perf_counter()
-    renderer = open_renderer(a.scene, W, H, quality=a.quality)
+    renderer = open_renderer(a.scene, W, H, quality=a.quality, camera=a.camera or None)
     out.mkdir(parents=True, exist_ok=True)
 
     thr3 = list(params.thr) + [0] * (3 - params.levels)
@@ -118,6 +119,8 @@ def run(a) -> int:
            f"+scene={a.scene}", f"+width={W}", f"+height={H}",
            f"+quality={0 if a.quality == 'fast' else 1}",
            f"+rnd_latency={a.rnd_latency}", f"+rnd_jitter={a.rnd_jitter}"]
+    if a.camera:
+        cmd.append(f"+camera={a.camera}")  # read by sim/msr_dpi.cpp, passed to the library unchanged
     if a.waves:
         ntx, nty = spec.tile_counts(W, H, params.tile)
         cmd += ["--waves", str(out / "waves.fst")]
@@ -193,6 +196,7 @@ def run(a) -> int:
         "perf_counters": {k: v for k, v in rtl.items() if k.startswith(("traced_", "interpolated_", "render_", "memory_"))},
         "perf_counters_match_source_map": counters_ok,
         "scene": a.scene,
+        "camera": a.camera or None,
         "width": W,
         "height": H,
         "params": params.as_dict(),

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "msr_render.h"
+#include "verilated.h"              // Verilated::commandArgsPlusMatch (+camera=)
 #include "Vmsr_sim_top__Dpi.h"  // generated prototypes: the compiler checks ours against them
 
 namespace {
@@ -72,7 +73,12 @@ extern "C" void *msr_dpi_open(const char *scene, int width, int height, int qual
     return ctx;
   }
   char err[512] = {0};
-  ctx->render = msr_render_create(s.c_str(), width, height, quality, err, sizeof err);
+  // +camera=EX,EY,EZ,TX,TY,TZ,FOV: the view, handed to the library unchanged (as the Python
+  // flow hands it), so the same string gives the same pixels.
+  const char *cam_arg = Verilated::commandArgsPlusMatch("camera=");
+  const std::string camera = (cam_arg && std::strncmp(cam_arg, "+camera=", 8) == 0) ? cam_arg + 8 : "";
+  ctx->render = msr_render_create_view(s.c_str(), camera.empty() ? nullptr : camera.c_str(), width,
+                                       height, quality, err, sizeof err);
   if (!ctx->render) {
     std::fprintf(stderr, "render_dpi: error: %s\n", err[0] ? err : "cannot open the scene");
     delete ctx;

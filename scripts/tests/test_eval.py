@@ -1,10 +1,14 @@
-"""The small evaluation run (make eval) as part of make test, plus its analysis helpers."""
+"""The small evaluation run (make eval) as part of make test, its analysis helpers, and the
+sweep on Dask distributed against the serial sweep."""
 import json
 import sys
 import time
 from pathlib import Path
 
 import pytest
+
+from msr_eval import sweep as S
+from msr_eval.metrics import fraction_for, pareto
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import eval as ev  # noqa: E402
@@ -13,29 +17,29 @@ import eval as ev  # noqa: E402
 def test_pareto_and_fraction_for_by_hand():
     pts = [(0.10, 30.0), (0.20, 36.0), (0.15, 29.0), (0.40, 44.0), (0.30, 35.0)]
     # (0.15, 29) and (0.30, 35) are dominated
-    assert ev.pareto(pts) == [(0.10, 30.0), (0.20, 36.0), (0.40, 44.0)]
-    f, how = ev.fraction_for(pts, 40.0)      # between (0.2, 36) and (0.4, 44): 0.2 + 4/8 * 0.2
+    assert pareto(pts) == [(0.10, 30.0), (0.20, 36.0), (0.40, 44.0)]
+    f, how = fraction_for(pts, 40.0)      # between (0.2, 36) and (0.4, 44): 0.2 + 4/8 * 0.2
     assert how == "interp" and f == pytest.approx(0.30)
-    f, how = ev.fraction_for(pts, 35.0)      # between (0.1, 30) and (0.2, 36): 0.1 + 5/6 * 0.1
+    f, how = fraction_for(pts, 35.0)      # between (0.1, 30) and (0.2, 36): 0.1 + 5/6 * 0.1
     assert how == "interp" and f == pytest.approx(0.1 + 0.1 * 5 / 6)
-    assert ev.fraction_for(pts, 25.0) == (0.10, "at_or_below")
-    assert ev.fraction_for(pts, 50.0) == (None, "not_reached")
+    assert fraction_for(pts, 25.0) == (0.10, "at_or_below")
+    assert fraction_for(pts, 50.0) == (None, "not_reached")
 
 
 def test_level_thresholds_and_fov_gain():
-    assert ev.level_thr(3, 4) == (4, 8, 16)
-    assert ev.level_thr(2, 200) == (200, 255)
-    assert ev.level_thr(3, 0.25) == (1, 1, 1) and ev.level_thr(3, 0.5) == (1, 1, 2)
+    assert S.level_thr(3, 4) == (4, 8, 16)
+    assert S.level_thr(2, 200) == (200, 255)
+    assert S.level_thr(3, 0.25) == (1, 1, 1) and S.level_thr(3, 0.5) == (1, 1, 2)
     # 1920 / 16 = 120 tiles: r2 up to 119 half-tiles; gain 2 adds (2 * 119) >> 4 = 14 at the edge
-    assert ev.fov_gain_for(1920, 1080, 16) == 2
+    assert S.fov_gain_for(1920, 1080, 16) == 2
 
 
 def test_small_eval_run(tmp_path):
     """The quick run end to end on two scenes (Embree when built, else the test picture)."""
     t0 = time.perf_counter()
     args = ["--width", "96", "--height", "64", "--max-scenes", "2", "--out", str(tmp_path),
-            "--all-metrics"]
-    backend = ev.Backend("auto")
+            "--all-metrics", "--workers", "0", "--no-progress"]
+    backend = S.Backend("auto")
     if backend.embree:
         args += ["--modes", "fast"]
     res = ev.main(args)
@@ -56,3 +60,29 @@ def test_small_eval_run(tmp_path):
     assert (tmp_path / f"curves_{data['config']['modes'][0]}.png").is_file()
     assert data["needed_fraction"] and data["headline"]
     assert time.perf_counter() - t0 < 120
+
+
+def test_dask_sweep_equals_serial(tmp_path):
+    """A small sweep on a LocalCluster with two workers gives the serial run's records, bit for
+    bit (all but the wall times), and the per-scene cache then answers a second run."""
+    backend = S.Backend("auto")
+    scenes = backend.builtin_scenes()[:2]
+    modes = ["fast"] if backend.embree else ["image"]
+
+    def sweep(executor, cache):
+        cfg = S.SweepConfig(64, 48, (1, 8), True, False, cache)
+        try:
+            recs, _, _ = S.run_sweep(backend, scenes, modes, cfg, executor, log=lambda s: None,
+                                     show_progress=False)
+        finally:
+            executor.close()
+        return [{k: v for k, v in r.items() if k != "decide_s"} for r in recs]
+
+    serial = sweep(S.SerialExecutor(), tmp_path / "serial")
+    dask = sweep(S.make_executor(workers=2), tmp_path / "dask")
+    assert len(serial) == len(S.settings(64, 48, (1, 8), True)) * len(scenes) * len(modes)
+    assert dask == serial
+    assert any(r["key_setting"] and "ssim" in r for r in serial)
+    again = sweep(S.SerialExecutor(), tmp_path / "dask")     # every scene from the cache
+    assert again == serial
+

@@ -1,4 +1,4 @@
-"""Rendering methods compared by the evaluation (issue 7): what a user would otherwise pick.
+"""Rendering methods compared by the evaluation: what a user would otherwise pick.
 
 Every method is a function `method(renderer, width, height, ...) -> MethodResult`. It asks the
 renderer only for the pixels it traces, and the traced count in the result is what the
@@ -17,8 +17,8 @@ method's own bookkeeping.
                        fully traced (Fig. 5b); `border="borrowed"`: one frame-wide grid, so a
                        tile borrows the next tile's first grid line (Fig. 5, [0068]; the tiles
                        then depend on each other and cannot run in parallel).
-- multi_level:         the patent's method, exactly msr_model.golden.select; with rule=
-                       another decision test of msr_model.rules.
+- multi_level:         the patent's method, exactly msr_model.select; with rule= another
+                       decision test (msr_eval.rules).
 """
 from __future__ import annotations
 
@@ -26,9 +26,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import spec
-from .golden import select as _golden_select
-from .spec import Params
+from msr_model import Params, render_checked, select, spec
+
+from .rules import rule_function
 
 # Source codes of the non-patent methods (the multi-level method keeps the spec's codes).
 SRC_TRACED = 0
@@ -53,10 +53,7 @@ class CountingRenderer:
             raise ValueError("pixel request outside the frame")
         self.requests += xs.size
         self.mask[ys, xs] = True
-        cols = np.asarray(self.inner.render(xs, ys), dtype=np.uint8)
-        if cols.shape != (xs.size, 3):
-            raise RuntimeError(f"renderer returned shape {cols.shape} for {xs.size} pixels")
-        return cols
+        return render_checked(self.inner, xs, ys)
 
 
 @dataclass
@@ -177,7 +174,7 @@ class _Axis:
 
 def _single_axis(n: int, stride: int, tile: int | None) -> _Axis:
     grid, m, a, b, border = [], [], [], [], []
-    spans = [(0, n)] if tile is None else [(o, min(tile, n - o)) for o in range(0, n, tile)]
+    spans = [(0, n)] if tile is None else spec.axis_spans(n, tile)
     for origin, w in spans:
         if tile is None:
             g = spec.initial_grid(w, stride)          # frame-wide grid incl. the last column
@@ -272,12 +269,10 @@ def single_level(renderer, width: int, height: int, thr: int, stride: int = 4,
 # --- the patent's multi-level method ------------------------------------------------------
 
 def multi_level(renderer, width: int, height: int, params: Params, rule: str = "patent") -> MethodResult:
-    """The patent's method (msr_model.golden.select, unchanged); another `rule` runs
-    msr_model.rules.select_rule, the same passes with a different decision test."""
+    """The patent's method (msr_model.select); another `rule` (msr_eval.rules) runs the same
+    passes with a different decision test."""
     c = CountingRenderer(renderer, width, height)
+    r = select(c, width, height, params, rule=rule_function(rule))
     if rule == "patent":
-        r = _golden_select(c, width, height, params)
         return _result(c, r.frame, r.source, "multi", params.as_dict())
-    from .rules import select_rule
-    r = select_rule(c, width, height, params, rule=rule)
     return _result(c, r.frame, r.source, f"multi_{rule}", {**params.as_dict(), "rule": rule})

@@ -1,4 +1,5 @@
-"""docs/results.md and docs/img/ from an eval run (scripts/eval.py --docs).
+"""Pictures and docs of an eval run: curves, set Pareto plots, example strips, and
+docs/results.md with docs/img/ (scripts/eval.py --docs).
 
 The hand-written discussion lives in docs/results_notes.md and is pasted in after the
 headline, so a re-run refreshes every number and figure without losing the text.
@@ -8,7 +9,10 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import numpy as np
 from PIL import Image
+
+from .metrics import capped, flip, pareto
 
 FAMILY_NAMES = {
     "full": "full render", "grid2": "uniform grid, every 2nd pixel, bilinear",
@@ -188,3 +192,114 @@ def _round(v):
     if isinstance(v, (list, tuple)):
         return [_round(x) for x in v]
     return v
+
+
+# --- pictures ----------------------------------------------------------------------------
+
+FAMILY_STYLE = {
+    "grid2": ("grid 2 (bilinear)", "s", "tab:gray"), "grid4": ("grid 4 (bilinear)", "D", "tab:gray"),
+    "checkerboard": ("checkerboard", "^", "tab:brown"),
+    "single_traced": ("single level, borders traced (Fig. 5b)", "x", "tab:olive"),
+    "single_borrowed": ("single level, borders borrowed ([0068])", "+", "tab:cyan"),
+    "multi_L1_T16": ("patent L1 T16", ".", "tab:pink"), "multi_L2_T16": ("patent L2 T16", ".", "tab:purple"),
+    "multi_L2_T32": ("patent L2 T32", ".", "tab:purple"),
+    "multi_L3_T16": ("patent L3 T16", "o", "tab:blue"), "multi_L3_T32": ("patent L3 T32", "o", "navy"),
+    "multi_L3_T16_fov": ("patent L3 T16 foveated", "v", "tab:green"),
+    "multi_L3_T16_dilate": ("new rule: dilate, L3 T16", "P", "tab:orange"),
+    "multi_L3_T16_linear": ("new rule: linear, L3 T16", "1", "chocolate"),
+    "multi_L3_T16_lindilate": ("new rule: lindilate, L3 T16", "*", "tab:red"),
+    "multi_L3_T16_diag": ("new rule: diag, L3 T16", "2", "gold"),
+    "multi_L3_T32_lindilate": ("new rule: lindilate, L3 T32", "*", "darkred"),
+}
+
+
+def plot_curves(records, mode, path, title):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    scenes = sorted({r["scene"] for r in records if r["mode"] == mode})
+    if not scenes:
+        return
+    ncol = min(4, len(scenes))
+    nrow = -(-len(scenes) // ncol)
+    fig, axes = plt.subplots(nrow, ncol, figsize=(max(6.4, 3.2 * ncol), 2.6 * nrow + 0.9), squeeze=False)
+    for ax, sc in zip(axes.ravel(), scenes):
+        for fam, (lab, mk, col) in FAMILY_STYLE.items():
+            pts = sorted((r["traced_fraction"], capped(r["psnr"])) for r in records
+                         if r["mode"] == mode and r["scene"] == sc and r["family"] == fam)
+            if pts:
+                ax.plot([100 * f for f, _ in pts], [p for _, p in pts], marker=mk, color=col, lw=0.8,
+                        ms=4, label=lab)
+        ax.axhline(40, color="k", lw=0.4, ls=":")
+        ax.axvline(15, color="k", lw=0.4, ls=":")
+        ax.set_title(sc, fontsize=8)
+        ax.set_xlim(0, 60)
+        ax.set_ylim(20, 60)
+        ax.tick_params(labelsize=6)
+    for ax in axes.ravel()[len(scenes):]:
+        ax.axis("off")
+    fig.supxlabel("traced pixels (%)", fontsize=8)
+    fig.supylabel("PSNR (dB)", fontsize=8)
+    h, lab = axes[0, 0].get_legend_handles_labels()
+    fig.legend(h, lab, fontsize=6, loc="lower center", ncol=4, frameon=False)
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout(rect=(0, 0.12 if nrow == 1 else 0.08, 1, 1))
+    fig.savefig(path, dpi=70)
+    plt.close(fig)
+
+
+def plot_set(set_curves, mode, path, title):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fams = set_curves.get(mode, {})
+    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    allpts = []
+    for fam, (lab, mk, col) in FAMILY_STYLE.items():
+        pts = sorted((p["traced_fraction"], p["psnr_mean"]) for p in fams.get(fam, []))
+        if pts:
+            ax.plot([100 * f for f, _ in pts], [p for _, p in pts], marker=mk, color=col, lw=0.8, ms=4, label=lab)
+            allpts += pts
+    front = pareto(allpts)
+    ax.plot([100 * f for f, _ in front], [p for _, p in front], color="k", lw=2, alpha=0.3, label="Pareto front (all)")
+    ax.axhline(40, color="k", lw=0.4, ls=":")
+    ax.axvline(15, color="k", lw=0.4, ls=":")
+    ax.set_xlim(0, 60)
+    ax.set_ylim(20, 60)
+    ax.set_xlabel("mean traced pixels over the scene set (%)", fontsize=8)
+    ax.set_ylabel("mean PSNR over the scene set (dB)", fontsize=8)
+    ax.set_title(title, fontsize=9)
+    ax.tick_params(labelsize=7)
+    ax.legend(fontsize=6, ncol=2)
+    fig.tight_layout()
+    fig.savefig(path, dpi=70)
+    plt.close(fig)
+
+
+def source_rgb(source):
+    """Source map for people: traced white (initial) / orange (levels), interpolated dark blue."""
+    out = np.zeros(source.shape + (3,), np.uint8)
+    out[source == 0] = (255, 255, 255)
+    for k, col in ((1, (255, 170, 0)), (2, (230, 90, 0)), (3, (180, 0, 0))):
+        out[source == k] = col
+    for k, col in ((17, (20, 40, 110)), (18, (30, 60, 150)), (19, (40, 80, 190))):
+        out[source == k] = col
+    out[source == 16] = (30, 60, 150)
+    return out
+
+
+def example_strip(ref, res, panel_w):
+    """frame | source map | error map (FLIP, magma), each downscaled to panel_w wide."""
+    from PIL import Image
+    import matplotlib
+    _, emap = flip(ref, res.frame, want_map=True)
+    err = (matplotlib.colormaps["magma"](np.clip(emap, 0, 1))[..., :3] * 255).astype(np.uint8)
+    panels = [res.frame, source_rgb(res.source), err]
+    h, w = ref.shape[:2]
+    ph = max(1, round(panel_w * h / w))
+    ims = [Image.fromarray(p).resize((panel_w, ph), Image.NEAREST if i == 1 else Image.BILINEAR)
+           for i, p in enumerate(panels)]
+    strip = Image.new("RGB", (3 * panel_w + 8, ph), (255, 255, 255))
+    for i, im in enumerate(ims):
+        strip.paste(im, (i * (panel_w + 4), 0))
+    return strip

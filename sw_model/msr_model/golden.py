@@ -3,7 +3,8 @@
 Tiles are independent (claim 11) and every tile's positions are the product of an x plan
 and a y plan, so each pass of the spec is one Cartesian product over the whole frame:
 (rows final before the pass) x (new columns) for H, (final columns) x (new rows) for V.
-The per-tile step form in tile_model.py gives the same pixels one decision at a time.
+The decision itself is a rule (rules.py) applied to the pass's PassView, the patent's by
+default. The per-tile step form in tile_model.py gives the same pixels one decision at a time.
 """
 from __future__ import annotations
 
@@ -12,18 +13,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import spec
+from .passview import PassView
+from .renderer import render_checked
+from .rules import DEFAULT_RULE, get_rule
 from .spec import Params
-
-
-class Renderer:
-    """A rendering unit: the colour of any pixel of the frame, deterministically."""
-
-    width: int
-    height: int
-
-    def render(self, xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
-        """Colours (N, 3) uint8 of the pixels (xs[i], ys[i])."""
-        raise NotImplementedError  # interface; see ImageRenderer and the Embree binding
 
 
 @dataclass
@@ -39,14 +32,11 @@ class FrameAxis:
 
 
 def frame_axis(n_total: int, tile: int, levels: int) -> FrameAxis:
-    n_tiles = (n_total + tile - 1) // tile
     plans = {}
     known = [[] for _ in range(levels + 1)]
     known_tile = [[] for _ in range(levels + 1)]
     new = [[[], [], [], []] for _ in range(levels)]
-    for t in range(n_tiles):
-        origin = t * tile
-        n = min(tile, n_total - origin)
+    for t, (origin, n) in enumerate(spec.axis_spans(n_total, tile)):
         plan = plans.get(n) or plans.setdefault(n, spec.axis_plan(n, levels))
         for k, grid in enumerate(plan.grids):
             known[k].extend(origin + g for g in grid)
@@ -79,9 +69,12 @@ def threshold_maps(params: Params, ntx: int, nty: int) -> list[np.ndarray]:
             for t in params.thr]
 
 
-def select(renderer, width: int, height: int, params: Params, progress=None) -> FrameResult:
-    """Run the multi-level selective render of a whole frame; ask `renderer` only for traced pixels."""
+def select(renderer, width: int, height: int, params: Params, rule=DEFAULT_RULE,
+           progress=None) -> FrameResult:
+    """Run the multi-level selective render of a whole frame; ask `renderer` only for traced
+    pixels. `rule`: a contract rule name (rules.RULES) or a function of a PassView."""
     spec.check_frame_size(width, height)
+    rule_name, decide = get_rule(rule)
     T, L = params.tile, params.levels
     ntx, nty = spec.tile_counts(width, height, T)
     ax, ay = frame_axis(width, T, L), frame_axis(height, T, L)
@@ -91,33 +84,29 @@ def select(renderer, width: int, height: int, params: Params, progress=None) -> 
     source = np.full((height, width), spec.SRC_UNSET, dtype=np.uint8)
     per_level = {"initial": 0}
 
-    def trace(xs, ys):
-        cols = np.asarray(renderer.render(xs.astype(np.int32), ys.astype(np.int32)), dtype=np.uint8)
-        if cols.shape != (len(xs), 3):
-            raise RuntimeError(f"renderer returned shape {cols.shape} for {len(xs)} pixels")
-        return cols
-
     # Initial sampling: G0(w) x G0(h) of every tile, all traced.
     yy, xx = np.meshgrid(ay.known[0], ax.known[0], indexing="ij")
-    frame[yy, xx] = trace(xx.ravel(), yy.ravel()).reshape(yy.shape + (3,))
+    frame[yy, xx] = render_checked(renderer, xx, yy).reshape(yy.shape + (3,))
     source[yy, xx] = spec.SRC_INITIAL
     per_level["initial"] = yy.size
     if progress:
         progress(0)
 
     for k in range(1, L + 1):
-        nominal = params.nominal_gap(k)
-        thr = thr_maps[k - 1]
-        # H pass: rows of G_y(k-1), new columns of level k.
-        _pass(frame, source, trace, params, k, nominal,
-              fixed=ay.known[k - 1], fixed_tile=ay.known_tile[k - 1],
-              m=ax.new_m[k - 1], a=ax.new_a[k - 1], b=ax.new_b[k - 1], m_tile=ax.new_tile[k - 1],
-              thr=thr, horizontal=True, counts=per_level)
-        # V pass: columns of G_x(k), new rows of level k.
-        _pass(frame, source, trace, params, k, nominal,
-              fixed=ax.known[k], fixed_tile=ax.known_tile[k],
-              m=ay.new_m[k - 1], a=ay.new_a[k - 1], b=ay.new_b[k - 1], m_tile=ay.new_tile[k - 1],
-              thr=thr, horizontal=False, counts=per_level)
+        for horizontal in (True, False):
+            view = pass_view(frame, source, params, k, horizontal, ax, ay, thr_maps[k - 1])
+            if view is None:
+                continue
+            interp = decide_pass(decide, view)
+            values = spec.interpolate(view.A, view.B, view.a, view.b, view.m)
+            ty, tx = view.ys, view.xs
+            n_traced = int((~interp).sum())
+            if n_traced:
+                values[~interp] = render_checked(renderer, tx[~interp], ty[~interp])
+            frame[ty, tx] = values
+            source[ty, tx] = np.where(interp, spec.source_code_interp(k), spec.source_code_traced(k))
+            per_level[f"t{k}"] = per_level.get(f"t{k}", 0) + n_traced
+            per_level[f"i{k}"] = per_level.get(f"i{k}", 0) + int(interp.sum())
         if progress:
             progress(k)
 
@@ -131,41 +120,50 @@ def select(renderer, width: int, height: int, params: Params, progress=None) -> 
         "traced_initial": per_level["initial"],
         **{f"traced_level{k}": per_level.get(f"t{k}", 0) for k in range(1, L + 1)},
         **{f"interpolated_level{k}": per_level.get(f"i{k}", 0) for k in range(1, L + 1)},
+        "rule": rule_name,
         "params": params.as_dict(),
     }
     return FrameResult(frame, source, params, stats)
 
 
-def _pass(frame, source, trace, params, k, nominal, *, fixed, fixed_tile, m, a, b, m_tile,
-          thr, horizontal, counts):
-    """One H or V pass: every (fixed line) x (new position) decision at once."""
-    if len(m) == 0 or len(fixed) == 0:
-        return
-    if horizontal:   # index arrays shaped (rows, cols)
-        ys, xm = np.meshgrid(fixed, m, indexing="ij")
-        xa, xb = np.meshgrid(fixed, a, indexing="ij")[1], np.meshgrid(fixed, b, indexing="ij")[1]
-        A, B = frame[ys, xa], frame[ys, xb]
-        thr_pos = thr[fixed_tile[:, None], m_tile[None, :]]
-        pos_a, pos_b, pos_m = xa, xb, xm
-        tgt = (ys, xm)                                   # (y, x) of each decision
-    else:            # shaped (new rows, cols)
-        ym, xs = np.meshgrid(m, fixed, indexing="ij")
-        ya, yb = np.meshgrid(a, fixed, indexing="ij")[0], np.meshgrid(b, fixed, indexing="ij")[0]
-        A, B = frame[ya, xs], frame[yb, xs]
-        thr_pos = thr[m_tile[:, None], fixed_tile[None, :]]
-        pos_a, pos_b, pos_m = ya, yb, ym
-        tgt = (ym, xs)
+def decide_pass(decide, view: PassView) -> np.ndarray:
+    """The rule's answer for every decision of the pass, checked: a bool array (F, M)."""
+    ok = np.asarray(decide(view))
+    if ok.shape != view.shape or ok.dtype != bool:
+        raise RuntimeError(f"rule returned {ok.dtype} {ok.shape} for a pass of shape {view.shape}")
+    return ok
 
-    gap = pos_b - pos_a
-    d = spec.color_diff(A, B, params.metric)
-    interp = spec.interpolate_ok(d, thr_pos, gap, nominal)
-    values = spec.interpolate(A, B, pos_a, pos_b, pos_m)
 
-    ty, tx = tgt
-    n_traced = int((~interp).sum())
-    if n_traced:
-        values[~interp] = trace(tx[~interp], ty[~interp])
-    frame[ty, tx] = values
-    source[ty, tx] = np.where(interp, spec.source_code_interp(k), spec.source_code_traced(k))
-    counts[f"t{k}"] = counts.get(f"t{k}", 0) + n_traced
-    counts[f"i{k}"] = counts.get(f"i{k}", 0) + int(interp.sum())
+def pass_view(frame, source, params: Params, k: int, horizontal: bool, ax: FrameAxis, ay: FrameAxis,
+              thr: np.ndarray) -> PassView | None:
+    """The H (horizontal) or V pass of level k over the whole frame, as a PassView; None when
+    the pass has no decision. `thr` is the (nty, ntx) map of thr_k'."""
+    if horizontal:   # lines: rows of G_y(k-1); new positions: level-k columns
+        line, line_tile = ay.known[k - 1], ay.known_tile[k - 1]
+        m, a, b, m_tile = ax.new_m[k - 1], ax.new_a[k - 1], ax.new_b[k - 1], ax.new_tile[k - 1]
+        line_a = line_b = np.full(len(line), -1, np.int32)
+    else:            # lines: columns of G_x(k); new positions: level-k rows
+        line, line_tile = ax.known[k], ax.known_tile[k]
+        m, a, b, m_tile = ay.new_m[k - 1], ay.new_a[k - 1], ay.new_b[k - 1], ay.new_tile[k - 1]
+        lut_a = np.full(frame.shape[1], -1, np.int32)
+        lut_b = np.full(frame.shape[1], -1, np.int32)
+        lut_a[ax.new_m[k - 1]] = ax.new_a[k - 1]
+        lut_b[ax.new_m[k - 1]] = ax.new_b[k - 1]
+        line_a, line_b = lut_a[line], lut_b[line]
+    if len(m) == 0 or len(line) == 0:
+        return None
+    F, M = line[:, None], m[None, :]
+    shape = (len(line), len(m))
+    Aa, Bb = a[None, :], b[None, :]
+    if horizontal:
+        ys, xs = np.broadcast_to(F, shape), np.broadcast_to(M, shape)
+        A, B = frame[F, Aa], frame[F, Bb]
+        thr_pos = thr[line_tile[:, None], m_tile[None, :]]
+    else:
+        ys, xs = np.broadcast_to(M, shape), np.broadcast_to(F, shape)
+        A, B = frame[Aa, F], frame[Bb, F]
+        thr_pos = thr[m_tile[None, :], line_tile[:, None]]
+    return PassView(level=k, horizontal=horizontal, metric=params.metric, nominal=params.nominal_gap(k),
+                    tile=params.tile, A=A, B=B, a=Aa, b=Bb, m=M, gap=Bb - Aa, line=F,
+                    line_tile=line_tile[:, None], line_a=line_a[:, None], line_b=line_b[:, None],
+                    thr=thr_pos, ys=ys, xs=xs, frame=frame, final=source != spec.SRC_UNSET)

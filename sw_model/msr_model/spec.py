@@ -7,6 +7,7 @@ share one definition of each rule.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -14,6 +15,13 @@ MAX_FRAME = 4096
 TILE_SIZES = (8, 16, 32)
 LEVEL_RANGE = (1, 2, 3)
 METRICS = ("max", "sum")
+# Default per-level thresholds when none are given: thr_k = 8 * 2^(k-1), cut to L levels.
+DEFAULT_THR = (8, 16, 32)
+
+
+def default_thresholds(levels: int) -> tuple[int, ...]:
+    """The thresholds every tool uses when the user gives none: DEFAULT_THR cut to `levels`."""
+    return DEFAULT_THR[:levels]
 
 # Source codes (spec section 4).
 SRC_INITIAL = 0
@@ -72,10 +80,35 @@ def check_frame_size(width: int, height: int) -> None:
             raise SpecError(f"frame {name} {v} outside 1..{MAX_FRAME}")
 
 
-# --- Section 1: per-tile thresholds -------------------------------------------------------
+# --- Terms: the tiles of a frame -------------------------------------------------------------
 
 def tile_counts(width: int, height: int, tile: int) -> tuple[int, int]:
     return (width + tile - 1) // tile, (height + tile - 1) // tile
+
+
+def axis_spans(n: int, tile: int) -> list[tuple[int, int]]:
+    """(origin, extent) of every tile along one axis of n pixels; the last may be shorter."""
+    return [(o, min(tile, n - o)) for o in range(0, n, tile)]
+
+
+class Tile(NamedTuple):
+    """One tile of the frame: indices (tx, ty), top-left pixel (x0, y0), size w x h."""
+
+    tx: int
+    ty: int
+    x0: int
+    y0: int
+    w: int
+    h: int
+
+
+def frame_tiles(width: int, height: int, tile: int) -> list[Tile]:
+    """Every tile of the frame, row-major from the top-left (the one tile enumeration)."""
+    xs, ys = axis_spans(width, tile), axis_spans(height, tile)
+    return [Tile(tx, ty, x0, y0, w, h) for ty, (y0, h) in enumerate(ys) for tx, (x0, w) in enumerate(xs)]
+
+
+# --- Section 1: per-tile thresholds -------------------------------------------------------
 
 
 def foveated_threshold(thr_k, tx, ty, ntx: int, nty: int, fov_gain: int):

@@ -19,6 +19,9 @@ from typing import Callable, Iterable, Sequence
 import numpy as np
 
 from . import spec
+from .golden import decide_pass, frame_axis, pass_view
+from .renderer import render_checked
+from .rules import DEFAULT_RULE, get_rule
 from .spec import Params
 
 
@@ -105,13 +108,20 @@ RenderFn = Callable[[int, int], Sequence[int]]
 
 
 def run_tile(render: RenderFn, x0: int, y0: int, w: int, h: int, params: Params,
-             thr_tile: Sequence[int]) -> TileResult:
-    """Process one tile one step at a time. `render(x, y)` takes global coordinates."""
+             thr_tile: Sequence[int], rule=DEFAULT_RULE) -> TileResult:
+    """Process one tile one step at a time. `render(x, y)` takes global coordinates.
+
+    The tile is its own w x h frame here: the rule (a contract name or a function of a
+    PassView) sees nothing of any other tile, so this form also checks tile independence."""
     if len(thr_tile) != params.levels:
         raise spec.SpecError("one threshold per level")
+    if not (1 <= w <= params.tile and 1 <= h <= params.tile):
+        raise spec.SpecError(f"tile {w}x{h} larger than T = {params.tile}")
+    _, decide = get_rule(rule)
     pix = np.zeros((h, w, 3), dtype=np.uint8)
     codes = np.full((h, w), spec.SRC_UNSET, dtype=np.uint8)
     res = TileResult(x0, y0, pix, codes)
+    ax, ay = frame_axis(w, params.tile, params.levels), frame_axis(h, params.tile, params.levels)
 
     def trace(x, y, code):
         res.requests.append((x0 + x, y0 + y))
@@ -125,50 +135,52 @@ def run_tile(render: RenderFn, x0: int, y0: int, w: int, h: int, params: Params,
             for s in p.steps:
                 trace(s.x, s.y, spec.SRC_INITIAL)
             continue
-        thr = thr_tile[p.level - 1]
         # A pass reads only pixels final before it began: decide everything, then write.
-        snapshot = pix.copy()
+        thr = np.full((1, 1), thr_tile[p.level - 1], dtype=np.int32)
+        view = pass_view(pix, codes, params, p.level, p.direction == "H", ax, ay, thr)
+        if view is None:   # a 1-wide or 1-high tile: this pass has no decision
+            assert not p.steps
+            continue
+        ok = decide_pass(decide, view)
+        diff = view.diff()
+        values = spec.interpolate(view.A, view.B, view.a, view.b, view.m)
+        at = {(int(y), int(x)): (i, j) for (i, j), y, x in zip(np.ndindex(*view.shape), view.ys.ravel(),
+                                                               view.xs.ravel())}
         for s in p.steps:
-            assert codes[s.ay, s.ax] != spec.SRC_UNSET and codes[s.by, s.bx] != spec.SRC_UNSET
-            A, B = snapshot[s.ay, s.ax], snapshot[s.by, s.bx]
-            d = spec.color_diff(A, B, params.metric)
-            ok = spec.interpolate_ok(d, thr, s.gap, s.nominal)
-            if ok:
-                a, b, m = (s.ax, s.bx, s.x) if p.direction == "H" else (s.ay, s.by, s.y)
-                val = tuple(int(c) for c in spec.interpolate(A, B, a, b, m))
+            i, j = at[(s.y, s.x)]
+            if ok[i, j]:
+                val = tuple(int(c) for c in values[i, j])
                 pix[s.y, s.x] = val
                 codes[s.y, s.x] = spec.source_code_interp(p.level)
                 res.writes.append((s.x, s.y, val, int(codes[s.y, s.x])))
             else:
                 trace(s.x, s.y, spec.source_code_traced(p.level))
                 val = tuple(int(c) for c in pix[s.y, s.x])
-            res.decisions.append(Decision(s, d, ok, val))
+            res.decisions.append(Decision(s, int(diff[i, j]), bool(ok[i, j]), val))
     assert not (codes == spec.SRC_UNSET).any()
     return res
 
 
-def frame_tiles(width: int, height: int, tile: int) -> list[tuple[int, int, int, int, int, int]]:
-    """(tx, ty, x0, y0, w, h) of every tile, row-major from the top-left."""
-    ntx, nty = spec.tile_counts(width, height, tile)
-    return [(tx, ty, tx * tile, ty * tile, min(tile, width - tx * tile), min(tile, height - ty * tile))
-            for ty in range(nty) for tx in range(ntx)]
+def frame_tiles(width: int, height: int, tile: int) -> list[spec.Tile]:
+    """(tx, ty, x0, y0, w, h) of every tile, row-major from the top-left (spec.frame_tiles)."""
+    return spec.frame_tiles(width, height, tile)
 
 
 def select_tiled(renderer, width: int, height: int, params: Params,
-                 order: Iterable[int] | None = None):
+                 order: Iterable[int] | None = None, rule=DEFAULT_RULE):
     """The whole frame through run_tile, tiles in any `order` (indices into frame_tiles)."""
     spec.check_frame_size(width, height)
-    tiles = frame_tiles(width, height, params.tile)
+    tiles = spec.frame_tiles(width, height, params.tile)
     ntx, nty = spec.tile_counts(width, height, params.tile)
     frame = np.zeros((height, width, 3), dtype=np.uint8)
     source = np.full((height, width), spec.SRC_UNSET, dtype=np.uint8)
 
     def render(x, y):
-        return renderer.render(np.array([x]), np.array([y]))[0]
+        return render_checked(renderer, [x], [y])[0]
 
     for i in (range(len(tiles)) if order is None else order):
         tx, ty, x0, y0, w, h = tiles[i]
-        r = run_tile(render, x0, y0, w, h, params, spec.tile_thresholds(params, tx, ty, ntx, nty))
+        r = run_tile(render, x0, y0, w, h, params, spec.tile_thresholds(params, tx, ty, ntx, nty), rule=rule)
         frame[y0:y0 + h, x0:x0 + w] = r.pixels
         source[y0:y0 + h, x0:x0 + w] = r.codes
     return frame, source

@@ -1,10 +1,14 @@
-"""Tests of the decision rules beyond the patent (msr_model.rules)."""
+"""Tests of the evaluation's decision rules (msr_eval.rules) through golden.select's rule hook."""
 import numpy as np
 import pytest
 
+from msr_eval.rules import rule_function
 from msr_model import ImageRenderer, Params, SpecError, select
-from msr_model.rules import select_rule
 from msr_model.testimage import test_image as make_test_image
+
+
+def select_rule(renderer, w, h, params, rule):
+    return select(renderer, w, h, params, rule=rule_function(rule))
 
 
 @pytest.mark.parametrize("w,h", [(70, 50), (33, 17), (16, 16), (1, 5)])

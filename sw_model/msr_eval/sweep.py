@@ -1,0 +1,437 @@
+"""The evaluation sweep: scenes x renderer modes x methods x settings, as independent tasks.
+
+For every scene and mode the reference is the full render (cached as PNG under the cache
+folder). The renderer is deterministic (same pixel, same colour), so every setting then runs
+against the cached reference as the rendering unit: each method still asks the unit only for
+the pixels it traces, and the traced count is what the unit was asked for.
+
+Tasks run on an executor: `SerialExecutor` (in this process, in order) or Dask distributed
+(`dask_executor`: a LocalCluster sized to the machine, or an existing scheduler). Each task is
+a pure function of its inputs, so both give the same records; only the wall-time fields
+(`decide_s`, `full_render_s`) differ between runs. Records are cached per scene and mode,
+keyed by the renderer library and the code that computes them, so an interrupted run resumes.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from msr_model import ImageRenderer, Params, load_rgb, save_png
+from msr_model.testimage import test_image
+
+from . import methods as M
+from .metrics import TARGETS_DB, pick_near, psnr, ssim, flip
+
+REPO = Path(__file__).resolve().parents[2]
+
+# Debian-packaged real models (glmark2-data, assimp-testmodels) used besides the built-ins.
+MODEL_FILES = [
+    "/usr/share/glmark2/models/horse.3ds",
+    "/usr/share/glmark2/models/cat.3ds",
+    "/usr/share/glmark2/models/asteroid-high.3ds",
+    "/usr/share/assimp/models/OBJ/WusonOBJ.obj",
+]
+# Threshold scales s: the patent's families use thr = (s, 2s, 4s)[:L] (at least 1 each).
+# Main families get the dense list, the others the sparse one (1080p costs ~0.6 s a setting).
+FULL_SCALES = (0.25, 0.5, 1, 2, 3, 4, 6, 8, 16, 64)
+SPARSE_SCALES = (0.5, 2, 8, 32)
+QUICK_SCALES = (0.25, 1, 2, 4, 8, 16, 64)
+MAIN_FAMILIES = ("multi_L3_T16", "multi_L3_T32", "multi_L3_T16_dilate", "multi_L3_T16_lindilate",
+                 "multi_L3_T32_lindilate")
+# SSIM and FLIP (FLIP ~6 s per 1080p frame) are computed for these families' key settings.
+KEY_FAMILIES = ("grid2", "grid4", "checkerboard", "single_traced", "single_borrowed", "multi_L1_T16",
+                "multi_L2_T16", "multi_L3_T16", "multi_L3_T32", "multi_L3_T16_fov", "multi_L3_T16_dilate",
+                "multi_L3_T16_lindilate", "multi_L3_T32_lindilate")
+# FLIP in the full run only for these (the quick run: all key families)
+FLIP_FAMILIES_FULL = ("grid2", "checkerboard", "single_borrowed", "multi_L3_T16", "multi_L3_T16_dilate",
+                      "multi_L3_T16_lindilate")
+# The code a record depends on: a change to any of these invalidates the record cache.
+RECORD_CODE = ("sw_model/msr_model/golden.py", "sw_model/msr_model/spec.py", "sw_model/msr_model/rules.py",
+               "sw_model/msr_model/passview.py", "sw_model/msr_eval/methods.py", "sw_model/msr_eval/rules.py",
+               "sw_model/msr_eval/metrics.py", "sw_model/msr_eval/sweep.py")
+
+
+# --- scenes and renderers ------------------------------------------------------------------
+
+def _embree():
+    from msr_model import embree  # noqa: PLC0415 - needs the built renderer library
+    return embree
+
+
+class Backend:
+    """The rendering unit: the Embree binding if it is built, else the built-in test picture."""
+
+    def __init__(self, want: str):
+        self.name = "image"
+        self.lib_hash = "testimage"
+        if want in ("auto", "embree"):
+            try:
+                embree = _embree()
+                _close(embree.open_renderer(embree.scene_names()[0], 8, 8, quality="fast"))  # built?
+                self.name = "embree"
+                self.lib_hash = _lib_hash(embree.library_path())
+            except Exception as e:  # noqa: BLE001 - any failure to load means "not built"
+                if want == "embree":
+                    raise SystemExit(f"eval: Embree renderer not available: {e}")
+
+    @property
+    def embree(self) -> bool:
+        return self.name == "embree"
+
+    def builtin_scenes(self) -> list[str]:
+        return _embree().scene_names() if self.embree else ["testimage"]
+
+    def open(self, scene: str, width: int, height: int, mode: str):
+        return open_unit(self.name, scene, width, height, mode)
+
+
+def open_unit(backend: str, scene: str, width: int, height: int, mode: str):
+    """A rendering unit by backend name (what a task on a worker gets: names, not objects)."""
+    if backend == "image":
+        return ImageRenderer(test_image(width, height))
+    return _embree().open_renderer(scene, width, height, quality=mode)
+
+
+def _lib_hash(path) -> str:
+    """Content hash of the renderer library (so a rebuilt renderer invalidates the cache)."""
+    p = Path(path)
+    return hashlib.sha1(p.read_bytes()).hexdigest()[:10] if p.is_file() else "nolib"
+
+
+def scene_id(scene: str) -> str:
+    return Path(scene).stem.replace(" ", "_") if ("/" in scene or "." in scene) else scene
+
+
+def _close(r):
+    close = getattr(r, "close", None)
+    if close:
+        close()
+
+
+# --- the settings ----------------------------------------------------------------------------
+
+def fov_gain_for(width, height, tile, edge_add=16):
+    """fov_gain that raises the thresholds of the outermost tiles by about `edge_add`."""
+    ntx, nty = -(-width // tile), -(-height // tile)
+    r2max = max(ntx - 1, nty - 1, 1)
+    return int(min(255, max(1, round(edge_add * 16 / r2max))))
+
+
+def level_thr(levels, s):
+    """Per-level thresholds for a scale s: s, 2s, 4s (claim 2: rising with the level), >= 1."""
+    return tuple(min(255, max(1, int(s * (1 << k)))) for k in range(levels))
+
+
+@dataclass(frozen=True)
+class Setting:
+    """One point of the sweep: a method of msr_eval.methods with its arguments (plain data,
+    so a task can travel to another machine)."""
+
+    family: str
+    label: str
+    method: str                                   # a function name in msr_eval.methods
+    kwargs: dict = field(default_factory=dict)    # its arguments after (renderer, W, H)
+    setting: dict = field(default_factory=dict)   # what the record shows of it
+
+    def run(self, renderer, width: int, height: int) -> M.MethodResult:
+        return getattr(M, self.method)(renderer, width, height, **self.kwargs)
+
+
+def settings(width, height, scales, quick) -> list[Setting]:
+    """Every setting of the sweep, in the order of the records."""
+    W, H = width, height
+    sparse = scales if quick else SPARSE_SCALES
+    out = [Setting("full", "full", "full_render"),
+           Setting("grid2", "grid 2", "coarse_grid", {"step": 2}, {"step": 2}),
+           Setting("grid4", "grid 4", "coarse_grid", {"step": 4}, {"step": 4}),
+           Setting("checkerboard", "checkerboard", "checkerboard")]
+    for s in sparse:
+        t = min(255, max(1, int(2 * s)))   # one level of stride 4: between the patent's L=2 thresholds
+        out.append(Setting("single_traced", f"t={t}", "single_level",
+                           {"thr": t, "stride": 4, "border": "traced", "tile": 16},
+                           {"thr": t, "stride": 4, "tile": 16}))
+        out.append(Setting("single_borrowed", f"t={t}", "single_level",
+                           {"thr": t, "stride": 4, "border": "borrowed"}, {"thr": t, "stride": 4}))
+    multi = [("L1_T16", 16, 1, 0, "patent"), ("L2_T16", 16, 2, 0, "patent"),
+             ("L3_T16", 16, 3, 0, "patent"), ("L3_T32", 32, 3, 0, "patent"),
+             ("L3_T16_fov", 16, 3, 16, "patent"),
+             ("L3_T16_dilate", 16, 3, 0, "dilate"), ("L3_T16_linear", 16, 3, 0, "linear"),
+             ("L3_T16_lindilate", 16, 3, 0, "lindilate"), ("L3_T16_diag", 16, 3, 0, "diag"),
+             ("L3_T32_lindilate", 32, 3, 0, "lindilate")]
+    for name, tile, levels, fov_edge, rule in multi:
+        gain = fov_gain_for(W, H, tile, fov_edge) if fov_edge else 0
+        fam = f"multi_{name}"
+        for s in (scales if fam in MAIN_FAMILIES else sparse):
+            p = Params(tile=tile, levels=levels, thr=level_thr(levels, s), fov_gain=gain)
+            out.append(Setting(fam, f"thr={','.join(map(str, p.thr))}", "multi_level",
+                               {"params": p, "rule": rule}, {**p.as_dict(), "rule": rule}))
+    return out
+
+
+def find_setting(sweep: list[Setting], rec: dict) -> Setting:
+    for s in sweep:
+        if s.family == rec["family"] and s.label == rec["label"]:
+            return s
+    raise KeyError(rec["family"], rec["label"])
+
+
+@dataclass(frozen=True)
+class SweepConfig:
+    width: int
+    height: int
+    scales: tuple
+    quick: bool
+    all_metrics: bool
+    cache: Path
+
+    @property
+    def sweep(self) -> list[Setting]:
+        return settings(self.width, self.height, self.scales, self.quick)
+
+    def signature(self) -> str:
+        """Changes whenever the sweep or the code that computes a record changes."""
+        h = hashlib.sha1()
+        for s in self.sweep:
+            h.update(f"{s.family}|{s.label}|{sorted(s.setting.items())}".encode())
+        for f in RECORD_CODE:
+            h.update((REPO / f).read_bytes())
+        h.update(repr((self.all_metrics, KEY_FAMILIES, FLIP_FAMILIES_FULL, TARGETS_DB)).encode())
+        return h.hexdigest()[:10]
+
+
+# --- tasks (pure functions of their arguments) -----------------------------------------------
+
+def task_reference(backend: str, scene: str, mode: str, width: int, height: int):
+    """The full render of a scene and its wall time."""
+    r = open_unit(backend, scene, width, height, mode)
+    try:
+        t0 = time.perf_counter()
+        res = M.full_render(r, width, height)
+        dt = time.perf_counter() - t0
+    finally:
+        _close(r)
+    return res.frame, {"full_render_s": dt, "traced": res.traced}
+
+
+def task_record(ref, sid: str, mode: str, setting: Setting, all_metrics: bool) -> dict:
+    """One setting on one scene's reference: its record."""
+    H, W = ref.shape[:2]
+    rr = ImageRenderer(ref)
+    t0 = time.perf_counter()
+    res = setting.run(rr, W, H)
+    dt = time.perf_counter() - t0
+    if rr.pixels_traced != res.traced:
+        raise RuntimeError(f"{setting.family}: method count {res.traced} != renderer count {rr.pixels_traced}")
+    rec = {"scene": sid, "mode": mode, "family": setting.family, "method": res.method,
+           "label": setting.label, "setting": setting.setting, "traced": res.traced,
+           "traced_fraction": res.traced / (W * H), "psnr": psnr(ref, res.frame),
+           "decide_s": dt, "key_setting": False}
+    if all_metrics:
+        rec["ssim"] = ssim(ref, res.frame)
+        rec["flip"] = flip(ref, res.frame)
+    return rec
+
+
+def task_key_metrics(ref, setting: Setting, want_flip: bool) -> dict:
+    """SSIM (and FLIP) of one setting, run again on the reference."""
+    H, W = ref.shape[:2]
+    res = setting.run(ImageRenderer(ref), W, H)
+    out = {"ssim": ssim(ref, res.frame)}
+    if want_flip:
+        out["flip"] = flip(ref, res.frame)
+    return out
+
+
+# --- executors -------------------------------------------------------------------------------
+
+class _Deferred:
+    def __init__(self, fn, args):
+        self._fn, self._args = fn, args
+
+    def result(self):
+        return self._fn(*self._args)
+
+
+class SerialExecutor:
+    """Runs every task in this process, in submission order, when its result is collected."""
+
+    name = "serial"
+
+    def submit(self, fn, *args):
+        return _Deferred(fn, args)
+
+    def scatter(self, value):
+        return value
+
+    def results(self, futures, progress=None):
+        out = []
+        for f in futures:
+            out.append(f.result())
+            if progress is not None:
+                progress.update(1)
+        return out
+
+    def close(self):
+        pass
+
+
+class DaskExecutor:
+    """Tasks on Dask distributed: an existing scheduler, or a LocalCluster of this machine."""
+
+    def __init__(self, scheduler: str | None = None, workers: int | None = None):
+        import logging
+
+        from distributed import Client, LocalCluster
+        self.cluster = None
+        if scheduler:
+            self.client = Client(scheduler)
+            self.name = f"dask {scheduler}"
+        else:
+            n = workers or _cpus()
+            # One thread a worker: the tasks are numpy code that holds the GIL most of the time.
+            self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                        dashboard_address=None, silence_logs=logging.ERROR)
+            self.client = Client(self.cluster)
+            self.name = f"dask LocalCluster, {n} workers"
+
+    def submit(self, fn, *args):
+        return self.client.submit(fn, *args, pure=False)
+
+    def scatter(self, value):
+        return self.client.scatter(value, broadcast=False)
+
+    def results(self, futures, progress=None):
+        from distributed import as_completed
+        for _ in as_completed(futures):
+            if progress is not None:
+                progress.update(1)
+        return self.client.gather(futures)
+
+    def close(self):
+        self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()
+
+
+def _cpus() -> int:
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:
+        return max(1, os.cpu_count() or 1)
+
+
+def make_executor(scheduler: str | None = None, workers: int | None = None):
+    """`scheduler`: "serial", a Dask address (tcp://host:port), or None for $MSR_DASK_SCHEDULER
+    and else a LocalCluster with `workers` workers (default: one per CPU)."""
+    if scheduler == "serial" or workers == 0:
+        return SerialExecutor()
+    return DaskExecutor(scheduler or os.environ.get("MSR_DASK_SCHEDULER") or None, workers)
+
+
+# --- the sweep -------------------------------------------------------------------------------
+
+def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepConfig, executor,
+              log=print, show_progress: bool = True):
+    """Every setting on every scene and mode. Returns (records, refs, infos), refs and infos
+    keyed by (scene, mode); records in the order scene, mode, setting."""
+    from tqdm import tqdm
+
+    cache = Path(cfg.cache)
+    cache.mkdir(parents=True, exist_ok=True)
+    W, H = cfg.width, cfg.height
+    sweep = cfg.sweep
+    sig = cfg.signature()
+    pairs = [(scene, mode) for scene in scenes for mode in modes]
+
+    def bar(total, desc):
+        return tqdm(total=total, desc=desc, unit="task", disable=not show_progress or total == 0,
+                    leave=False, mininterval=1.0)
+
+    # References: from the cache, else rendered as tasks and cached here.
+    refs, infos, todo = {}, {}, []
+    for scene, mode in pairs:
+        key = f"{scene_id(scene)}_{mode}_{W}x{H}_{backend.lib_hash}"
+        png, meta = cache / f"{key}.png", cache / f"{key}.json"
+        if png.is_file() and meta.is_file():
+            refs[(scene, mode)], infos[(scene, mode)] = load_rgb(png), json.loads(meta.read_text())
+        else:
+            todo.append((scene, mode, png, meta))
+    with bar(len(todo), "eval: references") as b:
+        futs = [executor.submit(task_reference, backend.name, scene, mode, W, H) for scene, mode, _, _ in todo]
+        for (scene, mode, png, meta), (frame, info) in zip(todo, executor.results(futs, b)):
+            save_png(png, frame)
+            meta.write_text(json.dumps(info))
+            refs[(scene, mode)], infos[(scene, mode)] = frame, info
+
+    # Records: from the per-scene cache, else one task per setting.
+    records, pending = {}, []
+    for scene, mode in pairs:
+        rfile = cache / f"records_{scene_id(scene)}_{mode}_{W}x{H}_{backend.lib_hash}_{sig}.json"
+        if rfile.is_file():
+            records[(scene, mode)] = json.loads(rfile.read_text())
+            log(f"  {scene_id(scene)}/{mode}: {len(records[(scene, mode)])} settings (cached)")
+        else:
+            pending.append((scene, mode, rfile))
+    t0 = time.perf_counter()
+    shared = {(scene, mode): executor.scatter(refs[(scene, mode)]) for scene, mode, _ in pending}
+    futs = [executor.submit(task_record, shared[(scene, mode)], scene_id(scene), mode, s, cfg.all_metrics)
+            for scene, mode, _ in pending for s in sweep]
+    with bar(len(futs), "eval: settings") as b:
+        flat = executor.results(futs, b)
+    for i, (scene, mode, _) in enumerate(pending):
+        records[(scene, mode)] = flat[i * len(sweep):(i + 1) * len(sweep)]
+
+    # Key settings: the cheapest of each key family reaching the targets on each scene.
+    jobs = []
+    for scene, mode, _ in pending:
+        recs = records[(scene, mode)]
+        for fam in KEY_FAMILIES:
+            for t in (TARGETS_DB if cfg.quick else (40.0,)):
+                r = pick_near(recs, scene_id(scene), mode, fam, t)
+                if r is None:
+                    continue
+                r["key_setting"] = True
+                if "ssim" not in r and not any(r is j[0] for j in jobs):
+                    want_flip = cfg.quick or fam in FLIP_FAMILIES_FULL
+                    jobs.append((r, executor.submit(task_key_metrics, shared[(scene, mode)],
+                                                    find_setting(sweep, r), want_flip)))
+    with bar(len(jobs), "eval: key metrics") as b:
+        for (r, _), extra in zip(jobs, executor.results([f for _, f in jobs], b)):
+            r.update(extra)
+    for scene, mode, rfile in pending:
+        rfile.write_text(json.dumps(records[(scene, mode)]))
+        log(f"  {scene_id(scene)}/{mode}: {len(sweep)} settings, full render "
+            f"{infos[(scene, mode)]['full_render_s']:.2f} s")
+    if pending:
+        log(f"  sweep of {len(futs)} settings on {executor.name}: {time.perf_counter() - t0:.1f} s")
+    return [r for pair in pairs for r in records[pair]], refs, infos
+
+
+def rerun(ref, rec: dict, sweep: list[Setting]) -> M.MethodResult:
+    """Run one recorded setting again on the reference (for images and late metrics)."""
+    H, W = ref.shape[:2]
+    return find_setting(sweep, rec).run(ImageRenderer(ref), W, H)
+
+
+def speedup(backend: Backend, scene, mode, rec, ref, info, sweep: list[Setting]) -> dict:
+    """Wall time of the selective render on the live renderer against the full render (run here,
+    alone, so no other task disturbs the timing)."""
+    H, W = ref.shape[:2]
+    setting = find_setting(sweep, rec)
+    r = backend.open(scene, W, H, mode)
+    try:
+        t0 = time.perf_counter()
+        res = setting.run(r, W, H)
+        dt = time.perf_counter() - t0
+    finally:
+        _close(r)
+    cached = rerun(ref, rec, sweep)
+    return {"scene": scene_id(scene), "mode": mode, "family": rec["family"], "label": rec["label"],
+            "traced_fraction": res.traced / (W * H), "psnr": rec["psnr"],
+            "full_render_s": info["full_render_s"], "selective_s": dt,
+            "speedup": info["full_render_s"] / dt if dt > 0 else None,
+            "bit_equal_to_cached_run": bool((res.frame == cached.frame).all())}
