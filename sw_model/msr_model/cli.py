@@ -1,62 +1,45 @@
 """Command line of the golden model (../shared/spec/contracts.md).
 
     python -m msr_model select IMAGE.png --tile 16 --levels 2 --thr 8,16 [--metric max|sum]
-        [--fov-gain 0] --out OUT.png --source-map MAP.png --stats STATS.json
-    python -m msr_model select --scene SCENE --width W --height H [the same flags]
-    python -m msr_model render --scene SCENE --width W --height H --out REF.png
+        [--fov-gain 0] [--rule patent|lindilate] --out OUT.png --source-map MAP.png --stats STATS.json
+    python -m msr_model select --scene SCENE --width W --height H [--camera ...] [the same flags]
+    python -m msr_model render --scene SCENE --width W --height H [--camera ...] --out REF.png
 
-Any bad argument or unreadable input: one line on stderr, exit status 2, no file written.
+Any bad argument, unreadable or unsuitable input (over 4096 x 4096, 16-bit channels) or
+output path that cannot be written (unknown suffix, the same file twice, a folder that cannot
+be written): one line on stderr, exit status 2, no file written. Everything is checked
+before anything is decoded or computed; the outputs are written to temporary files in their
+folders and renamed into place at the end.
 """
 from __future__ import annotations
 
 import argparse
 import json
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
 from . import spec
+from .clitools import OutputSet, Parser, UsageError, check_outputs, int_in, int_list, run_main
 from .golden import select
-from .image_renderer import ImageRenderer, load_rgb, save_png
-
-EXIT_BAD_INPUT = 2
-
-
-class UsageError(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    """argparse, but every error is one line and exit status 2."""
-
-    def error(self, message):  # noqa: D401
-        raise UsageError(message)
+from .image_renderer import ImageRenderer, check_image, load_rgb, save_png
+from .rules import DEFAULT_RULE, RULES
 
 
 def _int_in(lo, hi, what):
     def conv(text):
         try:
-            v = int(text, 0)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{what} must be an integer, got {text!r}") from None
-        if not lo <= v <= hi:
-            raise argparse.ArgumentTypeError(f"{what} {v} outside {lo}..{hi}")
-        return v
+            return int_in(text, what, lo, hi)
+        except UsageError as e:
+            raise argparse.ArgumentTypeError(str(e)) from None
     return conv
 
 
 def _thr_list(text):
-    parts = text.split(",")
     try:
-        vals = tuple(int(p.strip(), 0) for p in parts)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--thr must be a comma-separated list of integers, got {text!r}") from None
-    for v in vals:
-        if not 0 <= v <= 255:
-            raise argparse.ArgumentTypeError(f"threshold {v} outside 0..255")
-    return vals
+        return int_list(text, "--thr", 0, 255)
+    except UsageError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
 
 
 def _add_select_flags(p):
@@ -66,6 +49,8 @@ def _add_select_flags(p):
                    help="per-level thresholds, comma-separated, one per level (default 8,16,32 cut to L)")
     p.add_argument("--metric", choices=spec.METRICS, default="max")
     p.add_argument("--fov-gain", type=_int_in(0, 255, "--fov-gain"), default=0)
+    p.add_argument("--rule", choices=tuple(RULES), default=DEFAULT_RULE,
+                   help="decision rule: patent (algorithm.md, default) or lindilate (docs/rules.md)")
     p.add_argument("--out", required=True, help="output frame PNG")
     p.add_argument("--source-map", help="output source-code map PNG (8-bit grey)")
     p.add_argument("--stats", help="output statistics JSON")
@@ -81,8 +66,8 @@ def _add_scene_flags(p, required):
 
 
 def build_parser():
-    ap = _Parser(prog="msr_model", description="Golden model of multi-level selective rendering")
-    sub = ap.add_subparsers(dest="cmd", required=True, parser_class=_Parser)
+    ap = Parser(prog="msr_model", description="Golden model of multi-level selective rendering")
+    sub = ap.add_subparsers(dest="cmd", required=True, parser_class=Parser)
     sel = sub.add_parser("select", help="selective render of an image or a scene")
     sel.add_argument("image", nargs="?", help="PNG used as the rendering unit")
     _add_select_flags(sel)
@@ -94,22 +79,11 @@ def build_parser():
 
 
 def _params(args) -> spec.Params:
-    thr = args.thr if args.thr is not None else (8, 16, 32)[: args.levels]
+    thr = args.thr if args.thr is not None else spec.default_thresholds(args.levels)
     if len(thr) != args.levels:
         raise UsageError(f"--thr has {len(thr)} values but --levels is {args.levels}: give one per level")
     return spec.Params(tile=args.tile, levels=args.levels, thr=thr, metric=args.metric,
                        fov_gain=args.fov_gain)
-
-
-def _check_outputs(*paths):
-    for p in paths:
-        if p is None:
-            continue
-        parent = Path(p).resolve().parent
-        if parent.exists() and not parent.is_dir():
-            raise UsageError(f"cannot write {p}: {parent} is not a folder")
-        if Path(p).is_dir():
-            raise UsageError(f"cannot write {p}: it is a folder")
 
 
 def _open_scene(args):
@@ -120,54 +94,56 @@ def _open_scene(args):
                          camera=getattr(args, "camera", None))
 
 
+def _close(renderer):
+    close = getattr(renderer, "close", None)
+    if close:
+        close()
+
+
 def cmd_select(args) -> int:
     params = _params(args)
-    _check_outputs(args.out, args.source_map, args.stats)
     if (args.image is None) == (args.scene is None):
         raise UsageError("give either IMAGE.png or --scene SCENE")
+    check_outputs({"--out": (args.out, (".png",)), "--source-map": (args.source_map, (".png",)),
+                   "--stats": (args.stats, (".json",))}, inputs=[args.image])
     t0 = time.perf_counter()
     if args.image is not None:
+        check_image(args.image)          # size and bit depth from the header, before decoding
         renderer = ImageRenderer(load_rgb(args.image))
-        result = select(renderer, renderer.width, renderer.height, params)
+        result = select(renderer, renderer.width, renderer.height, params, rule=args.rule)
     else:
         renderer = _open_scene(args)
         try:
-            result = select(renderer, args.width, args.height, params)
+            result = select(renderer, args.width, args.height, params, rule=args.rule)
         finally:
-            close = getattr(renderer, "close", None)
-            if close:
-                close()
+            _close(renderer)
     stats = dict(result.stats)
     stats["seconds"] = round(time.perf_counter() - t0, 4)
     stats["source"] = args.image if args.image is not None else args.scene
-    # All computed: only now write, so a failure above leaves no partial output.
-    save_png(args.out, result.frame)
-    if args.source_map:
-        save_png(args.source_map, result.source)
-    if args.stats:
-        Path(args.stats).parent.mkdir(parents=True, exist_ok=True)
-        Path(args.stats).write_text(json.dumps(stats, indent=2) + "\n")
+    # All computed: only now write, all or nothing.
+    with OutputSet() as out:
+        out.write(args.out, lambda t: save_png(t, result.frame, format="PNG"))
+        if args.source_map:
+            out.write(args.source_map, lambda t: save_png(t, result.source, format="PNG"))
+        if args.stats:
+            out.write_text(args.stats, json.dumps(stats, indent=2) + "\n")
     return 0
 
 
 def cmd_render(args) -> int:
-    _check_outputs(args.out)
+    check_outputs({"--out": (args.out, (".png",))})
     renderer = _open_scene(args)
     try:
         img = renderer.render_full()
     finally:
-        close = getattr(renderer, "close", None)
-        if close:
-            close()
-    save_png(args.out, np.asarray(img, dtype=np.uint8))
+        _close(renderer)
+    with OutputSet() as out:
+        out.write(args.out, lambda t: save_png(t, np.asarray(img, dtype=np.uint8), format="PNG"))
     return 0
 
 
 def main(argv=None) -> int:
-    try:
+    def go():
         args = build_parser().parse_args(argv)
         return {"select": cmd_select, "render": cmd_render}[args.cmd](args)
-    except (UsageError, spec.SpecError) as e:
-        msg = str(e).replace("\n", " ")
-        print(f"msr_model: error: {msg}", file=sys.stderr)
-        return EXIT_BAD_INPUT
+    return run_main("msr_model", go)

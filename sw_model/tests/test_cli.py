@@ -114,3 +114,135 @@ def test_missing_required_and_both_sources(tmp_path, picture):
     r = cli("select", path, "--scene", "cornell", "--width", 8, "--height", 8, "--out", tmp_path / "o.png")
     assert r.returncode == 2 and not (tmp_path / "o.png").exists()
     assert cli("bogus").returncode == 2
+
+
+# ---- inputs and outputs refused before any work: exit 2, one line, nothing left behind -------
+
+def png_chunk(kind: bytes, data: bytes) -> bytes:
+    import zlib
+    return len(data).to_bytes(4, "big") + kind + data + zlib.crc32(kind + data).to_bytes(4, "big")
+
+
+def huge_png(path, w=100000, h=100000):
+    """A valid PNG header claiming w x h (8-bit RGB) with one tiny data chunk: decoding it
+    would need 30 GB, so it must be refused from the header alone."""
+    import zlib
+    ihdr = w.to_bytes(4, "big") + h.to_bytes(4, "big") + bytes([8, 2, 0, 0, 0])
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", ihdr)
+                     + png_chunk(b"IDAT", zlib.compress(b"\0" * 16)) + png_chunk(b"IEND", b""))
+
+
+def rgb16_png(path, w=6, h=5):
+    """A 16-bit RGB PNG (colour type 2, bit depth 16)."""
+    import zlib
+    rows = b"".join(b"\0" + bytes(range(6 * w)) for _ in range(h))
+    ihdr = w.to_bytes(4, "big") + h.to_bytes(4, "big") + bytes([16, 2, 0, 0, 0])
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", ihdr)
+                     + png_chunk(b"IDAT", zlib.compress(rows)) + png_chunk(b"IEND", b""))
+
+
+def assert_refused(r, tmp_path, *words, before=()):
+    assert r.returncode == 2, (r.returncode, r.stderr)
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("msr_model: error:"), r.stderr
+    for w in words:
+        assert w in lines[0], (w, lines[0])
+    left = sorted(p.name for p in tmp_path.rglob("*") if p.is_file() and p.name not in before)
+    assert left == [], left
+
+
+def test_huge_png_header_refused_before_decoding(tmp_path):
+    huge_png(tmp_path / "huge.png")
+    out, smap, stats = outputs(tmp_path)
+    r = cli("select", tmp_path / "huge.png", "--out", out, "--source-map", smap, "--stats", stats)
+    assert_refused(r, tmp_path, "100000x100000", "4096", before={"huge.png"})
+
+
+def test_16bit_rgb_png_refused(tmp_path):
+    rgb16_png(tmp_path / "deep.png")
+    assert Image.open(tmp_path / "deep.png").mode == "RGB"   # what a plain reader would take as 8-bit
+    out, smap, stats = outputs(tmp_path)
+    r = cli("select", tmp_path / "deep.png", "--out", out, "--source-map", smap, "--stats", stats)
+    assert_refused(r, tmp_path, "16-bit", before={"deep.png"})
+
+
+@pytest.mark.parametrize("which", ["--out", "--source-map", "--stats"])
+def test_unwritable_output_path(tmp_path, picture, which):
+    path, _ = picture
+    blocker = tmp_path / "file"
+    blocker.write_text("a file, not a folder\n")
+    paths = dict(zip(("--out", "--source-map", "--stats"), outputs(tmp_path)))
+    paths[which] = blocker / ("x.json" if which == "--stats" else "x.png")
+    flags = [a for k, v in paths.items() for a in (k, v)]
+    r = cli("select", path, *flags)
+    assert_refused(r, tmp_path, "cannot write", before={"in.png", "file"})
+
+
+def test_unwritable_folder(tmp_path, picture):
+    """A folder nobody may create files in (/proc is refused even to root)."""
+    path, _ = picture
+    r = cli("select", path, "--out", "/proc/msr_out.png")
+    assert_refused(r, tmp_path, "cannot write", before={"in.png"})
+
+
+@pytest.mark.parametrize("same", [("--out", "--source-map"), ("--out", "--stats"), ("--source-map", "input")])
+def test_same_path_for_two_outputs(tmp_path, picture, same):
+    path, _ = picture
+    paths = dict(zip(("--out", "--source-map", "--stats"), outputs(tmp_path)))
+    a, b = same
+    if b == "input":
+        paths[a] = path
+    else:
+        paths[b] = paths[a]
+        if b == "--stats":
+            paths[a] = paths[b] = tmp_path / "both.json"
+    flags = [x for k, v in paths.items() for x in (k, v)]
+    r = cli("select", path, *flags)
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert {p.name for p in tmp_path.iterdir()} == {"in.png"}
+    assert (np.asarray(Image.open(path)) == picture[1]).all()        # the input untouched
+
+
+@pytest.mark.parametrize("flag, name", [("--out", "o.jpg"), ("--out", "o"), ("--source-map", "m.txt"),
+                                        ("--stats", "s.png")])
+def test_unknown_output_extension(tmp_path, picture, flag, name):
+    path, _ = picture
+    paths = dict(zip(("--out", "--source-map", "--stats"), outputs(tmp_path)))
+    paths[flag] = tmp_path / name
+    flags = [x for k, v in paths.items() for x in (k, v)]
+    r = cli("select", path, *flags)
+    assert_refused(r, tmp_path, flag, before={"in.png"})
+
+
+def test_outputs_into_new_folder_and_no_temporary_files_left(tmp_path, picture):
+    path, _ = picture
+    out = tmp_path / "new" / "deeper" / "o.png"
+    r = cli("select", path, "--out", out, "--stats", tmp_path / "new" / "s.json")
+    assert r.returncode == 0, r.stderr
+    assert sorted(p.name for p in (tmp_path / "new").rglob("*") if p.is_file()) == ["o.png", "s.json"]
+
+
+# ---- --rule ----------------------------------------------------------------------------------
+
+def test_rule_flag(tmp_path, picture):
+    path, img = picture
+    H, W = img.shape[:2]
+    for rule in ("patent", "lindilate"):
+        out, smap, stats = outputs(tmp_path)
+        r = cli("select", path, "--tile", 8, "--levels", 3, "--thr", "4,8,16", "--rule", rule,
+                "--out", out, "--source-map", smap, "--stats", stats)
+        assert r.returncode == 0, r.stderr
+        ref = select(ImageRenderer(img), W, H, Params(tile=8, levels=3, thr=(4, 8, 16)), rule=rule)
+        assert (np.asarray(Image.open(out)) == ref.frame).all()
+        assert (np.asarray(Image.open(smap)) == ref.source).all()
+        assert json.loads(stats.read_text())["rule"] == rule
+    # the default is the patent's rule
+    r = cli("select", path, "--tile", 8, "--levels", 3, "--thr", "4,8,16", "--out", out, "--stats", stats)
+    assert r.returncode == 0 and json.loads(stats.read_text())["rule"] == "patent"
+
+
+def test_unknown_rule(tmp_path, picture):
+    path, _ = picture
+    out, smap, stats = outputs(tmp_path)
+    r = cli("select", path, "--rule", "magic", "--out", out, "--source-map", smap, "--stats", stats)
+    assert_refused(r, tmp_path, "rule", before={"in.png"})
