@@ -398,8 +398,9 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
             aiGetMaterialInteger(am, AI_MATKEY_UVWSRC(type, 0), reinterpret_cast<int *>(&uvi));
         }
         Material m = convert_material(am, textured);
-        if (textured && !tex && max_component(m.albedo) >= 0.9f && m.type == MatType::Diffuse)
-            m.albedo = {0.75f, 0.75f, 0.75f};  // no map and no colour: light grey, as before textures
+        const Vec3 &a = m.albedo;
+        if (textured && !tex && m.type == MatType::Diffuse && minf(a.x, minf(a.y, a.z)) >= 0.9f)
+            m.albedo = {0.75f, 0.75f, 0.75f};  // no map and a white (or no) colour: light grey
         if (tex && m.type == MatType::Diffuse) {
             size_t k = 0;
             while (k < out.textures.size() && out.textures[k] != tex) ++k;
