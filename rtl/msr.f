@@ -7,10 +7,11 @@ rtl/prim/msr_rr_arb.sv
 rtl/prim/msr_fifo.sv
 rtl/prim/msr_spill_reg.sv
 rtl/prim/msr_tile_sram.sv
-rtl/engine/msr_decide.sv
-rtl/engine/msr_interp.sv
+rtl/engine/msr_decision_pipe.sv
 rtl/engine/msr_level_ctrl.sv
 rtl/engine/msr_tile_stream.sv
+rtl/engine/msr_tag_pool.sv
+rtl/engine/msr_tile_ctx.sv
 rtl/engine/msr_tile_engine.sv
 rtl/regs/msr_regs_pkg.sv
 rtl/regs/msr_regs.sv

@@ -1,34 +1,37 @@
 // Tile engine: tiles in, their final pixels out (spec ../shared/spec/algorithm.md).
 //
-//   desc --> a free context c: msr_level_ctrl[c], pixel scoreboard[c], tile buffer[c]
-//   issue arbiter (round robin) --> S1 (tile buffer read data, A / B)
-//            --> msr_decide / msr_interp (shared, one decision per clock) --+
-//   interpolate -> tile buffer[c] write; trace -> render request {x, y, tag} |
-//   rsp {tag, rgb} -> tile buffer[tag's c] write (in the same clock as an    |
-//                     interpolated write when the two go to other contexts) <+
-//   finished contexts, round robin --> msr_tile_stream --> pix stream (row-major, whole tiles)
+//   desc --> lowest free context c (msr_tile_ctx: descriptor, level controller, pass
+//            barrier, tile buffer)
+//   issue: round robin (msr_rr_arb) over the contexts whose next position may go; the
+//          context's own tile buffer reads B (port 0) and A (port 1) at its controller's
+//          registered addresses
+//   AB   : the issued context's read data and descriptor fields, registered
+//   msr_decision_pipe (4 stages): decide and interpolate in one handshake
+//   out  : interpolate -> write {16+k, C} into the context's buffer;
+//          trace -> tag (msr_tag_pool) -> render request {x0+x, y0+y, tag} (spill register)
+//   rsp  : spill register -> R1 (tag looked up, checked in flight) -> write {k, rgb} into
+//          the tag's context, unless the pipeline writes that context in the same cycle
+//   full contexts, round robin --> msr_tile_stream --> pix stream (row-major, whole tiles)
 //
-// Why contexts: the decisions of one pass are independent, but a pass needs the pixels of
-// the passes before it, so a tile is a chain of 5-7 dependent passes, each waiting up to one
-// render latency for its traced neighbours. One tile keeps the decision pipeline busy only
-// when renders answer at once. NUM_CTX tiles are worked on at the same time, each with its
-// own level controller, scoreboard and tile buffer; every clock the arbiter issues, round
-// robin, the next position of a context whose two neighbours are final, so one tile's waits
-// are filled with other tiles' decisions. The per-context pixel scoreboard replaces the pass
-// barrier: a position goes as soon as its two neighbours are final (the values a barrier
-// would give: a pass reads only pixels of earlier passes, each written once). Positions of
-// one context leave in order, so each tile's render requests keep the golden model's order;
-// requests of different tiles interleave. Finished tiles are streamed out whole, one after
-// another, in the order they finish (roughly): a tile that waits long for its renders does
-// not hold up the tiles behind it (with in-order output it did, and the engine ran dry).
+// Why contexts: a tile is a chain of 5-7 dependent passes, each waiting up to one render
+// latency for its traced neighbours. NUM_CTX tiles are worked on at once; every clock the
+// arbiter issues the next position of a context that may go, so one tile's waits are filled
+// with other tiles' decisions. Every path between registers is a few LUT levels: the
+// controllers' outputs, the candidate bits and the arbiter's pointer are registers, the
+// buffer addresses need no multiplexer (each context addresses its own buffer), and the read
+// data, the decision and the interpolation each get their own stages.
 //
-// inflight_o counts tags handed out and not yet answered (a request waiting for
-// req_ready_i counts as in flight).
+// Render responses are checked: one whose tag is not in flight (stale, duplicate, invented)
+// is dropped and counted (rsp_drop_o pulses); nothing is written and no tag is freed twice.
+// inflight_o counts tags handed out and not yet answered (a request waiting for req_ready_i
+// counts as in flight).
+`include "msr_assert.svh"
+
 module msr_tile_engine
   import msr_pkg::*;
 #(
-  // Tile contexts. 8 keeps one engine near one pixel per clock with a render latency of 256
-  // cycles and 64 tags (docs/architecture.md); 2 suffice when renders answer within ~16.
+  // Tile contexts (2..16). 8 keeps one engine near one pixel per clock at a render latency of
+  // 256 cycles with 64 tags (docs/performance.md); 2 suffice when renders answer within ~16.
   parameter int unsigned NUM_CTX         = 8,
   parameter int unsigned MAX_OUTSTANDING = 16,  // render requests in flight (power of two, 2..64)
   parameter int unsigned TAG_W = $clog2(MAX_OUTSTANDING)
@@ -37,7 +40,7 @@ module msr_tile_engine
   // verilog_lint: waive-start line-length
   input  logic             clk_i,
   input  logic             rst_ni,
-  input  logic             clear_i,        // synchronous soft reset; only asserted when no render request is in flight
+  input  logic             clear_i,        // synchronous soft reset; every tag is free again MAX_OUTSTANDING cycles later
   input  logic             desc_valid_i,   // tile descriptor
   output logic             desc_ready_o,
   input  tile_desc_t       desc_i,
@@ -57,17 +60,15 @@ module msr_tile_engine
   output rgb_t             pix_rgb_o,
   output src_t             pix_src_o,
   output logic             pix_last_o,     // last pixel of the tile
-  output logic             busy_o,         // tile accepted and not yet fully emitted
+  output logic             busy_o,         // tile accepted and not yet fully emitted, or tags being reset
+  output logic             rsp_drop_o,     // pulse: a response whose tag was not in flight was dropped
   output logic [$clog2(MAX_OUTSTANDING):0] inflight_o  // render requests in flight (for the top's soft reset / perf)
   // verilog_lint: waive-stop line-length
 );
 
-  localparam int unsigned CNT_W  = $clog2(MAX_OUTSTANDING) + 1;
-  localparam int unsigned WORD_W = $bits(src_t) + $bits(rgb_t);
-  localparam int unsigned DEPTH  = MAX_TILE * MAX_TILE;
   localparam int unsigned CTX_W  = (NUM_CTX > 1) ? $clog2(NUM_CTX) : 1;
   // Positions of one context issued and not yet written: at most the pipeline plus its tags.
-  localparam int unsigned PEND_W = $clog2(MAX_OUTSTANDING + 8) + 1;
+  localparam int unsigned PEND_W = $clog2(MAX_OUTSTANDING + 16) + 1;
 
   typedef logic [CTX_W-1:0] ctx_t;
 
@@ -85,457 +86,382 @@ module msr_tile_engine
     $fatal(1, "msr_tile_engine: NUM_CTX %0d must be in 2..16", NUM_CTX);
   end
 
-  function automatic ctx_t ctx_inc(ctx_t c);
-    return (32'(c) == NUM_CTX - 1) ? '0 : c + 1'b1;
-  endfunction
-
-  // ---- Context bookkeeping ------------------------------------------------------------------
-  // A context is free, computing (its controller walks the tile, or all positions are
-  // issued and the last results are outstanding), or full (finished, waiting for / being
-  // streamed out). A new tile takes the lowest free context; the streamer takes the full
-  // contexts round robin, so a tile that waits long for its renders never holds up the
-  // tiles behind it (tiles may leave in another order than they came).
-  ctx_t                      alloc, str_q, str_sel, str_rr_q;
-  logic                      any_free;
-  logic                      streaming_q;
-  logic    [NUM_CTX-1:0]     comp_q, issued_q, full_q, ctx_done;
-  coord_t  [NUM_CTX-1:0]     ctx_x0_q, ctx_y0_q;
-  ldim_t   [NUM_CTX-1:0]     ctx_w_q, ctx_h_q;
-  metric_e [NUM_CTX-1:0]     ctx_metric_q;
-  thr_t    [NUM_CTX-1:0][MAX_LEVELS-1:0] ctx_thr_q;
-  logic    [NUM_CTX-1:0][PEND_W-1:0]     pend_q;
-  rgb_t    [NUM_CTX-1:0]     last_b_q;       // B of the context's last decision (A of its next)
-
-  logic desc_fire, stream_start, stream_done;
-  logic [NUM_CTX-1:0] ctrl_start_ready, ctrl_busy;
-
-  always_comb begin
-    alloc    = '0;
-    any_free = 1'b0;
-    for (int unsigned i = NUM_CTX; i > 0; i--) begin
-      if (!comp_q[i-1] && !full_q[i-1] && ctrl_start_ready[i-1]) begin
-        alloc    = ctx_t'(i - 1);
-        any_free = 1'b1;
-      end
-    end
-  end
-
-  assign desc_ready_o = any_free && !clear_i;
-  assign desc_fire    = desc_valid_i && desc_ready_o;
-
-  // ---- Level processing controllers, one per context ---------------------------------------
-  logic    [NUM_CTX-1:0] step_valid, step_ready, step_reuse, nb_final, cand;
-  // The pass-start flag is not needed with the pixel scoreboard; kept for waveforms.
+  // ---- Contexts ---------------------------------------------------------------------------------
+  logic       [NUM_CTX-1:0] ctx_free, ctx_full, ctx_cand, ctx_start, ctx_issue;
+  // The pass-start flags are for waveforms (the barrier itself lives in each context).
   /* verilator lint_off UNUSEDSIGNAL */
-  logic    [NUM_CTX-1:0] step_first;
+  logic       [NUM_CTX-1:0] ctx_first;
   /* verilator lint_on UNUSEDSIGNAL */
-  lcoord_t [NUM_CTX-1:0] step_x, step_y, step_ax, step_ay, step_bx, step_by;
-  gap_t    [NUM_CTX-1:0] step_gap, step_off;
-  level_t  [NUM_CTX-1:0] step_level;
-  logic    [NUM_CTX-1:0][1:0] step_nshift;
-  dir_e    [NUM_CTX-1:0] step_dir;
+  tile_desc_t [NUM_CTX-1:0] ctx_desc;
+  lcoord_t    [NUM_CTX-1:0] ctx_x, ctx_y;
+  gap_t       [NUM_CTX-1:0] ctx_gap, ctx_off;
+  level_t     [NUM_CTX-1:0] ctx_level;
+  logic       [NUM_CTX-1:0][1:0] ctx_nshift;
+  logic       [NUM_CTX-1:0] ctx_init;
+  rgb_t       [NUM_CTX-1:0] ctx_rd_a, ctx_rd_b, ctx_str_rgb;
+  src_t       [NUM_CTX-1:0] ctx_str_src;
+  logic       [NUM_CTX-1:0] ctx_we, ctx_str_own, ctx_str_done;
+  logic       [NUM_CTX-1:0][TADDR_W-1:0] ctx_waddr;
+  src_t       [NUM_CTX-1:0] ctx_wsrc;
+  rgb_t       [NUM_CTX-1:0] ctx_wrgb;
 
-  // Pixel scoreboards: final_q[c][{y, x}] is set when the pixel of context c's tile is
-  // written (interpolated, or traced and answered).
-  logic [NUM_CTX-1:0][DEPTH-1:0] final_q;
+  // ---- Tile start: the lowest free context --------------------------------------------------
+  logic [CTX_W-1:0] alloc;
+  logic             none_free, tags_init;
 
-  for (genvar c = 0; c < NUM_CTX; c++) begin : g_ctrl
-    msr_level_ctrl u_ctrl (
-      .clk_i         (clk_i),
-      .rst_ni        (rst_ni),
-      .clear_i       (clear_i),
-      .start_valid_i (desc_fire && (alloc == ctx_t'(c))),
-      .start_ready_o (ctrl_start_ready[c]),
-      .w_i           (desc_i.w),
-      .h_i           (desc_i.h),
-      .levels_i      (desc_i.levels),
-      .step_valid_o  (step_valid[c]),
-      .step_ready_i  (step_ready[c]),
-      .step_x_o      (step_x[c]),
-      .step_y_o      (step_y[c]),
-      .step_ax_o     (step_ax[c]),
-      .step_ay_o     (step_ay[c]),
-      .step_bx_o     (step_bx[c]),
-      .step_by_o     (step_by[c]),
-      .step_gap_o    (step_gap[c]),
-      .step_off_o    (step_off[c]),
-      .step_level_o  (step_level[c]),
-      .step_nshift_o (step_nshift[c]),
-      .step_dir_o    (step_dir[c]),
-      .step_first_o  (step_first[c]),
-      .step_reuse_o  (step_reuse[c]),
-      .busy_o        (ctrl_busy[c])
-    );
-    assign nb_final[c] = (step_dir[c] == DIR_INIT) ||
-                         (final_q[c][{step_ay[c], step_ax[c]}] &&
-                          final_q[c][{step_by[c], step_bx[c]}]);
-    assign cand[c]     = step_valid[c] && nb_final[c];
+  msr_lzc #(.WIDTH(NUM_CTX), .CNT_W(CTX_W)) u_alloc (
+    .in_i    (ctx_free),
+    .cnt_o   (alloc),
+    .empty_o (none_free)
+  );
+
+  assign desc_ready_o = !none_free && !clear_i && !tags_init;
+
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_start
+    assign ctx_start[c] = desc_valid_i && desc_ready_o && (alloc == ctx_t'(c));
   end
 
-  // ---- Issue arbiter: round robin over the contexts with a ready position -------------------
-  // Round robin, not oldest first: a young context's initial-grid traces start its first
-  // render latency early; under oldest-first priority they waited behind the old contexts'
-  // interpolations, and one engine topped out at ~0.8 pixels per clock at latency 256.
-  logic s1_valid_q, s1_ready, unit_ready, unit_ready_i;
-  logic issue;
-  ctx_t gnt, rr_q;
+  // ---- Issue ----------------------------------------------------------------------------------
+  logic             arb_valid, pipe_ready, issue;
+  logic [CTX_W-1:0] gnt_idx;
+  logic [NUM_CTX-1:0] gnt;
 
-  always_comb begin
-    gnt   = rr_q;
-    issue = 1'b0;
-    for (int unsigned i = NUM_CTX; i > 0; i--) begin
-      // rr_q + i - 1 (mod NUM_CTX); the loop runs backwards so the first candidate wins
-      int unsigned c;
-      c = 32'(rr_q) + i - 1;
-      if (c >= NUM_CTX) c -= NUM_CTX;
-      if (cand[c]) begin
-        gnt   = ctx_t'(c);
-        issue = s1_ready;
-      end
-    end
-  end
+  msr_rr_arb #(.N(NUM_CTX), .IDX_W(CTX_W)) u_issue_arb (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .clear_i (clear_i),
+    .req_i   (ctx_cand),
+    .gnt_o   (gnt),
+    .idx_o   (gnt_idx),
+    .valid_o (arb_valid),
+    .ready_i (pipe_ready)
+  );
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      rr_q <= '0;
-    end else if (clear_i) begin
-      rr_q <= '0;
-    end else if (issue) begin
-      rr_q <= ctx_inc(gnt);
-    end
-  end
+  assign issue     = arb_valid && pipe_ready;
+  assign ctx_issue = gnt & {NUM_CTX{pipe_ready}};
 
-  assign s1_ready = !s1_valid_q || unit_ready;
-  for (genvar c = 0; c < NUM_CTX; c++) begin : g_step_ready
-    assign step_ready[c] = issue && (gnt == ctx_t'(c));
-  end
-
-  // The granted position.
-  lcoord_t g_x, g_y, g_ax, g_ay, g_bx, g_by;
-  gap_t    g_gap, g_off;
-  level_t  g_level;
-  logic [1:0] g_nshift;
-  dir_e    g_dir;
-  logic    g_reuse;
-  assign g_x      = step_x[gnt];
-  assign g_y      = step_y[gnt];
-  assign g_ax     = step_ax[gnt];
-  assign g_ay     = step_ay[gnt];
-  assign g_bx     = step_bx[gnt];
-  assign g_by     = step_by[gnt];
-  assign g_gap    = step_gap[gnt];
-  assign g_off    = step_off[gnt];
-  assign g_level  = step_level[gnt];
-  assign g_nshift = step_nshift[gnt];
-  assign g_dir    = step_dir[gnt];
-  assign g_reuse  = step_reuse[gnt];
-
-  // Engine-side read ports: both go to the granted context's buffer.
-  logic                 e_re0, e_re1;
-  logic [TADDR_W-1:0]   e_raddr0, e_raddr1;
-  // A decision only needs the colours of its neighbours, not their source codes.
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic [WORD_W-1:0]    e_rdata0, e_rdata1;
-  /* verilator lint_on UNUSEDSIGNAL */
-
-  assign e_re0    = issue && (g_dir != DIR_INIT);
-  assign e_re1    = issue && (g_dir != DIR_INIT) && !g_reuse;
-  assign e_raddr0 = {g_by, g_bx};
-  assign e_raddr1 = {g_ay, g_ax};
-
-  // ---- S1: read data arrives, A / B formed ---------------------------------------------------
+  // The issued position, picked with the one-hot grant (an AND-OR, not an index multiplexer).
   typedef struct packed {
-    lcoord_t x;
-    lcoord_t y;
-    level_t  level;
-    logic    init;
-    ctx_t    ctx;
-  } side_t;
+    lcoord_t    x;
+    lcoord_t    y;
+    gap_t       gap;
+    gap_t       off;
+    level_t     level;
+    logic [1:0] nshift;
+    logic       init;
+  } pos_t;
 
-  side_t      s1_side_q;
-  gap_t       s1_gap_q, s1_off_q;
-  logic [1:0] s1_nshift_q;
-  logic       s1_reuse_q;
-  rgb_t       s1_a, s1_b;
+  pos_t iss_pos;
+  pos_t [NUM_CTX-1:0] ctx_pos;
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_pos
+    assign ctx_pos[c] = '{x: ctx_x[c], y: ctx_y[c], gap: ctx_gap[c], off: ctx_off[c],
+                          level: ctx_level[c], nshift: ctx_nshift[c], init: ctx_init[c]};
+  end
+  always_comb begin
+    iss_pos = '0;
+    for (int unsigned c = 0; c < NUM_CTX; c++) begin
+      iss_pos |= ctx_pos[c] & {$bits(pos_t){gnt[c]}};
+    end
+  end
 
-  assign s1_b = rgb_t'(e_rdata0[$bits(rgb_t)-1:0]);
-  assign s1_a = s1_reuse_q ? last_b_q[s1_side_q.ctx] : rgb_t'(e_rdata1[$bits(rgb_t)-1:0]);
+  // ---- IS: the issue registers (the buffer reads happen this cycle) ----------------------------
+  logic is_valid_q;
+  ctx_t is_ctx_q;
+  pos_t is_pos_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      s1_valid_q <= 1'b0;
+      is_valid_q <= 1'b0;
     end else if (clear_i) begin
-      s1_valid_q <= 1'b0;
-    end else if (s1_ready) begin
-      s1_valid_q <= issue;
+      is_valid_q <= 1'b0;
+    end else if (pipe_ready) begin
+      is_valid_q <= issue;
     end
   end
 
   always_ff @(posedge clk_i) begin
     if (issue) begin
-      s1_side_q   <= '{x: g_x, y: g_y, level: g_level, init: (g_dir == DIR_INIT), ctx: gnt};
-      s1_gap_q    <= g_gap;
-      s1_off_q    <= g_off;
-      s1_nshift_q <= g_nshift;
-      s1_reuse_q  <= g_reuse;
-    end
-    // B of this decision is A of the context's next one along the row / column.
-    if (s1_valid_q && unit_ready && !s1_side_q.init) begin
-      last_b_q[s1_side_q.ctx] <= s1_b;
+      is_ctx_q <= gnt_idx;
+      is_pos_q <= iss_pos;
     end
   end
 
-  // ---- Decision and interpolation (two stages each, in lock-step) -----------------------------
-  logic  out_valid, out_valid_i, out_interp, out_ready;
-  // d itself is only for waveforms; the engine acts on the decision bit.
+  // ---- AB: read data and the context's descriptor, registered ----------------------------------
+  // What travels with a decision to the output.
+  typedef struct packed {
+    ctx_t    ctx;
+    lcoord_t x;
+    lcoord_t y;
+    coord_t  gx;
+    coord_t  gy;
+    level_t  level;
+    logic    init;
+  } side_t;
+
+  logic       ab_valid_q;
+  rgb_t       ab_a_q, ab_b_q;
+  side_t      ab_side_q;
+  metric_e    ab_metric_q;
+  thr_t       ab_thr_q;
+  // Each of these is read in part: the position's x / y and the tile's size go elsewhere.
   /* verilator lint_off UNUSEDSIGNAL */
-  diff_t out_diff;
-  logic  interp_user;   // the interpolation unit's sideband: the decision unit carries it
+  pos_t       ab_pos_q;
+  tile_desc_t is_desc;
   /* verilator lint_on UNUSEDSIGNAL */
-  side_t out_side;
-  rgb_t  out_rgb;
-  thr_t  s1_thr;
 
-  assign s1_thr = (s1_side_q.level == '0) ? '0
-                                           : ctx_thr_q[s1_side_q.ctx][s1_side_q.level - 1'b1];
-
-  msr_decide #(
-    .USER_W ($bits(side_t))
-  ) u_decide (
-    .clk_i    (clk_i),
-    .rst_ni   (rst_ni),
-    .clear_i  (clear_i),
-    .valid_i  (s1_valid_q),
-    .ready_o  (unit_ready),
-    .a_i      (s1_a),
-    .b_i      (s1_b),
-    .metric_i (ctx_metric_q[s1_side_q.ctx]),
-    .thr_i    (s1_thr),
-    .gap_i    (s1_side_q.init ? gap_t'(1) : s1_gap_q),
-    .nshift_i (s1_nshift_q),
-    .user_i   (s1_side_q),
-    .valid_o  (out_valid),
-    .ready_i  (out_ready),
-    .interp_o (out_interp),
-    .diff_o   (out_diff),
-    .user_o   (out_side)
-  );
-
-  msr_interp #(
-    .USER_W (1)
-  ) u_interp (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .valid_i (s1_valid_q),
-    .ready_o (unit_ready_i),
-    .a_i     (s1_a),
-    .b_i     (s1_b),
-    .gap_i   (s1_side_q.init ? gap_t'(2) : s1_gap_q),
-    .off_i   (s1_side_q.init ? gap_t'(0) : s1_off_q),
-    .user_i  (1'b0),
-    .valid_o (out_valid_i),
-    .ready_i (out_ready),
-    .rgb_o   (out_rgb),
-    .user_o  (interp_user)
-  );
-
-  // ---- Output: interpolate -> write, trace -> render request ---------------------------------
-  logic out_trace, out_write, req_fire, rsp_fire, tag_avail;
-  logic [TAG_W-1:0] free_head;
-  logic [CNT_W-1:0] free_cnt_q;  // free tags
-
-  assign out_trace   = out_side.init || !out_interp;
-  assign tag_avail   = (free_cnt_q != '0);
-  assign req_valid_o = out_valid && out_trace && tag_avail;
-  assign req_fire    = req_valid_o && req_ready_i;
-  assign out_write   = out_valid && !out_trace;
-  assign out_ready   = !out_trace || req_fire;
-  assign req_x_o     = ctx_x0_q[out_side.ctx] + coord_t'(out_side.x);
-  assign req_y_o     = ctx_y0_q[out_side.ctx] + coord_t'(out_side.y);
-  assign req_tag_o   = free_head;
-
-  // ---- Tags: free list, and where each answer goes -------------------------------------------
-  logic [MAX_OUTSTANDING-1:0][TAG_W-1:0] free_q;
-  logic [TAG_W-1:0] free_rptr_q, free_wptr_q;
-  logic [MAX_OUTSTANDING-1:0][TADDR_W-1:0] tag_addr_q;
-  level_t [MAX_OUTSTANDING-1:0] tag_level_q;
-  ctx_t   [MAX_OUTSTANDING-1:0] tag_ctx_q;
-  logic [MAX_OUTSTANDING-1:0] tag_busy_q;
-  ctx_t rsp_ctx;
-
-  assign free_head   = free_q[free_rptr_q];
-  assign rsp_ctx     = tag_ctx_q[rsp_tag_i];
-  // Each context's buffer has one write port: the decision pipeline has it first.
-  assign rsp_ready_o = !(out_write && (out_side.ctx == rsp_ctx));
-  assign rsp_fire    = rsp_valid_i && rsp_ready_o;
-  assign inflight_o  = CNT_W'(MAX_OUTSTANDING) - free_cnt_q;
+  assign is_desc = ctx_desc[is_ctx_q];
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      for (int unsigned i = 0; i < MAX_OUTSTANDING; i++) free_q[i] <= TAG_W'(i);
-      free_rptr_q <= '0;
-      free_wptr_q <= '0;
-      free_cnt_q  <= CNT_W'(MAX_OUTSTANDING);
-      tag_busy_q  <= '0;
+      ab_valid_q <= 1'b0;
     end else if (clear_i) begin
-      for (int unsigned i = 0; i < MAX_OUTSTANDING; i++) free_q[i] <= TAG_W'(i);
-      free_rptr_q <= '0;
-      free_wptr_q <= '0;
-      free_cnt_q  <= CNT_W'(MAX_OUTSTANDING);
-      tag_busy_q  <= '0;
-    end else begin
-      if (req_fire) begin
-        free_rptr_q           <= free_rptr_q + 1'b1;
-        tag_busy_q[free_head] <= 1'b1;
-      end
-      if (rsp_fire) begin
-        free_q[free_wptr_q]   <= rsp_tag_i;
-        free_wptr_q           <= free_wptr_q + 1'b1;
-        tag_busy_q[rsp_tag_i] <= 1'b0;
-      end
-      free_cnt_q <= free_cnt_q - CNT_W'(req_fire) + CNT_W'(rsp_fire);
+      ab_valid_q <= 1'b0;
+    end else if (pipe_ready) begin
+      ab_valid_q <= is_valid_q;
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (req_fire) begin
-      tag_addr_q[free_head]  <= {out_side.y, out_side.x};
-      tag_level_q[free_head] <= out_side.level;
-      tag_ctx_q[free_head]   <= out_side.ctx;
+    if (pipe_ready && is_valid_q) begin
+      ab_a_q      <= ctx_rd_a[is_ctx_q];
+      ab_b_q      <= ctx_rd_b[is_ctx_q];
+      ab_pos_q    <= is_pos_q;
+      ab_side_q   <= '{ctx: is_ctx_q, x: is_pos_q.x, y: is_pos_q.y,
+                       gx: is_desc.x0 + coord_t'(is_pos_q.x), gy: is_desc.y0 + coord_t'(is_pos_q.y),
+                       level: is_pos_q.level, init: is_pos_q.init};
+      ab_metric_q <= is_desc.metric;
+      // threshold of the position's level; an initial-grid position gets 0 (always trace)
+      ab_thr_q    <= is_pos_q.init ? '0 : is_desc.thr[is_pos_q.level - 1'b1];
     end
   end
 
-  // Writes: an interpolated value to its context, a render response to its tag's context.
-  logic [NUM_CTX-1:0]              b_we;
-  logic [NUM_CTX-1:0][TADDR_W-1:0] b_waddr;
-  logic [NUM_CTX-1:0][WORD_W-1:0]  b_wdata;
+  // ---- Decision pipeline --------------------------------------------------------------------
+  logic  out_valid, out_interp, out_ready;
+  side_t out_side;
+  rgb_t  out_rgb;
+  // d is carried for waveforms only; the engine acts on the decision bit.
+  /* verilator lint_off UNUSEDSIGNAL */
+  diff_t out_diff;
+  /* verilator lint_on UNUSEDSIGNAL */
 
-  always_comb begin
-    for (int unsigned c = 0; c < NUM_CTX; c++) begin
-      b_we[c]    = 1'b0;
-      b_waddr[c] = tag_addr_q[rsp_tag_i];
-      b_wdata[c] = {src_traced(tag_level_q[rsp_tag_i]), rsp_rgb_i};
-      if (rsp_fire && rsp_ctx == ctx_t'(c)) b_we[c] = 1'b1;
-      if (out_write && out_side.ctx == ctx_t'(c)) begin
-        b_we[c]    = 1'b1;
-        b_waddr[c] = {out_side.y, out_side.x};
-        b_wdata[c] = {src_interp(out_side.level), out_rgb};
-      end
-    end
-  end
+  msr_decision_pipe #(
+    .USER_W ($bits(side_t))
+  ) u_decision_pipe (
+    .clk_i    (clk_i),
+    .rst_ni   (rst_ni),
+    .clear_i  (clear_i),
+    .valid_i  (ab_valid_q),
+    .ready_o  (pipe_ready),
+    .a_i      (ab_a_q),
+    .b_i      (ab_b_q),
+    .metric_i (ab_metric_q),
+    .thr_i    (ab_thr_q),
+    .gap_i    (ab_pos_q.init ? gap_t'(2) : ab_pos_q.gap),
+    .off_i    (ab_pos_q.init ? gap_t'(1) : ab_pos_q.off),
+    .nshift_i (ab_pos_q.nshift),
+    .user_i   (ab_side_q),
+    .valid_o  (out_valid),
+    .ready_i  (out_ready),
+    .interp_o (out_interp),
+    .diff_o   (out_diff),
+    .rgb_o    (out_rgb),
+    .user_o   (out_side)
+  );
 
-  // Scoreboard update: a written pixel is final; a new tile starts with none.
+  // ---- Output: interpolate -> write, trace -> tag and render request -----------------------------
+  typedef struct packed {
+    ctx_t               ctx;
+    logic [TADDR_W-1:0] addr;
+    level_t             level;
+  } tag_entry_t;
+
+  typedef struct packed {
+    coord_t           x;
+    coord_t           y;
+    logic [TAG_W-1:0] tag;
+  } req_t;
+
+  logic             out_trace, out_write, tag_avail, req_in_ready, alloc_tag;
+  logic [TAG_W-1:0] free_tag;
+  req_t             req_in, req_out;
+
+  assign req_in = '{x: out_side.gx, y: out_side.gy, tag: free_tag};
+
+  assign out_trace = out_side.init || !out_interp;
+  assign out_write = out_valid && !out_trace;
+  assign out_ready = !out_trace || (tag_avail && req_in_ready);
+  assign alloc_tag = out_valid && out_trace && tag_avail && req_in_ready;
+
+  msr_spill_reg #(
+    .WIDTH ($bits(req_t))
+  ) u_req_spill (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .clear_i (clear_i),
+    .valid_i (out_valid && out_trace && tag_avail),
+    .ready_o (req_in_ready),
+    .data_i  (req_in),
+    .valid_o (req_valid_o),
+    .ready_i (req_ready_i),
+    .data_o  (req_out)
+  );
+
+  assign req_x_o   = req_out.x;
+  assign req_y_o   = req_out.y;
+  assign req_tag_o = req_out.tag;
+
+  // ---- Responses --------------------------------------------------------------------------------
+  typedef struct packed {
+    logic [TAG_W-1:0] tag;
+    rgb_t             rgb;
+  } rsp_t;
+
+  logic             rs_valid, rs_ready;
+  rsp_t             rs_data, rsp_in;
+  logic             r1_valid_q, r1_write, r1_drop, r1_done;
+  rsp_t             r1_q;
+  tag_entry_t       r1_entry;
+  logic             r1_inflight;
+
+  msr_spill_reg #(
+    .WIDTH ($bits(rsp_t))
+  ) u_rsp_spill (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .clear_i (clear_i),
+    .valid_i (rsp_valid_i),
+    .ready_o (rsp_ready_o),
+    .data_i  (rsp_in),
+    .valid_o (rs_valid),
+    .ready_i (rs_ready),
+    .data_o  (rs_data)
+  );
+
+  assign rsp_in = '{tag: rsp_tag_i, rgb: rsp_rgb_i};
+
+  // R1 holds one response; it is written when its context's port is free this cycle (the
+  // pipeline's interpolated write goes first), or dropped when its tag is not in flight.
+  assign r1_drop  = r1_valid_q && !r1_inflight;
+  assign r1_write = r1_valid_q && r1_inflight &&
+                    !(out_write && out_side.ctx == r1_entry.ctx);
+  assign r1_done  = r1_drop || r1_write;
+  assign rs_ready = !r1_valid_q || r1_done;
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      final_q <= '0;
+      r1_valid_q <= 1'b0;
     end else if (clear_i) begin
-      final_q <= '0;
-    end else begin
-      for (int unsigned c = 0; c < NUM_CTX; c++) begin
-        if (desc_fire && alloc == ctx_t'(c)) begin
-          final_q[c] <= '0;
-        end else if (b_we[c]) begin
-          final_q[c][b_waddr[c]] <= 1'b1;
-        end
-      end
+      r1_valid_q <= 1'b0;
+    end else if (rs_ready) begin
+      r1_valid_q <= rs_valid;
     end
   end
 
-  // ---- Tile start / end ----------------------------------------------------------------------
-  for (genvar c = 0; c < NUM_CTX; c++) begin : g_done
-    assign ctx_done[c] = comp_q[c] && issued_q[c] && (pend_q[c] == '0);
+  always_ff @(posedge clk_i) begin
+    if (rs_ready && rs_valid) r1_q <= rs_data;
   end
 
+  assign rsp_drop_o = r1_drop;
+
+  // ---- Tags -------------------------------------------------------------------------------------
+  logic [TAG_W:0] tags_inflight;
+  tag_entry_t     alloc_entry;
+
+  assign alloc_entry = '{ctx: out_side.ctx, addr: {out_side.y, out_side.x}, level: out_side.level};
+
+  msr_tag_pool #(
+    .N       (MAX_OUTSTANDING),
+    .ENTRY_W ($bits(tag_entry_t)),
+    .TAG_W   (TAG_W)
+  ) u_tag_pool (
+    .clk_i            (clk_i),
+    .rst_ni           (rst_ni),
+    .clear_i          (clear_i),
+    .avail_o          (tag_avail),
+    .tag_o            (free_tag),
+    .alloc_i          (alloc_tag),
+    .entry_i          (alloc_entry),
+    .query_tag_i      (r1_q.tag),
+    .query_entry_o    (r1_entry),
+    .query_inflight_o (r1_inflight),
+    .release_i        (r1_write),
+    .inflight_o       (tags_inflight),
+    .init_o           (tags_init)
+  );
+
+  assign inflight_o = tags_inflight;
+
+  // ---- Writes: each context's one port -------------------------------------------------------
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_write
+    logic pipe_we, rsp_we;
+    assign pipe_we      = out_write && (out_side.ctx == ctx_t'(c));
+    assign rsp_we       = r1_write && (r1_entry.ctx == ctx_t'(c));
+    assign ctx_we[c]    = pipe_we || rsp_we;
+    assign ctx_waddr[c] = pipe_we ? {out_side.y, out_side.x} : r1_entry.addr;
+    assign ctx_wsrc[c]  = pipe_we ? src_interp(out_side.level) : src_traced(r1_entry.level);
+    assign ctx_wrgb[c]  = pipe_we ? out_rgb : r1_q.rgb;
+  end
+
+  // ---- Output streamer ----------------------------------------------------------------------
+  logic             str_arb_valid, streaming_q, str_start_q, str_start_ready;
+  logic             str_re, str_done;
+  logic [CTX_W-1:0] str_sel, str_q;
+  logic [TADDR_W-1:0] str_raddr;
+  // The streamer needs the winner's index and the tile's origin and size only.
+  /* verilator lint_off UNUSEDSIGNAL */
+  tile_desc_t       str_desc;
+  logic [NUM_CTX-1:0] str_gnt;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  msr_rr_arb #(.N(NUM_CTX), .IDX_W(CTX_W)) u_stream_arb (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .clear_i (clear_i),
+    .req_i   (ctx_full),
+    .gnt_o   (str_gnt),
+    .idx_o   (str_sel),
+    .valid_o (str_arb_valid),
+    .ready_i (!streaming_q)
+  );
+
+  // Pick a full context (one cycle), start the streamer on it (next cycle), free it when its
+  // last pixel has left.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      str_q        <= '0;
-      str_rr_q     <= '0;
-      streaming_q  <= 1'b0;
-      comp_q       <= '0;
-      issued_q     <= '0;
-      full_q       <= '0;
-      pend_q       <= '0;
-      ctx_x0_q     <= '0;
-      ctx_y0_q     <= '0;
-      ctx_w_q      <= '0;
-      ctx_h_q      <= '0;
-      ctx_metric_q <= {NUM_CTX{METRIC_MAX}};
-      ctx_thr_q    <= '0;
-    end else if (clear_i) begin
-      str_q       <= '0;
-      str_rr_q    <= '0;
       streaming_q <= 1'b0;
-      comp_q      <= '0;
-      issued_q    <= '0;
-      full_q      <= '0;
-      pend_q      <= '0;
+      str_start_q <= 1'b0;
+      str_q       <= '0;
+    end else if (clear_i) begin
+      streaming_q <= 1'b0;
+      str_start_q <= 1'b0;
+      str_q       <= '0;
     end else begin
-      if (desc_fire) begin
-        comp_q[alloc]       <= 1'b1;
-        ctx_x0_q[alloc]     <= desc_i.x0;
-        ctx_y0_q[alloc]     <= desc_i.y0;
-        ctx_w_q[alloc]      <= desc_i.w;
-        ctx_h_q[alloc]      <= desc_i.h;
-        ctx_metric_q[alloc] <= desc_i.metric;
-        ctx_thr_q[alloc]    <= desc_i.thr;
-      end
-      for (int unsigned c = 0; c < NUM_CTX; c++) begin
-        // the controller has issued every position of its tile (it goes idle after the last;
-        // it is busy from the clock after the start, when comp_q is set)
-        if (comp_q[c] && !issued_q[c] && !ctrl_busy[c]) issued_q[c] <= 1'b1;
-        // issued +1; interpolated and written -1; trace answered and written -1
-        pend_q[c] <= pend_q[c] + PEND_W'(issue && gnt == ctx_t'(c))
-                               - PEND_W'(out_write && out_side.ctx == ctx_t'(c))
-                               - PEND_W'(rsp_fire && rsp_ctx == ctx_t'(c));
-        if (ctx_done[c]) begin
-          comp_q[c]   <= 1'b0;
-          issued_q[c] <= 1'b0;
-          full_q[c]   <= 1'b1;
-        end
-      end
-      if (stream_done) full_q[str_q] <= 1'b0;   // the streamed context is free again
-      if (stream_start) begin
+      if (!streaming_q && str_arb_valid) begin
         streaming_q <= 1'b1;
+        str_start_q <= 1'b1;
         str_q       <= str_sel;
-        str_rr_q    <= ctx_inc(str_sel);
       end
-      if (stream_done) streaming_q <= 1'b0;
+      if (str_start_q && str_start_ready) str_start_q <= 1'b0;
+      if (str_done) streaming_q <= 1'b0;
     end
   end
 
-  // ---- Output streamer -----------------------------------------------------------------------
-  logic               s_re, s_start_ready;
-  logic [TADDR_W-1:0] s_raddr;
-  logic [WORD_W-1:0]  s_rdata;
-
-  // Next tile to stream: the first full context from str_rr_q on.
-  always_comb begin
-    str_sel = str_rr_q;
-    for (int unsigned i = NUM_CTX; i > 0; i--) begin
-      int unsigned c;
-      c = 32'(str_rr_q) + i - 1;
-      if (c >= NUM_CTX) c -= NUM_CTX;
-      if (full_q[c]) str_sel = ctx_t'(c);
-    end
-  end
-
-  assign stream_start = !streaming_q && (full_q != '0) && s_start_ready;
+  assign str_desc = ctx_desc[str_q];
 
   msr_tile_stream u_stream (
     .clk_i         (clk_i),
     .rst_ni        (rst_ni),
     .clear_i       (clear_i),
-    .start_valid_i (!streaming_q && (full_q != '0)),
-    .start_ready_o (s_start_ready),
-    .x0_i          (ctx_x0_q[str_sel]),
-    .y0_i          (ctx_y0_q[str_sel]),
-    .w_i           (ctx_w_q[str_sel]),
-    .h_i           (ctx_h_q[str_sel]),
-    .re_o          (s_re),
-    .raddr_o       (s_raddr),
-    .rdata_rgb_i   (rgb_t'(s_rdata[$bits(rgb_t)-1:0])),
-    .rdata_src_i   (src_t'(s_rdata[WORD_W-1:$bits(rgb_t)])),
+    .start_valid_i (str_start_q),
+    .start_ready_o (str_start_ready),
+    .x0_i          (str_desc.x0),
+    .y0_i          (str_desc.y0),
+    .w_i           (str_desc.w),
+    .h_i           (str_desc.h),
+    .re_o          (str_re),
+    .raddr_o       (str_raddr),
+    .rdata_rgb_i   (ctx_str_rgb[str_q]),
+    .rdata_src_i   (ctx_str_src[str_q]),
     .pix_valid_o   (pix_valid_o),
     .pix_ready_i   (pix_ready_i),
     .pix_x_o       (pix_x_o),
@@ -543,115 +469,71 @@ module msr_tile_engine
     .pix_rgb_o     (pix_rgb_o),
     .pix_src_o     (pix_src_o),
     .pix_last_o    (pix_last_o),
-    .done_o        (stream_done)
+    .done_o        (str_done)
   );
 
-  assign busy_o = (comp_q != '0) || (full_q != '0);
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_stream_own
+    assign ctx_str_own[c]  = streaming_q && (str_q == ctx_t'(c));
+    assign ctx_str_done[c] = str_done && (str_q == ctx_t'(c));
+  end
 
-  // ---- Tile buffers, one per context ---------------------------------------------------------
-  // Port 0 of a buffer belongs to the streamer while it empties that buffer, else to the
-  // decision reads; a full buffer is never read for decisions, so the two never collide.
-  logic [NUM_CTX-1:0][WORD_W-1:0] b_rdata0, b_rdata1;
-
-  for (genvar c = 0; c < NUM_CTX; c++) begin : g_buf
-    logic str_owns, eng_owns;
-    assign str_owns = streaming_q && (str_q == ctx_t'(c));
-    assign eng_owns = (gnt == ctx_t'(c));
-
-    msr_tile_sram #(
-      .DEPTH  (DEPTH),
-      .DATA_W (WORD_W)
-    ) u_sram (
-      .clk_i    (clk_i),
-      .re0_i    (str_owns ? s_re : (eng_owns && e_re0)),
-      .raddr0_i (str_owns ? s_raddr : e_raddr0),
-      .rdata0_o (b_rdata0[c]),
-      .re1_i    (eng_owns && e_re1),
-      .raddr1_i (e_raddr1),
-      .rdata1_o (b_rdata1[c]),
-      .we_i     (b_we[c]),
-      .waddr_i  (b_waddr[c]),
-      .wdata_i  (b_wdata[c])
+  // ---- The contexts themselves ----------------------------------------------------------------
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_ctx
+    msr_tile_ctx #(
+      .PEND_W (PEND_W)
+    ) u_ctx (
+      .clk_i         (clk_i),
+      .rst_ni        (rst_ni),
+      .clear_i       (clear_i),
+      .start_i       (ctx_start[c]),
+      .desc_i        (desc_i),
+      .free_o        (ctx_free[c]),
+      .desc_o        (ctx_desc[c]),
+      .cand_o        (ctx_cand[c]),
+      .step_first_o  (ctx_first[c]),
+      .step_x_o      (ctx_x[c]),
+      .step_y_o      (ctx_y[c]),
+      .step_gap_o    (ctx_gap[c]),
+      .step_off_o    (ctx_off[c]),
+      .step_level_o  (ctx_level[c]),
+      .step_nshift_o (ctx_nshift[c]),
+      .step_init_o   (ctx_init[c]),
+      .issue_i       (ctx_issue[c]),
+      .rd_a_o        (ctx_rd_a[c]),
+      .rd_b_o        (ctx_rd_b[c]),
+      .we_i          (ctx_we[c]),
+      .waddr_i       (ctx_waddr[c]),
+      .wsrc_i        (ctx_wsrc[c]),
+      .wrgb_i        (ctx_wrgb[c]),
+      .full_o        (ctx_full[c]),
+      .str_own_i     (ctx_str_own[c]),
+      .str_re_i      (str_re),
+      .str_raddr_i   (str_raddr),
+      .str_rgb_o     (ctx_str_rgb[c]),
+      .str_src_o     (ctx_str_src[c]),
+      .str_done_i    (ctx_str_done[c])
     );
   end
 
-  assign e_rdata0 = b_rdata0[s1_side_q.ctx];
-  assign e_rdata1 = b_rdata1[s1_side_q.ctx];
-  assign s_rdata  = b_rdata0[str_q];
+  assign busy_o = !(&ctx_free) || tags_init;
 
-`ifndef SYNTHESIS
-  // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
+  // ---- Checks -------------------------------------------------------------------------------------
   /* verilator lint_off SYNCASYNCNET */
   // Handshakes (outputs): valid held until ready, data stable.
-  a_req_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-      req_valid_o && !req_ready_i |=> req_valid_o && $stable({req_x_o, req_y_o, req_tag_o}))
-    else $error("msr_tile_engine: render request changed while stalled");
-  a_pix_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-      pix_valid_o && !pix_ready_i |=> pix_valid_o &&
-        $stable({pix_x_o, pix_y_o, pix_rgb_o, pix_src_o, pix_last_o}))
-    else $error("msr_tile_engine: pixel changed while stalled");
+  `MSR_ASSERT(a_req_hold, req_valid_o && !req_ready_i |=> req_valid_o &&
+      $stable({req_x_o, req_y_o, req_tag_o}), clk_i, !rst_ni || clear_i)
+  `MSR_ASSERT(a_pix_hold, pix_valid_o && !pix_ready_i |=> pix_valid_o &&
+      $stable({pix_x_o, pix_y_o, pix_rgb_o, pix_src_o, pix_last_o}), clk_i, !rst_ni || clear_i)
   // Handshakes (inputs): the environment holds what it offers.
-  a_desc_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-      desc_valid_i && !desc_ready_o |=> desc_valid_i && $stable(desc_i))
-    else $error("msr_tile_engine: descriptor changed while waiting");
-  a_rsp_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-      rsp_valid_i && !rsp_ready_o |=> rsp_valid_i && $stable({rsp_tag_i, rsp_rgb_i}))
-    else $error("msr_tile_engine: response changed while waiting");
-  // Tags: no response without a request, no tag reused while in flight.
-  a_rsp_known : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      rsp_valid_i |-> tag_busy_q[rsp_tag_i])
-    else $error("msr_tile_engine: response with tag %0d that is not in flight", rsp_tag_i);
-  a_tag_free : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      req_valid_o |-> !tag_busy_q[req_tag_o])
-    else $error("msr_tile_engine: tag %0d reused while in flight", req_tag_o);
-  a_clear_idle : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      clear_i |-> inflight_o == '0)
-    else $error("msr_tile_engine: clear_i with %0d requests in flight", inflight_o);
-  a_desc_legal : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      desc_fire |-> desc_i.w inside {[1 : MAX_TILE]} && desc_i.h inside {[1 : MAX_TILE]} &&
-        desc_i.levels inside {[1 : MAX_LEVELS]})
-    else $error("msr_tile_engine: descriptor %0dx%0d L=%0d out of range", desc_i.w, desc_i.h,
-                desc_i.levels);
-  a_units_lockstep : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      unit_ready == unit_ready_i && out_valid == out_valid_i)
-    else $error("msr_tile_engine: decision and interpolation units out of step");
-  a_reads_own : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-      issue |-> comp_q[gnt] && !issued_q[gnt] && !full_q[gnt])
-    else $error("msr_tile_engine: position issued into a context that is not being computed");
-
-  // Invariant: every pixel of a tile is written exactly once, and only pixels of the tile.
-  logic [NUM_CTX-1:0][DEPTH-1:0] written_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      written_q <= '0;
-    end else begin
-      for (int unsigned c = 0; c < NUM_CTX; c++) begin
-        if (desc_fire && alloc == ctx_t'(c)) written_q[c] <= '0;
-        if (b_we[c]) written_q[c][b_waddr[c]] <= 1'b1;
-      end
-    end
-  end
-  function automatic logic all_written(logic [DEPTH-1:0] wr, ldim_t w, ldim_t h);
-    logic ok = 1'b1;
-    for (int unsigned y = 0; y < MAX_TILE; y++) begin
-      for (int unsigned x = 0; x < MAX_TILE; x++) begin
-        if (x < 32'(w) && y < 32'(h)) ok &= wr[y*MAX_TILE+x];
-      end
-    end
-    return ok;
-  endfunction
-  for (genvar c = 0; c < NUM_CTX; c++) begin : g_assert_ctx
-    a_write_once : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-        b_we[c] |-> comp_q[c] && !written_q[c][b_waddr[c]] &&
-          32'(b_waddr[c][LCOORD_W-1:0]) < 32'(ctx_w_q[c]) &&
-          32'(b_waddr[c][TADDR_W-1:LCOORD_W]) < 32'(ctx_h_q[c]))
-      else $error("msr_tile_engine: pixel (%0d,%0d) of context %0d written twice or outside the tile",
-                  b_waddr[c][LCOORD_W-1:0], b_waddr[c][TADDR_W-1:LCOORD_W], c);
-    a_all_written : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-        ctx_done[c] |-> all_written(written_q[c], ctx_w_q[c], ctx_h_q[c]))
-      else $error("msr_tile_engine: tile of context %0d finished with pixels never written", c);
-  end
+  `MSR_ASSUME(m_desc_hold, desc_valid_i && !desc_ready_o |=> desc_valid_i && $stable(desc_i),
+      clk_i, !rst_ni || clear_i)
+  `MSR_ASSUME(m_desc_legal, desc_valid_i |-> desc_i.w inside {[1 : MAX_TILE]} &&
+      desc_i.h inside {[1 : MAX_TILE]} && desc_i.levels inside {[1 : MAX_LEVELS]})
+  // Internal invariants.
+  `MSR_ASSERT(a_one_writer, !(out_write && r1_write && out_side.ctx == r1_entry.ctx))
+  `MSR_ASSERT(a_issue_onehot, $onehot0(ctx_issue))
+  `MSR_COVER(c_rsp_dropped, rsp_drop_o)
+  `MSR_COVER(c_all_ctx_busy, none_free)
   /* verilator lint_on SYNCASYNCNET */
-`endif
 
 endmodule : msr_tile_engine

@@ -1,0 +1,198 @@
+// Decision pipeline (spec section 3, claims 8-9 and 12): for one position between neighbours A
+// and B, the decision  d * n_k < thr * g  (d = max or sum of the per-channel |A - B|) and the
+// interpolated colour  C = ((g - o) * A + o * B + floor(g / 2)) / g,  in one pipeline with one
+// valid/ready handshake. Division by g in 2..8 is a multiply by RECIP[g] = ceil(2^14 / g) and
+// a shift by 14, exact for every numerator 0..2047 (tb/interp proves it over the whole range).
+//
+// Four register stages, each a few logic levels, so the unit closes timing far above the
+// engine's clock on an FPGA and fits a short cycle on an ASIC:
+//   S1  per-channel |A - B|, thr * g, (g - o) * A and o * B
+//   S2  max and sum of the differences, numerator (g - o) * A + o * B + floor(g / 2)
+//   S3  d << log2(n_k) against thr * g; numerator times the low and high halves of RECIP[g]
+//   S4  product = low + high << 7; C is its bits 14..21 (output register)
+// Global-stall pipeline: every stage advances when the output register is empty or taken.
+// A trace-only step (the initial grid) passes through with any A / B; the caller ignores C.
+`include "msr_assert.svh"
+
+module msr_decision_pipe
+  import msr_pkg::*;
+#(
+  parameter int unsigned USER_W = 1   // sideband carried alongside each decision
+) (
+  input  logic              clk_i,
+  input  logic              rst_ni,
+  input  logic              clear_i,    // synchronous flush of the pipeline
+  input  logic              valid_i,    // one position to decide
+  output logic              ready_o,
+  input  rgb_t              a_i,        // neighbour A (left / top)
+  input  rgb_t              b_i,        // neighbour B (right / bottom)
+  input  metric_e           metric_i,
+  input  thr_t              thr_i,      // foveated threshold thr_k'
+  input  gap_t              gap_i,      // g = b - a, 1..8
+  input  gap_t              off_i,      // o = m - a, 0..g-1
+  input  logic [1:0]        nshift_i,   // log2(n_k), 0..3
+  input  logic [USER_W-1:0] user_i,
+  output logic              valid_o,    // result ready
+  input  logic              ready_i,
+  output logic              interp_o,   // 1: interpolate, 0: trace
+  output diff_t             diff_o,     // colour difference d (for waveforms and tests)
+  output rgb_t              rgb_o,      // interpolated colour
+  output logic [USER_W-1:0] user_o
+);
+
+  localparam int unsigned PROD_W = THR_W + GAP_W;  // 12 bit: 255 * 8, 255 * 7 + 255 * 1
+  localparam int unsigned NUM_W  = 11;             // numerator <= 8 * 255 + 4 = 2044
+  localparam int unsigned LHS_W  = DIFF_W + 3;     // d << 3
+  localparam int unsigned HALF_W = 7;              // RECIP split into two 7-bit halves
+  localparam int unsigned SHIFT  = 14;
+
+  // ceil(2^SHIFT / g); entries 0 and 1 are never used (g >= 2 wherever C is used).
+  function automatic logic [2*HALF_W-1:0] recip(gap_t g);
+    unique case (g)
+      4'd2:    return 14'd8192;
+      4'd3:    return 14'd5462;
+      4'd4:    return 14'd4096;
+      4'd5:    return 14'd3277;
+      4'd6:    return 14'd2731;
+      4'd7:    return 14'd2341;
+      4'd8:    return 14'd2048;
+      default: return 14'd0;
+    endcase
+  endfunction
+
+  function automatic chan_t absdiff(chan_t x, chan_t y);
+    return (x > y) ? x - y : y - x;
+  endfunction
+
+  logic advance;
+  assign advance = !valid_o || ready_i;
+  assign ready_o = advance;
+
+  // ---- S1 ---------------------------------------------------------------------------------------
+  logic                    s1_valid_q;
+  chan_t [2:0]             s1_abs_q;
+  logic  [2:0][PROD_W-1:0] s1_pa_q, s1_pb_q;   // (g - o) * A, o * B per channel
+  logic  [PROD_W-1:0]      s1_rhs_q;           // thr * g
+  metric_e                 s1_metric_q;
+  logic  [1:0]             s1_nshift_q;
+  gap_t                    s1_gap_q;
+  logic  [USER_W-1:0]      s1_user_q;
+
+  always_ff @(posedge clk_i) begin
+    if (advance && valid_i) begin
+      s1_abs_q[2] <= absdiff(a_i.r, b_i.r);
+      s1_abs_q[1] <= absdiff(a_i.g, b_i.g);
+      s1_abs_q[0] <= absdiff(a_i.b, b_i.b);
+      s1_pa_q[2]  <= PROD_W'(gap_i - off_i) * PROD_W'(a_i.r);
+      s1_pa_q[1]  <= PROD_W'(gap_i - off_i) * PROD_W'(a_i.g);
+      s1_pa_q[0]  <= PROD_W'(gap_i - off_i) * PROD_W'(a_i.b);
+      s1_pb_q[2]  <= PROD_W'(off_i) * PROD_W'(b_i.r);
+      s1_pb_q[1]  <= PROD_W'(off_i) * PROD_W'(b_i.g);
+      s1_pb_q[0]  <= PROD_W'(off_i) * PROD_W'(b_i.b);
+      s1_rhs_q    <= PROD_W'(thr_i) * PROD_W'(gap_i);
+      s1_metric_q <= metric_i;
+      s1_nshift_q <= nshift_i;
+      s1_gap_q    <= gap_i;
+      s1_user_q   <= user_i;
+    end
+  end
+
+  // ---- S2 ---------------------------------------------------------------------------------------
+  logic                    s2_valid_q;
+  diff_t                   s2_d_q;
+  logic  [2:0][NUM_W-1:0]  s2_num_q;
+  logic  [PROD_W-1:0]      s2_rhs_q;
+  logic  [1:0]             s2_nshift_q;
+  logic  [2*HALF_W-1:0]    s2_recip_q;
+  logic  [USER_W-1:0]      s2_user_q;
+  diff_t                   d_max, d_sum;
+
+  always_comb begin
+    d_max = diff_t'(s1_abs_q[2]);
+    if (diff_t'(s1_abs_q[1]) > d_max) d_max = diff_t'(s1_abs_q[1]);
+    if (diff_t'(s1_abs_q[0]) > d_max) d_max = diff_t'(s1_abs_q[0]);
+    d_sum = diff_t'(s1_abs_q[2]) + diff_t'(s1_abs_q[1]) + diff_t'(s1_abs_q[0]);
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (advance && s1_valid_q) begin
+      s2_d_q      <= (s1_metric_q == METRIC_SUM) ? d_sum : d_max;
+      for (int unsigned c = 0; c < 3; c++) begin
+        s2_num_q[c] <= NUM_W'(s1_pa_q[c]) + NUM_W'(s1_pb_q[c]) + NUM_W'(s1_gap_q >> 1);
+      end
+      s2_rhs_q    <= s1_rhs_q;
+      s2_nshift_q <= s1_nshift_q;
+      s2_recip_q  <= recip(s1_gap_q);
+      s2_user_q   <= s1_user_q;
+    end
+  end
+
+  // ---- S3 ---------------------------------------------------------------------------------------
+  localparam int unsigned PART_W = NUM_W + HALF_W;
+  logic                    s3_valid_q;
+  logic                    s3_interp_q;
+  diff_t                   s3_d_q;
+  logic  [2:0][PART_W-1:0] s3_lo_q, s3_hi_q;
+  logic  [USER_W-1:0]      s3_user_q;
+
+  always_ff @(posedge clk_i) begin
+    if (advance && s2_valid_q) begin
+      s3_interp_q <= (LHS_W'(s2_d_q) << s2_nshift_q) < LHS_W'(s2_rhs_q);
+      s3_d_q      <= s2_d_q;
+      for (int unsigned c = 0; c < 3; c++) begin
+        s3_lo_q[c] <= PART_W'(s2_num_q[c]) * PART_W'(s2_recip_q[HALF_W-1:0]);
+        s3_hi_q[c] <= PART_W'(s2_num_q[c]) * PART_W'(s2_recip_q[2*HALF_W-1:HALF_W]);
+      end
+      s3_user_q   <= s2_user_q;
+    end
+  end
+
+  // ---- S4: output register ------------------------------------------------------------------
+  localparam int unsigned FULL_W = PART_W + HALF_W;
+  logic [2:0][FULL_W-1:0] prod;
+
+  always_comb begin
+    for (int unsigned c = 0; c < 3; c++) begin
+      prod[c] = FULL_W'(s3_lo_q[c]) + (FULL_W'(s3_hi_q[c]) << HALF_W);
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (advance && s3_valid_q) begin
+      interp_o <= s3_interp_q;
+      diff_o   <= s3_d_q;
+      // the quotient is <= 255: the 8 bits above the shift are the whole result
+      rgb_o    <= '{r: prod[2][SHIFT +: 8], g: prod[1][SHIFT +: 8], b: prod[0][SHIFT +: 8]};
+      user_o   <= s3_user_q;
+    end
+  end
+
+  // ---- Valid bits ------------------------------------------------------------------------------
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      s1_valid_q <= 1'b0;
+      s2_valid_q <= 1'b0;
+      s3_valid_q <= 1'b0;
+      valid_o    <= 1'b0;
+    end else if (clear_i) begin
+      s1_valid_q <= 1'b0;
+      s2_valid_q <= 1'b0;
+      s3_valid_q <= 1'b0;
+      valid_o    <= 1'b0;
+    end else if (advance) begin
+      s1_valid_q <= valid_i;
+      s2_valid_q <= s1_valid_q;
+      s3_valid_q <= s2_valid_q;
+      valid_o    <= s3_valid_q;
+    end
+  end
+
+  /* verilator lint_off SYNCASYNCNET */
+  `MSR_ASSERT(a_out_hold, valid_o && !ready_i |=> valid_o &&
+      $stable({interp_o, diff_o, rgb_o, user_o}), clk_i, !rst_ni || clear_i)
+  `MSR_ASSERT(a_in_range, valid_i && ready_o |-> gap_i inside {[1 : 8]} && off_i < gap_i)
+  `MSR_COVER(c_interp, valid_o && ready_i && interp_o)
+  `MSR_COVER(c_trace, valid_o && ready_i && !interp_o)
+  /* verilator lint_on SYNCASYNCNET */
+
+endmodule : msr_decision_pipe

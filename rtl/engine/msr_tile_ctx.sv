@@ -1,0 +1,218 @@
+// One tile context of the engine: the tile's descriptor, its level processing controller,
+// the pass barrier and its tile buffer. The engine instantiates NUM_CTX of these in one
+// generate loop and shares one decision pipeline between them.
+//
+// Pass barrier (spec section 3: a pass reads only pixels that were final before it began):
+// `pend_q` counts the context's positions that were issued and whose pixel is not yet
+// written (interpolated, or traced and answered). The first position of a pass is offered
+// only when that count is zero; the other positions of the pass read only pixels of earlier
+// passes, so they go as soon as the engine picks them. The waits of one context (a render
+// latency per pass with traced positions) are filled with the other contexts' decisions.
+//
+// Life of a context: FREE -> (start_i) COMPUTE -> (controller idle, nothing pending) FULL
+// -> (stream_done_i) FREE. Its tile buffer is read for decisions while computing (port 0
+// B, port 1 A, addresses straight from the controller's output register) and by the
+// streamer while full (port 0). Every pixel of the tile is written exactly once before the
+// tile is streamed, so the buffer needs no clearing.
+`include "msr_assert.svh"
+
+module msr_tile_ctx
+  import msr_pkg::*;
+#(
+  parameter int unsigned PEND_W = 8     // width of the pending-position count
+) (
+  input  logic               clk_i,
+  input  logic               rst_ni,
+  input  logic               clear_i,       // synchronous soft reset
+  // tile start
+  input  logic               start_i,       // take desc_i (only when free_o)
+  input  tile_desc_t         desc_i,
+  output logic               free_o,        // no tile: may start one
+  output tile_desc_t         desc_o,        // the tile held
+  // the position on offer
+  output logic               cand_o,        // a position that may be issued now
+  output logic               step_first_o,  // it is the first of its pass (waveforms)
+  output lcoord_t            step_x_o,
+  output lcoord_t            step_y_o,
+  output gap_t               step_gap_o,
+  output gap_t               step_off_o,
+  output level_t             step_level_o,
+  output logic [1:0]         step_nshift_o,
+  output logic               step_init_o,   // initial-grid position: traced, no reads
+  input  logic               issue_i,       // the engine takes the position this cycle
+  // decision reads: the neighbours of the position issued last cycle (registered, held)
+  output rgb_t               rd_a_o,
+  output rgb_t               rd_b_o,
+  // the one write port: an interpolated value or a render response, one per cycle
+  input  logic               we_i,
+  input  logic [TADDR_W-1:0] waddr_i,
+  input  src_t               wsrc_i,
+  input  rgb_t               wrgb_i,
+  // hand-over to the streamer
+  output logic               full_o,        // the tile is finished, waiting for / in the streamer
+  input  logic               str_own_i,     // the streamer reads port 0 now
+  input  logic               str_re_i,
+  input  logic [TADDR_W-1:0] str_raddr_i,
+  output rgb_t               str_rgb_o,
+  output src_t               str_src_o,
+  input  logic               str_done_i     // the streamer has emitted the whole tile
+);
+
+  localparam int unsigned WORD_W = $bits(src_t) + $bits(rgb_t);
+
+  typedef enum logic [1:0] {
+    CTX_FREE    = 2'd0,
+    CTX_COMPUTE = 2'd1,
+    CTX_FULL    = 2'd2
+  } ctx_state_e;
+
+  ctx_state_e        state_q, state_d;
+  tile_desc_t        desc_q;
+  logic [PEND_W-1:0] pend_q, pend_d;
+  logic              pend_zero_q;
+
+  // ---- Level processing controller -------------------------------------------------------------
+  logic    step_valid, step_first, ctrl_busy;
+  // The controller is idle whenever the context is free; its own start handshake is not needed.
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic    ctrl_start_ready;
+  /* verilator lint_on UNUSEDSIGNAL */
+  lcoord_t step_ax, step_ay, step_bx, step_by;
+  dir_e    step_dir;
+
+  msr_level_ctrl u_level_ctrl (
+    .clk_i         (clk_i),
+    .rst_ni        (rst_ni),
+    .clear_i       (clear_i),
+    .start_valid_i (start_i),
+    .start_ready_o (ctrl_start_ready),
+    .w_i           (desc_i.w),
+    .h_i           (desc_i.h),
+    .levels_i      (desc_i.levels),
+    .step_valid_o  (step_valid),
+    .step_ready_i  (issue_i),
+    .step_x_o      (step_x_o),
+    .step_y_o      (step_y_o),
+    .step_ax_o     (step_ax),
+    .step_ay_o     (step_ay),
+    .step_bx_o     (step_bx),
+    .step_by_o     (step_by),
+    .step_gap_o    (step_gap_o),
+    .step_off_o    (step_off_o),
+    .step_level_o  (step_level_o),
+    .step_nshift_o (step_nshift_o),
+    .step_dir_o    (step_dir),
+    .step_first_o  (step_first),
+    .busy_o        (ctrl_busy)
+  );
+
+  assign cand_o       = step_valid && (!step_first || pend_zero_q);
+  assign step_first_o = step_first;
+  assign step_init_o  = (step_dir == DIR_INIT);
+
+  // ---- State ----------------------------------------------------------------------------------
+  always_comb begin
+    state_d = state_q;
+    pend_d  = pend_q + PEND_W'(issue_i) - PEND_W'(we_i);
+    unique case (state_q)
+      CTX_FREE:    if (start_i) state_d = CTX_COMPUTE;
+      CTX_COMPUTE: if (!ctrl_busy && pend_zero_q) state_d = CTX_FULL;
+      CTX_FULL:    if (str_done_i) state_d = CTX_FREE;
+      default:     state_d = CTX_FREE;
+    endcase
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      state_q     <= CTX_FREE;
+      pend_q      <= '0;
+      pend_zero_q <= 1'b1;
+    end else if (clear_i) begin
+      state_q     <= CTX_FREE;
+      pend_q      <= '0;
+      pend_zero_q <= 1'b1;
+    end else begin
+      state_q     <= state_d;
+      pend_q      <= pend_d;
+      pend_zero_q <= (pend_d == '0);
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (start_i) desc_q <= desc_i;
+  end
+
+  assign free_o = (state_q == CTX_FREE);
+  assign full_o = (state_q == CTX_FULL);
+  assign desc_o = desc_q;
+
+  // ---- Tile buffer ----------------------------------------------------------------------------
+  // Port 0: B of the issued position, or the streamer once the tile is full; port 1: A.
+  logic [WORD_W-1:0] rdata0;
+  // A decision needs the colour of A, not its source code.
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [WORD_W-1:0] rdata1;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  msr_tile_sram #(
+    .DEPTH  (MAX_TILE * MAX_TILE),
+    .DATA_W (WORD_W)
+  ) u_tile_sram (
+    .clk_i    (clk_i),
+    .re0_i    (str_own_i ? str_re_i : (issue_i && step_dir != DIR_INIT)),
+    .raddr0_i (str_own_i ? str_raddr_i : {step_by, step_bx}),
+    .rdata0_o (rdata0),
+    .re1_i    (issue_i && step_dir != DIR_INIT),
+    .raddr1_i ({step_ay, step_ax}),
+    .rdata1_o (rdata1),
+    .we_i     (we_i),
+    .waddr_i  (waddr_i),
+    .wdata_i  ({wsrc_i, wrgb_i})
+  );
+
+  // After an initial-grid position the read data is stale: the engine forces a trace there.
+  assign rd_a_o    = rgb_t'(rdata1[$bits(rgb_t)-1:0]);
+  assign rd_b_o    = rgb_t'(rdata0[$bits(rgb_t)-1:0]);
+  assign str_rgb_o = rgb_t'(rdata0[$bits(rgb_t)-1:0]);
+  assign str_src_o = src_t'(rdata0[WORD_W-1:$bits(rgb_t)]);
+
+  // ---- Checks ---------------------------------------------------------------------------------
+`ifndef SYNTHESIS
+  // Every pixel of a tile is written exactly once, inside the tile, while computing.
+  logic [MAX_TILE*MAX_TILE-1:0] written_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      written_q <= '0;
+    end else if (start_i || clear_i) begin
+      written_q <= '0;
+    end else if (we_i) begin
+      written_q[waddr_i] <= 1'b1;
+    end
+  end
+
+  function automatic logic all_written(logic [MAX_TILE*MAX_TILE-1:0] wr, ldim_t w, ldim_t h);
+    logic ok = 1'b1;
+    for (int unsigned y = 0; y < MAX_TILE; y++) begin
+      for (int unsigned x = 0; x < MAX_TILE; x++) begin
+        if (x < 32'(w) && y < 32'(h)) ok &= wr[y*MAX_TILE+x];
+      end
+    end
+    return ok;
+  endfunction
+`endif
+
+  /* verilator lint_off SYNCASYNCNET */
+  `MSR_ASSERT(a_start_free, start_i |-> free_o)
+  `MSR_ASSERT(a_issue_cand, issue_i |-> cand_o && state_q == CTX_COMPUTE)
+  `MSR_ASSERT(a_pend_no_wrap, !(pend_q == '0 && we_i && !issue_i) &&
+      !(pend_q == '1 && issue_i && !we_i))
+  `MSR_ASSERT(a_write_once, we_i |-> state_q == CTX_COMPUTE && !written_q[waddr_i] &&
+      32'(waddr_i[LCOORD_W-1:0]) < 32'(desc_q.w) &&
+      32'(waddr_i[TADDR_W-1:LCOORD_W]) < 32'(desc_q.h))
+  `MSR_ASSERT(a_all_written, state_q == CTX_COMPUTE && state_d == CTX_FULL |->
+      all_written(written_q, desc_q.w, desc_q.h))
+  `MSR_ASSERT(a_stream_full, str_own_i |-> full_o)
+  `MSR_COVER(c_barrier_wait, step_valid && step_first && !pend_zero_q)
+  /* verilator lint_on SYNCASYNCNET */
+
+endmodule : msr_tile_ctx
