@@ -67,6 +67,9 @@ def _load():
         lib.msr_render_destroy.argtypes = [ctypes.c_void_p]
         lib.msr_render_scene_names.restype = ctypes.c_char_p
         lib.msr_render_scene_names.argtypes = []
+        lib.msr_render_gbuffer.restype = None
+        lib.msr_render_gbuffer.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p,
+                                           ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p]
         lib.msr_render_rays.restype = ctypes.c_uint64
         lib.msr_render_rays.argtypes = [ctypes.c_void_p]
         _lib = lib
@@ -212,6 +215,36 @@ class EmbreeRenderer:
             if bar is not None:
                 bar.close()
         return out.reshape(h, w, 3)
+
+    def gbuffer(self, xs, ys) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """What the primary ray through each pixel centre hits: (prim, material, depth), N each.
+
+        prim: uint32 triangle index + 1 over the scene, material: uint32 material index + 1 (both 0
+        for the sky), depth: float32 distance along the camera's viewing axis (inf for the sky).
+        Deterministic like the colours; not part of the ray count."""
+        self._check_open()
+        xs, ys = np.asarray(xs).reshape(-1), np.asarray(ys).reshape(-1)
+        if xs.shape != ys.shape:
+            raise spec.SpecError(f"xs and ys differ in length ({xs.size} vs {ys.size})")
+        if xs.size and (xs.min() < 0 or xs.max() >= self.width or ys.min() < 0 or ys.max() >= self.height):
+            raise spec.SpecError(f"pixel outside the {self.width}x{self.height} frame")
+        xs = np.ascontiguousarray(xs, dtype=np.int32)
+        ys = np.ascontiguousarray(ys, dtype=np.int32)
+        prim = np.empty(xs.size, np.uint32)
+        mat = np.empty(xs.size, np.uint32)
+        depth = np.empty(xs.size, np.float32)
+        for start in range(0, xs.size, _BATCH):
+            stop = min(xs.size, start + _BATCH)
+            self._lib.msr_render_gbuffer(self._ctx, stop - start, xs[start:].ctypes.data, ys[start:].ctypes.data,
+                                         prim[start:].ctypes.data, mat[start:].ctypes.data,
+                                         depth[start:].ctypes.data)
+        return prim, mat, depth
+
+    def gbuffer_full(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """gbuffer() of every pixel, each as an (H, W) array."""
+        h, w = self.height, self.width
+        ys, xs = np.divmod(np.arange(h * w, dtype=np.int32), np.int32(w))
+        return tuple(a.reshape(h, w) for a in self.gbuffer(xs, ys))
 
     @property
     def rays(self) -> int:

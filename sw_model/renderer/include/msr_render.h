@@ -44,6 +44,14 @@ void msr_render_pixel(msr_render_ctx *ctx, int x, int y, uint8_t rgb[3]);
 void msr_render_pixels(msr_render_ctx *ctx, int n, const int32_t *xs, const int32_t *ys,
                        uint8_t *rgb_out /* 3*n bytes */);
 
+/* Extension (G-buffer): for each pixel, what the primary ray through its centre hits:
+ * prim_out[i] = triangle index + 1 over the whole scene, material_out[i] = material index + 1
+ * (both 0 where the ray meets the sky), depth_out[i] = distance along the camera's viewing
+ * axis (+inf for the sky). Any output pointer may be NULL. Deterministic like the colours;
+ * the rays are not counted by msr_render_rays. */
+void msr_render_gbuffer(msr_render_ctx *ctx, int n, const int32_t *xs, const int32_t *ys,
+                        uint32_t *prim_out, uint32_t *material_out, float *depth_out);
+
 void msr_render_destroy(msr_render_ctx *ctx); /* NULL is fine */
 
 /* Comma-separated names of the built-in scenes (static string), default scene first. */

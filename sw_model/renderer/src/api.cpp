@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -156,6 +157,20 @@ void msr_render_pixels(msr_render_ctx *ctx, int n, const int32_t *xs, const int3
     uint64_t rays = 0;
     for (int i = 0; i < n; ++i) ctx->renderer->pixel(xs[i], ys[i], rgb_out + 3 * size_t(i), &rays);
     ctx->rays.fetch_add(rays, std::memory_order_relaxed);
+}
+
+void msr_render_gbuffer(msr_render_ctx *ctx, int n, const int32_t *xs, const int32_t *ys, uint32_t *prim_out,
+                        uint32_t *material_out, float *depth_out) {
+    if (n <= 0) return;
+    FpState fp;
+    for (int i = 0; i < n; ++i) {
+        uint32_t p = 0, m = 0;
+        float d = std::numeric_limits<float>::infinity();
+        if (ctx && ctx->renderer && xs && ys) ctx->renderer->gbuffer(xs[i], ys[i], p, m, d);
+        if (prim_out) prim_out[i] = p;
+        if (material_out) material_out[i] = m;
+        if (depth_out) depth_out[i] = d;
+    }
 }
 
 void msr_render_destroy(msr_render_ctx *ctx) { delete ctx; }

@@ -358,6 +358,20 @@ void Renderer::encode(Vec3 c, float exposure, uint8_t rgb[3]) {
     }
 }
 
+void Renderer::gbuffer(int x, int y, uint32_t &prim, uint32_t &material, float &depth) const {
+    prim = 0;
+    material = 0;
+    depth = kInf;
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) return;
+    Vec3 org, dir;
+    primary_ray(float(x) + 0.5f, float(y) + 0.5f, org, dir);
+    Hit h = scene_->intersect(org, dir, 0.f, kInf, MASK_ALL);
+    if (!h.hit) return;
+    prim = scene_->triangle_index(h.geom, h.prim) + 1u;
+    material = uint32_t(h.material) + 1u;
+    depth = h.t * dot(dir, fwd_);
+}
+
 void Renderer::pixel(int x, int y, uint8_t rgb[3], uint64_t *rays) const {
     if (x < 0 || y < 0 || x >= width_ || y >= height_) {
         rgb[0] = rgb[1] = rgb[2] = 0;

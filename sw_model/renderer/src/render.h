@@ -29,6 +29,11 @@ public:
     // Final 8-bit sRGB colour; outside the frame: (0, 0, 0).
     void pixel(int x, int y, uint8_t rgb[3], uint64_t *rays = nullptr) const;
 
+    // What the primary ray through the pixel centre hits: triangle index + 1 over the whole
+    // scene, material index + 1 (both 0 for the sky), and its depth along the camera's
+    // viewing axis (+inf for the sky). Outside the frame: 0, 0, +inf.
+    void gbuffer(int x, int y, uint32_t &prim, uint32_t &material, float &depth) const;
+
     // Tone mapping (exposure, ACES fit) and sRGB encoding, rounded to 8 bits.
     static void encode(Vec3 linear, float exposure, uint8_t rgb[3]);
 

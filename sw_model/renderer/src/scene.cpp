@@ -93,6 +93,12 @@ bool Scene::commit(RTCDevice device, std::string &err) {
     rtcSetSceneBuildQuality(rtc_, RTC_BUILD_QUALITY_HIGH);
     bounds_ = Bounds{};
     has_glass_ = false;
+    tri_base_.clear();
+    uint32_t tri_total = 0;
+    for (const Mesh &m : meshes) {
+        tri_base_.push_back(tri_total);
+        tri_total += uint32_t(m.idx.size() / 3);
+    }
     for (size_t gi = 0; gi < meshes.size(); ++gi) {
         const Mesh &m = meshes[gi];
         if (m.material < 0 || size_t(m.material) >= materials.size()) {

@@ -132,6 +132,8 @@ public:
     bool occluded(Vec3 org, Vec3 dir, float tnear, float tfar, unsigned mask) const;
 
     size_t triangle_count() const;
+    // Index of triangle `prim` of mesh `geom` among all the scene's triangles (after commit).
+    uint32_t triangle_index(unsigned geom, unsigned prim) const { return tri_base_[geom] + prim; }
     Bounds bounds() const { return bounds_; }
     bool has_glass() const { return has_glass_; }
 
@@ -150,6 +152,7 @@ public:
 
 private:
     RTCScene rtc_ = nullptr;
+    std::vector<uint32_t> tri_base_;  // first triangle index of each mesh
     Bounds bounds_;
     bool has_glass_ = false;
 };
