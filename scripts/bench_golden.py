@@ -7,7 +7,7 @@ from pathlib import Path
 
 from tqdm import tqdm
 
-from msr_model import ImageRenderer, Params, select
+from msr_model import ImageRenderer, Params, default_thresholds, select
 from msr_model.testimage import test_image
 
 CASES = [(640, 480, 16, 2), (1920, 1080, 8, 1), (1920, 1080, 16, 2), (1920, 1080, 32, 3),
@@ -18,7 +18,7 @@ def main():
     rows = []
     for w, h, t, lv in tqdm(CASES, desc="golden bench"):
         img = test_image(w, h)
-        params = Params(tile=t, levels=lv, thr=(8, 16, 32)[:lv])
+        params = Params(tile=t, levels=lv, thr=default_thresholds(lv))
         best = float("inf")
         for _ in range(3):
             t0 = time.perf_counter()

@@ -20,41 +20,19 @@ and out/bench/pixels_per_clock.png. Bad arguments: one line on stderr, exit stat
 """
 from __future__ import annotations
 
-import argparse
 import json
-import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
+from msr_model import Params, spec
+from msr_model.clitools import EXIT_BAD_INPUT, Parser, UsageError, int_list, run_main
+from msr_harness import GoldenFrames, HarnessRun, MemoryLayout, compare
 
 ROOT = Path(__file__).resolve().parents[1]
-EXIT_BAD_INPUT = 2
-DEFAULT_THR = (8, 16, 32)      # thresholds per level: thr_k = 8 * 2^(k-1), the defaults of make sim
 GOAL_DECISIONS = 0.95          # decisions per clock per engine inside a pass
 GOAL_PIXELS = 3.6              # pixels per clock, 4 engines, latency 256
 GOAL_ENGINES, GOAL_LATENCY = 4, 256
-
-
-class UsageError(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        raise UsageError(message)
-
-
-def int_list(text: str, what: str) -> list[int]:
-    try:
-        vals = [int(t) for t in str(text).split(",") if t.strip()]
-    except ValueError:
-        raise UsageError(f"{what} must be a comma-separated list of integers, got {text!r}") from None
-    if not vals:
-        raise UsageError(f"{what} is empty")
-    return vals
 
 
 def parse_cfg(name: str) -> tuple[int, int]:
@@ -69,7 +47,7 @@ def parse_cfg(name: str) -> tuple[int, int]:
 
 
 def parse(argv):
-    ap = _Parser(prog="bench_hw", description=__doc__.splitlines()[0])
+    ap = Parser(prog="bench_hw", description=__doc__.splitlines()[0])
     ap.add_argument("--configs", default="e1_mo16 e1_mo64 e2_mo64 e4_mo64",
                     help="harness builds e<NUM_ENGINES>_mo<MAX_OUTSTANDING>, space separated")
     ap.add_argument("--build-dir", default=str(ROOT / "build" / "bench"))
@@ -92,10 +70,10 @@ def parse(argv):
     a.cfgs = [parse_cfg(c) for c in a.configs.split()]
     if not a.cfgs:
         raise UsageError("no harness configs given")
-    a.latencies = int_list(a.latencies, "--latencies")
-    a.tiles = int_list(a.tiles, "--tiles")
-    a.levels = int_list(a.levels, "--levels")
-    a.tl_latencies = int_list(a.tl_latencies, "--tl-latencies")
+    a.latencies = list(int_list(a.latencies, "--latencies"))
+    a.tiles = list(int_list(a.tiles, "--tiles"))
+    a.levels = list(int_list(a.levels, "--levels"))
+    a.tl_latencies = list(int_list(a.tl_latencies, "--tl-latencies"))
     for v in a.latencies + a.tl_latencies:
         if not 0 <= v <= 100000:
             raise UsageError(f"render latency {v} outside 0..100000")
@@ -108,69 +86,22 @@ def harness_path(build_dir: Path, engines: int, mo: int) -> Path:
     return Path(build_dir) / f"hw_e{engines}_mo{mo}" / "Vmsr_sim_top"
 
 
-def params_for(tile: int, levels: int):
-    from msr_model import Params
-    return Params(tile=tile, levels=levels, thr=DEFAULT_THR[:levels], metric="max", fov_gain=0)
-
-
-def read_pnm(path: Path) -> np.ndarray:
-    from PIL import Image
-    with Image.open(path) as im:
-        return np.asarray(im)
-
-
-class Golden:
-    """The golden model's frame per (T, L) on the same renderer: one full render of the scene,
-    then `select` answers its trace requests from it (the renderer is deterministic)."""
-
-    def __init__(self, scene: str, width: int, height: int):
-        from msr_model.embree import open_renderer
-        r = open_renderer(scene, width, height, quality="fast")
-        try:
-            self.reference = r.render_full(progress=False)
-        finally:
-            r.close()
-        self.w, self.h = width, height
-        self._cache = {}
-
-    def frame(self, tile: int, levels: int):
-        key = (tile, levels)
-        if key not in self._cache:
-            from msr_model import ImageRenderer, select
-            self._cache[key] = select(ImageRenderer(self.reference), self.w, self.h, params_for(tile, levels))
-        return self._cache[key]
+def params_for(tile: int, levels: int) -> Params:
+    return Params(tile=tile, levels=levels, thr=spec.default_thresholds(levels), metric="max", fov_gain=0)
 
 
 def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, tile: int, levels: int,
-              latency: int, golden: Golden | None) -> dict:
+              latency: int, golden: GoldenFrames | None) -> dict:
     """One frame through the harness; returns the measured point."""
-    from msr_model import spec
     p = params_for(tile, levels)
-    thr3 = list(p.thr) + [0] * (3 - levels)
-    with tempfile.TemporaryDirectory(prefix="bench_hw_") as td:
-        td = Path(td)
-        cmd = [str(harness), "--width", str(w), "--height", str(h), "--tile", str(tile),
-               "--levels", str(levels), "--thr", ",".join(map(str, thr3)), "--metric", "max",
-               "--fov-gain", "0", "--frame", str(td / "f.ppm"), "--source", str(td / "s.pgm"),
-               "--stats", str(td / "s.json"), "--quiet",
-               f"+scene={scene}", f"+width={w}", f"+height={h}", "+quality=0",
-               f"+rnd_latency={latency}", "+rnd_jitter=0"]
-        t0 = time.perf_counter()
-        proc = subprocess.run(cmd, capture_output=True, text=True)
-        wall = time.perf_counter() - t0
-        if proc.returncode != 0:
-            tail = (proc.stderr.strip().splitlines() or ["(no output)"])[-1]
-            raise RuntimeError(f"harness {harness} (T={tile} L={levels} latency {latency}) failed "
-                               f"with status {proc.returncode}: {tail}")
-        st = json.loads((td / "s.json").read_text())
-        frame = read_pnm(td / "f.ppm") if golden else None
-        source = read_pnm(td / "s.pgm") if golden else None
+    rtl = HarnessRun(harness, scene, w, h, p, latency=latency, jitter=0, quiet=True).run()
+    st = rtl.stats
     pixels = w * h
-    traced = sum(st[f"traced_{k}"] for k in ("initial", "level1", "level2", "level3"))
-    interp = sum(st[f"interpolated_level{k}"] for k in (1, 2, 3))
+    traced = rtl.traced_counted
     cycles = st["cycles"]
     ntx, nty = spec.tile_counts(w, h, tile)
     tiles = ntx * nty
+    beats = MemoryLayout(w, h).w_beats(tile)
     pt = {
         "num_engines": engines, "max_outstanding": mo, "render_latency": latency,
         "tile": tile, "levels": levels, "thr": list(p.thr),
@@ -180,47 +111,22 @@ def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, 
         "cycles_per_tile": cycles / tiles,                       # frame cycles / tiles (all engines)
         "cycles_per_tile_per_engine": cycles * engines / tiles,  # what one engine spends on a tile
         "traced": traced, "traced_fraction": traced / pixels,
-        "pixels_counted": traced + interp,
+        "pixels_counted": traced + rtl.interpolated_counted,
         "render_stall_cycles": st["render_stall_cycles"],
         "memory_stall_cycles": st["memory_stall_cycles"],
         # Lower bounds on the frame's cycles, one per shared resource (see the module docstring).
-        "axi_w_beats": w_beats(w, h, tile),
-        "bound_writer_cycles": w_beats(w, h, tile),
+        "axi_w_beats": beats,
+        "bound_writer_cycles": beats,
         "bound_tags_cycles": traced * latency / (engines * mo),
         "bound_render_port_cycles": traced,
         "bound_decisions_cycles": pixels / engines,
-        "sim_seconds": st["sim_seconds"], "wall_seconds": round(wall, 3),
+        "sim_seconds": st["sim_seconds"], "wall_seconds": rtl.wall_seconds,
     }
     if golden is not None:
-        g = golden.frame(tile, levels)
-        fe = bool(np.array_equal(frame, g.frame))
-        se = bool(np.array_equal(source, g.source))
-        pt["bit_exact"] = fe and se
-        pt["mismatched_pixels"] = int((frame != g.frame).any(axis=2).sum()) + int((source != g.source).sum())
+        v = compare(rtl, golden.frame(p))
+        pt["bit_exact"] = v["bit_exact"]
+        pt["mismatched_pixels"] = v["mismatched_pixels"] + v["mismatched_codes"]
     return pt
-
-
-BEAT_BYTES = 32                # msr_top's AXI_DATA_W = 256 bits (the harness's W channel)
-
-
-def w_beats(w: int, h: int, tile: int, beat: int = BEAT_BYTES) -> int:
-    """AXI W beats of a frame in the harness's memory layout (sim/harness.cpp: frame buffer at
-    0x1000 with a stride of 4*W bytes, source plane on the next 4 KiB page with a stride of W
-    rounded up to 4): per tile row one run of 32-bit pixels and one of 8-bit codes, each
-    from the bus-aligned address below its start (the writer's bursts), i.e.
-    ceil((start % beat + bytes) / beat) beats per run. The W channel moves one beat per clock,
-    so this is a lower bound on cycles."""
-    fb_base, fb_stride, src_stride = 0x1000, 4 * w, (w + 3) & ~3
-    src_base = (fb_base + fb_stride * h + 0xFFF) & ~0xFFF
-    total = 0
-    for y in range(h):
-        for x0 in range(0, w, tile):
-            wt = min(tile, w - x0)
-            a = fb_base + y * fb_stride + 4 * x0
-            total += -(-(a % beat + 4 * wt) // beat)
-            s = src_base + y * src_stride + x0
-            total += -(-(s % beat + 4 * -(-wt // 4)) // beat)
-    return total
 
 
 def bottleneck(pt: dict) -> str:
@@ -313,7 +219,7 @@ def run(a) -> int:
     if not a.no_tile_sweep:
         jobs += [("tl", tl_cfg[0], tl_cfg[1], t, l, lat)
                  for t in a.tiles for l in a.levels for lat in a.tl_latencies]
-    golden = Golden(a.scene, a.width, a.height)
+    golden = GoldenFrames(a.scene, a.width, a.height)
     t0 = time.perf_counter()
     main_pts, tl_pts = [], []
     bar = tqdm(jobs, desc="bench_hw", unit="sim", disable=a.no_progress, file=sys.stderr)
@@ -332,7 +238,7 @@ def run(a) -> int:
     report = {
         "setup": {"scene": a.scene, "renderer": "Embree over DPI-C (render_dpi.sv), quality fast",
                   "width": a.width, "height": a.height, "tile": a.tile, "levels": a.levels_main,
-                  "thr": list(DEFAULT_THR[:a.levels_main]), "metric": "max", "fov_gain": 0,
+                  "thr": list(spec.default_thresholds(a.levels_main)), "metric": "max", "fov_gain": 0,
                   "render_jitter": 0, "source_map": "enabled (SRC_CTRL.ENABLE, as make sim)",
                   "memory": "AXI slave always ready (--mem-pause 0)",
                   "pixels_per_clock": "W*H / PERF_CYCLES (START to DONE)",
@@ -395,16 +301,7 @@ def print_tables(r: dict) -> None:
 
 
 def main(argv=None) -> int:
-    from msr_model import SpecError
-    try:
-        return run(parse(argv))
-    except (UsageError, SpecError) as e:
-        msg = str(e.args[0]) if e.args else repr(e)
-        print(f"bench_hw: error: {msg.splitlines()[0]}", file=sys.stderr)
-        return EXIT_BAD_INPUT
-    except RuntimeError as e:
-        print(f"bench_hw: error: {e}", file=sys.stderr)
-        return 1
+    return run_main("bench_hw", lambda: run(parse(argv)))
 
 
 if __name__ == "__main__":

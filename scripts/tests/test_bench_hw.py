@@ -15,6 +15,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "scripts"))
 import bench_hw  # noqa: E402
+from msr_harness import GoldenFrames, MemoryLayout  # noqa: E402
 
 HARNESS = bench_hw.harness_path(ROOT / "build" / "bench", 1, 16)
 
@@ -69,9 +70,9 @@ def test_traced_fraction_matches_golden_model(tmp_path):
     """The perf counters' traced count equals the golden model's traced pixels."""
     _need_harness()
     from msr_model import spec
-    golden = bench_hw.Golden("cornell", 40, 24)
+    golden = GoldenFrames("cornell", 40, 24)
     pt = bench_hw.run_point(HARNESS, 1, 16, "cornell", 40, 24, 8, 1, 5, golden)
-    g = golden.frame(8, 1)
+    g = golden.frame(bench_hw.params_for(8, 1))
     assert pt["bit_exact"] is True
     assert pt["traced"] == int((g.source < spec.SRC_INTERP_BASE).sum())
 
@@ -81,9 +82,9 @@ def test_w_beats_hand_counts():
     # 0x1000 + 80y (+0, +32, +64): row 1 starts 16 bytes into a beat, so its two 8-pixel runs
     # take 2 beats each: 3 + 5 + 3 = 11. Codes at 0x2000 + 20y + x0: offsets 0/8/16, 20/28/36,
     # 40/48/56 (mod 32); only (y=1, x0=8) crosses a beat (28 + 8 bytes): 3 + 4 + 3 = 10.
-    assert bench_hw.w_beats(20, 3, 8) == 21
+    assert MemoryLayout(20, 3).w_beats(8) == 21
     # 35 wide, T=32, one row: 128 pixel bytes (4 beats) + 12 (1); codes 32 bytes (1) + 4 (1).
-    assert bench_hw.w_beats(35, 1, 32) == 7
+    assert MemoryLayout(35, 1).w_beats(32) == 7
 
 
 def test_bad_config_is_a_usage_error(capsys):

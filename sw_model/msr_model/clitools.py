@@ -44,8 +44,10 @@ def one_line(e: BaseException) -> str:
     return " ".join(text.split()) or type(e).__name__
 
 
-def run_main(prog: str, fn: Callable[[], int]) -> int:
-    """Call fn(); turn the two kinds of failure into their line on stderr and exit status."""
+def run_main(prog: str, fn: Callable[[], int], unexpected_is_failure: bool = False) -> int:
+    """Call fn(); turn the two kinds of failure into their line on stderr and exit status.
+    With `unexpected_is_failure`, any other exception prints its traceback and then the
+    "failed" line (exit status 1), so the last line still says what happened."""
     try:
         return fn()
     except SpecError as e:            # UsageError included
@@ -53,6 +55,13 @@ def run_main(prog: str, fn: Callable[[], int]) -> int:
         return EXIT_BAD_INPUT
     except RunFailed as e:
         print(f"{prog}: failed: {one_line(e)}", file=sys.stderr)
+        return EXIT_FAILED
+    except Exception as e:  # noqa: BLE001
+        if not unexpected_is_failure:
+            raise
+        import traceback
+        traceback.print_exc()
+        print(f"{prog}: failed: {type(e).__name__}: {one_line(e)}", file=sys.stderr)
         return EXIT_FAILED
 
 

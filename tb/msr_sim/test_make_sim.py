@@ -41,6 +41,7 @@ def test_default_scene(harness, tmp_path):
     assert r.returncode == 0, r.stderr
     rep = check_outputs(tmp_path)
     assert rep["bit_exact"] and rep["perf_counters_match_source_map"]
+    assert rep["rule"] == "patent" and r.stdout.strip().splitlines()[-1].startswith("make sim: passed")
     assert rep["pixels"] == 72 * 40 and rep["cycles"] >= rep["pixels"]
 
 

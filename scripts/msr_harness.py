@@ -1,0 +1,190 @@
+"""The one runner of the Verilator frame harness (sim/harness.cpp), for `make sim`
+(run_sim.py), the hardware benchmark (bench_hw.py) and their tests.
+
+    golden = GoldenFrames("cornell", 640, 480)              # one full render, then select() on it
+    run = HarnessRun(harness, "cornell", 640, 480, params)  # thresholds always passed explicitly
+    rtl = run.run()                                         # RtlFrame: frame, source, stats
+    verdict = compare(rtl, golden.frame(params))            # bit_exact, mismatched pixels
+
+The harness's memory layout (frame buffer at 0x1000, stride 4*W; source plane on the next
+4 KiB page, stride W rounded up to 4) is written down once here, in `MemoryLayout`.
+"""
+from __future__ import annotations
+
+import json
+import subprocess
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from msr_model import ImageRenderer, Params, select, spec
+from msr_model.clitools import RunFailed
+
+ROOT = Path(__file__).resolve().parents[1]
+BEAT_BYTES = 32                # msr_top's AXI_DATA_W = 256 bits (the harness's W channel)
+DEFAULT_NUM_ENGINES = 4        # msr_sim_top's NUM_ENGINES unless the build overrides it (mk/bench.mk)
+# Rules the RTL implements (CTRL has no rule field yet); the golden model knows more.
+RTL_RULES = ("patent",)
+
+
+def read_pnm(path: Path) -> np.ndarray:
+    from PIL import Image
+    with Image.open(path) as im:
+        return np.asarray(im)
+
+
+@dataclass(frozen=True)
+class MemoryLayout:
+    """Where the harness puts the two planes (sim/harness.cpp, class Sim)."""
+
+    width: int
+    height: int
+
+    @property
+    def fb_base(self) -> int:
+        return 0x1000                       # not 0, so a base bug shows
+
+    @property
+    def fb_stride(self) -> int:
+        return 4 * self.width
+
+    @property
+    def src_stride(self) -> int:
+        return (self.width + 3) & ~3
+
+    @property
+    def src_base(self) -> int:
+        return (self.fb_base + self.fb_stride * self.height + 0xFFF) & ~0xFFF
+
+    def w_beats(self, tile: int, beat: int = BEAT_BYTES) -> int:
+        """AXI W beats of a frame: per tile row one run of 32-bit pixels and one of 8-bit codes,
+        each from the bus-aligned address below its start (the writer's bursts), i.e.
+        ceil((start % beat + bytes) / beat) beats per run. The W channel moves one beat per
+        clock, so this is a lower bound on cycles."""
+        total = 0
+        for y in range(self.height):
+            for x0, wt in spec.axis_spans(self.width, tile):
+                a = self.fb_base + y * self.fb_stride + 4 * x0
+                total += -(-(a % beat + 4 * wt) // beat)
+                s = self.src_base + y * self.src_stride + x0
+                total += -(-(s % beat + 4 * -(-wt // 4)) // beat)
+        return total
+
+
+@dataclass
+class RtlFrame:
+    frame: np.ndarray          # (H, W, 3) uint8, read back from the harness's memory
+    source: np.ndarray         # (H, W) uint8 source codes
+    stats: dict                # the harness's stats file (cycles, perf counters, speed)
+    wall_seconds: float = 0.0
+
+    @property
+    def traced_counted(self) -> int:
+        return sum(self.stats[f"traced_{k}"] for k in ("initial", "level1", "level2", "level3"))
+
+    @property
+    def interpolated_counted(self) -> int:
+        return sum(self.stats[f"interpolated_level{k}"] for k in (1, 2, 3))
+
+
+@dataclass
+class HarnessRun:
+    """One frame through one harness build."""
+
+    harness: Path
+    scene: str
+    width: int
+    height: int
+    params: Params
+    quality: str = "fast"
+    camera: str | None = None
+    latency: int = 4
+    jitter: int = 8
+    quiet: bool = False
+    extra: list[str] = field(default_factory=list)     # e.g. --waves FILE --wave-tile TX,TY
+    _proc: subprocess.Popen | None = None
+    _dir: tempfile.TemporaryDirectory | None = None
+    _t0: float = 0.0
+
+    def command(self, workdir: Path) -> list[str]:
+        p = self.params
+        thr3 = list(p.thr) + [0] * (3 - p.levels)      # explicit: the harness has no defaults of its own
+        cmd = [str(self.harness), "--width", str(self.width), "--height", str(self.height),
+               "--tile", str(p.tile), "--levels", str(p.levels), "--thr", ",".join(map(str, thr3)),
+               "--metric", p.metric, "--fov-gain", str(p.fov_gain),
+               "--frame", str(workdir / "rtl_frame.ppm"), "--source", str(workdir / "rtl_source.pgm"),
+               "--stats", str(workdir / "rtl_stats.json"),
+               f"+scene={self.scene}", f"+width={self.width}", f"+height={self.height}",
+               f"+quality={0 if self.quality == 'fast' else 1}",
+               f"+rnd_latency={self.latency}", f"+rnd_jitter={self.jitter}"]
+        if self.camera:
+            cmd.append(f"+camera={self.camera}")  # read by sim/msr_dpi.cpp, passed to the library unchanged
+        if self.quiet:
+            cmd.append("--quiet")
+        return cmd + list(self.extra)
+
+    def start(self) -> "HarnessRun":
+        """Start the harness in its own process (the caller may work meanwhile)."""
+        import time
+        if not Path(self.harness).is_file():
+            raise spec.SpecError(f"harness {self.harness} not built")
+        self._dir = tempfile.TemporaryDirectory(prefix="msr_harness_")
+        self._t0 = time.perf_counter()
+        self._proc = subprocess.Popen(self.command(Path(self._dir.name)), stderr=subprocess.PIPE if self.quiet
+                                      else None, text=True)
+        return self
+
+    def wait(self) -> RtlFrame:
+        """The frame, source map and stats; RunFailed (with the harness's last line) if it failed."""
+        import time
+        assert self._proc is not None and self._dir is not None, "start() first"
+        try:
+            _, err = self._proc.communicate()
+            wall = time.perf_counter() - self._t0
+            rc = self._proc.returncode
+            if rc != 0:
+                last = (err or "").strip().splitlines()[-1:] or ["see its output above"]
+                raise RunFailed(f"the RTL simulation failed (harness exit status {rc}): {last[0]}")
+            d = Path(self._dir.name)
+            return RtlFrame(read_pnm(d / "rtl_frame.ppm"), read_pnm(d / "rtl_source.pgm"),
+                            json.loads((d / "rtl_stats.json").read_text()), round(wall, 3))
+        finally:
+            self._dir.cleanup()
+            self._proc = self._dir = None
+
+    def run(self) -> RtlFrame:
+        return self.start().wait()
+
+
+class GoldenFrames:
+    """The golden model on the same renderer as the RTL: one full render of the scene (the
+    reference), then `select` answers its trace requests from it (the renderer is
+    deterministic, so these are exactly the pixels the renderer would give)."""
+
+    def __init__(self, scene: str, width: int, height: int, quality: str = "fast", camera: str | None = None,
+                 renderer=None):
+        from msr_model.embree import open_renderer
+        r = renderer or open_renderer(scene, width, height, quality=quality, camera=camera)
+        try:
+            self.reference = r.render_full(progress=False)
+        finally:
+            r.close()
+        self.width, self.height = width, height
+        self._cache: dict = {}
+
+    def frame(self, params: Params, rule: str = "patent"):
+        key = (params, rule)
+        if key not in self._cache:
+            self._cache[key] = select(ImageRenderer(self.reference), self.width, self.height, params, rule=rule)
+        return self._cache[key]
+
+
+def compare(rtl: RtlFrame, golden) -> dict:
+    """The RTL's frame and source map against the golden model's, pixel for pixel."""
+    frame_ok = bool(np.array_equal(rtl.frame, golden.frame))
+    source_ok = bool(np.array_equal(rtl.source, golden.source))
+    return {"bit_exact": frame_ok and source_ok, "frame_equal": frame_ok, "source_map_equal": source_ok,
+            "mismatched_pixels": int((rtl.frame != golden.frame).any(axis=2).sum()),
+            "mismatched_codes": int((rtl.source != golden.source).sum())}
