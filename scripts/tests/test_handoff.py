@@ -1,13 +1,15 @@
 """The hand-off package stays consistent: one file list (rtl/msr.f) that every flow reads."""
 import re
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tb" / "common"))
+from msr_runner import rtl_sources  # noqa: E402  (the one reader of rtl/msr.f)
 
 
 def filelist():
-    return [ln.split("//")[0].strip() for ln in (ROOT / "rtl/msr.f").read_text().splitlines()
-            if ln.split("//")[0].strip()]
+    return [str(p.relative_to(ROOT)) for p in rtl_sources()]
 
 
 def test_filelist_files_exist_one_module_per_file_named_after_it():

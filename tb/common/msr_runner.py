@@ -1,19 +1,20 @@
-"""Shared cocotb runner for the RTL unit tests: reads the one source-of-truth file list
-rtl/msr.f, builds each (top level, parameter set) into its own folder under build/ and runs
-a cocotb test module. Used by every tb/<unit>/test_<unit>.py."""
+"""The one cocotb runner library of the RTL tests: reads the one source-of-truth file list
+rtl/msr.f, builds each (top level, parameter set) into its own folder under build/tb/ and
+runs a cocotb test module. Used by every tb/<unit>/test_<unit>.py, scripts/bench_engine.py and
+scripts/lint_rtl.py (`rtl_sources`)."""
 from __future__ import annotations
 
 import os
 from pathlib import Path
 
-from cocotb_tools.runner import get_runner
-
 ROOT = Path(__file__).resolve().parents[2]
-FILE_LIST = ROOT / "rtl" / "msr.f"
+RTL = ROOT / "rtl"
+FILE_LIST = RTL / "msr.f"
 
 
 def rtl_sources(file_list: Path = FILE_LIST) -> list[Path]:
-    """Source files of rtl/msr.f in order (package first); '//' and '#' start comments."""
+    """Source files of rtl/msr.f in order (package first), as absolute paths; '//' and '#'
+    start comments, lines starting with '+' or '-' are tool options."""
     out = []
     for line in file_list.read_text().splitlines():
         line = line.split("//")[0].split("#")[0].strip()
@@ -23,8 +24,12 @@ def rtl_sources(file_list: Path = FILE_LIST) -> list[Path]:
 
 
 def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict | None = None,
-               extra_env: dict | None = None, tag: str = "") -> None:
-    """Build `toplevel` with Verilator and run the cocotb tests of `test_module`."""
+               tag: str = "", sources: list[Path] | None = None, extra_env: dict | None = None) -> None:
+    """Build `toplevel` with Verilator (from `sources`, default every file of rtl/msr.f) and
+    run the cocotb tests of `test_module`. Each parameter set (and `tag`) builds into its own
+    folder build/tb/<toplevel>/<parameters>[_<tag>]; WAVES=1 in the environment dumps waves."""
+    from cocotb_tools.runner import get_runner
+
     parameters = parameters or {}
     name = "_".join(f"{k}{v}" for k, v in sorted(parameters.items())) or "default"
     build_dir = ROOT / "build" / "tb" / toplevel / (name + (f"_{tag}" if tag else ""))
@@ -34,23 +39,23 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
     # command-line overrides.
     if "CFG_CXXFLAGS_PCH_I" not in os.environ.get("MAKEFLAGS", ""):
         os.environ["MAKEFLAGS"] = (os.environ.get("MAKEFLAGS", "") + " CFG_CXXFLAGS_PCH_I=-include").strip()
+    waves = os.environ.get("WAVES", "0") == "1"
     runner = get_runner("verilator")
     runner.build(
-        sources=[str(s) for s in rtl_sources()],
+        sources=[str(s) for s in (sources or rtl_sources())],
         hdl_toplevel=toplevel,
-        includes=[str(ROOT / "rtl" / "prim")],
         parameters=parameters,
         build_dir=str(build_dir),
-        build_args=["-Wno-fatal", "--assert", "-O2"],
-        waves=os.environ.get("WAVES", "0") == "1",
+        # Lint is `make lint`; here warnings must not stop a simulation build.
+        build_args=["-Wno-fatal", "--assert", "-O2", "-j", "2"],
+        waves=waves,
     )
-    env = dict(extra_env or {})
     runner.test(
         hdl_toplevel=toplevel,
         test_module=test_module,
         test_dir=str(test_dir),
         build_dir=str(build_dir),
         results_xml=str(build_dir / "results.xml"),
-        extra_env={k: str(v) for k, v in env.items()},
-        waves=os.environ.get("WAVES", "0") == "1",
+        extra_env={k: str(v) for k, v in (extra_env or {}).items()},
+        waves=waves,
     )

@@ -296,7 +296,7 @@ async def test_soft_reset(dut):
 
 @pytest.mark.parametrize("engines,outstanding,ctx,width", [(4, 16, 8, 256), (3, 4, 3, 64)])
 def test_msr_top(engines, outstanding, ctx, width):
-    from sys_tb import run_cocotb
+    from common.msr_runner import run_cocotb
     run_cocotb("msr_top", "test_msr_top", HERE,
                {"NUM_ENGINES": engines, "MAX_OUTSTANDING": outstanding, "NUM_CTX": ctx, "AXI_DATA_W": width},
                f"e{engines}_o{outstanding}_c{ctx}_w{width}", extra_env={"NUM_ENGINES": str(engines)})

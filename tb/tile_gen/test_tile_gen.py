@@ -114,6 +114,6 @@ async def test_frames(dut):
 
 @pytest.mark.parametrize("engines", [1, 3, 4])
 def test_tile_gen(engines):
-    from sys_tb import RTL, run_cocotb
+    from common.msr_runner import RTL, run_cocotb
     run_cocotb("msr_tile_gen", "test_tile_gen", HERE, {"NUM_ENGINES": engines}, f"e{engines}",
                sources=[RTL / "msr_pkg.sv", RTL / "system/msr_tile_gen.sv"])
