@@ -205,15 +205,19 @@ class SweepConfig:
 
 # --- tasks (pure functions of their arguments) -----------------------------------------------
 
-def task_reference(backend: str, scene: str, mode: str, width: int, height: int):
-    """The full render of a scene and its wall time."""
-    r = open_unit(backend, scene, width, height, mode)
+def _timed(renderer, run):
+    """run(renderer) and its wall time in seconds; the renderer is closed afterwards."""
     try:
         t0 = time.perf_counter()
-        res = M.full_render(r, width, height)
-        dt = time.perf_counter() - t0
+        res = run(renderer)
+        return res, time.perf_counter() - t0
     finally:
-        _close(r)
+        _close(renderer)
+
+
+def task_reference(backend: str, scene: str, mode: str, width: int, height: int):
+    """The full render of a scene and its wall time."""
+    res, dt = _timed(open_unit(backend, scene, width, height, mode), lambda r: M.full_render(r, width, height))
     return res.frame, {"full_render_s": dt, "traced": res.traced}
 
 
@@ -422,13 +426,7 @@ def speedup(backend: Backend, scene, mode, rec, ref, info, sweep: list[Setting])
     alone, so no other task disturbs the timing)."""
     H, W = ref.shape[:2]
     setting = find_setting(sweep, rec)
-    r = backend.open(scene, W, H, mode)
-    try:
-        t0 = time.perf_counter()
-        res = setting.run(r, W, H)
-        dt = time.perf_counter() - t0
-    finally:
-        _close(r)
+    res, dt = _timed(backend.open(scene, W, H, mode), lambda r: setting.run(r, W, H))
     cached = rerun(ref, rec, sweep)
     return {"scene": scene_id(scene), "mode": mode, "family": rec["family"], "label": rec["label"],
             "traced_fraction": res.traced / (W * H), "psnr": rec["psnr"],

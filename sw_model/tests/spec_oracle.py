@@ -48,26 +48,18 @@ def oracle_select(img, tile, levels, thr, metric="max", fov_gain=0):
                         return tuple(((b - m) * A[c] + (m - a) * B[c] + g // 2) // g for c in range(3))
                     return None
 
-                results = []
-                for y in sorted(gy):                       # H pass
-                    for m, a, b in new(gx):
-                        results.append(((x0 + m, y0 + y),
-                                        decide(None, (x0 + a, y0 + y), (x0 + b, y0 + y), a, b, m)))
-                for p, v in results:
-                    if v is None:
-                        trace(*p, k)
-                    else:
-                        out[p], code[p] = v, 16 + k
+                def finish(results):
+                    """Write a pass's results only after all its decisions (final before the pass)."""
+                    for p, v in results:
+                        if v is None:
+                            trace(*p, k)
+                        else:
+                            out[p], code[p] = v, 16 + k
+
+                finish([((x0 + m, y0 + y), decide(None, (x0 + a, y0 + y), (x0 + b, y0 + y), a, b, m))
+                        for y in sorted(gy) for m, a, b in new(gx)])                       # H pass
                 gx = gx | {m for m, _, _ in new(gx)}
-                results = []
-                for x in sorted(gx):                       # V pass
-                    for m, a, b in new(gy):
-                        results.append(((x0 + x, y0 + m),
-                                        decide(None, (x0 + x, y0 + a), (x0 + x, y0 + b), a, b, m)))
-                for p, v in results:
-                    if v is None:
-                        trace(*p, k)
-                    else:
-                        out[p], code[p] = v, 16 + k
+                finish([((x0 + x, y0 + m), decide(None, (x0 + x, y0 + a), (x0 + x, y0 + b), a, b, m))
+                        for x in sorted(gx) for m, a, b in new(gy)])                       # V pass
                 gy = gy | {m for m, _, _ in new(gy)}
     return out, code, traced
