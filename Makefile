@@ -29,12 +29,12 @@ help: ## list the targets
 	@echo "Multi-level selective rendering accelerator"
 	@echo
 	@echo "  make sim    set up, then render the default scene (SCENE=, WIDTH=, HEIGHT=, TILE=, LEVELS=,"
-	@echo "              THR=a,b,.., METRIC=max|sum, FOV_GAIN=, OUT=dir, WAVES=1)"
+	@echo "              THR=a,b,.., METRIC=max|sum, FOV_GAIN=, RULE=patent, CAMERA=, OUT=dir, WAVES=1)"
 	@echo "  make test   set up, then run every test (pytest, cocotb on Verilator)"
 	@echo "  make lint   Verilator -Wall, Verible and slang on every RTL module"
 	@echo "  make synth  Yosys synthesis reports"
 	@echo "  make bench  golden-model and hardware throughput benchmarks"
-	@echo "  make eval   quality against traced pixels (FULL=1 for 1920x1080)"
+	@echo "  make eval   quality against traced pixels (FULL=1 for 1920x1080; DASK_SCHEDULER=tcp://host:port)"
 	@echo "  make setup  only install what is missing (apt-get, .venv)"
 	@echo "  make clean  remove build outputs"
 

@@ -20,7 +20,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from msr_model import ImageRenderer, Params, load_rgb, save_png
+from msr_model import ImageRenderer, Params, load_rgb, save_png, spec
 from msr_model.testimage import test_image
 
 from . import methods as M
@@ -116,7 +116,7 @@ def _close(r):
 
 def fov_gain_for(width, height, tile, edge_add=16):
     """fov_gain that raises the thresholds of the outermost tiles by about `edge_add`."""
-    ntx, nty = -(-width // tile), -(-height // tile)
+    ntx, nty = spec.tile_counts(width, height, tile)
     r2max = max(ntx - 1, nty - 1, 1)
     return int(min(255, max(1, round(edge_add * 16 / r2max))))
 
