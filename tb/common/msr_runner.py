@@ -23,6 +23,16 @@ def rtl_sources(file_list: Path = FILE_LIST) -> list[Path]:
     return out
 
 
+def rtl_incdirs(file_list: Path = FILE_LIST) -> list[Path]:
+    """Include folders named by `+incdir+DIR` lines of rtl/msr.f, as absolute paths."""
+    out = []
+    for line in file_list.read_text().splitlines():
+        line = line.split("//")[0].strip()
+        if line.startswith("+incdir+"):
+            out += [ROOT / d for d in line[len("+incdir+"):].split("+") if d]
+    return out
+
+
 def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict | None = None,
                tag: str = "", sources: list[Path] | None = None, extra_env: dict | None = None) -> None:
     """Build `toplevel` with Verilator (from `sources`, default every file of rtl/msr.f) and
@@ -44,6 +54,7 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
     runner.build(
         sources=[str(s) for s in (sources or rtl_sources())],
         hdl_toplevel=toplevel,
+        includes=[str(d) for d in rtl_incdirs()],
         parameters=parameters,
         build_dir=str(build_dir),
         # Lint is `make lint`; here warnings must not stop a simulation build.

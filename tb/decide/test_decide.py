@@ -1,4 +1,4 @@
-"""msr_decide against spec.color_diff / spec.interpolate_ok: every gap 1..8 and nominal gap
+"""msr_decision_pipe (the decision half) against spec.color_diff / spec.interpolate_ok: every gap 1..8 and nominal gap
 1..8, every threshold with the difference just below, at and above the decision boundary,
 all 64 extreme colour pairs (channels 0/255), and random colours; random valid/ready."""
 from __future__ import annotations
@@ -75,7 +75,8 @@ def vectors(rng):
 async def decide_vs_golden(dut):
     rng = random.Random(1234)
     await start_clock_and_reset(dut, {"clear_i": 0, "valid_i": 0, "ready_i": 0, "a_i": 0, "b_i": 0,
-                                      "metric_i": 0, "thr_i": 0, "gap_i": 1, "nshift_i": 0, "user_i": 0})
+                                      "metric_i": 0, "thr_i": 0, "gap_i": 1, "off_i": 0, "nshift_i": 0,
+                                      "user_i": 0})
     vec = vectors(rng)
     expect = []
     for i, (a, b, metric, thr, gap, nshift) in enumerate(vec):
@@ -91,6 +92,7 @@ async def decide_vs_golden(dut):
             dut.metric_i.value = int(metric == "sum")
             dut.thr_i.value = thr
             dut.gap_i.value = gap
+            dut.off_i.value = gap // 2
             dut.nshift_i.value = nshift
             dut.user_i.value = sent & 0xFFFF
         else:
@@ -110,4 +112,4 @@ async def decide_vs_golden(dut):
 
 
 def test_decide():
-    run_cocotb("msr_decide", "test_decide", Path(__file__).parent, {"USER_W": 16})
+    run_cocotb("msr_decision_pipe", "test_decide", Path(__file__).parent, {"USER_W": 16})

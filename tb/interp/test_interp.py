@@ -1,6 +1,6 @@
 """msr_interp against spec.interpolate.
 
-1. A pure-Python proof that the reciprocal constants of rtl/msr_interp.sv divide exactly:
+1. A pure-Python proof that the reciprocal constants of rtl/engine/msr_decision_pipe.sv divide exactly:
    for every g in 2..8 and every numerator 0..2047 (the 11-bit range; the largest reachable
    numerator is 8*255+4 = 2044), (n * ceil(2^14/g)) >> 14 == n // g. The constants are read
    from the RTL source, not copied.
@@ -23,7 +23,7 @@ from msr_tb import next_cycle, pack_rgb, settle, start_clock_and_reset, unpack_r
 
 from msr_model import spec  # noqa: E402
 
-SRC = ROOT / "rtl" / "engine" / "msr_interp.sv"
+SRC = ROOT / "rtl" / "engine" / "msr_decision_pipe.sv"
 
 
 def rtl_reciprocals() -> tuple[int, dict[int, int]]:
@@ -70,7 +70,8 @@ def all_vectors(rng):
 async def interp_vs_golden(dut):
     rng = random.Random(99)
     await start_clock_and_reset(dut, {"clear_i": 0, "valid_i": 0, "ready_i": 0, "a_i": 0, "b_i": 0,
-                                      "gap_i": 2, "off_i": 1, "user_i": 0})
+                                      "gap_i": 2, "off_i": 1, "user_i": 0, "metric_i": 0,
+                                      "thr_i": 0, "nshift_i": 0})
     vec = all_vectors(rng)
     a_all = np.array([v[0] for v in vec]); b_all = np.array([v[1] for v in vec])
     g_all = np.array([v[2] for v in vec]); o_all = np.array([v[3] for v in vec])
@@ -103,4 +104,4 @@ async def interp_vs_golden(dut):
 
 
 def test_interp():
-    run_cocotb("msr_interp", "test_interp", Path(__file__).parent, {"USER_W": 16})
+    run_cocotb("msr_decision_pipe", "test_interp", Path(__file__).parent, {"USER_W": 16})
