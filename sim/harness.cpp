@@ -7,6 +7,7 @@
 //       [--fb-base ADDR]   (override FB_BASE; memory stays where it is: error-path tests)
 //       [--waves FILE.fst --wave-tile TX,TY | --wave-cycles FROM,TO]   (waves build only)
 //       +scene=NAME|FILE +width=W +height=H [+rnd_latency=N] [+rnd_jitter=J]   (render_dpi)
+//       [+camera=EX,EY,EZ,TX,TY,TZ,FOV]   (the view, read by msr_dpi.cpp)
 //
 // Exit status: 0 frame done, 1 failure (timeout, error status, write error), 2 bad arguments.
 #include <chrono>
