@@ -2,9 +2,9 @@
 # Verilator harness, one harness per (NUM_ENGINES, MAX_OUTSTANDING) under build/bench/, swept by
 # scripts/bench_hw.py -> out/bench/report.json and out/bench/pixels_per_clock.png.
 # Same flags as `make sim` (SIM_VFLAGS of mk/sim.mk, used in the recipe, so it is expanded late);
-# the source lists are repeated here because mk/sim.mk is included after this file and
-# prerequisites are expanded when the rule is read.
-BENCH_HW_RTL  := $(shell sed -e 's://.*::' rtl/msr.f) sim/render_dpi.sv sim/msr_sim_top.sv
+# the source lists are named here because mk/sim.mk is included after this file and
+# prerequisites are expanded when the rule is read (MSR_RTL_FILES: the top Makefile).
+BENCH_HW_RTL  := $(MSR_RTL_FILES) sim/render_dpi.sv sim/msr_sim_top.sv
 BENCH_HW_CPP  := sim/harness.cpp sim/msr_dpi.cpp
 # Harness builds: e<N>_mo<M> = NUM_ENGINES N, MAX_OUTSTANDING M (64 is the default of msr_top;
 # e1_mo16 shows what fewer tags cost one engine at long latencies, and is the one build
@@ -20,7 +20,7 @@ build/bench/hw_%/Vmsr_sim_top: $(BENCH_HW_RTL) $(BENCH_HW_CPP) sim/msr_dpi.h sim
 	@$(ENV) verilator $(SIM_VFLAGS) -GNUM_ENGINES=$(word 1,$(subst _mo, ,$(patsubst e%,%,$*))) \
 	    -GMAX_OUTSTANDING=$(word 1,$(subst _c, ,$(word 2,$(subst _mo, ,$*)))) \
 	    $(if $(findstring _c,$*),-GNUM_CTX=$(lastword $(subst _c, ,$*))) -Mdir $(@D) -o Vmsr_sim_top \
-	    $(BENCH_HW_RTL) $(BENCH_HW_CPP) > $(@D)/build.log 2>&1 || { tail -40 $(@D)/build.log; exit 1; }
+	    $(MSR_RTL_OPTS) $(BENCH_HW_RTL) $(BENCH_HW_CPP) > $(@D)/build.log 2>&1 || { tail -40 $(@D)/build.log; exit 1; }
 
 .PHONY: bench-hw bench-hw-build
 bench-hw-build: setup renderer $(BENCH_HW_BINS)

@@ -4,7 +4,7 @@
 SIM_WAVES_ON := $(filter 1 yes true,$(WAVES))
 SIM_BUILD    := build/sim/$(if $(SIM_WAVES_ON),waves,fast)
 SIM_BIN      := $(SIM_BUILD)/Vmsr_sim_top
-SIM_RTL      := $(shell sed -e 's://.*::' rtl/msr.f) sim/render_dpi.sv sim/msr_sim_top.sv
+SIM_RTL      := $(MSR_RTL_FILES) sim/render_dpi.sv sim/msr_sim_top.sv
 SIM_CPP      := sim/harness.cpp sim/msr_dpi.cpp
 SIM_SCENE_LABEL = $(if $(findstring /,$(SCENE))$(findstring .,$(SCENE)),$(basename $(notdir $(SCENE))),$(SCENE))
 SIM_OUT      = $(if $(OUT),$(OUT),out/sim/$(SIM_SCENE_LABEL))
@@ -27,7 +27,7 @@ SIM_VFLAGS := --cc --exe --build -j 2 -O3 --x-assign fast --x-initial fast --noa
 $(SIM_BIN): $(SIM_RTL) $(SIM_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f mk/sim.mk build/renderer/libmsr_render.so
 	@mkdir -p $(SIM_BUILD)
 	@echo "make sim: building the Verilator harness into $(SIM_BUILD) (log: $(SIM_BUILD)/build.log)"
-	@$(ENV) verilator $(SIM_VFLAGS) -Mdir $(SIM_BUILD) -o Vmsr_sim_top $(SIM_RTL) $(SIM_CPP) > $(SIM_BUILD)/build.log 2>&1 || \
+	@$(ENV) verilator $(SIM_VFLAGS) -Mdir $(SIM_BUILD) -o Vmsr_sim_top $(MSR_RTL_OPTS) $(SIM_RTL) $(SIM_CPP) > $(SIM_BUILD)/build.log 2>&1 || \
 	    { tail -40 $(SIM_BUILD)/build.log; exit 1; }
 
 .PHONY: sim-build

@@ -1,7 +1,8 @@
 """The one cocotb runner library of the RTL tests: reads the one source-of-truth file list
 rtl/msr.f, builds each (top level, parameter set) into its own folder under build/tb/ and
-runs a cocotb test module. Used by every tb/<unit>/test_<unit>.py, scripts/bench_engine.py and
-scripts/lint_rtl.py (`rtl_sources`)."""
+runs a cocotb test module. Used by every tb/<unit>/test_<unit>.py, scripts/bench_engine.py,
+scripts/lint_rtl.py and scripts/synth.py (`rtl_sources`); run as a script it prints the file
+list with its options, for the Makefiles (`MSR_RTL_FILES`)."""
 from __future__ import annotations
 
 import os
@@ -12,15 +13,18 @@ RTL = ROOT / "rtl"
 FILE_LIST = RTL / "msr.f"
 
 
-def rtl_sources(file_list: Path = FILE_LIST) -> list[Path]:
-    """Source files of rtl/msr.f in order (package first), as absolute paths; '//' and '#'
-    start comments, lines starting with '+' or '-' are tool options."""
+def rtl_entries(file_list: Path = FILE_LIST) -> list[str]:
+    """Every entry of rtl/msr.f in order, as written: tool options ('+incdir+...', '-...') and
+    source files relative to the repository; '//' and '#' start comments."""
     out = []
     for line in file_list.read_text().splitlines():
-        line = line.split("//")[0].split("#")[0].strip()
-        if line and not line.startswith(("+", "-")):
-            out.append(ROOT / line)
+        out += line.split("//")[0].split("#")[0].split()
     return out
+
+
+def rtl_sources(file_list: Path = FILE_LIST) -> list[Path]:
+    """Source files of rtl/msr.f in order (package first), as absolute paths."""
+    return [ROOT / e for e in rtl_entries(file_list) if not e.startswith(("+", "-"))]
 
 
 def rtl_incdirs(file_list: Path = FILE_LIST) -> list[Path]:
@@ -70,3 +74,7 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
         extra_env={k: str(v) for k, v in (extra_env or {}).items()},
         waves=waves,
     )
+
+
+if __name__ == "__main__":
+    print(" ".join(rtl_entries()))
