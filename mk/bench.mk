@@ -1,4 +1,4 @@
-# Hardware throughput of the whole accelerator (issue 6, `make bench`): msr_top through the
+# Hardware throughput of the whole accelerator (`make bench`): msr_top through the
 # Verilator harness, one harness per (NUM_ENGINES, MAX_OUTSTANDING) under build/bench/, swept by
 # scripts/bench_hw.py -> out/bench/report.json and out/bench/pixels_per_clock.png.
 # Same flags as `make sim` (SIM_VFLAGS of mk/sim.mk, used in the recipe, so it is expanded late);
