@@ -29,12 +29,8 @@ def rtl_sources(file_list: Path = FILE_LIST) -> list[Path]:
 
 def rtl_incdirs(file_list: Path = FILE_LIST) -> list[Path]:
     """Include folders named by `+incdir+DIR` lines of rtl/msr.f, as absolute paths."""
-    out = []
-    for line in file_list.read_text().splitlines():
-        line = line.split("//")[0].strip()
-        if line.startswith("+incdir+"):
-            out += [ROOT / d for d in line[len("+incdir+"):].split("+") if d]
-    return out
+    return [ROOT / d for e in rtl_entries(file_list) if e.startswith("+incdir+")
+            for d in e[len("+incdir+"):].split("+") if d]
 
 
 def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict | None = None,
