@@ -96,30 +96,24 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
                 rsp = None
             if dut.issue.value:
                 # the granted context's position: its pass-start flag and direction
-                g_first = (int(dut.step_first.value) >> int(dut.gnt.value)) & 1
-                if g_first and dut.g_dir.value.to_unsigned() != 0:
+                gi = int(dut.gnt_idx.value)
+                g_first = (int(dut.ctx_first.value) >> gi) & 1
+                g_hv = not (int(dut.iss_pos.value) & 1)          # pos_t.init is its last bit
+                if g_first and g_hv:
                     pass_log.append([cycle, cycle, 0])
-                if dut.g_dir.value.to_unsigned() != 0 and pass_log:
+                if g_hv and pass_log:
                     pass_log[-1][1] = cycle
                     pass_log[-1][2] += 1
             if PROBE is not None:
-                comp = bin(int(dut.comp_q.value)).count("1")
-                full = bin(int(dut.full_q.value)).count("1")
+                free = bin(int(dut.ctx_free.value)).count("1")
+                full = bin(int(dut.ctx_full.value)).count("1")
                 key = ("issue" if int(dut.issue.value) else
-                       "s1_stall" if not int(dut.s1_ready.value) else
-                       "no_ctx" if comp == 0 else
-                       "blocked_nb" if int(dut.step_valid.value) else "ctrl_idle")
+                       "pipe_stall" if not int(dut.pipe_ready.value) else
+                       "no_ctx" if free == NUM_CTX else
+                       "barrier_or_idle")
                 PROBE[key] = PROBE.get(key, 0) + 1
-                PROBE[f"comp{comp}"] = PROBE.get(f"comp{comp}", 0) + 1
                 PROBE[f"full{full}"] = PROBE.get(f"full{full}", 0) + 1
                 PROBE["stream"] = PROBE.get("stream", 0) + int(dut.streaming_q.value)
-                if not int(dut.streaming_q.value):
-                    sq = int(dut.str_q.value)
-                    k = ("sidle_hol" if full and not (int(dut.full_q.value) >> sq) & 1 else
-                         "sidle_empty" if not full else "sidle_start")
-                    PROBE[k] = PROBE.get(k, 0) + 1
-                if int(dut.pix_valid_o.value) == 0 and int(dut.streaming_q.value):
-                    PROBE["s_gap"] = PROBE.get("s_gap", 0) + 1
             if dut.pix_valid_o.value:
                 pixels += 1
                 if dut.pix_last_o.value:

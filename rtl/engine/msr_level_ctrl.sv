@@ -91,14 +91,7 @@ module msr_level_ctrl
     return gap_t'(b - a);
   endfunction
 
-  typedef bmask_t [MAX_LEVELS:0] bset_row_t;
   typedef gap_t   [7:0]          gap_row_t;
-
-  function automatic bset_row_t bset_row(int unsigned r);
-    bset_row_t t;
-    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_set(r, k);
-    return t;
-  endfunction
 
   function automatic gap_row_t gap_row(int unsigned r, int unsigned k);
     gap_row_t t;
@@ -106,8 +99,6 @@ module msr_level_ctrl
     return t;
   endfunction
 
-  localparam bset_row_t BSET [8] = '{bset_row(0), bset_row(1), bset_row(2), bset_row(3),
-                                     bset_row(4), bset_row(5), bset_row(6), bset_row(7)};
   localparam gap_row_t BGAP [8][MAX_LEVELS+1] = '{
     '{gap_row(0, 0), gap_row(0, 1), gap_row(0, 2), gap_row(0, 3)},
     '{gap_row(1, 0), gap_row(1, 1), gap_row(1, 2), gap_row(1, 3)},
@@ -118,45 +109,69 @@ module msr_level_ctrl
     '{gap_row(6, 0), gap_row(6, 1), gap_row(6, 2), gap_row(6, 3)},
     '{gap_row(7, 0), gap_row(7, 1), gap_row(7, 2), gap_row(7, 3)}};
 
-  // ---- One ordered list of positions on an axis ------------------------------------------
-  // Regular part first .. p in steps of st (from first), then p + o for each set bit o >= 1
-  // of the border mask bm.
-  typedef struct packed {
-    lcoord_t first;   // first regular value (0 for grids, n_k / 2 for new positions)
-    logic    reg_ok;  // first <= p (the regular part is not empty)
-    lcoord_t st;      // regular step
-    lcoord_t p;       // last multiple of S on the axis
-    bmask_t  bm;      // border offsets (bit 0 never set)
-  } list_t;
+  // Offsets o >= 1 of a border mask in ascending order (a bq, 3 bits each, the first at
+  // bits [2:0]) and how many there are.
+  typedef logic [6:0][2:0] bqueue_t;
 
-  typedef struct packed {
-    logic    ok;
-    lcoord_t v;
-  } opt_t;
-
-  // Lowest set bit of a border mask above offset `after` (all bits when `all`).
-  function automatic opt_t border_next(lcoord_t p, bmask_t bm, logic [2:0] after, logic all);
-    bmask_t above;
-    opt_t   r;
-    above = all ? bm : (bm & ~((bmask_t'(2) << after) - 1'b1));
-    r = '{ok: 1'b0, v: '0};
-    for (int i = 7; i >= 1; i--) begin
-      if (above[i]) r = '{ok: 1'b1, v: p + lcoord_t'(i)};
+  function automatic bqueue_t border_queue(bmask_t bm);
+    bqueue_t q;
+    int unsigned n;
+    q = '0;
+    n = 0;
+    for (int unsigned o = 1; o < 8; o++) begin
+      if (bm[o]) begin
+        q[n] = 3'(o);
+        n++;
+      end
     end
-    return r;
+    return q;
   endfunction
 
-  function automatic opt_t list_first(list_t l);
-    return l.reg_ok ? '{ok: 1'b1, v: l.first} : border_next(l.p, l.bm, '0, 1'b1);
+  function automatic logic [2:0] border_count(bmask_t bm);
+    logic [2:0] n;
+    n = '0;
+    for (int unsigned o = 1; o < 8; o++) n += 3'(bm[o]);
+    return n;
   endfunction
 
-  function automatic opt_t list_next(list_t l, lcoord_t v);
-    logic [LCOORD_W:0] nv;
-    nv = {1'b0, v} + {1'b0, l.st};
-    if (v <= l.p && nv <= {1'b0, l.p}) return '{ok: 1'b1, v: lcoord_t'(nv)};
-    if (v <= l.p) return border_next(l.p, l.bm, '0, 1'b1);
-    return border_next(l.p, l.bm, 3'(v - l.p), 1'b0);
+  // The same tables as queues: G(k)'s border offsets >= 1 (BQ_SET) and level k's new border
+  // offsets (BQ_NEW, with their gaps BG_NEW), each with its length: constants, so a pass's
+  // set-up is table look-ups and no search.
+  typedef bqueue_t     [MAX_LEVELS:0] bq_row_t;
+  typedef logic [MAX_LEVELS:0][2:0] bn_row_t;
+
+  function automatic bq_row_t bq_set_row(int unsigned r);
+    bq_row_t t;
+    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_queue(border_set(r, k));
+    return t;
   endfunction
+  function automatic bn_row_t bn_set_row(int unsigned r);
+    bn_row_t t;
+    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_count(border_set(r, k));
+    return t;
+  endfunction
+  function automatic bmask_t new_mask(int unsigned r, int unsigned k);
+    return (k == 0) ? '0 : (border_set(r, k) & ~border_set(r, k - 1));
+  endfunction
+  function automatic bq_row_t bq_new_row(int unsigned r);
+    bq_row_t t;
+    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_queue(new_mask(r, k));
+    return t;
+  endfunction
+  function automatic bn_row_t bn_new_row(int unsigned r);
+    bn_row_t t;
+    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_count(new_mask(r, k));
+    return t;
+  endfunction
+
+  localparam bq_row_t BQ_SET [8] = '{bq_set_row(0), bq_set_row(1), bq_set_row(2), bq_set_row(3),
+                                     bq_set_row(4), bq_set_row(5), bq_set_row(6), bq_set_row(7)};
+  localparam bn_row_t BN_SET [8] = '{bn_set_row(0), bn_set_row(1), bn_set_row(2), bn_set_row(3),
+                                     bn_set_row(4), bn_set_row(5), bn_set_row(6), bn_set_row(7)};
+  localparam bq_row_t BQ_NEW [8] = '{bq_new_row(0), bq_new_row(1), bq_new_row(2), bq_new_row(3),
+                                     bq_new_row(4), bq_new_row(5), bq_new_row(6), bq_new_row(7)};
+  localparam bn_row_t BN_NEW [8] = '{bn_new_row(0), bn_new_row(1), bn_new_row(2), bn_new_row(3),
+                                     bn_new_row(4), bn_new_row(5), bn_new_row(6), bn_new_row(7)};
 
   /* verilator lint_on UNUSEDSIGNAL */
 
@@ -166,147 +181,201 @@ module msr_level_ctrl
   lcoord_t px_q, py_q;               // p of each axis
   logic [2:0] rx_q, ry_q;            // border length of each axis
 
+  // ---- An ordered list of positions on one axis, and a walk along it ---------------------
+  // The list is its regular part (first, first + st, ... up to p; `nreg` entries) followed by
+  // p + o for every border offset o in the bq. A walk state is the current entry, how
+  // many regular entries follow it, the border offsets still to come and how many entries
+  // are left in all; stepping is an add (regular) or a bq shift (border), no search.
+  typedef struct packed {
+    lcoord_t p;
+    lcoord_t st;
+    lcoord_t first;
+    logic [LCOORD_W:0] nreg;       // regular entries (0..32)
+    logic [LCOORD_W:0] total;      // all entries
+    bqueue_t bq;                   // border offsets
+  } list_t;
+
+  typedef struct packed {
+    logic              ok;         // the list is not empty (cur is an entry)
+    lcoord_t           cur;
+    logic              border;     // cur is in the border region
+    logic [LCOORD_W:0] reg_left;   // regular entries after cur
+    logic [LCOORD_W:0] left;       // entries after cur
+    bqueue_t           bq;      // border offsets after cur
+  } walk_t;
+
+  // The start state needs every field of the list but its step.
+  /* verilator lint_off UNUSEDSIGNAL */
+  function automatic walk_t walk_start(list_t l);
+    walk_t   w;
+    bqueue_t q;
+    q      = l.bq;
+    w.ok   = (l.total != '0);
+    w.left = l.total - 1'b1;
+    if (l.nreg != '0) begin
+      w.cur      = l.first;
+      w.border   = 1'b0;
+      w.reg_left = l.nreg - 1'b1;
+      w.bq    = q;
+    end else begin
+      w.cur      = l.p + lcoord_t'(q[0]);
+      w.border   = 1'b1;
+      w.reg_left = '0;
+      w.bq    = q >> 3;
+    end
+    return w;
+  endfunction
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  function automatic walk_t walk_step(walk_t w, lcoord_t p, lcoord_t st);
+    walk_t n;
+    n      = w;
+    n.left = w.left - 1'b1;
+    if (w.reg_left != '0) begin
+      n.cur      = w.cur + st;
+      n.reg_left = w.reg_left - 1'b1;
+    end else begin
+      n.cur    = p + lcoord_t'(w.bq[0]);
+      n.border = 1'b1;
+      n.bq  = w.bq >> 3;
+    end
+    return n;
+  endfunction
+
   // ---- Walk state: the candidate after the one in the output register ---------------------
   typedef enum logic [2:0] {
     WS_IDLE   = 3'd0,
     WS_CORNER = 3'd1,
-    WS_SETUP  = 3'd2,    // load the pass's lists (one idle cycle)
-    WS_WALK   = 3'd3,
-    WS_DONE   = 3'd4     // every position has left the walk state
+    WS_SETUP1 = 3'd2,    // the pass's lists from the tile registers
+    WS_SETUP2 = 3'd3,    // the walks' start states from the lists
+    WS_WALK   = 3'd4,
+    WS_DONE   = 3'd5     // every position has left the walk state
   } wstate_e;
 
   wstate_e    ws_q, ws_d;
   dir_e       dir_q, dir_d;          // pass of the walk (DIR_INIT = initial grid)
   level_t     k_q, k_d;
   logic [1:0] corner_q, corner_d;
-  lcoord_t    line_q, line_d, pos_q, pos_d;
-  logic       pos_ok_q, pos_ok_d;    // (line, pos) is a real position
   logic       first_q, first_d;      // no position of this pass has been offered yet
-  list_t      lines_q, lines_d, poss_q, poss_d;
-  gap_row_t   gaps_q, gaps_d;        // border gaps of the pass's new positions
-  opt_t       pfirst_q, pfirst_d;    // first position of a line
-  opt_t       pedge_q, pedge_d;      // first position of an edge row of the initial grid
+  logic       skip_q, skip_d;        // the candidate is the x = 0 of an edge row: not offered
+  list_t      lines_q, poss_q;       // the pass's lists (set-up 1)
+  gap_t       nk_q;                  // n_k of the pass (<= 8)
+  gap_row_t   gaps_q;                // border gaps of the pass's new positions
+  walk_t      pstart_q;              // walk state at the start of a line (set-up 2)
+  walk_t      lw_q, lw_d, pw_q, pw_d;  // line walk, position walk
 
-  // Lists of a pass (set-up cycle).
-  function automatic list_t grid_list(lcoord_t p, lcoord_t st, lcoord_t first, bmask_t bm);
-    list_t l;
-    l.first  = first;
-    l.reg_ok = (first <= p);
-    l.st     = st;
-    l.p      = p;
-    l.bm     = bm & 8'hFE;
-    return l;
-  endfunction
-
-  lcoord_t s_full, nk, nk_half;        // S, n_k, n_k / 2 of the pass being set up
+  // Set-up 1: the lists of the pass (dir_q, k_q).
+  lcoord_t s_full, nk, nk_half;
+  logic [1:0] lst_new;               // log2 of the new positions' step n_k
   list_t   set_lines, set_poss;
   gap_row_t set_gaps;
-  logic    edge_row;                   // the candidate row is the first or last of the grid
+
+  function automatic list_t make_list(lcoord_t p, lcoord_t st, logic [1:0] lst, lcoord_t first,
+                                      logic grid, bqueue_t bq, logic [2:0] nb);
+    list_t l;
+    l.p     = p;
+    l.st    = st;
+    l.first = first;
+    // regular entries: multiples of st up to p (grid), odd multiples of st / 2 below p (new)
+    l.nreg  = (LCOORD_W+1)'(p >> lst) + (LCOORD_W+1)'(grid);
+    l.total = (LCOORD_W+1)'(p >> lst) + (LCOORD_W+1)'(grid) + (LCOORD_W+1)'(nb);
+    l.bq    = bq;
+    return l;
+  endfunction
 
   always_comb begin
     s_full  = lcoord_t'(1) << levels_q;
     nk      = (dir_q == DIR_INIT) ? s_full : (s_full >> (k_q - 1'b1));
     nk_half = nk >> 1;
+    lst_new = 2'(levels_q - k_q + 1'b1);
     unique case (dir_q)
       DIR_H: begin   // rows of Gy(k-1), new x of level k
-        set_lines = grid_list(py_q, nk, '0, BSET[ry_q][k_q - 1'b1]);
-        set_poss  = grid_list(px_q, nk, nk_half, BSET[rx_q][k_q] & ~BSET[rx_q][k_q - 1'b1]);
+        set_lines = make_list(py_q, nk, lst_new, '0, 1'b1, BQ_SET[ry_q][k_q - 1'b1],
+                              BN_SET[ry_q][k_q - 1'b1]);
+        set_poss  = make_list(px_q, nk, lst_new, nk_half, 1'b0, BQ_NEW[rx_q][k_q],
+                              BN_NEW[rx_q][k_q]);
         set_gaps  = BGAP[rx_q][k_q];
       end
       DIR_V: begin   // columns of Gx(k), new y of level k
-        set_lines = grid_list(px_q, nk_half, '0, BSET[rx_q][k_q]);
-        set_poss  = grid_list(py_q, nk, nk_half, BSET[ry_q][k_q] & ~BSET[ry_q][k_q - 1'b1]);
+        set_lines = make_list(px_q, nk_half, 2'(lst_new - 1'b1), '0, 1'b1, BQ_SET[rx_q][k_q],
+                              BN_SET[rx_q][k_q]);
+        set_poss  = make_list(py_q, nk, lst_new, nk_half, 1'b0, BQ_NEW[ry_q][k_q],
+                              BN_NEW[ry_q][k_q]);
         set_gaps  = BGAP[ry_q][k_q];
       end
       default: begin // initial grid: rows of Gy(0), x of Gx(0)
-        set_lines = grid_list(py_q, s_full, '0, BSET[ry_q][0]);
-        set_poss  = grid_list(px_q, s_full, '0, BSET[rx_q][0]);
+        set_lines = make_list(py_q, s_full, 2'(levels_q), '0, 1'b1, BQ_SET[ry_q][0], BN_SET[ry_q][0]);
+        set_poss  = make_list(px_q, s_full, 2'(levels_q), '0, 1'b1, BQ_SET[rx_q][0], BN_SET[rx_q][0]);
         set_gaps  = '0;
       end
     endcase
   end
 
   // ---- Walk: next candidate ------------------------------------------------------------------
-  logic advance;                       // the output register takes the candidate
-  opt_t nx, nl, ex;
-  logic out_valid_q;
+  logic  advance, out_valid_q;
+  logic  edge_row;         // the candidate's row is the first or the last of the initial grid
+  logic  line_end;         // the candidate is the last position of its line
+  walk_t pw_next, lw_next;
 
-  assign nx       = list_next(poss_q, pos_q);
-  assign nl       = list_next(lines_q, line_q);
-  assign ex       = list_next(set_poss, '0);     // after x = 0 in an edge row (set-up only)
-  assign edge_row = (dir_q == DIR_INIT) && (line_q == '0 || line_q == hm1_q);
   assign advance  = !out_valid_q || step_ready_i;
+  assign pw_next  = walk_step(pw_q, poss_q.p, poss_q.st);
+  assign lw_next  = walk_step(lw_q, lines_q.p, lines_q.st);
+  assign edge_row = (dir_q == DIR_INIT) && (lw_q.cur == '0 || lw_q.left == '0);
+  // an edge row leaves out its last position (a corner): it ends one early
+  assign line_end = !pw_q.ok || (pw_q.left == '0) || (edge_row && pw_q.left == 1);
 
-  // The pass after (dir_q, k_q): H(1) after the initial grid, V(k) after H(k), H(k+1) after V(k).
   always_comb begin
     ws_d     = ws_q;
     dir_d    = dir_q;
     k_d      = k_q;
     corner_d = corner_q;
-    line_d   = line_q;
-    pos_d    = pos_q;
-    pos_ok_d = pos_ok_q;
     first_d  = first_q;
-    lines_d  = lines_q;
-    poss_d   = poss_q;
-    gaps_d   = gaps_q;
-    pfirst_d = pfirst_q;
-    pedge_d  = pedge_q;
+    skip_d   = skip_q;
+    lw_d     = lw_q;
+    pw_d     = pw_q;
     if (advance) begin
       unique case (ws_q)
         WS_CORNER: begin
           first_d = 1'b0;
           if (corner_q == 2'd3) begin
-            ws_d  = WS_SETUP;
+            ws_d  = WS_SETUP1;
             dir_d = DIR_INIT;
           end
           corner_d = corner_q + 1'b1;
         end
-        WS_SETUP: begin
-          lines_d  = set_lines;
-          poss_d   = set_poss;
-          gaps_d   = set_gaps;
-          pfirst_d = list_first(set_poss);
-          pedge_d  = '{ok: ex.ok && ex.v != wm1_q, v: ex.v};
-          line_d   = '0;                                 // every line list starts at 0
-          if (dir_q == DIR_INIT) begin                   // row 0 is an edge row
-            pos_d    = ex.v;
-            pos_ok_d = ex.ok && ex.v != wm1_q;
-          end else begin
-            pos_d    = list_first(set_poss).v;
-            pos_ok_d = list_first(set_poss).ok;
-          end
+        WS_SETUP1: ws_d = WS_SETUP2;
+        WS_SETUP2: begin
+          lw_d    = walk_start(lines_q);
+          pw_d    = walk_start(poss_q);
+          // row 0 of the initial grid is an edge row: its x = 0 is a corner
+          skip_d  = (dir_q == DIR_INIT);
           first_d = (dir_q != DIR_INIT);
           ws_d    = WS_WALK;
         end
         WS_WALK: begin
-          if (pos_ok_q) first_d = 1'b0;
-          if (pos_ok_q && nx.ok && !(edge_row && nx.v == wm1_q)) begin
-            pos_d = nx.v;                                // next position of the line
-          end else if ((pos_ok_q || dir_q == DIR_INIT) && nl.ok) begin
-            line_d = nl.v;                               // first position of the next line
-            if (dir_q == DIR_INIT && nl.v == hm1_q) begin
-              pos_d    = pedge_q.v;
-              pos_ok_d = pedge_q.ok;
-            end else begin
-              pos_d    = pfirst_q.v;
-              pos_ok_d = pfirst_q.ok;
-            end
+          if (pw_q.ok && !skip_q) first_d = 1'b0;
+          skip_d = 1'b0;
+          if (!line_end) begin
+            pw_d = pw_next;                              // next position of the line
+          end else if ((pw_q.ok || dir_q == DIR_INIT) && lw_q.left != '0) begin
+            lw_d   = lw_next;                            // first position of the next line
+            pw_d   = pstart_q;
+            skip_d = (dir_q == DIR_INIT) && (lw_q.left == 1);   // the last row is an edge row
           end else begin                                 // end of the pass (or an empty pass)
-            pos_ok_d = 1'b0;
+            pw_d.ok = 1'b0;
             if (dir_q == DIR_INIT) begin
               dir_d = DIR_H;
               k_d   = level_t'(1);
-              ws_d  = WS_SETUP;
+              ws_d  = WS_SETUP1;
             end else if (dir_q == DIR_H) begin
               dir_d = DIR_V;
-              ws_d  = WS_SETUP;
+              ws_d  = WS_SETUP1;
             end else if (k_q == levels_q) begin
               ws_d  = WS_DONE;
             end else begin
               dir_d = DIR_H;
               k_d   = k_q + 1'b1;
-              ws_d  = WS_SETUP;
+              ws_d  = WS_SETUP1;
             end
           end
         end
@@ -320,26 +389,23 @@ module msr_level_ctrl
       k_d      = '0;
       corner_d = '0;
       first_d  = 1'b1;
-      pos_ok_d = 1'b0;
+      pw_d.ok  = 1'b0;
     end
   end
 
   // ---- Candidate -> output register ------------------------------------------------------
   logic    cand_valid;
-  lcoord_t cand_x, cand_y, cand_a, cand_b, cand_m;
+  lcoord_t cand_x, cand_y, cand_a, cand_b;
   gap_t    cand_gap, cand_off;
-  logic [2:0] cand_o;
 
   always_comb begin
     cand_valid = 1'b0;
     cand_x     = '0;
     cand_y     = '0;
-    cand_m     = pos_q;
-    cand_o     = 3'(pos_q - poss_q.p);
-    cand_gap   = (pos_q > poss_q.p) ? gaps_q[cand_o] : gap_t'(poss_q.st);
+    cand_gap   = pw_q.border ? gaps_q[3'(pw_q.cur - poss_q.p)] : nk_q;
     cand_off   = cand_gap >> 1;
-    cand_a     = cand_m - lcoord_t'(cand_off);
-    cand_b     = cand_m + lcoord_t'(cand_gap - cand_off);
+    cand_a     = pw_q.cur - lcoord_t'(cand_off);
+    cand_b     = pw_q.cur + lcoord_t'(cand_gap - cand_off);
     unique case (ws_q)
       WS_CORNER: begin
         cand_x = corner_q[0] ? wm1_q : '0;
@@ -352,9 +418,9 @@ module msr_level_ctrl
         endcase
       end
       WS_WALK: begin
-        cand_valid = pos_ok_q;
-        cand_x     = (dir_q == DIR_V) ? line_q : pos_q;
-        cand_y     = (dir_q == DIR_V) ? pos_q : line_q;
+        cand_valid = pw_q.ok && !skip_q;
+        cand_x     = (dir_q == DIR_V) ? lw_q.cur : pw_q.cur;
+        cand_y     = (dir_q == DIR_V) ? pw_q.cur : lw_q.cur;
       end
       default: ;
     endcase
@@ -373,15 +439,14 @@ module msr_level_ctrl
       dir_q       <= DIR_INIT;
       k_q         <= '0;
       corner_q    <= '0;
-      line_q      <= '0;
-      pos_q       <= '0;
-      pos_ok_q    <= 1'b0;
       first_q     <= 1'b0;
+      skip_q      <= 1'b0;
+      pw_q        <= '0;
       out_valid_q <= 1'b0;
       out_first_q <= 1'b0;
     end else if (clear_i) begin
       ws_q        <= WS_IDLE;
-      pos_ok_q    <= 1'b0;
+      pw_q.ok     <= 1'b0;
       out_valid_q <= 1'b0;
       out_first_q <= 1'b0;
     end else begin
@@ -389,10 +454,9 @@ module msr_level_ctrl
       dir_q    <= dir_d;
       k_q      <= k_d;
       corner_q <= corner_d;
-      line_q   <= line_d;
-      pos_q    <= pos_d;
-      pos_ok_q <= pos_ok_d;
       first_q  <= first_d;
+      skip_q   <= skip_d;
+      pw_q     <= pw_d;
       if (advance) begin
         out_valid_q <= cand_valid;
         out_first_q <= cand_valid && first_q;
@@ -400,13 +464,16 @@ module msr_level_ctrl
     end
   end
 
-  // Data registers: gated by the valid bits above, no reset needed.
+  // Data registers: gated by the state and valid bits above, no reset needed.
   always_ff @(posedge clk_i) begin
-    lines_q  <= lines_d;
-    poss_q   <= poss_d;
-    gaps_q   <= gaps_d;
-    pfirst_q <= pfirst_d;
-    pedge_q  <= pedge_d;
+    lw_q <= lw_d;
+    if (ws_q == WS_SETUP1) begin
+      lines_q <= set_lines;
+      poss_q  <= set_poss;
+      gaps_q  <= set_gaps;
+      nk_q    <= gap_t'(nk);
+    end
+    if (ws_q == WS_SETUP2) pstart_q <= walk_start(poss_q);
     if (ws_q == WS_IDLE && start_valid_i) begin
       levels_q <= levels_i;
       wm1_q    <= lcoord_t'(w_i - 1'b1);
@@ -419,10 +486,10 @@ module msr_level_ctrl
     if (advance) begin
       out_x_q      <= cand_x;
       out_y_q      <= cand_y;
-      out_ax_q     <= (dir_q == DIR_V) ? line_q : cand_a;
-      out_ay_q     <= (dir_q == DIR_V) ? cand_a : line_q;
-      out_bx_q     <= (dir_q == DIR_V) ? line_q : cand_b;
-      out_by_q     <= (dir_q == DIR_V) ? cand_b : line_q;
+      out_ax_q     <= (dir_q == DIR_V) ? lw_q.cur : cand_a;
+      out_ay_q     <= (dir_q == DIR_V) ? cand_a : lw_q.cur;
+      out_bx_q     <= (dir_q == DIR_V) ? lw_q.cur : cand_b;
+      out_by_q     <= (dir_q == DIR_V) ? cand_b : lw_q.cur;
       out_gap_q    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_gap : '0;
       out_off_q    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_off : '0;
       out_level_q  <= (ws_q == WS_WALK) ? k_q : '0;

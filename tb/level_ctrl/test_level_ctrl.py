@@ -80,7 +80,7 @@ async def schedule_matches_golden(dut):
         while dut.busy_o.value:               # trailing empty passes / holes
             assert not dut.step_valid_o.value, f"tile {w}x{h} L={lv}: extra step"
             idle_wait += 1
-            assert idle_wait < 24, f"tile {w}x{h} L={lv}: controller does not finish"
+            assert idle_wait < 40, f"tile {w}x{h} L={lv}: controller does not finish"
             await next_cycle()
             await settle()
         await next_cycle()
