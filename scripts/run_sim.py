@@ -7,7 +7,8 @@
 
 Writes frame.png, source_map.png (read back from the RTL's memory), golden.png,
 golden_source_map.png, reference.png and report.json into DIR (default out/sim/<scene>/)
-and prints a one-screen summary (../shared/spec/contracts.md, "Full simulation").
+(../shared/spec/contracts.md, "Full simulation"), summary.png (the run in one picture,
+msr_model.overview) and prints a one-screen summary.
 
 Exit status and last line (msr_model.clitools): 0 and "make sim: passed: ..." when the RTL
 is bit exact with the golden model; 2 and "make sim: error: ..." on bad input (arguments,
@@ -167,6 +168,10 @@ def run(a) -> int:
         "num_engines": DEFAULT_NUM_ENGINES,
     }
     (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
+    from msr_model.overview import RunInfo, write_summary
+    write_summary(out / "summary.png", frame, reference, source,
+                  RunInfo(scene=scene_label(a.scene), params=params, rule=rule, psnr_db=report["psnr_db"], ssim=ssim,
+                          cycles=st["cycles"], bit_exact=report["bit_exact"]))
 
     p = params
     print(f"make sim: {a.scene} {W}x{H}, tile {p.tile}, levels {p.levels}, thr {','.join(map(str, p.thr))}, "
@@ -180,6 +185,7 @@ def run(a) -> int:
           f"RTL run {rtl.wall_seconds:.1f} s, reference render {t_ref:.1f} s")
     if a.waves:
         print(f"  waves                     : {out / 'waves.fst'} (make waves)")
+    print(f"  summary picture           : {out / 'summary.png'}")
     print(f"  outputs                   : {out}/", flush=True)
     if not report["bit_exact"]:
         raise RunFailed(f"not bit exact: {verdict['mismatched_pixels']} pixels and {verdict['mismatched_codes']} "

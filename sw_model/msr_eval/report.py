@@ -12,6 +12,8 @@ from pathlib import Path
 import numpy as np
 from PIL import Image
 
+from msr_model.palette import legend_image, source_rgb
+
 from .metrics import capped, flip, pareto
 
 FAMILY_NAMES = {
@@ -196,8 +198,8 @@ def write_docs(result: dict, out: Path, docs: Path):
         what = "Mean over the scene set (Pareto front)" if kind == "pareto" else "Per scene"
         w(f"{what}, {mode} renderer:\n\n![{kind} {mode}]({path})\n")
     if result["examples"]:
-        w("Examples (frame | source map: white = initial sample, orange/red = traced at level 1/2/3, "
-          "blue = interpolated | FLIP error map, magma, black = no error):\n")
+        w("Examples (frame | source map in the palette of `msr_model.palette`, the same as `make sim`'s "
+          "summary.png, legend under each strip | FLIP error map, magma, black = no error):\n")
         for ex in result["examples"]:
             w(f"- `{ex['scene']}`, {ex['mode']}, {FAMILY_NAMES.get(ex['family'], ex['family'])} {ex['label']}: "
               f"{100 * ex['traced_fraction']:.1f} % traced, {_db(ex['psnr'])} dB\n\n  ![{ex['scene']}]({ex['doc_file']})\n")
@@ -298,20 +300,9 @@ def plot_set(set_curves, mode, path, title):
     plt.close(fig)
 
 
-def source_rgb(source):
-    """Source map for people: traced white (initial) / orange (levels), interpolated dark blue."""
-    out = np.zeros(source.shape + (3,), np.uint8)
-    out[source == 0] = (255, 255, 255)
-    for k, col in ((1, (255, 170, 0)), (2, (230, 90, 0)), (3, (180, 0, 0))):
-        out[source == k] = col
-    for k, col in ((17, (20, 40, 110)), (18, (30, 60, 150)), (19, (40, 80, 190))):
-        out[source == k] = col
-    out[source == 16] = (30, 60, 150)
-    return out
-
-
 def example_strip(ref, res, panel_w):
-    """frame | source map | error map (FLIP, magma), each downscaled to panel_w wide."""
+    """frame | source map | error map (FLIP, magma), each downscaled to panel_w wide, and under
+    them the source-code legend (the palette of msr_model.palette, as in make sim's summary)."""
     from PIL import Image
     import matplotlib
     _, emap = flip(ref, res.frame, want_map=True)
@@ -321,7 +312,9 @@ def example_strip(ref, res, panel_w):
     ph = max(1, round(panel_w * h / w))
     ims = [Image.fromarray(p).resize((panel_w, ph), Image.NEAREST if i == 1 else Image.BILINEAR)
            for i, p in enumerate(panels)]
-    strip = Image.new("RGB", (3 * panel_w + 8, ph), (255, 255, 255))
+    legend = legend_image(res.params.levels, res.source)
+    strip = Image.new("RGB", (max(3 * panel_w + 8, legend.width), ph + legend.height), (255, 255, 255))
     for i, im in enumerate(ims):
         strip.paste(im, (i * (panel_w + 4), 0))
+    strip.paste(legend, (0, ph))
     return strip

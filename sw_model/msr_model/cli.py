@@ -2,6 +2,7 @@
 
     python -m msr_model select IMAGE.png --tile 16 --levels 2 --thr 8,16 [--metric max|sum]
         [--fov-gain 0] [--rule patent|lindilate] --out OUT.png --source-map MAP.png --stats STATS.json
+        [--overview SUMMARY.png]
     python -m msr_model select --scene SCENE --width W --height H [--camera ...] [the same flags]
     python -m msr_model render --scene SCENE --width W --height H [--camera ...] --out REF.png
 
@@ -54,6 +55,8 @@ def _add_select_flags(p):
     p.add_argument("--out", required=True, help="output frame PNG")
     p.add_argument("--source-map", help="output source-code map PNG (8-bit grey)")
     p.add_argument("--stats", help="output statistics JSON")
+    p.add_argument("--overview", help="output summary PNG for people: frame, full reference, error, "
+                   "source map in colour with a legend, traced fraction per tile (msr_model.overview)")
 
 
 def _add_scene_flags(p, required):
@@ -105,16 +108,20 @@ def cmd_select(args) -> int:
     if (args.image is None) == (args.scene is None):
         raise UsageError("give either IMAGE.png or --scene SCENE")
     check_outputs({"--out": (args.out, (".png",)), "--source-map": (args.source_map, (".png",)),
-                   "--stats": (args.stats, (".json",))}, inputs=[args.image])
+                   "--stats": (args.stats, (".json",)), "--overview": (args.overview, (".png",))},
+                  inputs=[args.image])
     t0 = time.perf_counter()
     if args.image is not None:
         check_image(args.image)          # size and bit depth from the header, before decoding
-        renderer = ImageRenderer(load_rgb(args.image))
+        reference = load_rgb(args.image)
+        renderer = ImageRenderer(reference)
         result = select(renderer, renderer.width, renderer.height, params, rule=args.rule)
     else:
         renderer = _open_scene(args)
         try:
             result = select(renderer, args.width, args.height, params, rule=args.rule)
+            # the full reference only for the overview (it traces every pixel)
+            reference = renderer.render_full() if args.overview else None
         finally:
             _close(renderer)
     stats = dict(result.stats)
@@ -127,7 +134,17 @@ def cmd_select(args) -> int:
             out.write(args.source_map, lambda t: save_png(t, result.source, format="PNG"))
         if args.stats:
             out.write_text(args.stats, json.dumps(stats, indent=2) + "\n")
+        if args.overview:
+            out.write(args.overview, lambda t: _write_overview(t, args, params, result, reference))
     return 0
+
+
+def _write_overview(path, args, params, result, reference):
+    from .overview import RunInfo, psnr_ssim, write_summary
+    psnr, ssim = psnr_ssim(reference, result.frame)
+    info = RunInfo(scene=args.image if args.image is not None else args.scene, params=params, rule=args.rule,
+                   psnr_db=psnr, ssim=ssim, frame_label="golden model frame")
+    write_summary(path, result.frame, reference, result.source, info)
 
 
 def cmd_render(args) -> int:
