@@ -16,7 +16,7 @@ CASES = [(640, 480, 16, 2), (1920, 1080, 8, 1), (1920, 1080, 16, 2), (1920, 1080
 
 def main():
     rows = []
-    for w, h, t, lv in tqdm(CASES, desc="golden bench"):
+    for w, h, t, lv in tqdm(CASES, desc="golden bench", disable=None):
         img = test_image(w, h)
         params = Params(tile=t, levels=lv, thr=default_thresholds(lv))
         best = float("inf")

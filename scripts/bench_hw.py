@@ -222,7 +222,8 @@ def run(a) -> int:
     golden = GoldenFrames(a.scene, a.width, a.height)
     t0 = time.perf_counter()
     main_pts, tl_pts = [], []
-    bar = tqdm(jobs, desc="bench_hw", unit="sim", disable=a.no_progress, file=sys.stderr)
+    bar = tqdm(jobs, desc="bench_hw", unit="sim", disable=True if a.no_progress else None,
+               file=sys.stderr)  # None: a bar only on a terminal
     for kind, e, mo, t, l, lat in bar:
         bar.set_postfix_str(f"E={e} MO={mo} T={t} L={l} lat={lat}")
         pt = run_point(harness_path(build, e, mo), e, mo, a.scene, a.width, a.height, t, l, lat, golden)

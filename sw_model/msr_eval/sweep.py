@@ -358,7 +358,7 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     pairs = [(scene, mode) for scene in scenes for mode in modes]
 
     def bar(total, desc):
-        return tqdm(total=total, desc=desc, unit="task", disable=not show_progress or total == 0,
+        return tqdm(total=total, desc=desc, unit="task", disable=True if not show_progress or total == 0 else None,
                     leave=False, mininterval=1.0)
 
     # References: from the cache, else rendered as tasks and cached here.

@@ -207,7 +207,8 @@ class EmbreeRenderer:
         bar = None
         if progress:
             from tqdm import tqdm
-            bar = tqdm(total=h * w, unit="px", unit_scale=True, delay=1.0, leave=False,
+            # disable=None: no bar unless stderr is a terminal (logs and CI stay clean)
+            bar = tqdm(total=h * w, unit="px", unit_scale=True, delay=1.0, leave=False, disable=None,
                        desc=f"render {Path(self.scene).name} {w}x{h} {self.quality}")
         try:
             self._render_into(xs, ys, out, bar)
