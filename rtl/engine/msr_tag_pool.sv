@@ -26,7 +26,8 @@ module msr_tag_pool #(
   input  logic [TAG_W-1:0]   query_tag_i, // look a tag up
   output logic [ENTRY_W-1:0] query_entry_o,
   output logic               query_inflight_o,
-  input  logic               release_i,   // query_tag_i is answered: free it
+  input  logic [TAG_W-1:0]   release_tag_i, // a tag that is answered ...
+  input  logic               release_i,     // ... free it
   // status
   output logic [TAG_W:0]     inflight_o,  // tags handed out and not yet answered
   output logic               init_o       // the free list is being filled
@@ -53,7 +54,7 @@ module msr_tag_pool #(
     .flush_i (clear_i),
     .valid_i (init_q || release_i),
     .ready_o (fifo_ready),
-    .data_i  (init_q ? TAG_W'(init_cnt_q) : query_tag_i),
+    .data_i  (init_q ? TAG_W'(init_cnt_q) : release_tag_i),
     .valid_o (fifo_valid),
     .ready_i (alloc_i),
     .data_o  (tag_o),
@@ -83,7 +84,7 @@ module msr_tag_pool #(
         if (32'(init_cnt_q) == N - 1) init_q <= 1'b0;
       end
       if (alloc_i)   inflight_q[tag_o]       <= 1'b1;
-      if (release_i) inflight_q[query_tag_i] <= 1'b0;
+      if (release_i) inflight_q[release_tag_i] <= 1'b0;
       inflight_cnt_q <= inflight_cnt_q + (TAG_W+1)'(alloc_i) - (TAG_W+1)'(release_i);
     end
   end
@@ -95,7 +96,7 @@ module msr_tag_pool #(
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_alloc_avail, alloc_i |-> avail_o)
   `MSR_ASSERT(a_alloc_free, alloc_i |-> !inflight_q[tag_o])
-  `MSR_ASSERT(a_release_inflight, release_i |-> inflight_q[query_tag_i] && !init_q)
+  `MSR_ASSERT(a_release_inflight, release_i |-> inflight_q[release_tag_i] && !init_q)
   `MSR_ASSERT(a_no_overflow, (init_q || release_i) |-> fifo_ready)
   `MSR_ASSERT(a_conserved, !init_q |-> 32'(fifo_count) + 32'(inflight_cnt_q) == N)
   `MSR_COVER(c_all_inflight, inflight_cnt_q == (TAG_W+1)'(N))

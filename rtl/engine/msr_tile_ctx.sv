@@ -69,7 +69,7 @@ module msr_tile_ctx
   ctx_state_e        state_q, state_d;
   tile_desc_t        desc_q;
   logic [PEND_W-1:0] pend_q, pend_d;
-  logic              pend_zero_q;
+  logic              pend_zero;
 
   // ---- Level processing controller -------------------------------------------------------------
   logic    step_valid, step_first, ctrl_busy;
@@ -106,7 +106,10 @@ module msr_tile_ctx
     .busy_o        (ctrl_busy)
   );
 
-  assign cand_o       = step_valid && (!step_first || pend_zero_q);
+  // pend_q counts every issue and write before this cycle: zero means every pixel of the
+  // passes before is final. (A compare of a register: the arbiter's path starts here.)
+  assign pend_zero    = (pend_q == '0);
+  assign cand_o       = step_valid && (!step_first || pend_zero);
   assign step_first_o = step_first;
   assign step_init_o  = (step_dir == DIR_INIT);
 
@@ -116,7 +119,7 @@ module msr_tile_ctx
     pend_d  = pend_q + PEND_W'(issue_i) - PEND_W'(we_i);
     unique case (state_q)
       CTX_FREE:    if (start_i) state_d = CTX_COMPUTE;
-      CTX_COMPUTE: if (!ctrl_busy && pend_zero_q) state_d = CTX_FULL;
+      CTX_COMPUTE: if (!ctrl_busy && pend_zero) state_d = CTX_FULL;
       CTX_FULL:    if (str_done_i) state_d = CTX_FREE;
       default:     state_d = CTX_FREE;
     endcase
@@ -124,17 +127,14 @@ module msr_tile_ctx
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      state_q     <= CTX_FREE;
-      pend_q      <= '0;
-      pend_zero_q <= 1'b1;
+      state_q <= CTX_FREE;
+      pend_q  <= '0;
     end else if (clear_i) begin
-      state_q     <= CTX_FREE;
-      pend_q      <= '0;
-      pend_zero_q <= 1'b1;
+      state_q <= CTX_FREE;
+      pend_q  <= '0;
     end else begin
-      state_q     <= state_d;
-      pend_q      <= pend_d;
-      pend_zero_q <= (pend_d == '0);
+      state_q <= state_d;
+      pend_q  <= pend_d;
     end
   end
 
@@ -212,7 +212,7 @@ module msr_tile_ctx
   `MSR_ASSERT(a_all_written, state_q == CTX_COMPUTE && state_d == CTX_FULL |->
       all_written(written_q, desc_q.w, desc_q.h))
   `MSR_ASSERT(a_stream_full, str_own_i |-> full_o)
-  `MSR_COVER(c_barrier_wait, step_valid && step_first && !pend_zero_q)
+  `MSR_COVER(c_barrier_wait, step_valid && step_first && !pend_zero)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_tile_ctx

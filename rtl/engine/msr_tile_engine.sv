@@ -318,10 +318,13 @@ module msr_tile_engine
 
   logic             rs_valid, rs_ready;
   rsp_t             rs_data, rsp_in;
-  logic             r1_valid_q, r1_write, r1_drop, r1_done;
+  logic             r1_valid_q, r1_ready;
   rsp_t             r1_q;
   tag_entry_t       r1_entry;
   logic             r1_inflight;
+  logic             r2_valid_q, r2_ok_q, r2_write, r2_drop, r2_done;
+  rsp_t             r2_q;
+  tag_entry_t       r2_entry_q;
 
   msr_spill_reg #(
     .WIDTH ($bits(rsp_t))
@@ -339,29 +342,39 @@ module msr_tile_engine
 
   assign rsp_in = '{tag: rsp_tag_i, rgb: rsp_rgb_i};
 
-  // R1 holds one response; it is written when its context's port is free this cycle (the
-  // pipeline's interpolated write goes first), or dropped when its tag is not in flight.
-  assign r1_drop  = r1_valid_q && !r1_inflight;
-  assign r1_write = r1_valid_q && r1_inflight &&
-                    !(out_write && out_side.ctx == r1_entry.ctx);
-  assign r1_done  = r1_drop || r1_write;
-  assign rs_ready = !r1_valid_q || r1_done;
+  // R1 looks the tag up (where the answer goes, and whether the tag is in flight, minus the
+  // tag R2 releases this cycle, so a duplicate right behind its original is caught). R2 writes
+  // the colour when its context's port is free this cycle (the pipeline's interpolated write
+  // goes first), or drops an answer whose tag was not in flight.
+  assign r2_drop  = r2_valid_q && !r2_ok_q;
+  assign r2_write = r2_valid_q && r2_ok_q && !(out_write && out_side.ctx == r2_entry_q.ctx);
+  assign r2_done  = r2_drop || r2_write;
+  assign r1_ready = !r2_valid_q || r2_done;
+  assign rs_ready = !r1_valid_q || r1_ready;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       r1_valid_q <= 1'b0;
+      r2_valid_q <= 1'b0;
     end else if (clear_i) begin
       r1_valid_q <= 1'b0;
-    end else if (rs_ready) begin
-      r1_valid_q <= rs_valid;
+      r2_valid_q <= 1'b0;
+    end else begin
+      if (rs_ready) r1_valid_q <= rs_valid;
+      if (r1_ready) r2_valid_q <= r1_valid_q;
     end
   end
 
   always_ff @(posedge clk_i) begin
     if (rs_ready && rs_valid) r1_q <= rs_data;
+    if (r1_ready && r1_valid_q) begin
+      r2_q       <= r1_q;
+      r2_entry_q <= r1_entry;
+      r2_ok_q    <= r1_inflight && !(r2_write && r2_q.tag == r1_q.tag);
+    end
   end
 
-  assign rsp_drop_o = r1_drop;
+  assign rsp_drop_o = r2_drop;
 
   // ---- Tags -------------------------------------------------------------------------------------
   logic [TAG_W:0] tags_inflight;
@@ -384,7 +397,8 @@ module msr_tile_engine
     .query_tag_i      (r1_q.tag),
     .query_entry_o    (r1_entry),
     .query_inflight_o (r1_inflight),
-    .release_i        (r1_write),
+    .release_tag_i    (r2_q.tag),
+    .release_i        (r2_write),
     .inflight_o       (tags_inflight),
     .init_o           (tags_init)
   );
@@ -395,11 +409,11 @@ module msr_tile_engine
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_write
     logic pipe_we, rsp_we;
     assign pipe_we      = out_write && (out_side.ctx == ctx_t'(c));
-    assign rsp_we       = r1_write && (r1_entry.ctx == ctx_t'(c));
+    assign rsp_we       = r2_write && (r2_entry_q.ctx == ctx_t'(c));
     assign ctx_we[c]    = pipe_we || rsp_we;
-    assign ctx_waddr[c] = pipe_we ? {out_side.y, out_side.x} : r1_entry.addr;
-    assign ctx_wsrc[c]  = pipe_we ? src_interp(out_side.level) : src_traced(r1_entry.level);
-    assign ctx_wrgb[c]  = pipe_we ? out_rgb : r1_q.rgb;
+    assign ctx_waddr[c] = pipe_we ? {out_side.y, out_side.x} : r2_entry_q.addr;
+    assign ctx_wsrc[c]  = pipe_we ? src_interp(out_side.level) : src_traced(r2_entry_q.level);
+    assign ctx_wrgb[c]  = pipe_we ? out_rgb : r2_q.rgb;
   end
 
   // ---- Output streamer ----------------------------------------------------------------------
@@ -530,7 +544,7 @@ module msr_tile_engine
   `MSR_ASSUME(m_desc_legal, desc_valid_i |-> desc_i.w inside {[1 : MAX_TILE]} &&
       desc_i.h inside {[1 : MAX_TILE]} && desc_i.levels inside {[1 : MAX_LEVELS]})
   // Internal invariants.
-  `MSR_ASSERT(a_one_writer, !(out_write && r1_write && out_side.ctx == r1_entry.ctx))
+  `MSR_ASSERT(a_one_writer, !(out_write && r2_write && out_side.ctx == r2_entry_q.ctx))
   `MSR_ASSERT(a_issue_onehot, $onehot0(ctx_issue))
   `MSR_COVER(c_rsp_dropped, rsp_drop_o)
   `MSR_COVER(c_all_ctx_busy, none_free)
