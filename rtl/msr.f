@@ -15,6 +15,11 @@ rtl/engine/msr_tile_ctx.sv
 rtl/engine/msr_tile_engine.sv
 rtl/regs/msr_regs_pkg.sv
 rtl/regs/msr_regs.sv
+rtl/system/msr_sys_pkg.sv
+rtl/system/msr_sat_counter.sv
+rtl/system/msr_cfg_ctrl.sv
 rtl/system/msr_tile_gen.sv
+rtl/system/msr_render_mux.sv
 rtl/system/msr_fb_writer.sv
+rtl/system/msr_perf_counters.sv
 rtl/system/msr_top.sv

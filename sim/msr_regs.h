@@ -32,6 +32,10 @@ extern "C" {
 #define MSR_REGS__STATUS__DONE_bp 1
 #define MSR_REGS__STATUS__DONE_bw 1
 #define MSR_REGS__STATUS__DONE_reset 0x0
+#define MSR_REGS__STATUS__CFG_ERR_bm 0x4
+#define MSR_REGS__STATUS__CFG_ERR_bp 2
+#define MSR_REGS__STATUS__CFG_ERR_bw 1
+#define MSR_REGS__STATUS__CFG_ERR_reset 0x0
 #define MSR_REGS__STATUS__ERROR_bm 0xf0
 #define MSR_REGS__STATUS__ERROR_bp 4
 #define MSR_REGS__STATUS__ERROR_bw 4
@@ -110,10 +114,10 @@ extern "C" {
 #define MSR_REGS__SRC_CTRL__ENABLE_bw 1
 #define MSR_REGS__SRC_CTRL__ENABLE_reset 0x0
 
-// reg - msr_regs::perf_t_desc_8ed9d71e_name_d3240659
-#define MSR_REGS__PERF_T_DESC_8ED9D71E_NAME_D3240659__COUNT_bm 0xffffffff
-#define MSR_REGS__PERF_T_DESC_8ED9D71E_NAME_D3240659__COUNT_bp 0
-#define MSR_REGS__PERF_T_DESC_8ED9D71E_NAME_D3240659__COUNT_bw 32
+// reg - msr_regs::perf_t_desc_b53721d4_name_d3240659
+#define MSR_REGS__PERF_T_DESC_B53721D4_NAME_D3240659__COUNT_bm 0xffffffff
+#define MSR_REGS__PERF_T_DESC_B53721D4_NAME_D3240659__COUNT_bp 0
+#define MSR_REGS__PERF_T_DESC_B53721D4_NAME_D3240659__COUNT_bw 32
 
 // reg - msr_regs::perf_t_desc_27f9d57d_name_25c29ae3
 #define MSR_REGS__PERF_T_DESC_27F9D57D_NAME_25C29AE3__COUNT_bm 0xffffffff
@@ -135,6 +139,24 @@ extern "C" {
 #define MSR_REGS__PERF_T_DESC_9F018880_NAME_1BF10E61__COUNT_bp 0
 #define MSR_REGS__PERF_T_DESC_9F018880_NAME_1BF10E61__COUNT_bw 32
 
+// reg - msr_regs::MEM_ERR
+#define MSR_REGS__MEM_ERR__COUNT_bm 0xffff
+#define MSR_REGS__MEM_ERR__COUNT_bp 0
+#define MSR_REGS__MEM_ERR__COUNT_bw 16
+#define MSR_REGS__MEM_ERR__UNEXPECTED_B_bm 0x10000
+#define MSR_REGS__MEM_ERR__UNEXPECTED_B_bp 16
+#define MSR_REGS__MEM_ERR__UNEXPECTED_B_bw 1
+
+// reg - msr_regs::MEM_ERR_ADDR
+#define MSR_REGS__MEM_ERR_ADDR__ADDR_bm 0xffffffff
+#define MSR_REGS__MEM_ERR_ADDR__ADDR_bp 0
+#define MSR_REGS__MEM_ERR_ADDR__ADDR_bw 32
+
+// reg - msr_regs::RSP_DROP
+#define MSR_REGS__RSP_DROP__COUNT_bm 0xffff
+#define MSR_REGS__RSP_DROP__COUNT_bp 0
+#define MSR_REGS__RSP_DROP__COUNT_bw 16
+
 // addrmap - msr_regs
 typedef struct __attribute__ ((__packed__)) {
     uint32_t CTRL;
@@ -154,10 +176,13 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t PERF_INTERP[3];
     uint32_t PERF_RENDER_STALL;
     uint32_t PERF_MEM_STALL;
+    uint32_t MEM_ERR;
+    uint32_t MEM_ERR_ADDR;
+    uint32_t RSP_DROP;
 } msr_regs_t;
 
 
-static_assert(sizeof(msr_regs_t) == 0x68, "Packing error");
+static_assert(sizeof(msr_regs_t) == 0x74, "Packing error");
 
 #ifdef __cplusplus
 }

@@ -52,6 +52,8 @@ module msr_sim_top import msr_pkg::*; #(
   coord_t            req_x, req_y;
   logic [RTAG_W-1:0] req_tag, rsp_tag;
   rgb_t              rsp_rgb;
+  logic   [NUM_ENGINES-1:0] dbg_tile_done;
+  coord_t [NUM_ENGINES-1:0] dbg_pix_x, dbg_pix_y;
   logic [3:0]        awid;
   logic [2:0]        awsize, awprot;
   logic [1:0]        awburst;
@@ -112,7 +114,13 @@ module msr_sim_top import msr_pkg::*; #(
     .m_axi_bresp     (m_axi_bresp),
     .m_axi_bvalid    (m_axi_bvalid),
     .m_axi_bready    (m_axi_bready),
-    .irq_o           (irq_o)
+    .irq_o           (irq_o),
+    .dbg_desc_fire_o (dbg_desc_fire_o),
+    .dbg_desc_x0_o   (dbg_desc_x0_o),
+    .dbg_desc_y0_o   (dbg_desc_y0_o),
+    .dbg_tile_done_o (dbg_tile_done),
+    .dbg_pix_x_o     (dbg_pix_x),
+    .dbg_pix_y_o     (dbg_pix_y)
   );
 
   render_dpi #(.TAG_W(RTAG_W), .DEPTH(NUM_ENGINES * MAX_OUTSTANDING)) u_render (
@@ -129,17 +137,14 @@ module msr_sim_top import msr_pkg::*; #(
     .rsp_rgb_o   (rsp_rgb)
   );
 
-  // Tile life markers for the harness (hierarchical reads, simulation only).
-  assign dbg_desc_fire_o = |u_top.eng_desc_valid;
-  assign dbg_desc_x0_o   = u_top.desc.x0;
-  assign dbg_desc_y0_o   = u_top.desc.y0;
-  // Engines finish tiles in parallel: look for the watched one among them.
+  // Tile life markers for the harness, from msr_top's debug ports. Engines finish tiles in
+  // parallel: look for the watched one among them.
   always_comb begin
     dbg_watch_done_o = 1'b0;
     for (int unsigned i = 0; i < NUM_ENGINES; i++) begin
-      if (u_top.wr_tile_done[i] &&
-          32'(u_top.eng_pix_x[i]) / 32'(dbg_watch_t_i) == 32'(dbg_watch_tx_i) &&
-          32'(u_top.eng_pix_y[i]) / 32'(dbg_watch_t_i) == 32'(dbg_watch_ty_i)) begin
+      if (dbg_tile_done[i] &&
+          32'(dbg_pix_x[i]) / 32'(dbg_watch_t_i) == 32'(dbg_watch_tx_i) &&
+          32'(dbg_pix_y[i]) / 32'(dbg_watch_t_i) == 32'(dbg_watch_ty_i)) begin
         dbg_watch_done_o = 1'b1;
       end
     end

@@ -241,6 +241,9 @@ module msr_regs (
         logic PERF_INTERP[3];
         logic PERF_RENDER_STALL;
         logic PERF_MEM_STALL;
+        logic MEM_ERR;
+        logic MEM_ERR_ADDR;
+        logic RSP_DROP;
     } decoded_reg_strb_t;
     decoded_reg_strb_t decoded_reg_strb;
     logic decoded_err;
@@ -291,6 +294,12 @@ module msr_regs (
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h60);
         decoded_reg_strb.PERF_MEM_STALL = cpuif_req_masked & (cpuif_addr == 7'h64) & !cpuif_req_is_wr;
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h64);
+        decoded_reg_strb.MEM_ERR = cpuif_req_masked & (cpuif_addr == 7'h68) & !cpuif_req_is_wr;
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h68);
+        decoded_reg_strb.MEM_ERR_ADDR = cpuif_req_masked & (cpuif_addr == 7'h6c) & !cpuif_req_is_wr;
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h6c);
+        decoded_reg_strb.RSP_DROP = cpuif_req_masked & (cpuif_addr == 7'h70) & !cpuif_req_is_wr;
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h70);
         decoded_err = ~is_valid_addr & decoded_req;
     end
 
@@ -324,6 +333,10 @@ module msr_regs (
                 logic next;
                 logic load_next;
             } DONE;
+            struct {
+                logic next;
+                logic load_next;
+            } CFG_ERR;
         } STATUS;
         struct {
             struct {
@@ -418,6 +431,9 @@ module msr_regs (
             struct {
                 logic value;
             } DONE;
+            struct {
+                logic value;
+            } CFG_ERR;
         } STATUS;
         struct {
             struct {
@@ -586,6 +602,35 @@ module msr_regs (
         end
     end
     assign hwif_out.STATUS.DONE.value = field_storage.STATUS.DONE.value;
+    // Field: msr_regs.STATUS.CFG_ERR
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.STATUS.CFG_ERR.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.STATUS && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.STATUS.CFG_ERR.value & ~(decoded_wr_data[2:2] & decoded_wr_biten[2:2]);
+            load_next_c = '1;
+        end else if(hwif_in.STATUS.CFG_ERR.hwset) begin // HW Set
+            next_c = '1;
+            load_next_c = '1;
+        end else if(hwif_in.STATUS.CFG_ERR.hwclr) begin // HW Clear
+            next_c = '0;
+            load_next_c = '1;
+        end
+        field_combo.STATUS.CFG_ERR.next = next_c;
+        field_combo.STATUS.CFG_ERR.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.STATUS.CFG_ERR.value <= 1'h0;
+        end else begin
+            if(field_combo.STATUS.CFG_ERR.load_next) begin
+                field_storage.STATUS.CFG_ERR.value <= field_combo.STATUS.CFG_ERR.next;
+            end
+        end
+    end
+    assign hwif_out.STATUS.CFG_ERR.value = field_storage.STATUS.CFG_ERR.value;
     // Field: msr_regs.FRAME_SIZE.WIDTH
     always_comb begin
         automatic logic [12:0] next_c;
@@ -935,6 +980,7 @@ module msr_regs (
         if(rd_mux_addr == 7'h4) begin
             readback_data_var[0] = hwif_in.STATUS.BUSY.next;
             readback_data_var[1] = field_storage.STATUS.DONE.value;
+            readback_data_var[2] = field_storage.STATUS.CFG_ERR.value;
             readback_data_var[7:4] = hwif_in.STATUS.ERROR.next;
         end
         if(rd_mux_addr == 7'h8) begin
@@ -987,6 +1033,16 @@ module msr_regs (
         end
         if(rd_mux_addr == 7'h64) begin
             readback_data_var[31:0] = hwif_in.PERF_MEM_STALL.COUNT.next;
+        end
+        if(rd_mux_addr == 7'h68) begin
+            readback_data_var[15:0] = hwif_in.MEM_ERR.COUNT.next;
+            readback_data_var[16] = hwif_in.MEM_ERR.UNEXPECTED_B.next;
+        end
+        if(rd_mux_addr == 7'h6c) begin
+            readback_data_var[31:0] = hwif_in.MEM_ERR_ADDR.ADDR.next;
+        end
+        if(rd_mux_addr == 7'h70) begin
+            readback_data_var[15:0] = hwif_in.RSP_DROP.COUNT.next;
         end
         readback_data = readback_data_var;
         readback_done = decoded_req & ~decoded_req_is_wr;

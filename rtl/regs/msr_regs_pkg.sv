@@ -5,7 +5,7 @@ package msr_regs_pkg;
 
     localparam MSR_REGS_DATA_WIDTH = 32;
     localparam MSR_REGS_MIN_ADDR_WIDTH = 7;
-    localparam MSR_REGS_SIZE = 'h68;
+    localparam MSR_REGS_SIZE = 'h74;
 
     typedef struct {
         logic next;
@@ -17,22 +17,28 @@ package msr_regs_pkg;
     } msr_regs__STATUS__DONE__in_t;
 
     typedef struct {
+        logic hwclr;
+        logic hwset;
+    } msr_regs__STATUS__CFG_ERR__in_t;
+
+    typedef struct {
         logic [3:0] next;
     } msr_regs__STATUS__ERROR__in_t;
 
     typedef struct {
         msr_regs__STATUS__BUSY__in_t BUSY;
         msr_regs__STATUS__DONE__in_t DONE;
+        msr_regs__STATUS__CFG_ERR__in_t CFG_ERR;
         msr_regs__STATUS__ERROR__in_t ERROR;
     } msr_regs__STATUS__in_t;
 
     typedef struct {
         logic [31:0] next;
-    } msr_regs__perf_t_desc_8ed9d71e_name_d3240659__COUNT__in_t;
+    } msr_regs__perf_t_desc_b53721d4_name_d3240659__COUNT__in_t;
 
     typedef struct {
-        msr_regs__perf_t_desc_8ed9d71e_name_d3240659__COUNT__in_t COUNT;
-    } msr_regs__perf_t_desc_8ed9d71e_name_d3240659__in_t;
+        msr_regs__perf_t_desc_b53721d4_name_d3240659__COUNT__in_t COUNT;
+    } msr_regs__perf_t_desc_b53721d4_name_d3240659__in_t;
 
     typedef struct {
         logic [31:0] next;
@@ -67,12 +73,44 @@ package msr_regs_pkg;
     } msr_regs__perf_t_desc_9f018880_name_1bf10e61__in_t;
 
     typedef struct {
+        logic [15:0] next;
+    } msr_regs__MEM_ERR__COUNT__in_t;
+
+    typedef struct {
+        logic next;
+    } msr_regs__MEM_ERR__UNEXPECTED_B__in_t;
+
+    typedef struct {
+        msr_regs__MEM_ERR__COUNT__in_t COUNT;
+        msr_regs__MEM_ERR__UNEXPECTED_B__in_t UNEXPECTED_B;
+    } msr_regs__MEM_ERR__in_t;
+
+    typedef struct {
+        logic [31:0] next;
+    } msr_regs__MEM_ERR_ADDR__ADDR__in_t;
+
+    typedef struct {
+        msr_regs__MEM_ERR_ADDR__ADDR__in_t ADDR;
+    } msr_regs__MEM_ERR_ADDR__in_t;
+
+    typedef struct {
+        logic [15:0] next;
+    } msr_regs__RSP_DROP__COUNT__in_t;
+
+    typedef struct {
+        msr_regs__RSP_DROP__COUNT__in_t COUNT;
+    } msr_regs__RSP_DROP__in_t;
+
+    typedef struct {
         msr_regs__STATUS__in_t STATUS;
-        msr_regs__perf_t_desc_8ed9d71e_name_d3240659__in_t PERF_CYCLES;
+        msr_regs__perf_t_desc_b53721d4_name_d3240659__in_t PERF_CYCLES;
         msr_regs__perf_t_desc_27f9d57d_name_25c29ae3__in_t PERF_TRACED[4];
         msr_regs__perf_t_desc_135c49b8_name_7319f9e6__in_t PERF_INTERP[3];
         msr_regs__perf_t_desc_9a142651_name_1a6bb275__in_t PERF_RENDER_STALL;
         msr_regs__perf_t_desc_9f018880_name_1bf10e61__in_t PERF_MEM_STALL;
+        msr_regs__MEM_ERR__in_t MEM_ERR;
+        msr_regs__MEM_ERR_ADDR__in_t MEM_ERR_ADDR;
+        msr_regs__RSP_DROP__in_t RSP_DROP;
     } msr_regs__in_t;
 
     typedef struct {
@@ -98,7 +136,12 @@ package msr_regs_pkg;
     } msr_regs__STATUS__DONE__out_t;
 
     typedef struct {
+        logic value;
+    } msr_regs__STATUS__CFG_ERR__out_t;
+
+    typedef struct {
         msr_regs__STATUS__DONE__out_t DONE;
+        msr_regs__STATUS__CFG_ERR__out_t CFG_ERR;
     } msr_regs__STATUS__out_t;
 
     typedef struct {

@@ -1,21 +1,38 @@
 // Frame-buffer writer: an AXI4 write master that stores the engines' finished pixels.
 //
 // Inputs: NUM_IN pixel streams, one per engine, taken in parallel (one pixel per stream per
-// clock). Each stream is row-contiguous by itself (an engine emits whole tiles row-major);
-// a row ends at the tile's right edge or the frame's, which this unit derives from x.
-// Per input, two row buffers (ping-pong): one collects the next row while the other waits
-// for / is being written. A row is written only once it is complete, so a burst never waits
-// for data and an abandoned row (soft reset) never leaves a burst open.
+// clock). Each stream is row-contiguous by itself (an engine emits whole tiles row-major); a
+// row ends at the tile's right edge or the frame's, which this unit derives from x.
 // Output per row: the 32-bit pixels 0x00RRGGBB at FB_BASE + y*FB_STRIDE + 4*x0 and, when the
-// source map is enabled, the 8-bit codes at SRC_BASE + y*SRC_STRIDE + x0, each as INCR
-// bursts of AXI_DATA_W-bit beats from the bus-aligned address below the row's start, with
-// byte strobes on the partial first / last beats (bases and strides are 4-byte aligned, so
-// both planes start on a 32-bit lane). A burst that would cross a 4 KiB boundary (AXI rule)
-// is split there. Rows of different inputs are written round robin.
+// source map is enabled, the 8-bit codes at SRC_BASE + y*SRC_STRIDE + x0, each as INCR bursts
+// of AXI_DATA_W-bit beats from the bus-aligned address below the row's start, with byte
+// strobes on the partial first / last beats. A burst that would cross 4 KiB is split there.
 //
-// Width: a 16-pixel row with its codes takes 2 + 1 beats of 256 bits when the frame buffer is
-// 32-byte aligned, so four engines at one pixel per clock each (4 pixels per clock) fit with
-// room (5.3 pixels per clock); 128 bits would cap the writer at 3.2 pixels per clock.
+// Buffering (why it is small): per input NBUF = 3 row buffers in a ring, held in small
+// memories (LUT RAM on an FPGA, a register file on an ASIC), not flip-flops. The lane of a
+// pixel in its bus beat depends only on the low bits of its row address, and those follow
+// from y's low bits (x0 is a multiple of 8, so 4*x0 is a multiple of the 32-byte beat):
+//   pixel word w = ow + l, ow = (FB_BASE/4 + y*FB_STRIDE/4) mod WPB, l = x mod T,
+// so every pixel is written straight into lane (w mod WPB), beat (w / WPB) of its row buffer:
+// one memory per lane, one lane written per clock, a whole beat read per clock, and no
+// rotation network on the read side. Source codes are gathered four to a 32-bit word (the
+// source plane starts on a 32-bit lane too) and written one word per four pixels. Codes keep
+// their low 5 bits in the buffer (the codes of algorithm.md section 4 are 0..19).
+//
+// Address side, a pipeline with one row per clock: pick (round robin over inputs with a
+// complete row, msr_rr_arb) -> y*stride for both planes as a radix-8 sum of stride multiples
+// (no multiplier: the 3x, 5x and 7x multiples are registers) in two adder stages -> base and
+// x0 added -> the row's bursts (up to two per plane: a 4 KiB split) computed into a short
+// list, issued from registers one per clock. The W side reads one beat per clock from the row
+// buffer named by the burst and registers data, strobes and WLAST; a row's buffer is free
+// once its last beat is read. Three buffers per input hide the pipeline's latency at the
+// smallest tile (a row of 8 pixels every 8 clocks per input).
+//
+// Throughput: a 16-pixel row with its codes takes 2 + 1 beats of 256 bits when the frame
+// buffer is 32-byte aligned, so four engines at one pixel per clock each fit with room (5.3
+// pixels per clock); 128 bits would cap the writer at 3.2 pixels per clock.
+`include "msr_assert.svh"
+
 module msr_fb_writer import msr_pkg::*; #(
   parameter int unsigned NUM_IN     = 4,     // pixel streams (engines)
   parameter int unsigned AXI_DATA_W = 256,   // AXI data width: 32, 64, 128 or 256
@@ -65,30 +82,74 @@ module msr_fb_writer import msr_pkg::*; #(
   // Status.
   output logic              idle_o,          // no complete row waiting, no burst open/outstanding
   output logic [NUM_IN-1:0] tile_done_o,     // pulse per input: the last pixel of a tile taken
-  output logic              bresp_err_o      // pulse: a write response was SLVERR or DECERR
+  output logic              bresp_err_o,     // pulse: a write response was SLVERR or DECERR
+  output logic [31:0]       bresp_addr_o,    // with bresp_err_o: the address of that burst
+  output logic              b_unexpected_o   // pulse: a write response with no burst outstanding
 );
-  localparam int unsigned WPB     = AXI_DATA_W / 32;         // 32-bit lanes per beat
+  localparam int unsigned WPB     = AXI_DATA_W / 32;                 // 32-bit lanes per beat
   localparam int unsigned LANE_W  = (WPB > 1) ? $clog2(WPB) : 1;
-  localparam int unsigned BB_W    = $clog2(STRB_W);          // byte offset inside a beat
-  localparam int unsigned BEATS_W = LDIM_W + 1;              // beats of a plane, 1..33
+  localparam int unsigned BB_W    = $clog2(STRB_W);                  // byte offset in a beat
+  localparam int unsigned NBUF    = 3;                               // row buffers per input
+  localparam int unsigned BUF_W   = 2;
+  localparam int unsigned SWORDS  = MAX_TILE / 4;                    // code words of a row
+  localparam int unsigned PB      = (MAX_TILE + 2 * WPB - 2) / WPB;  // pixel beats per row, max
+  localparam int unsigned SB      = (SWORDS + 2 * WPB - 2) / WPB;    // code beats per row, max
+  localparam int unsigned PDEPTH  = NBUF * PB;
+  localparam int unsigned SDEPTH  = NBUF * SB;
+  localparam int unsigned MA_W    = $clog2(PDEPTH);                  // pixel buffer address
+  localparam int unsigned SA_W    = $clog2(SDEPTH);                  // code buffer address
   localparam int unsigned OUT_W   = $clog2(MAX_OUT + 1);
   localparam int unsigned IN_W    = (NUM_IN > 1) ? $clog2(NUM_IN) : 1;
-  localparam int unsigned SRCW_N  = MAX_TILE / 4;            // 32-bit words of codes per row
+  localparam int unsigned CODE_W  = 5;                               // code bits kept
+  localparam int unsigned AQ_D    = (MAX_OUT < 2) ? 2 : (1 << $clog2(MAX_OUT));
+  localparam int unsigned B4K_W   = 12 - BB_W;                       // beat index in a 4 KiB page
 
   if (AXI_DATA_W != 32 && AXI_DATA_W != 64 && AXI_DATA_W != 128 && AXI_DATA_W != 256)
-  begin : gen_bad_width
+  begin : g_check_width
     $fatal(1, "msr_fb_writer: AXI_DATA_W must be 32, 64, 128 or 256, got %0d", AXI_DATA_W);
   end
-  if (MAX_OUT < 1 || MAX_OUT > 255) begin : gen_bad_out
+  if (MAX_OUT < 1 || MAX_OUT > 255) begin : g_check_out
     $fatal(1, "msr_fb_writer: MAX_OUT must be 1..255, got %0d", MAX_OUT);
   end
-  if (NUM_IN < 1 || NUM_IN > 16) begin : gen_bad_in
+  if (NUM_IN < 1 || NUM_IN > 16) begin : g_check_in
     $fatal(1, "msr_fb_writer: NUM_IN must be 1..16, got %0d", NUM_IN);
   end
 
-  typedef logic [IN_W-1:0] in_t;
+  typedef logic [IN_W-1:0]  in_t;
+  typedef logic [BUF_W-1:0] buf_t;
+  typedef logic [MA_W-1:0]  maddr_t;
 
-  // ---- Row buffers: two per input ---------------------------------------------------------------
+  function automatic buf_t buf_next(buf_t b);
+    return (b == buf_t'(NBUF - 1)) ? '0 : b + 1'b1;
+  endfunction
+
+  localparam int unsigned LANE_SH = (WPB > 1) ? $clog2(WPB) : 0;
+
+  // (y * s) mod 2^LANE_W without a multiplier (a few gates: LANE_W <= 3).
+  function automatic logic [LANE_W-1:0] mul_lane(coord_t y, logic [LANE_W-1:0] s);
+    logic [LANE_W-1:0] r;
+    r = '0;
+    for (int unsigned j = 0; j < LANE_W; j++) begin
+      if (y[j]) r = r + LANE_W'(s << j);
+    end
+    return r;
+  endfunction
+  // First beat of buffer b in the pixel / code memory (b * PB, b * SB for b = 0..2).
+  function automatic logic [$clog2(PDEPTH)-1:0] pbuf_base(logic [1:0] b);
+    unique case (b)
+      2'd1:    return ($clog2(PDEPTH))'(PB);
+      2'd2:    return ($clog2(PDEPTH))'(2 * PB);
+      default: return '0;
+    endcase
+  endfunction
+  function automatic logic [$clog2(PDEPTH)-1:0] sbuf_base(logic [1:0] b);
+    unique case (b)
+      2'd1:    return ($clog2(PDEPTH))'(SB);
+      2'd2:    return ($clog2(PDEPTH))'(2 * SB);
+      default: return '0;
+    endcase
+  endfunction
+
   logic [LCOORD_W-1:0] tmask;      // T - 1
   always_comb begin
     unique case (tile_i)
@@ -99,303 +160,663 @@ module msr_fb_writer import msr_pkg::*; #(
     endcase
   end
 
-  logic [NUM_IN-1:0][1:0][MAX_TILE-1:0][31:0] buf_px_q;   // pixels 0x00RRGGBB
-  logic [NUM_IN-1:0][1:0][MAX_TILE-1:0][7:0]  buf_src_q;  // source codes
-  coord_t [NUM_IN-1:0][1:0]  buf_y_q, buf_x0_q;
-  ldim_t  [NUM_IN-1:0][1:0]  buf_n_q;                      // pixels of the row
-  logic   [NUM_IN-1:0][1:0]  buf_full_q;                   // complete, not yet written
-  logic   [NUM_IN-1:0][1:0]  buf_aw_q;                     // ... and its bursts are addressed
-  logic   [NUM_IN-1:0]       col_sel_q;                    // buffer that collects
-  logic   [NUM_IN-1:0]       aw_sel_q;                     // buffer the address side takes next
-  logic   [NUM_IN-1:0]       pix_hs, row_end;
-  logic   [NUM_IN-1:0][LCOORD_W-1:0] lane;
+  // Lane offsets of a row's first pixel word / first code word in its first beat.
+  logic [LANE_W-1:0] lane_mask;
+  assign lane_mask = LANE_W'(WPB - 1);
 
-  for (genvar i = 0; i < NUM_IN; i++) begin : gen_in
-    assign lane[i]        = pix_x_i[i][LCOORD_W-1:0] & tmask;
-    assign row_end[i]     = (lane[i] == tmask) || (dim_t'(pix_x_i[i]) + 1'b1 == width_i);
-    assign pix_ready_o[i] = !buf_full_q[i][col_sel_q[i]];
+  // ---- Row buffer state: per input a ring of NBUF buffers ----------------------------------
+  // full: the row is complete (until its last beat is read); picked: its bursts are addressed.
+  logic [NUM_IN-1:0][NBUF-1:0] full_q, picked_q;
+  buf_t [NUM_IN-1:0]           col_q;     // the buffer that collects
+  buf_t [NUM_IN-1:0]           pick_q;    // the buffer the address side takes next
+  coord_t [NUM_IN-1:0][NBUF-1:0] meta_y_q, meta_x0_q;
+  lcoord_t [NUM_IN-1:0][NBUF-1:0] meta_l_q;   // pixels of the row - 1
+
+  logic [NUM_IN-1:0] pix_hs, row_end, row_ready;
+  logic [NUM_IN-1:0][LCOORD_W-1:0] lpos;
+
+  // Write stage: the pixel taken last clock goes into the memories.
+  logic   [NUM_IN-1:0]               wr_v_q, wr_end_q;
+  buf_t   [NUM_IN-1:0]               wr_buf_q;
+  logic   [NUM_IN-1:0][LCOORD_W-1:0] wr_l_q;
+  coord_t [NUM_IN-1:0]               wr_y_q, wr_x0_q;
+  rgb_t   [NUM_IN-1:0]               wr_rgb_q;
+  logic   [NUM_IN-1:0][CODE_W-1:0]   wr_code_q;
+  logic   [NUM_IN-1:0][2:0][CODE_W-1:0] asm_q;   // codes 0..2 of the current word
+
+  // Row free (from the W side): input, buffer.
+  logic row_free;
+  in_t  row_free_in;
+  buf_t row_free_buf;
+  // Row picked (address side).
+  logic arb_valid, arb_ready, arb_take;
+  in_t  arb_idx;
+  logic [NUM_IN-1:0] arb_gnt;
+
+  // Read side, shared by the inputs: beat address; per input and lane the read data.
+  maddr_t raddr;
+  logic [NUM_IN-1:0][WPB-1:0][23:0]         prd;
+  logic [NUM_IN-1:0][WPB-1:0][4*CODE_W-1:0] srd;
+  logic [NUM_IN-1:0] wr2_busy;       // a memory write is pending in stage 2
+
+  for (genvar i = 0; i < NUM_IN; i++) begin : g_in
+    assign lpos[i]        = pix_x_i[i][LCOORD_W-1:0] & tmask;
+    assign row_end[i]     = (lpos[i] == tmask) || (dim_t'(pix_x_i[i]) + 1'b1 == width_i);
+    assign pix_ready_o[i] = !full_q[i][col_q[i]];
     assign pix_hs[i]      = pix_valid_i[i] && pix_ready_o[i];
     assign tile_done_o[i] = pix_hs[i] && pix_last_i[i];
+    assign row_ready[i]   = full_q[i][pick_q[i]] && !picked_q[i][pick_q[i]];
 
-    always_ff @(posedge clk_i) begin
-      if (pix_hs[i]) begin
-        buf_px_q[i][col_sel_q[i]][lane[i]]  <= {8'h00, pix_rgb_i[i]};
-        buf_src_q[i][col_sel_q[i]][lane[i]] <= pix_src_i[i];
-        buf_y_q[i][col_sel_q[i]]            <= pix_y_i[i];
-        buf_x0_q[i][col_sel_q[i]]           <= pix_x_i[i] & ~coord_t'(tmask);
-        buf_n_q[i][col_sel_q[i]]            <= ldim_t'(lane[i]) + 1'b1;
-      end
-    end
-  end
-
-  // ---- Address side: one burst per clock when the bus takes it ----------------------------------
-  // The generator holds one row (input, buffer) and its current plane; awaddr / awlen are
-  // formed from registers, and the handshake moves to the next burst, plane or row.
-  typedef struct packed {
-    in_t                in;         // input of the row
-    logic               bsel;       // its buffer
-    logic               src;        // 1: source plane, 0: pixels
-    logic [BEATS_W-1:0] k0;         // first beat of the burst within the plane
-    logic [BEATS_W-1:0] beats;      // beats of the burst
-    logic [LANE_W-1:0]  ow;         // lane of the plane's first word in its first beat
-    logic               row_last;   // the row's last burst: its buffer is free after it
-  } burst_t;
-
-  logic               gen_valid_q;   // a row is loaded
-  in_t                gen_in_q;
-  logic               gen_bsel_q, gen_src_q;
-  logic [31:0]        gen_base_q;    // bus-aligned address of the plane's first beat
-  logic [31:0]        gen_src_addr_q;// the source plane's row address (for after the pixels)
-  logic [LANE_W-1:0]  gen_ow_q;
-  logic [BEATS_W-1:0] gen_k_q, gen_nbeat_q;
-  ldim_t              gen_n_q;
-  logic [OUT_W-1:0]   outst_q;
-  logic               wq_push_ready, wq_pop_valid, wq_pop;
-  burst_t             wq_push_data, wq_pop_data;
-  logic               aw_hs, b_hs, w_hs;
-
-  assign aw_hs = m_axi_awvalid && m_axi_awready;
-  assign b_hs  = m_axi_bvalid && m_axi_bready;
-
-  // The current burst: from beat k of the plane up to its end or the next 4 KiB boundary.
-  logic [31:0]        burst_addr;
-  logic [12:0]        to_4k;         // beats left before the 4 KiB boundary
-  logic [BEATS_W-1:0] burst_beats, left;
-  logic               plane_last, row_last;
-
-  always_comb begin
-    burst_addr  = gen_base_q + (32'(gen_k_q) << BB_W);
-    to_4k       = (13'h1000 - {1'b0, burst_addr[11:0]}) >> BB_W;
-    left        = gen_nbeat_q - gen_k_q;
-    burst_beats = (13'(left) > to_4k) ? BEATS_W'(to_4k) : left;
-    plane_last  = (burst_beats == left);
-    row_last    = plane_last && (gen_src_q || !src_en_i);
-  end
-
-  // Plane set-up: the aligned base, the first lane and the number of beats.
-  function automatic logic [LANE_W-1:0] first_lane(logic [31:0] addr);
-    return LANE_W'((addr & (STRB_W - 1)) >> 2);
-  endfunction
-  function automatic logic [BEATS_W-1:0] plane_beats(logic [LANE_W-1:0] ow, ldim_t words);
-    return BEATS_W'((32'(ow) + 32'(words) + WPB - 1) / WPB);
-  endfunction
-  function automatic ldim_t src_words(ldim_t n);
-    return ldim_t'((32'(n) + 3) / 4);
-  endfunction
-
-  // Next row for the address side: round robin over inputs with a complete row not addressed.
-  logic [NUM_IN-1:0] row_ready;
-  in_t               rr_q, pick;
-  logic              pick_valid, load;
-  for (genvar i = 0; i < NUM_IN; i++) begin : gen_row_ready
-    assign row_ready[i] = buf_full_q[i][aw_sel_q[i]] && !buf_aw_q[i][aw_sel_q[i]];
-  end
-  always_comb begin
-    pick       = rr_q;
-    pick_valid = 1'b0;
-    for (int unsigned j = NUM_IN; j > 0; j--) begin
-      int unsigned c;
-      c = 32'(rr_q) + j - 1;
-      if (c >= NUM_IN) c -= NUM_IN;
-      if (row_ready[c]) begin
-        pick       = in_t'(c);
-        pick_valid = 1'b1;
-      end
-    end
-  end
-  // A row is loaded when the generator is empty or its last burst is being taken.
-  assign load = pick_valid && (!gen_valid_q || (aw_hs && row_last));
-
-  logic [31:0] ld_fb_addr, ld_src_addr;
-  coord_t      ld_y, ld_x0;
-  ldim_t       ld_n;
-  assign ld_y  = buf_y_q[pick][aw_sel_q[pick]];
-  assign ld_x0 = buf_x0_q[pick][aw_sel_q[pick]];
-  assign ld_n  = buf_n_q[pick][aw_sel_q[pick]];
-  // 32 x 12 bit products, one per row (rows take >= 8 clocks per input); a hand-off may
-  // pipeline them.
-  assign ld_fb_addr  = fb_base_i + 32'(ld_y) * fb_stride_i + {18'b0, ld_x0, 2'b0};
-  assign ld_src_addr = src_base_i + 32'(ld_y) * src_stride_i + {20'b0, ld_x0};
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      gen_valid_q    <= 1'b0;
-      gen_in_q       <= '0;
-      gen_bsel_q     <= 1'b0;
-      gen_src_q      <= 1'b0;
-      gen_base_q     <= '0;
-      gen_src_addr_q <= '0;
-      gen_ow_q       <= '0;
-      gen_k_q        <= '0;
-      gen_nbeat_q    <= '0;
-      gen_n_q        <= '0;
-      rr_q           <= '0;
-      outst_q        <= '0;
-    end else if (clear_i) begin
-      gen_valid_q    <= 1'b0;
-      gen_src_q      <= 1'b0;
-      gen_k_q        <= '0;
-      rr_q           <= '0;
-      outst_q        <= '0;
-    end else begin
-      outst_q <= outst_q + OUT_W'(aw_hs) - OUT_W'(b_hs);
-      if (load) begin
-        gen_valid_q    <= 1'b1;
-        gen_in_q       <= pick;
-        gen_bsel_q     <= aw_sel_q[pick];
-        gen_src_q      <= 1'b0;
-        gen_base_q     <= ld_fb_addr & ~(STRB_W - 1);
-        gen_src_addr_q <= ld_src_addr;
-        gen_ow_q       <= first_lane(ld_fb_addr);
-        gen_k_q        <= '0;
-        gen_nbeat_q    <= plane_beats(first_lane(ld_fb_addr), ld_n);
-        gen_n_q        <= ld_n;
-        rr_q           <= (32'(pick) == NUM_IN - 1) ? '0 : pick + 1'b1;
-      end else if (aw_hs) begin
-        if (!plane_last) begin
-          gen_k_q <= gen_k_q + burst_beats;
-        end else if (!row_last) begin
-          // pixels done: the source plane of the same row
-          gen_src_q   <= 1'b1;
-          gen_base_q  <= gen_src_addr_q & ~(STRB_W - 1);
-          gen_ow_q    <= first_lane(gen_src_addr_q);
-          gen_k_q     <= '0;
-          gen_nbeat_q <= plane_beats(first_lane(gen_src_addr_q), src_words(gen_n_q));
-        end else begin
-          gen_valid_q <= 1'b0;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        full_q[i]   <= '0;
+        picked_q[i] <= '0;
+        col_q[i]    <= '0;
+        pick_q[i]   <= '0;
+        wr_v_q[i]   <= 1'b0;
+      end else if (clear_i) begin
+        full_q[i]   <= '0;
+        picked_q[i] <= '0;
+        col_q[i]    <= '0;
+        pick_q[i]   <= '0;
+        wr_v_q[i]   <= 1'b0;
+      end else begin
+        wr_v_q[i] <= pix_hs[i];
+        if (pix_hs[i] && row_end[i]) begin
+          full_q[i][col_q[i]] <= 1'b1;
+          col_q[i]            <= buf_next(col_q[i]);
+        end
+        if (arb_take && arb_gnt[i]) begin
+          picked_q[i][pick_q[i]] <= 1'b1;
+          pick_q[i]              <= buf_next(pick_q[i]);
+        end
+        if (row_free && row_free_in == in_t'(i)) begin
+          full_q[i][row_free_buf]   <= 1'b0;
+          picked_q[i][row_free_buf] <= 1'b0;
         end
       end
     end
+
+    // Data registers: written on a handshake only, read only under their valid / full flag.
+    always_ff @(posedge clk_i) begin
+      if (pix_hs[i]) begin
+        wr_buf_q[i]  <= col_q[i];
+        wr_l_q[i]    <= lpos[i];
+        wr_y_q[i]    <= pix_y_i[i];
+        wr_x0_q[i]   <= pix_x_i[i] & ~coord_t'(tmask);
+        wr_rgb_q[i]  <= pix_rgb_i[i];
+        wr_code_q[i] <= pix_src_i[i][CODE_W-1:0];
+        wr_end_q[i]  <= row_end[i];
+      end
+      if (pix_hs[i] && row_end[i]) begin
+        meta_y_q[i][col_q[i]]  <= pix_y_i[i];
+        meta_x0_q[i][col_q[i]] <= pix_x_i[i] & ~coord_t'(tmask);
+        meta_l_q[i][col_q[i]]  <= lpos[i];
+      end
+    end
+
+    // Where the registered pixel and its code go (stage 1), registered into stage 2 (memory
+    // write: lane enables, address and data straight from registers).
+    logic [LANE_W-1:0]   ow, sow;
+    logic [LCOORD_W:0]   pw;          // pixel word of the row from the beat start
+    logic [LCOORD_W-2:0] sw;          // code word of the row from the beat start
+    // Beat of the pixel / code word in its row; the upper bits are 0 when the bus is wide.
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [LCOORD_W:0]   pbeat;
+    logic [LCOORD_W-2:0] sbeat;
+    /* verilator lint_on UNUSEDSIGNAL */
+    logic [1:0]          slot;
+    maddr_t              paddr;
+    logic [SA_W-1:0]     saddr;
+    logic                sword_we;
+    logic [4*CODE_W-1:0] sword;
+    logic [WPB-1:0]      pwe_q, swe_q;      // stage 2: lane write enables
+    maddr_t              paddr_q;
+    logic [SA_W-1:0]     saddr_q;
+    rgb_t                prgb_q;
+    logic [4*CODE_W-1:0] sword_q;
+
+    always_comb begin
+      ow    = (LANE_W'(fb_base_i >> 2) + mul_lane(wr_y_q[i], LANE_W'(fb_stride_i >> 2)))
+              & lane_mask;
+      sow   = (LANE_W'(src_base_i >> 2) + mul_lane(wr_y_q[i], LANE_W'(src_stride_i >> 2)) +
+               LANE_W'(wr_x0_q[i] >> 2)) & lane_mask;
+      pw    = (LCOORD_W+1)'(ow) + (LCOORD_W+1)'(wr_l_q[i]);
+      sw    = (LCOORD_W-1)'(sow) + (LCOORD_W-1)'(wr_l_q[i] >> 2);
+      slot  = wr_l_q[i][1:0];
+      pbeat = pw >> LANE_SH;
+      sbeat = sw >> LANE_SH;
+      paddr = pbuf_base(wr_buf_q[i]) + maddr_t'(pbeat);
+      saddr = SA_W'(sbuf_base(wr_buf_q[i])) + SA_W'(sbeat);
+      sword_we = wr_v_q[i] && (slot == 2'd3 || wr_end_q[i]);
+      sword = {wr_code_q[i], asm_q[i][2], asm_q[i][1], asm_q[i][0]};
+      for (int unsigned s = 0; s < 3; s++) begin
+        if (32'(slot) == s) sword[CODE_W*s +: CODE_W] = wr_code_q[i];
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        pwe_q <= '0;
+        swe_q <= '0;
+      end else if (clear_i) begin
+        pwe_q <= '0;
+        swe_q <= '0;
+      end else begin
+        for (int unsigned j = 0; j < WPB; j++) begin
+          pwe_q[j] <= wr_v_q[i] && (32'(pw) % WPB == j);
+          swe_q[j] <= sword_we && (32'(sw) % WPB == j);
+        end
+      end
+    end
+
+    always_ff @(posedge clk_i) begin
+      if (wr_v_q[i] && slot != 2'd3) asm_q[i][slot] <= wr_code_q[i];
+      paddr_q <= paddr;
+      saddr_q <= saddr;
+      prgb_q  <= wr_rgb_q[i];
+      sword_q <= sword;
+    end
+    assign wr2_busy[i] = (pwe_q != '0) || (swe_q != '0);
+
+    for (genvar j = 0; j < WPB; j++) begin : g_lane
+      logic [23:0]         pmem_q [PDEPTH];
+      logic [4*CODE_W-1:0] smem_q [SDEPTH];
+      always_ff @(posedge clk_i) begin
+        if (pwe_q[j]) pmem_q[paddr_q] <= prgb_q;
+        if (swe_q[j]) smem_q[saddr_q] <= sword_q;
+      end
+      assign prd[i][j] = pmem_q[raddr];
+      assign srd[i][j] = smem_q[raddr[SA_W-1:0]];
+    end
   end
 
+  // ---- Address side --------------------------------------------------------------------------
+  msr_rr_arb #(.N(NUM_IN), .LOCK(1'b0), .IDX_W(IN_W)) u_row_arb (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .clear_i (clear_i),
+    .req_i   (row_ready),
+    .gnt_o   (arb_gnt),
+    .idx_o   (arb_idx),
+    .valid_o (arb_valid),
+    .ready_i (arb_ready)
+  );
+  assign arb_take = arb_valid && arb_ready;
+
+  // Stride multiples 3s, 5s, 7s for y * stride (radix 8: y*s = sum_k digit_k(y) * s << 3k).
+  // The strides are constant during a frame, so these adders are segmented with a registered
+  // carry between 8-bit segments: the products settle four clocks after a stride changes
+  // (the configuration is latched at START; the first row completes much later).
+  localparam int unsigned NMUL = 6;   // fb 3s, 5s, 7s, src 3s, 5s, 7s
+  logic [NMUL-1:0][31:0] mul_a, mul_b;
+  logic [NMUL-1:0]       mul_ci;
+  logic [NMUL-1:0][31:0] mul_q;
+  logic [NMUL-1:0][4:0]  mul_c_q;     // carry into segment k (k = 1..3)
+
+  always_comb begin
+    for (int unsigned p = 0; p < 2; p++) begin
+      logic [31:0] st;
+      st = (p != 0) ? src_stride_i : fb_stride_i;
+      mul_a[3*p]     = st;
+      mul_b[3*p]     = st << 1;
+      mul_ci[3*p]    = 1'b0;
+      mul_a[3*p+1]   = st;
+      mul_b[3*p+1]   = st << 2;
+      mul_ci[3*p+1]  = 1'b0;
+      mul_a[3*p+2]   = st << 3;       // 8s - s = 8s + ~s + 1
+      mul_b[3*p+2]   = ~st;
+      mul_ci[3*p+2]  = 1'b1;
+    end
+  end
+
+  logic [NMUL-1:0][31:0] mul_d;
+  logic [NMUL-1:0][4:0]  mul_c_d;
+  always_comb begin
+    mul_c_d = '0;
+    for (int unsigned v = 0; v < NMUL; v++) begin
+      for (int unsigned k = 0; k < 4; k++) begin
+        logic [8:0] sum;
+        sum = {1'b0, mul_a[v][8*k +: 8]} + {1'b0, mul_b[v][8*k +: 8]} +
+              9'((k == 0) ? mul_ci[v] : mul_c_q[v][k]);
+        mul_d[v][8*k +: 8] = sum[7:0];
+        mul_c_d[v][k+1]    = sum[8];
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      mul_q   <= '0;
+      mul_c_q <= '0;
+    end else begin
+      mul_q   <= mul_d;
+      mul_c_q <= mul_c_d;
+    end
+  end
+
+  function automatic logic [31:0] mult8(logic [2:0] d, logic [31:0] s, logic [31:0] s3,
+                                        logic [31:0] s5, logic [31:0] s7);
+    unique case (d)
+      3'd0:    return '0;
+      3'd1:    return s;
+      3'd2:    return s << 1;
+      3'd3:    return s3;
+      3'd4:    return s << 2;
+      3'd5:    return s5;
+      3'd6:    return s3 << 1;
+      default: return s7;
+    endcase
+  endfunction
+
+  // Carry-save 3:2 compression of three addends.
+  typedef struct packed {
+    logic [31:0] s;
+    logic [31:0] c;
+  } cs_t;
+  function automatic cs_t csa(logic [31:0] a, logic [31:0] b, logic [31:0] c);
+    cs_t r;
+    r.s = a ^ b ^ c;
+    r.c = ((a & b) | (a & c) | (b & c)) << 1;
+    return r;
+  endfunction
+
+  // Row address of plane p (0 pixels, 1 codes):
+  //   S1 the picked row; S2 six addends (four stride multiples, base, x0 term) compressed to a
+  //   carry-save pair; S3, S4, S5 the carry-propagate add in segments [11:0], [21:12], [31:22]
+  //   with the carry registered between them; beside S4 / S5 the plane's burst shape from the
+  //   low 12 bits (first-beat offset, beats, the 4 KiB split), with no add wider than 12 bits.
+  typedef struct packed {
+    logic             two;       // the plane crosses 4 KiB: two bursts
+    logic [7:0]       len0;      // AWLEN of the first burst
+    logic [7:0]       len1;      // AWLEN of the second
+    logic [BB_W-1:0]  lo;        // first byte in the first beat
+    logic [BB_W-1:0]  hi;        // last byte in the last beat
+  } shape_t;
+
+  logic   s1_v_q, s2_v_q, s3_v_q, s4_v_q, s5_v_q;
+  logic   s1_rdy, s2_rdy, s3_rdy, s4_rdy, s5_rdy, s5_take;
+  in_t    s1_in_q, s2_in_q, s3_in_q, s4_in_q, s5_in_q;
+  buf_t   s1_buf_q, s2_buf_q, s3_buf_q, s4_buf_q, s5_buf_q;
+  lcoord_t s1_l_q, s2_l_q, s3_l_q;             // pixels of the row - 1
+  coord_t s1_y_q, s1_x0_q;
+  cs_t    [1:0] s2_cs_q, s3_cs_q, s4_cs_q;
+  logic   [1:0][11:0] s3_lo_q, s4_lo_q;         // address bits [11:0]
+  logic   [1:0][9:0]  s4_mid_q;                 // address bits [21:12]
+  logic   [1:0]       s3_cy_q, s4_cy_q;
+  logic   [1:0][8:0]  s4_em1_q;                 // first-beat offset + bytes - 1
+  logic   [1:0][12:0] s4_pe_q;                  // address [11:0] + bytes - 1
+  logic   [1:0][31:0] s5_a_q;                   // plane start address
+  shape_t [1:0]       s5_shape_q;
+  logic   [1:0][MA_W-1:0] s5_mb1_q;             // buffer beat of the second burst
+  cs_t    [1:0]       s2_cs_d;
+  logic   [1:0][11:0] s3_lo_d;
+  logic   [1:0][9:0]  s4_mid_d;
+  logic   [1:0]       s3_cy_d, s4_cy_d;
+  logic   [1:0][8:0]  s4_em1_d;
+  logic   [1:0][12:0] s4_pe_d;
+  logic   [1:0][31:0] s5_a_d;
+  shape_t [1:0]       s5_shape_d;
+  logic   [1:0][MA_W-1:0] s5_mb1_d;
+  // Beats before the 4 KiB boundary - 1; when a plane is split it is < 32, so on narrow buses
+  // its upper bits are not needed.
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic   [1:0][B4K_W-1:0] to4k_m1;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  assign s5_rdy    = !s5_v_q || s5_take;
+  assign s4_rdy    = !s4_v_q || s5_rdy;
+  assign s3_rdy    = !s3_v_q || s4_rdy;
+  assign s2_rdy    = !s2_v_q || s3_rdy;
+  assign s1_rdy    = !s1_v_q || s2_rdy;
+  assign arb_ready = s1_rdy;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      s1_v_q <= 1'b0;
+      s2_v_q <= 1'b0;
+      s3_v_q <= 1'b0;
+      s4_v_q <= 1'b0;
+      s5_v_q <= 1'b0;
+    end else if (clear_i) begin
+      s1_v_q <= 1'b0;
+      s2_v_q <= 1'b0;
+      s3_v_q <= 1'b0;
+      s4_v_q <= 1'b0;
+      s5_v_q <= 1'b0;
+    end else begin
+      if (s1_rdy) s1_v_q <= arb_valid;
+      if (s2_rdy) s2_v_q <= s1_v_q;
+      if (s3_rdy) s3_v_q <= s2_v_q;
+      if (s4_rdy) s4_v_q <= s3_v_q;
+      if (s5_rdy) s5_v_q <= s4_v_q;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (arb_take) begin
+      s1_in_q  <= arb_idx;
+      s1_buf_q <= pick_q[arb_idx];
+      s1_y_q   <= meta_y_q[arb_idx][pick_q[arb_idx]];
+      s1_x0_q  <= meta_x0_q[arb_idx][pick_q[arb_idx]];
+      s1_l_q   <= meta_l_q[arb_idx][pick_q[arb_idx]];
+    end
+    if (s2_rdy && s1_v_q) begin
+      s2_in_q  <= s1_in_q;
+      s2_buf_q <= s1_buf_q;
+      s2_l_q   <= s1_l_q;
+      s2_cs_q  <= s2_cs_d;
+    end
+    if (s3_rdy && s2_v_q) begin
+      s3_in_q  <= s2_in_q;
+      s3_buf_q <= s2_buf_q;
+      s3_l_q   <= s2_l_q;
+      s3_cs_q  <= s2_cs_q;
+      s3_lo_q  <= s3_lo_d;
+      s3_cy_q  <= s3_cy_d;
+    end
+    if (s4_rdy && s3_v_q) begin
+      s4_in_q  <= s3_in_q;
+      s4_buf_q <= s3_buf_q;
+      s4_cs_q  <= s3_cs_q;
+      s4_lo_q  <= s3_lo_q;
+      s4_mid_q <= s4_mid_d;
+      s4_cy_q  <= s4_cy_d;
+      s4_em1_q <= s4_em1_d;
+      s4_pe_q  <= s4_pe_d;
+    end
+    if (s5_rdy && s4_v_q) begin
+      s5_in_q    <= s4_in_q;
+      s5_buf_q   <= s4_buf_q;
+      s5_a_q     <= s5_a_d;
+      s5_shape_q <= s5_shape_d;
+      s5_mb1_q   <= s5_mb1_d;
+    end
+  end
+
+  // The stages' arithmetic, per plane.
+  always_comb begin
+    for (int unsigned p = 0; p < 2; p++) begin
+      logic [31:0] st, m0, m1, m2, m3, base, xt;
+      cs_t         c1, c2, c3;
+      logic [12:0] lo_sum;
+      logic [10:0] mid_sum;
+      logic [9:0]  hi_sum;
+      logic [7:0]  nbm1;    // bytes of the plane - 1
+      logic [MA_W-1:0] mb;
+      // S2: six addends to a carry-save pair
+      st   = (p != 0) ? src_stride_i : fb_stride_i;
+      m0   = mult8(s1_y_q[2:0], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]);
+      m1   = mult8(s1_y_q[5:3], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 3;
+      m2   = mult8(s1_y_q[8:6], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 6;
+      m3   = mult8(s1_y_q[11:9], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 9;
+      base = (p != 0) ? src_base_i : fb_base_i;
+      xt   = (p != 0) ? {20'b0, s1_x0_q} : {18'b0, s1_x0_q, 2'b0};
+      c1   = csa(m0, m1, m2);
+      c2   = csa(m3, base, xt);
+      c3   = csa(c1.s, c1.c, c2.s);
+      s2_cs_d[p] = csa(c3.s, c3.c, c2.c);
+      // S3: bits [11:0]
+      lo_sum     = {1'b0, s2_cs_q[p].s[11:0]} + {1'b0, s2_cs_q[p].c[11:0]};
+      s3_lo_d[p] = lo_sum[11:0];
+      s3_cy_d[p] = lo_sum[12];
+      // S4: bits [21:12]; the plane's end from the low bits
+      mid_sum     = {1'b0, s3_cs_q[p].s[21:12]} + {1'b0, s3_cs_q[p].c[21:12]} + 11'(s3_cy_q[p]);
+      nbm1        = (p != 0) ? 8'(s3_l_q) : {1'b0, s3_l_q, 2'b11};
+      s4_mid_d[p] = mid_sum[9:0];
+      s4_cy_d[p]  = mid_sum[10];
+      s4_em1_d[p] = 9'(s3_lo_q[p][BB_W-1:0]) + 9'(nbm1);
+      s4_pe_d[p]  = {1'b0, s3_lo_q[p]} + 13'(nbm1);
+      // S5: bits [31:22]; the burst shape
+      hi_sum     = s4_cs_q[p].s[31:22] + s4_cs_q[p].c[31:22] + 10'(s4_cy_q[p]);
+      to4k_m1[p] = ~s4_lo_q[p][11:BB_W];
+      mb         = (p != 0) ? sbuf_base(s4_buf_q) : pbuf_base(s4_buf_q);
+      s5_a_d[p]          = {hi_sum, s4_mid_q[p], s4_lo_q[p]};
+      s5_shape_d[p].two  = s4_pe_q[p][12];
+      s5_shape_d[p].len0 = s4_pe_q[p][12] ? 8'(to4k_m1[p]) : 8'(s4_em1_q[p] >> BB_W);
+      s5_shape_d[p].len1 = 8'(s4_pe_q[p][11:0] >> BB_W);
+      s5_shape_d[p].lo   = s4_lo_q[p][BB_W-1:0];
+      s5_shape_d[p].hi   = s4_em1_q[p][BB_W-1:0];
+      s5_mb1_d[p]        = mb + maddr_t'(to4k_m1[p]) + 1'b1;
+    end
+  end
+
+  // The row's bursts, up to two per plane, issued from a register list one per clock.
+  typedef struct packed {
+    logic [31:0]      addr;      // bus-aligned burst address
+    logic [7:0]       len;       // AWLEN (beats - 1)
+    in_t              in;        // input of the row
+    buf_t             bufi;      // its buffer
+    logic             src;       // 1: code plane, 0: pixels
+    maddr_t           mbase;     // buffer memory address of the burst's first beat
+    logic [BB_W-1:0]  lo;        // first byte written in the burst's first beat
+    logic [BB_W-1:0]  hi;        // last byte written in the burst's last beat
+    logic             row_last;  // the row's last burst: its buffer is free after it
+  } burst_t;
+
+  // What the W side needs of a burst.
+  typedef struct packed {
+    logic [7:0]       len;
+    in_t              in;
+    buf_t             bufi;
+    logic             src;
+    maddr_t           mbase;
+    logic [BB_W-1:0]  lo;
+    logic [BB_W-1:0]  hi;
+    logic             row_last;
+  } wburst_t;
+
+  burst_t [3:0] bl_q, bl_d;       // the list; entry 0 is on AW
+  logic   [3:0] blv_q, blv_d;
+  burst_t [1:0] b0, b1;           // per plane: first and second burst
+  logic         aw_hs, w_push_ready, out_ok, b_hs;
+
+  always_comb begin
+    for (int unsigned p = 0; p < 2; p++) begin
+      logic [31:0] al;
+      al = s5_a_q[p] & ~(STRB_W - 1);
+      b0[p] = '{addr: al, len: s5_shape_q[p].len0, in: s5_in_q, bufi: s5_buf_q, src: p[0],
+                mbase: (p != 0) ? sbuf_base(s5_buf_q) : pbuf_base(s5_buf_q), lo: s5_shape_q[p].lo,
+                hi: s5_shape_q[p].two ? BB_W'(STRB_W - 1) : s5_shape_q[p].hi, row_last: 1'b0};
+      b1[p] = '{addr: {al[31:12] + 1'b1, 12'h000}, len: s5_shape_q[p].len1, in: s5_in_q,
+                bufi: s5_buf_q, src: p[0], mbase: s5_mb1_q[p], lo: '0, hi: s5_shape_q[p].hi,
+                row_last: 1'b0};
+    end
+  end
+
+  // A new row enters when the list is empty or its last burst goes this clock.
+  assign s5_take = s5_v_q && (blv_q == '0 || (aw_hs && blv_q[3:1] == '0));
+
+  always_comb begin
+    logic ptwo, stwo;
+    ptwo  = s5_shape_q[0].two;
+    stwo  = s5_shape_q[1].two;
+    bl_d  = bl_q;
+    blv_d = blv_q;
+    if (aw_hs) begin
+      bl_d  = {bl_q[3], bl_q[3:1]};
+      blv_d = {1'b0, blv_q[3:1]};
+    end
+    if (s5_take) begin
+      bl_d[0] = b0[0];
+      bl_d[1] = ptwo ? b1[0] : b0[1];
+      bl_d[2] = ptwo ? b0[1] : b1[1];
+      bl_d[3] = b1[1];
+      if (!src_en_i) blv_d = ptwo ? 4'b0011 : 4'b0001;
+      else           blv_d = ptwo ? (stwo ? 4'b1111 : 4'b0111) : (stwo ? 4'b0111 : 4'b0011);
+      // the row's last burst
+      unique case (blv_d)
+        4'b0001: bl_d[0].row_last = 1'b1;
+        4'b0011: bl_d[1].row_last = 1'b1;
+        4'b0111: bl_d[2].row_last = 1'b1;
+        default: bl_d[3].row_last = 1'b1;
+      endcase
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      blv_q <= '0;
+    end else if (clear_i) begin
+      blv_q <= '0;
+    end else begin
+      blv_q <= blv_d;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    bl_q <= bl_d;
+  end
+
+  // Outstanding bursts (B budget) and their addresses, in order (one ID: B comes in order).
+  logic [OUT_W-1:0] outst_q;
+  logic             b_expected, aq_valid, aq_ready;
+  logic [31:0]      aq_addr;
+  logic [$clog2(AQ_D):0] aq_count;
+
+  assign out_ok        = (outst_q != OUT_W'(MAX_OUT));
+  assign m_axi_awvalid = blv_q[0] && w_push_ready && out_ok;
+  assign aw_hs         = m_axi_awvalid && m_axi_awready;
   assign m_axi_awid    = '0;
-  assign m_axi_awaddr  = burst_addr;
-  assign m_axi_awlen   = 8'(burst_beats - 1'b1);
+  assign m_axi_awaddr  = bl_q[0].addr;
+  assign m_axi_awlen   = bl_q[0].len;
   assign m_axi_awsize  = 3'(BB_W);   // a full beat
   assign m_axi_awburst = 2'b01;      // INCR
   assign m_axi_awlock  = 1'b0;
   assign m_axi_awcache = 4'b0011;    // normal, non-cacheable, bufferable
   assign m_axi_awprot  = 3'b000;
-  // A burst goes out only when its W bookkeeping has room and the B budget allows.
-  assign m_axi_awvalid = gen_valid_q && wq_push_ready && (outst_q < OUT_W'(MAX_OUT));
 
-  assign wq_push_data = '{in: gen_in_q, bsel: gen_bsel_q, src: gen_src_q, k0: gen_k_q,
-                          beats: burst_beats, ow: gen_ow_q, row_last: row_last};
+  assign m_axi_bready   = 1'b1;
+  assign b_hs           = m_axi_bvalid && m_axi_bready;
+  assign b_expected     = (outst_q != '0);
+  assign bresp_err_o    = b_hs && b_expected && m_axi_bresp[1];
+  assign bresp_addr_o   = aq_addr;
+  assign b_unexpected_o = b_hs && !b_expected;
 
-  msr_fifo #(.WIDTH($bits(burst_t)), .DEPTH(4)) u_burst_fifo (
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      outst_q <= '0;
+    end else if (clear_i) begin
+      outst_q <= '0;
+    end else begin
+      outst_q <= outst_q + OUT_W'(aw_hs) - OUT_W'(b_hs && b_expected);
+    end
+  end
+
+  msr_fifo #(.WIDTH(32), .DEPTH(AQ_D)) u_addr_fifo (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
     .flush_i (clear_i),
     .valid_i (aw_hs),
-    .ready_o (wq_push_ready),
-    .data_i  (wq_push_data),
-    .valid_o (wq_pop_valid),
-    .ready_i (wq_pop),
-    .data_o  (wq_pop_data),
-      .count_o ()
+    .ready_o (aq_ready),
+    .data_i  (m_axi_awaddr),
+    .valid_o (aq_valid),
+    .ready_i (b_hs && b_expected),
+    .data_o  (aq_addr),
+    .count_o (aq_count)
   );
 
-  // ---- W: the beats of each addressed burst, in order ---------------------------------------------
-  logic [BEATS_W-1:0] wcnt_q;
-  logic [BEATS_W-1:0] wbeat;                       // beat index within the plane
-  logic [MAX_TILE-1:0][31:0] w_px;
-  logic [SRCW_N-1:0][31:0]   w_srcw;
-  ldim_t                     w_n;
+  // ---- W: the beats of each addressed burst, in order ------------------------------------------
+  wburst_t         wq_data, wq_push;
+  logic            wq_valid, wq_pop, w_issue, wlast_d;
+  logic [7:0]      wcnt_q;
+  logic            wv_q;
+  logic [AXI_DATA_W-1:0] wdata_q, wdata_d;
+  logic [STRB_W-1:0]     wstrb_q, wstrb_d;
+  logic                  wlast_q;
 
-  assign w_px  = buf_px_q[wq_pop_data.in][wq_pop_data.bsel];
-  assign w_srcw = buf_src_q[wq_pop_data.in][wq_pop_data.bsel];   // 4 codes per word, x0 first
-  assign w_n   = buf_n_q[wq_pop_data.in][wq_pop_data.bsel];
-  assign wbeat = wq_pop_data.k0 + wcnt_q;
+  assign wq_push = '{len: bl_q[0].len, in: bl_q[0].in, bufi: bl_q[0].bufi, src: bl_q[0].src,
+                     mbase: bl_q[0].mbase, lo: bl_q[0].lo, hi: bl_q[0].hi,
+                     row_last: bl_q[0].row_last};
+  logic [2:0] wq_count;
+
+  msr_fifo #(.WIDTH($bits(wburst_t)), .DEPTH(4)) u_burst_fifo (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .flush_i (clear_i),
+    .valid_i (aw_hs),
+    .ready_o (w_push_ready),
+    .data_i  (wq_push),
+    .valid_o (wq_valid),
+    .ready_i (wq_pop),
+    .data_o  (wq_data),
+    .count_o (wq_count)
+  );
+
+  assign w_issue = wq_valid && (!wv_q || m_axi_wready);
+  assign wlast_d = (wcnt_q == wq_data.len);
+  assign wq_pop  = w_issue && wlast_d;
+  assign raddr   = maddr_t'(32'(wq_data.mbase) + 32'(wcnt_q));
+
+  assign row_free     = wq_pop && wq_data.row_last;
+  assign row_free_in  = wq_data.in;
+  assign row_free_buf = wq_data.bufi;
 
   always_comb begin
-    m_axi_wdata = '0;
-    m_axi_wstrb = '0;
     for (int unsigned j = 0; j < WPB; j++) begin
-      // Word of the plane in lane j: idx = beat * WPB + j - ow.
-      int signed idx;
-      int unsigned nbytes;
-      idx    = int'(32'(wbeat) * WPB + j) - int'(32'(wq_pop_data.ow));
-      nbytes = wq_pop_data.src ? 32'(w_n) : 4 * 32'(w_n);
-      if (idx >= 0 && idx < MAX_TILE && (!wq_pop_data.src || idx < int'(SRCW_N))) begin
-        m_axi_wdata[32*j +: 32] = wq_pop_data.src ? w_srcw[idx[$clog2(SRCW_N)-1:0]]
-                                                  : w_px[idx[LCOORD_W-1:0]];
-        for (int unsigned b = 0; b < 4; b++) begin
-          m_axi_wstrb[4*j + b] = (unsigned'(idx) * 4 + b < nbytes);
-        end
+      logic [4*CODE_W-1:0] c;
+      c = srd[wq_data.in][j];
+      if (wq_data.src) begin
+        wdata_d[32*j +: 32] = {3'b0, c[3*CODE_W +: CODE_W], 3'b0, c[2*CODE_W +: CODE_W],
+                               3'b0, c[CODE_W +: CODE_W], 3'b0, c[0 +: CODE_W]};
+      end else begin
+        wdata_d[32*j +: 32] = {8'h00, prd[wq_data.in][j]};
       end
     end
-  end
-
-  assign m_axi_wvalid = wq_pop_valid;
-  assign m_axi_wlast  = (wcnt_q + 1'b1 == wq_pop_data.beats);
-  assign w_hs         = m_axi_wvalid && m_axi_wready;
-  assign wq_pop       = w_hs && m_axi_wlast;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      wcnt_q <= '0;
-    end else if (clear_i) begin
-      wcnt_q <= '0;
-    end else if (w_hs) begin
-      wcnt_q <= m_axi_wlast ? '0 : wcnt_q + 1'b1;
+    for (int unsigned b = 0; b < STRB_W; b++) begin
+      wstrb_d[b] = (wcnt_q != '0 || b >= 32'(wq_data.lo)) && (!wlast_d || b <= 32'(wq_data.hi));
     end
   end
 
-  // ---- Buffer state ---------------------------------------------------------------------------------
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      buf_full_q <= '0;
-      buf_aw_q   <= '0;
-      col_sel_q  <= '0;
-      aw_sel_q   <= '0;
+      wv_q   <= 1'b0;
+      wcnt_q <= '0;
     end else if (clear_i) begin
-      buf_full_q <= '0;
-      buf_aw_q   <= '0;
-      col_sel_q  <= '0;
-      aw_sel_q   <= '0;
+      wv_q   <= 1'b0;
+      wcnt_q <= '0;
     end else begin
-      for (int unsigned i = 0; i < NUM_IN; i++) begin
-        if (pix_hs[i] && row_end[i]) begin
-          buf_full_q[i][col_sel_q[i]] <= 1'b1;
-          col_sel_q[i]                <= !col_sel_q[i];
-        end
-        if (load && pick == in_t'(i)) begin
-          buf_aw_q[i][aw_sel_q[i]] <= 1'b1;
-          aw_sel_q[i]              <= !aw_sel_q[i];
-        end
-      end
-      // The row's last beat is taken: its buffer collects again.
-      if (wq_pop && wq_pop_data.row_last) begin
-        buf_full_q[wq_pop_data.in][wq_pop_data.bsel] <= 1'b0;
-        buf_aw_q[wq_pop_data.in][wq_pop_data.bsel]   <= 1'b0;
-      end
+      if (w_issue)           wv_q <= 1'b1;
+      else if (m_axi_wready) wv_q <= 1'b0;
+      if (w_issue) wcnt_q <= wlast_d ? '0 : wcnt_q + 1'b1;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (w_issue) begin
+      wdata_q <= wdata_d;
+      wstrb_q <= wstrb_d;
+      wlast_q <= wlast_d;
     end
   end
 
-  // ---- B ----------------------------------------------------------------------------------------
-  assign m_axi_bready = 1'b1;
-  assign bresp_err_o  = b_hs && m_axi_bresp[1];
-  assign idle_o       = (buf_full_q == '0) && !gen_valid_q && !wq_pop_valid && (outst_q == '0);
+  assign m_axi_wvalid = wv_q;
+  assign m_axi_wdata  = wdata_q;
+  assign m_axi_wstrb  = wstrb_q;
+  assign m_axi_wlast  = wlast_q;
+
+  assign idle_o = (full_q == '0) && (wr_v_q == '0) && (wr2_busy == '0) &&
+                  !s1_v_q && !s2_v_q && !s3_v_q && !s4_v_q &&
+                  !s5_v_q &&
+                  (blv_q == '0) && !wq_valid && !wv_q && (outst_q == '0);
+
+  // Codes keep CODE_W bits in the buffers; the upper bits of every code are 0.
+  logic [NUM_IN-1:0] code_big;
+  for (genvar i = 0; i < NUM_IN; i++) begin : g_code_big
+    assign code_big[i] = pix_hs[i] && (pix_src_i[i][SRC_W-1:CODE_W] != '0);
+  end
 
   logic unused_b;
-  assign unused_b = ^{m_axi_bid, m_axi_bresp[0]};   // single ID (in-order B); EXOKAY cannot occur
+  assign unused_b = ^{m_axi_bid, m_axi_bresp[0], aq_valid, aq_ready, aq_count, wq_count, code_big};
 
-`ifndef SYNTHESIS
-  // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
   /* verilator lint_off SYNCASYNCNET */
-  // AXI: an offered address / beat stays until taken.
-  assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-                   m_axi_awvalid && !m_axi_awready |=>
-                   m_axi_awvalid && $stable({m_axi_awaddr, m_axi_awlen}));
-  assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-                   m_axi_wvalid && !m_axi_wready |=>
-                   m_axi_wvalid && $stable({m_axi_wdata, m_axi_wstrb, m_axi_wlast}));
-  assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-                   b_hs |-> outst_q != '0);
-  // No burst crosses a 4 KiB boundary.
-  assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-                   m_axi_awvalid |-> (32'(m_axi_awaddr[11:0]) +
-                                      (32'(m_axi_awlen) + 1) * STRB_W) <= 32'h1000);
+  `MSR_ASSERT(a_aw_stable, m_axi_awvalid && !m_axi_awready |=>
+              m_axi_awvalid && $stable({m_axi_awaddr, m_axi_awlen}), clk_i, !rst_ni || clear_i)
+  `MSR_ASSERT(a_w_stable, m_axi_wvalid && !m_axi_wready |=>
+              m_axi_wvalid && $stable({m_axi_wdata, m_axi_wstrb, m_axi_wlast}), clk_i,
+              !rst_ni || clear_i)
+  `MSR_ASSERT(a_no_4k_cross, m_axi_awvalid |-> (32'(m_axi_awaddr[11:0]) +
+              (32'(m_axi_awlen) + 1) * STRB_W) <= 32'h1000)
+  `MSR_ASSERT(a_addr_fifo_room, aw_hs |-> aq_ready)
+  `MSR_ASSERT(a_code_fits, code_big == '0)
   /* verilator lint_on SYNCASYNCNET */
-`endif
-endmodule
+
+endmodule : msr_fb_writer

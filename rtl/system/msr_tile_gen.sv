@@ -1,10 +1,19 @@
 // Tile generation unit (spec section 1, claims 1, 3 and 12): walks the tiles of a frame
 // row-major from the top-left, computes each tile's extent and foveated per-level
-// thresholds, and hands the descriptor to the first engine that can take it.
+// thresholds, and hands the descriptor to the lowest-numbered engine that can take it.
 //
-// Timing: one cycle computes a descriptor into a register (the 8x10 multiplier of the
-// foveation term stays off the engines' input paths), the next offers it; a tile costs at
-// least two cycles, far below an engine's time per tile.
+// Timing: a five-stage pipeline with one enable (it moves when the output register is empty
+// or taken), no carry longer than 13 bits per clock: S1 the tile origin, its extent left in
+// the frame and its distances r2x, r2y from the centre in half-tiles; S2 both foveation
+// products gain * r2x and gain * r2y as carry-save pairs (ten partial products in five 3:2
+// levels; gain * max(r2x, r2y) = the larger product, so the compare runs beside them) and the
+// clamped extent; S3 / S4 the chosen product's carry-propagate add in two 9-bit halves, then
+// (gain * r2) >> 4 saturated at 255; S5 the descriptor register with the thresholds
+// thr + that, saturated at 255. The walker fills the pipeline while a descriptor waits, so
+// after the first tiles an engine that asks is served at once; the engines take a tile per
+// 64 or more clocks.
+`include "msr_assert.svh"
+
 module msr_tile_gen import msr_pkg::*; #(
   parameter int unsigned NUM_ENGINES = 4
 ) (
@@ -27,36 +36,28 @@ module msr_tile_gen import msr_pkg::*; #(
   output logic                   busy_o,        // tiles left to hand out
   output logic                   done_o         // every tile of the frame handed out
 );
-  if (NUM_ENGINES < 1 || NUM_ENGINES > 16) begin : gen_bad_engines
+  if (NUM_ENGINES < 1 || NUM_ENGINES > 16) begin : g_check_engines
     $fatal(1, "msr_tile_gen: NUM_ENGINES must be 1..16, got %0d", NUM_ENGINES);
   end
 
-  typedef enum logic [1:0] {
-    TG_IDLE  = 2'd0,   // no frame
-    TG_CALC  = 2'd1,   // compute the descriptor of tile (tx, ty)
-    TG_OFFER = 2'd2,   // offer it until an engine takes it
-    TG_DONE  = 2'd3    // every tile handed out
-  } tg_state_e;
-
   localparam int unsigned TIDX_W = COORD_W - 2;     // tile index, up to 4096/8 = 512 tiles
   localparam int unsigned R2_W   = TIDX_W + 1;      // |2t - (n-1)| < 1024
+  localparam int unsigned PROD_W = R2_W + 8;        // gain * r2 < 2^18
 
-  tg_state_e             state_q, state_d;
-  logic [TIDX_W-1:0]     tx_q, tx_d, ty_q, ty_d;    // tile indices
-  logic [TIDX_W:0]       ntx_q, ntx_d, nty_q, nty_d;  // tile counts, 1..512
-  tile_desc_t            desc_q, desc_d;
+  // ---- Frame set-up (latched at start) ----------------------------------------------------
+  logic [2:0]        lg_q, lg_d;                    // log2 T
+  logic [TIDX_W:0]   ntx_q, nty_q;                  // tile counts, 1..512
+  logic              run_q;                         // the walker has tiles left
+  logic              done_q;                        // every tile handed out
+  logic [TIDX_W-1:0] tx_q, ty_q;                    // the walker's next tile
 
-  // ---- Tile size and counts ----------------------------------------------------------------
-  logic [2:0]   tile_log2;
-  logic [LDIM_W-1:0] tile_edge;
   always_comb begin
     unique case (tile_i)
-      TILE_8:  tile_log2 = 3'd3;
-      TILE_16: tile_log2 = 3'd4;
-      TILE_32: tile_log2 = 3'd5;
-      default: tile_log2 = 3'd4;
+      TILE_8:  lg_d = 3'd3;
+      TILE_16: lg_d = 3'd4;
+      TILE_32: lg_d = 3'd5;
+      default: lg_d = 3'd4;
     endcase
-    tile_edge = LDIM_W'(1) << tile_log2;
   end
 
   // ceil(n / T) for n = 1..4096: at most 512 tiles per axis.
@@ -73,118 +74,182 @@ module msr_tile_gen import msr_pkg::*; #(
     return (v < 0) ? R2_W'(-v) : R2_W'(v);
   endfunction
 
-  // ---- Descriptor of tile (tx_q, ty_q) -------------------------------------------------------
-  logic [R2_W-1:0]       r2, r2x, r2y;
-  logic [R2_W+7:0]       fov_prod;                   // gain * r2 < 2^18
-  logic [R2_W+3:0]       fov_add;                    // (gain * r2) >> 4
-  coord_t                x0, y0;
-  dim_t                  rest_w, rest_h;
+  // ---- Pipeline -----------------------------------------------------------------------------
+  typedef struct packed {
+    logic [PROD_W-1:0] s;
+    logic [PROD_W-1:0] c;
+  } cs_t;
+
+  // Carry-save 3:2 compression.
+  function automatic cs_t csa(logic [PROD_W-1:0] a, logic [PROD_W-1:0] b, logic [PROD_W-1:0] c);
+    cs_t r;
+    r.s = a ^ b ^ c;
+    r.c = ((a & b) | (a & c) | (b & c)) << 1;
+    return r;
+  endfunction
+
+  // gain * r as a carry-save pair: eleven partial products in an 11-8-6-4-3-2 tree.
+  function automatic cs_t mul_cs(logic [7:0] g, logic [R2_W-1:0] r);
+    logic [R2_W-1:0][PROD_W-1:0] pp;
+    cs_t a, b, c, d, e, f, h, k;
+    for (int unsigned j = 0; j < R2_W; j++) pp[j] = r[j] ? (PROD_W'(g) << j) : '0;
+    a = csa(pp[0], pp[1], pp[2]);
+    b = csa(pp[3], pp[4], pp[5]);
+    c = csa(pp[6], pp[7], pp[8]);
+    d = csa(a.s, a.c, b.s);
+    e = csa(b.c, c.s, c.c);
+    f = csa(d.s, d.c, e.s);
+    h = csa(e.c, pp[9], pp[10]);
+    k = csa(f.s, f.c, h.s);
+    return csa(k.s, k.c, h.c);
+  endfunction
+
+  localparam int unsigned LO_W = PROD_W / 2;         // 9
+  localparam int unsigned HI_W = PROD_W - LO_W;      // 9
+
+  logic              en;                            // every stage moves
+  logic              taken;                         // the output descriptor goes this clock
+  logic [4:0]        v_q, last_q;                   // stage k valid / holds the frame's last tile
+  coord_t [3:0]      x0_q, y0_q;                    // origin through S1..S4
+  dim_t              s1_rw_q, s1_rh_q;              // frame extent right of / below the origin
+  logic [R2_W-1:0]   s1_r2x_q, s1_r2y_q;
+  cs_t               s2_px_q, s2_py_q;              // gain * r2x, gain * r2y (carry-save)
+  logic              s2_xgt_q;                      // r2x > r2y
+  ldim_t [2:0]       w_q, h_q;                      // extent through S2..S4
+  cs_t               s3_p_q;                        // the larger product
+  logic [LO_W-1:4]   s3_lo_q;                      // product bits [8:4] ([3:0] are shifted out)
+  logic              s3_cy_q;
+  thr_t              s4_fov_q;                      // min(255, (gain * r2) >> 4)
+  tile_desc_t        desc_q, desc_d;
+  logic              walk_last;
+  cs_t               s3_p_next;                     // the larger product, from S2
+  // Low half of the product; its bits [3:0] are shifted out of (gain * r2) >> 4.
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [LO_W:0]     lo_sum;
+  /* verilator lint_on UNUSEDSIGNAL */
+  logic [HI_W-1:0]   prod_hi;
+  thr_t              fov_d;
+
+  assign en        = !v_q[4] || taken;
+  assign walk_last = ({1'b0, tx_q} + 1'b1 == ntx_q) && ({1'b0, ty_q} + 1'b1 == nty_q);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      lg_q   <= 3'd4;
+      ntx_q  <= '0;
+      nty_q  <= '0;
+      run_q  <= 1'b0;
+      done_q <= 1'b0;
+      tx_q   <= '0;
+      ty_q   <= '0;
+      v_q    <= '0;
+      last_q <= '0;
+    end else if (clear_i) begin
+      run_q  <= 1'b0;
+      done_q <= 1'b0;
+      tx_q   <= '0;
+      ty_q   <= '0;
+      v_q    <= '0;
+      last_q <= '0;
+    end else if (start_i) begin
+      lg_q   <= lg_d;
+      ntx_q  <= tile_count(width_i, lg_d);
+      nty_q  <= tile_count(height_i, lg_d);
+      run_q  <= 1'b1;
+      done_q <= 1'b0;
+      tx_q   <= '0;
+      ty_q   <= '0;
+    end else begin
+      if (taken && last_q[4]) done_q <= 1'b1;
+      if (en) begin
+        v_q    <= {v_q[3:0], run_q};
+        last_q <= {last_q[3:0], run_q && walk_last};
+        if (run_q) begin
+          if (walk_last) run_q <= 1'b0;
+          if ({1'b0, tx_q} + 1'b1 == ntx_q) begin
+            tx_q <= '0;
+            ty_q <= ty_q + 1'b1;
+          end else begin
+            tx_q <= tx_q + 1'b1;
+          end
+        end
+      end
+    end
+  end
+
+  // Data registers: read only under their valid flags.
+  always_ff @(posedge clk_i) begin
+    if (en) begin
+      // S1
+      x0_q[0]  <= coord_t'(tx_q) << lg_q;
+      y0_q[0]  <= coord_t'(ty_q) << lg_q;
+      s1_rw_q  <= width_i - (dim_t'(tx_q) << lg_q);
+      s1_rh_q  <= height_i - (dim_t'(ty_q) << lg_q);
+      s1_r2x_q <= half_dist(tx_q, ntx_q);
+      s1_r2y_q <= half_dist(ty_q, nty_q);
+      // S2
+      x0_q[1]  <= x0_q[0];
+      y0_q[1]  <= y0_q[0];
+      s2_px_q  <= mul_cs(fov_gain_i, s1_r2x_q);
+      s2_py_q  <= mul_cs(fov_gain_i, s1_r2y_q);
+      s2_xgt_q <= s1_r2x_q > s1_r2y_q;
+      w_q[0]   <= (s1_rw_q > (dim_t'(1) << lg_q)) ? ldim_t'(1) << lg_q : ldim_t'(s1_rw_q);
+      h_q[0]   <= (s1_rh_q > (dim_t'(1) << lg_q)) ? ldim_t'(1) << lg_q : ldim_t'(s1_rh_q);
+      // S3
+      x0_q[2]  <= x0_q[1];
+      y0_q[2]  <= y0_q[1];
+      w_q[1]   <= w_q[0];
+      h_q[1]   <= h_q[0];
+      s3_p_q   <= s2_xgt_q ? s2_px_q : s2_py_q;
+      {s3_cy_q, s3_lo_q} <= lo_sum[LO_W:4];
+      // S4
+      x0_q[3]  <= x0_q[2];
+      y0_q[3]  <= y0_q[2];
+      w_q[2]   <= w_q[1];
+      h_q[2]   <= h_q[1];
+      s4_fov_q <= fov_d;
+      // S5: the descriptor
+      desc_q   <= desc_d;
+    end
+  end
 
   always_comb begin
-    r2x      = half_dist(tx_q, ntx_q);
-    r2y      = half_dist(ty_q, nty_q);
-    r2       = (r2x > r2y) ? r2x : r2y;
-    fov_prod = (R2_W+8)'(fov_gain_i) * (R2_W+8)'(r2);
-    fov_add  = (R2_W+4)'(fov_prod >> 4);
-    x0       = coord_t'(tx_q) << tile_log2;
-    y0       = coord_t'(ty_q) << tile_log2;
-    rest_w   = width_i  - dim_t'(x0);
-    rest_h   = height_i - dim_t'(y0);
+    s3_p_next = s2_xgt_q ? s2_px_q : s2_py_q;
+    lo_sum    = (LO_W+1)'(s3_p_next.s[LO_W-1:0]) + (LO_W+1)'(s3_p_next.c[LO_W-1:0]);
+    prod_hi   = s3_p_q.s[PROD_W-1:LO_W] + s3_p_q.c[PROD_W-1:LO_W] + HI_W'(s3_cy_q);
+    // (gain * r2) >> 4 = {prod_hi, s3_lo_q} >> 4, saturated at 255 (bits 12 and up)
+    fov_d     = (prod_hi[HI_W-1:12-LO_W] != '0) ? thr_t'(255)
+                                                 : {prod_hi[12-LO_W-1:0], s3_lo_q[LO_W-1:4]};
+  end
 
-    desc_d        = desc_q;
-    desc_d.x0     = x0;
-    desc_d.y0     = y0;
-    desc_d.w      = (rest_w > dim_t'(tile_edge)) ? tile_edge : ldim_t'(rest_w);
-    desc_d.h      = (rest_h > dim_t'(tile_edge)) ? tile_edge : ldim_t'(rest_h);
+  always_comb begin
+    desc_d        = '0;
+    desc_d.x0     = x0_q[3];
+    desc_d.y0     = y0_q[3];
+    desc_d.w      = w_q[2];
+    desc_d.h      = h_q[2];
     desc_d.levels = levels_i;
     desc_d.metric = metric_i;
     for (int k = 0; k < MAX_LEVELS; k++) begin
-      logic [R2_W+4:0] t;
-      t = (R2_W+5)'(thr_i[k]) + (R2_W+5)'(fov_add);
-      desc_d.thr[k] = (t > (R2_W+5)'(255)) ? thr_t'(255) : thr_t'(t);
+      logic [THR_W:0] t;
+      t = (THR_W+1)'(thr_i[k]) + (THR_W+1)'(s4_fov_q);
+      desc_d.thr[k] = t[THR_W] ? thr_t'(255) : thr_t'(t);
     end
   end
 
   // ---- Dispatch: the lowest-numbered ready engine takes the offered tile --------------------
   logic [NUM_ENGINES-1:0] pick;
-  logic                   taken;
-  always_comb begin
-    pick = '0;
-    for (int i = NUM_ENGINES - 1; i >= 0; i--) begin
-      if (desc_ready_i[i]) pick = '0 | (NUM_ENGINES'(1) << i);
-    end
-    desc_valid_o = (state_q == TG_OFFER) ? pick : '0;
-    taken        = |desc_valid_o;   // the picked engine is ready: transfer this cycle
-  end
+  assign pick         = desc_ready_i & (~desc_ready_i + 1'b1);
+  assign desc_valid_o = v_q[4] ? pick : '0;
+  assign taken        = |desc_valid_o;
+  assign desc_o       = desc_q;
+  assign busy_o       = run_q || (v_q != '0);
+  assign done_o       = done_q;
 
-  assign desc_o = desc_q;
-  assign busy_o = (state_q == TG_CALC) || (state_q == TG_OFFER);
-  assign done_o = (state_q == TG_DONE);
-
-  // ---- Walk ----------------------------------------------------------------------------------
-  always_comb begin
-    state_d = state_q;
-    tx_d    = tx_q;
-    ty_d    = ty_q;
-    ntx_d   = ntx_q;
-    nty_d   = nty_q;
-    unique case (state_q)
-      TG_IDLE, TG_DONE: begin
-        if (start_i) begin
-          tx_d    = '0;
-          ty_d    = '0;
-          ntx_d   = tile_count(width_i, tile_log2);
-          nty_d   = tile_count(height_i, tile_log2);
-          state_d = TG_CALC;
-        end
-      end
-      TG_CALC: state_d = TG_OFFER;
-      TG_OFFER: begin
-        if (taken) begin
-          state_d = TG_CALC;
-          if ({1'b0, tx_q} + 1'b1 == ntx_q) begin
-            tx_d = '0;
-            ty_d = ty_q + 1'b1;
-            if ({1'b0, ty_q} + 1'b1 == nty_q) state_d = TG_DONE;
-          end else begin
-            tx_d = tx_q + 1'b1;
-          end
-        end
-      end
-      default: state_d = TG_IDLE;
-    endcase
-  end
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      state_q <= TG_IDLE;
-      tx_q    <= '0;
-      ty_q    <= '0;
-      ntx_q   <= '0;
-      nty_q   <= '0;
-      desc_q  <= '0;
-    end else if (clear_i) begin
-      state_q <= TG_IDLE;
-      tx_q    <= '0;
-      ty_q    <= '0;
-      ntx_q   <= '0;
-      nty_q   <= '0;
-      desc_q  <= '0;
-    end else begin
-      state_q <= state_d;
-      tx_q    <= tx_d;
-      ty_q    <= ty_d;
-      ntx_q   <= ntx_d;
-      nty_q   <= nty_d;
-      if (state_q == TG_CALC) desc_q <= desc_d;
-    end
-  end
-
-`ifndef SYNTHESIS
-  // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
   /* verilator lint_off SYNCASYNCNET */
   // At most one engine is offered a tile, and only one that is ready.
-  assert property (@(posedge clk_i) disable iff (!rst_ni) $onehot0(desc_valid_o));
-  assert property (@(posedge clk_i) disable iff (!rst_ni) (desc_valid_o & ~desc_ready_i) == '0);
-`endif
-endmodule
+  `MSR_ASSERT(a_desc_onehot, $onehot0(desc_valid_o))
+  `MSR_ASSERT(a_desc_ready, (desc_valid_o & ~desc_ready_i) == '0)
+  /* verilator lint_on SYNCASYNCNET */
+
+endmodule : msr_tile_gen

@@ -1,11 +1,15 @@
-// The accelerator: registers (AXI4-Lite), tile generation, NUM_ENGINES tile engines sharing
-// one render request/response port, and one frame-buffer writer (AXI4 write master).
+// The accelerator: registers (AXI4-Lite), configuration check and control, tile generation,
+// NUM_ENGINES tile engines sharing one render request/response port through the render mux,
+// one frame-buffer writer (AXI4 write master) and the performance counters. This module only
+// wires the units together (docs/system.md).
 //
 // Render port: requests carry tag {engine id, engine tag}; responses may come back in any
 // order and are routed to the engine named in their tag. Soft reset: new requests are held,
 // responses are still taken until no engine has one outstanding, finished pixels are
-// dropped, open bursts complete; then every unit is cleared (docs/architecture_system.md).
-module msr_top import msr_pkg::*; #(
+// dropped, open bursts complete; then every unit is cleared.
+`include "msr_assert.svh"
+
+module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES     = 4,    // parallel tile engines (claim 11)
   parameter int unsigned MAX_OUTSTANDING = 64,   // render requests in flight per engine (tags)
   parameter int unsigned NUM_CTX         = 8,    // tile contexts per engine (2..16)
@@ -68,34 +72,19 @@ module msr_top import msr_pkg::*; #(
   input  logic [1:0]        m_axi_bresp,
   input  logic              m_axi_bvalid,
   output logic              m_axi_bready,
-  // Interrupt: STATUS.DONE while CTRL.IRQ_EN.
-  output logic              irq_o
+  // Interrupt: (STATUS.DONE or STATUS.CFG_ERR) while CTRL.IRQ_EN.
+  output logic              irq_o,
+  // Debug (simulation and bring-up; no function): tile hand-out and tile completion.
+  output logic              dbg_desc_fire_o,    // a tile goes to an engine this clock
+  output coord_t            dbg_desc_x0_o,      // its origin
+  output coord_t            dbg_desc_y0_o,
+  output logic [NUM_ENGINES-1:0] dbg_tile_done_o, // engine i's last pixel of a tile is written
+  output coord_t [NUM_ENGINES-1:0] dbg_pix_x_o,   // engine i's pixel (with dbg_tile_done_o)
+  output coord_t [NUM_ENGINES-1:0] dbg_pix_y_o
 );
-  if (NUM_ENGINES < 1 || NUM_ENGINES > 16) begin : gen_bad_engines
-    $fatal(1, "msr_top: NUM_ENGINES must be 1..16, got %0d", NUM_ENGINES);
+  if (AXI_ID_W < 1 || AXI_ID_W > 8) begin : g_check_id_w
+    $fatal(1, "msr_top: AXI_ID_W must be 1..8, got %0d", AXI_ID_W);
   end
-  if (MAX_OUTSTANDING < 2 || (1 << ETAG_W) != MAX_OUTSTANDING) begin : gen_bad_outstanding
-    $fatal(1, "msr_top: MAX_OUTSTANDING must be a power of two >= 2, got %0d", MAX_OUTSTANDING);
-  end
-
-  // Error codes of STATUS.ERROR (rtl/regs/msr_regs.rdl).
-  typedef enum logic [3:0] {
-    ERR_NONE       = 4'd0,
-    ERR_FRAME_SIZE = 4'd1,
-    ERR_TILE       = 4'd2,
-    ERR_LEVELS     = 4'd3,
-    ERR_FB_STRIDE  = 4'd4,
-    ERR_FB_BASE    = 4'd5,
-    ERR_SRC_STRIDE = 4'd6,
-    ERR_SRC_BASE   = 4'd7,
-    ERR_AXI_WRITE  = 4'd8
-  } err_e;
-
-  typedef enum logic [1:0] {
-    ST_IDLE  = 2'd0,   // no frame
-    ST_RUN   = 2'd1,   // frame in progress
-    ST_DRAIN = 2'd2    // soft reset: waiting for outstanding responses and writes
-  } state_e;
 
   // ---- Registers --------------------------------------------------------------------------------
   msr_regs_pkg::msr_regs__in_t  hwif_in;
@@ -127,140 +116,77 @@ module msr_top import msr_pkg::*; #(
     .hwif_out       (hwif_out)
   );
 
-  // ---- Configuration check and latch ----------------------------------------------------------
-  typedef struct packed {
-    dim_t                  width;
-    dim_t                  height;
-    tile_size_e            tile;
-    level_t                levels;
-    metric_e               metric;
-    thr_t [MAX_LEVELS-1:0] thr;
-    logic [7:0]            fov_gain;
-    logic [31:0]           fb_base;
-    logic [31:0]           fb_stride;
-    logic                  src_en;
-    logic [31:0]           src_base;
-    logic [31:0]           src_stride;
-  } cfg_t;
+  cfg_raw_t raw;
+  assign raw = '{
+    width:      hwif_out.FRAME_SIZE.WIDTH.value,
+    height:     hwif_out.FRAME_SIZE.HEIGHT.value,
+    tile:       hwif_out.CONFIG.TILE.value,
+    levels:     hwif_out.CONFIG.LEVELS.value,
+    metric:     metric_e'(hwif_out.CONFIG.METRIC.value),
+    thr:        {hwif_out.THRESH.THR3.value, hwif_out.THRESH.THR2.value,
+                 hwif_out.THRESH.THR1.value},
+    fov_gain:   hwif_out.FOV_GAIN.GAIN.value,
+    fb_base:    hwif_out.FB_BASE.ADDR.value,
+    fb_stride:  hwif_out.FB_STRIDE.STRIDE.value,
+    src_en:     hwif_out.SRC_CTRL.ENABLE.value,
+    src_base:   hwif_out.SRC_BASE.ADDR.value,
+    src_stride: hwif_out.SRC_STRIDE.STRIDE.value
+  };
 
-  cfg_t cfg_q, cfg_new;
-  err_e cfg_err;
+  // ---- Configuration check and control ----------------------------------------------------------
+  cfg_t  cfg;
+  err_e  err;
+  logic  busy, done_set, done_clr, cfg_err_set, start, run, drain, clear, b_unexp_flag;
+  logic  tg_done, tg_busy, rnd_idle, wr_idle, bresp_err, b_unexpected;
+  logic  [31:0] bresp_addr, mem_err_addr;
+  logic  [15:0] mem_err_cnt, rsp_drop_cnt;
+  logic  rmux_busy, bad_eid;
+  logic  [NUM_ENGINES-1:0] eng_rsp_drop;
+  logic  [NUM_ENGINES-1:0] eng_desc_valid, eng_desc_ready, eng_busy, wr_tile_done;
 
-  always_comb begin
-    cfg_new.width      = hwif_out.FRAME_SIZE.WIDTH.value;
-    cfg_new.height     = hwif_out.FRAME_SIZE.HEIGHT.value;
-    unique case (hwif_out.CONFIG.TILE.value)
-      6'd8:    cfg_new.tile = TILE_8;
-      6'd32:   cfg_new.tile = TILE_32;
-      default: cfg_new.tile = TILE_16;
-    endcase
-    cfg_new.levels     = hwif_out.CONFIG.LEVELS.value;
-    cfg_new.metric     = metric_e'(hwif_out.CONFIG.METRIC.value);
-    cfg_new.thr        = {hwif_out.THRESH.THR3.value, hwif_out.THRESH.THR2.value,
-                          hwif_out.THRESH.THR1.value};
-    cfg_new.fov_gain   = hwif_out.FOV_GAIN.GAIN.value;
-    cfg_new.fb_base    = hwif_out.FB_BASE.ADDR.value;
-    cfg_new.fb_stride  = hwif_out.FB_STRIDE.STRIDE.value;
-    cfg_new.src_en     = hwif_out.SRC_CTRL.ENABLE.value;
-    cfg_new.src_base   = hwif_out.SRC_BASE.ADDR.value;
-    cfg_new.src_stride = hwif_out.SRC_STRIDE.STRIDE.value;
+  msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES)) u_ctrl (
+    .clk_i          (clk_i),
+    .rst_ni         (rst_ni),
+    .start_i        (hwif_out.CTRL.START.value),
+    .soft_reset_i   (hwif_out.CTRL.SOFT_RESET.value),
+    .raw_i          (raw),
+    .cfg_o          (cfg),
+    .busy_o         (busy),
+    .err_o          (err),
+    .done_set_o     (done_set),
+    .done_clr_o     (done_clr),
+    .cfg_err_set_o  (cfg_err_set),
+    .mem_err_cnt_o  (mem_err_cnt),
+    .mem_err_addr_o (mem_err_addr),
+    .b_unexp_o      (b_unexp_flag),
+    .rsp_drop_cnt_o (rsp_drop_cnt),
+    .start_o        (start),
+    .run_o          (run),
+    .drain_o        (drain),
+    .clear_o        (clear),
+    .desc_fire_i    (|eng_desc_valid),
+    .tile_done_i    (wr_tile_done),
+    .tg_done_i      (tg_done),
+    .rnd_idle_i     (rnd_idle),
+    .wr_idle_i      (wr_idle),
+    .bresp_err_i    (bresp_err),
+    .bresp_addr_i   (bresp_addr),
+    .b_unexp_i      (b_unexpected),
+    .rsp_drop_i     ((eng_rsp_drop != '0) || bad_eid)
+  );
 
-    // First failing check wins; the order is the order of the codes.
-    if (cfg_new.width == '0 || cfg_new.width > dim_t'(MAX_FRAME) ||
-        cfg_new.height == '0 || cfg_new.height > dim_t'(MAX_FRAME)) begin
-      cfg_err = ERR_FRAME_SIZE;
-    end else if (!(hwif_out.CONFIG.TILE.value inside {6'd8, 6'd16, 6'd32})) begin
-      cfg_err = ERR_TILE;
-    end else if (cfg_new.levels == '0) begin
-      cfg_err = ERR_LEVELS;
-    end else if (cfg_new.fb_stride < {17'b0, cfg_new.width, 2'b0} ||
-                 cfg_new.fb_stride[1:0] != '0) begin
-      cfg_err = ERR_FB_STRIDE;
-    end else if (cfg_new.fb_base[1:0] != '0) begin
-      cfg_err = ERR_FB_BASE;
-    end else if (cfg_new.src_en &&
-                 (cfg_new.src_stride < {19'b0, cfg_new.width} ||
-                  cfg_new.src_stride[1:0] != '0)) begin
-      cfg_err = ERR_SRC_STRIDE;
-    end else if (cfg_new.src_en && cfg_new.src_base[1:0] != '0) begin
-      cfg_err = ERR_SRC_BASE;
-    end else begin
-      cfg_err = ERR_NONE;
-    end
-  end
-
-  // ---- Control ----------------------------------------------------------------------------------
-  state_e  state_q, state_d;
-  err_e    err_q, err_d;
-  logic    start_frame;        // a valid START in idle
-  logic    clear;              // synchronous clear of every unit (end of a soft reset)
-  logic    frame_done;
-  logic    drain;
-  logic    tg_done;
-  logic    wr_idle, wr_bresp_err;
-  logic [23:0] tiles_given_q, tiles_written_q;     // up to 512 x 512 tiles
-  logic [NUM_ENGINES-1:0] eng_desc_valid, eng_desc_ready, eng_busy;
-  logic    tg_busy;
-  logic    inflight_any;
-  logic    req_pending_q;     // a render request was offered and not yet taken
-
-  assign drain = (state_q == ST_DRAIN);
-
-  always_comb begin
-    state_d     = state_q;
-    err_d       = err_q;
-    start_frame = 1'b0;
-    clear       = 1'b0;
-    unique case (state_q)
-      ST_IDLE: begin
-        if (hwif_out.CTRL.START.value) begin
-          err_d = cfg_err;
-          if (cfg_err == ERR_NONE) begin
-            start_frame = 1'b1;
-            state_d     = ST_RUN;
-          end
-        end
-      end
-      ST_RUN: begin
-        if (wr_bresp_err) err_d = ERR_AXI_WRITE;
-        if (frame_done) state_d = ST_IDLE;
-      end
-      ST_DRAIN: begin
-        // Every response is home, no request half-offered, every open burst finished.
-        if (!inflight_any && !req_pending_q && wr_idle) begin
-          clear   = 1'b1;
-          err_d   = ERR_NONE;
-          state_d = ST_IDLE;
-        end
-      end
-      default: state_d = ST_IDLE;
-    endcase
-    if (hwif_out.CTRL.SOFT_RESET.value && state_q != ST_DRAIN) begin
-      state_d     = ST_DRAIN;
-      start_frame = 1'b0;
-    end
-  end
-
-  assign frame_done = (state_q == ST_RUN) && tg_done && (tiles_written_q == tiles_given_q) &&
-                      wr_idle;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      state_q <= ST_IDLE;
-      err_q   <= ERR_NONE;
-      cfg_q   <= '0;
-    end else begin
-      state_q <= state_d;
-      err_q   <= err_d;
-      if (start_frame) cfg_q <= cfg_new;
-    end
-  end
-
-  assign hwif_in.STATUS.BUSY.next   = (state_q != ST_IDLE);
-  assign hwif_in.STATUS.ERROR.next  = err_q;
-  assign hwif_in.STATUS.DONE.hwset  = frame_done;
-  assign hwif_in.STATUS.DONE.hwclr  = start_frame || hwif_out.CTRL.SOFT_RESET.value;
-  assign irq_o = hwif_out.CTRL.IRQ_EN.value && hwif_out.STATUS.DONE.value;
+  assign hwif_in.STATUS.BUSY.next  = busy;
+  assign hwif_in.STATUS.ERROR.next = err;
+  assign hwif_in.STATUS.DONE.hwset = done_set;
+  assign hwif_in.STATUS.DONE.hwclr = done_clr;
+  assign hwif_in.STATUS.CFG_ERR.hwset = cfg_err_set;
+  assign hwif_in.STATUS.CFG_ERR.hwclr = done_clr;
+  assign hwif_in.MEM_ERR.COUNT.next = mem_err_cnt;
+  assign hwif_in.MEM_ERR.UNEXPECTED_B.next = b_unexp_flag;
+  assign hwif_in.MEM_ERR_ADDR.ADDR.next = mem_err_addr;
+  assign hwif_in.RSP_DROP.COUNT.next = rsp_drop_cnt;
+  assign irq_o = hwif_out.CTRL.IRQ_EN.value &&
+                 (hwif_out.STATUS.DONE.value || hwif_out.STATUS.CFG_ERR.value);
 
   // ---- Tile generation -------------------------------------------------------------------------
   tile_desc_t desc;
@@ -268,17 +194,17 @@ module msr_top import msr_pkg::*; #(
   msr_tile_gen #(.NUM_ENGINES(NUM_ENGINES)) u_tile_gen (
     .clk_i        (clk_i),
     .rst_ni       (rst_ni),
-    .clear_i      (clear || (hwif_out.CTRL.SOFT_RESET.value)),
-    .start_i      (start_frame),
-    .width_i      (start_frame ? cfg_new.width : cfg_q.width),
-    .height_i     (start_frame ? cfg_new.height : cfg_q.height),
-    .tile_i       (start_frame ? cfg_new.tile : cfg_q.tile),
-    .levels_i     (cfg_q.levels),
-    .metric_i     (cfg_q.metric),
-    .thr_i        (cfg_q.thr),
-    .fov_gain_i   (cfg_q.fov_gain),
+    .clear_i      (drain),
+    .start_i      (start),
+    .width_i      (cfg.width),
+    .height_i     (cfg.height),
+    .tile_i       (cfg.tile),
+    .levels_i     (cfg.levels),
+    .metric_i     (cfg.metric),
+    .thr_i        (cfg.thr),
+    .fov_gain_i   (cfg.fov_gain),
     .desc_valid_o (eng_desc_valid),
-    .desc_ready_i (eng_desc_ready & {NUM_ENGINES{state_q == ST_RUN}}),
+    .desc_ready_i (eng_desc_ready & {NUM_ENGINES{run}}),
     .desc_o       (desc),
     .busy_o       (tg_busy),
     .done_o       (tg_done)
@@ -289,16 +215,16 @@ module msr_top import msr_pkg::*; #(
   coord_t [NUM_ENGINES-1:0] eng_req_x, eng_req_y;
   logic   [NUM_ENGINES-1:0][ETAG_W-1:0] eng_req_tag;
   logic   [NUM_ENGINES-1:0] eng_rsp_valid, eng_rsp_ready;
+  logic   [ETAG_W-1:0]      eng_rsp_tag;
+  rgb_t                     eng_rsp_rgb;
   logic   [NUM_ENGINES-1:0] eng_pix_valid, eng_pix_ready, eng_pix_last;
   coord_t [NUM_ENGINES-1:0] eng_pix_x, eng_pix_y;
   rgb_t   [NUM_ENGINES-1:0] eng_pix_rgb;
   src_t   [NUM_ENGINES-1:0] eng_pix_src;
   logic   [NUM_ENGINES-1:0][ETAG_W:0] eng_inflight;
-  logic   [EID_W-1:0] rsp_eid;
+  logic   [NUM_ENGINES-1:0] eng_inflight_any;
 
-  assign rsp_eid = rnd_rsp_tag_i[RTAG_W-1 -: EID_W];
-
-  for (genvar i = 0; i < NUM_ENGINES; i++) begin : gen_engine
+  for (genvar i = 0; i < NUM_ENGINES; i++) begin : g_engine
     msr_tile_engine #(
       .NUM_CTX         (NUM_CTX),
       .MAX_OUTSTANDING (MAX_OUTSTANDING)
@@ -316,8 +242,8 @@ module msr_top import msr_pkg::*; #(
       .req_tag_o    (eng_req_tag[i]),
       .rsp_valid_i  (eng_rsp_valid[i]),
       .rsp_ready_o  (eng_rsp_ready[i]),
-      .rsp_tag_i    (rnd_rsp_tag_i[ETAG_W-1:0]),
-      .rsp_rgb_i    (rnd_rsp_rgb_i),
+      .rsp_tag_i    (eng_rsp_tag),
+      .rsp_rgb_i    (eng_rsp_rgb),
       .pix_valid_o  (eng_pix_valid[i]),
       .pix_ready_i  (eng_pix_ready[i]),
       .pix_x_o      (eng_pix_x[i]),
@@ -326,99 +252,50 @@ module msr_top import msr_pkg::*; #(
       .pix_src_o    (eng_pix_src[i]),
       .pix_last_o   (eng_pix_last[i]),
       .busy_o       (eng_busy[i]),
+      .rsp_drop_o   (eng_rsp_drop[i]),
       .inflight_o   (eng_inflight[i])
     );
-    assign eng_rsp_valid[i] = rnd_rsp_valid_i && (rsp_eid == EID_W'(i));
+    assign eng_inflight_any[i] = (eng_inflight[i] != '0);
   end
 
-  always_comb begin
-    inflight_any = 1'b0;
-    for (int i = 0; i < NUM_ENGINES; i++) inflight_any |= (eng_inflight[i] != '0);
-  end
+  // ---- Render mux ---------------------------------------------------------------------------------
 
-  // Response demux: the engine named in the tag answers ready.
-  assign rnd_rsp_ready_o = eng_rsp_ready[rsp_eid];
+  msr_render_mux #(.NUM_ENGINES(NUM_ENGINES), .ETAG_W(ETAG_W)) u_render_mux (
+    .clk_i           (clk_i),
+    .rst_ni          (rst_ni),
+    .clear_i         (clear),
+    .hold_i          (drain),
+    .eng_req_valid_i (eng_req_valid),
+    .eng_req_ready_o (eng_req_ready),
+    .eng_req_x_i     (eng_req_x),
+    .eng_req_y_i     (eng_req_y),
+    .eng_req_tag_i   (eng_req_tag),
+    .eng_rsp_valid_o (eng_rsp_valid),
+    .eng_rsp_ready_i (eng_rsp_ready),
+    .eng_rsp_tag_o   (eng_rsp_tag),
+    .eng_rsp_rgb_o   (eng_rsp_rgb),
+    .rnd_req_valid_o (rnd_req_valid_o),
+    .rnd_req_ready_i (rnd_req_ready_i),
+    .rnd_req_x_o     (rnd_req_x_o),
+    .rnd_req_y_o     (rnd_req_y_o),
+    .rnd_req_tag_o   (rnd_req_tag_o),
+    .rnd_rsp_valid_i (rnd_rsp_valid_i),
+    .rnd_rsp_ready_o (rnd_rsp_ready_o),
+    .rnd_rsp_tag_i   (rnd_rsp_tag_i),
+    .rnd_rsp_rgb_i   (rnd_rsp_rgb_i),
+    .busy_o          (rmux_busy),
+    .bad_eid_o       (bad_eid)
+  );
 
-  // ---- Round-robin pick: the first set bit at or after `ptr` ------------------------------------
-  function automatic logic [EID_W-1:0] rr_pick(logic [NUM_ENGINES-1:0] mask, logic [EID_W-1:0] ptr);
-    logic [EID_W-1:0] sel;
-    sel = ptr;
-    for (int k = NUM_ENGINES - 1; k >= 0; k--) begin
-      logic [EID_W-1:0] idx;
-      idx = EID_W'((int'(ptr) + k) % NUM_ENGINES);
-      if (mask[idx]) sel = idx;
-    end
-    return sel;
-  endfunction
-
-  // ---- Render request queues: a short FIFO per engine ---------------------------------------
-  // An engine whose request waits for the shared port stalls its decision pipeline; a queue
-  // per engine lets it go on deciding while other engines' requests go first (its tag is
-  // already counted in flight). During a soft reset no new request enters, queued ones go
-  // out, so every tag in flight comes home.
-  typedef struct packed {
-    coord_t              x;
-    coord_t              y;
-    logic [ETAG_W-1:0]   tag;
-  } rreq_t;
-  logic  [NUM_ENGINES-1:0] rq_valid, rq_pop, rq_push_ready;
-  rreq_t [NUM_ENGINES-1:0] rq_data;
-
-  for (genvar i = 0; i < NUM_ENGINES; i++) begin : gen_req_queue
-    msr_fifo #(.WIDTH($bits(rreq_t)), .DEPTH(4)) u_req_fifo (
-      .clk_i   (clk_i),
-      .rst_ni  (rst_ni),
-      .flush_i (clear),
-      .valid_i (eng_req_valid[i] && !drain),
-      .ready_o (rq_push_ready[i]),
-      .data_i  ({eng_req_x[i], eng_req_y[i], eng_req_tag[i]}),
-      .valid_o (rq_valid[i]),
-      .ready_i (rq_pop[i]),
-      .data_o  (rq_data[i]),
-      .count_o ()
-    );
-    assign eng_req_ready[i] = rq_push_ready[i] && !drain;
-  end
-
-  // ---- Render request arbiter: round robin over the queues, held while offered -------------
-  logic [EID_W-1:0] req_ptr_q, req_ptr_d, req_sel, req_lock_q;
-  logic             req_hs;
-
-  always_comb begin
-    req_sel         = req_pending_q ? req_lock_q : rr_pick(rq_valid, req_ptr_q);
-    rnd_req_valid_o = rq_valid[req_sel] && (state_q != ST_IDLE);
-    rnd_req_x_o     = rq_data[req_sel].x;
-    rnd_req_y_o     = rq_data[req_sel].y;
-    rnd_req_tag_o   = {req_sel, rq_data[req_sel].tag};
-    req_hs          = rnd_req_valid_o && rnd_req_ready_i;
-    rq_pop          = '0;
-    rq_pop[req_sel] = req_hs;
-    req_ptr_d       = req_ptr_q;
-    if (req_hs) req_ptr_d = (req_sel == EID_W'(NUM_ENGINES - 1)) ? '0 : req_sel + 1'b1;
-  end
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      req_ptr_q     <= '0;
-      req_lock_q    <= '0;
-      req_pending_q <= 1'b0;
-    end else if (clear) begin
-      req_ptr_q     <= '0;
-      req_lock_q    <= '0;
-      req_pending_q <= 1'b0;
-    end else begin
-      req_ptr_q     <= req_ptr_d;
-      req_lock_q    <= req_sel;
-      req_pending_q <= rnd_req_valid_o && !rnd_req_ready_i;
-    end
-  end
+  // Every engine's tags are home (queued and offered requests count as in flight).
+  assign rnd_idle = (eng_inflight_any == '0);
 
   // ---- Pixel path: every engine has its own writer input (no arbitration) -----------------
-  logic [NUM_ENGINES-1:0] wr_pix_valid, wr_pix_ready, pix_hs, wr_tile_done;
+  // Soft reset: finished pixels are dropped.
+  logic [NUM_ENGINES-1:0] wr_pix_valid, wr_pix_ready;
 
   assign wr_pix_valid  = drain ? '0 : eng_pix_valid;
-  assign eng_pix_ready = drain ? '1 : wr_pix_ready;     // soft reset: finished pixels are dropped
-  assign pix_hs        = wr_pix_valid & wr_pix_ready;
+  assign eng_pix_ready = drain ? '1 : wr_pix_ready;
 
   // ---- Frame-buffer writer ----------------------------------------------------------------------
   msr_fb_writer #(
@@ -426,125 +303,89 @@ module msr_top import msr_pkg::*; #(
     .AXI_DATA_W (AXI_DATA_W),
     .ID_W       (AXI_ID_W)
   ) u_fb_writer (
-    .clk_i         (clk_i),
-    .rst_ni        (rst_ni),
-    .clear_i       (clear),
-    .width_i       (cfg_q.width),
-    .tile_i        (cfg_q.tile),
-    .fb_base_i     (cfg_q.fb_base),
-    .fb_stride_i   (cfg_q.fb_stride),
-    .src_en_i      (cfg_q.src_en),
-    .src_base_i    (cfg_q.src_base),
-    .src_stride_i  (cfg_q.src_stride),
-    .pix_valid_i   (wr_pix_valid),
-    .pix_ready_o   (wr_pix_ready),
-    .pix_x_i       (eng_pix_x),
-    .pix_y_i       (eng_pix_y),
-    .pix_rgb_i     (eng_pix_rgb),
-    .pix_src_i     (eng_pix_src),
-    .pix_last_i    (eng_pix_last),
-    .m_axi_awid    (m_axi_awid),
-    .m_axi_awaddr  (m_axi_awaddr),
-    .m_axi_awlen   (m_axi_awlen),
-    .m_axi_awsize  (m_axi_awsize),
-    .m_axi_awburst (m_axi_awburst),
-    .m_axi_awlock  (m_axi_awlock),
-    .m_axi_awcache (m_axi_awcache),
-    .m_axi_awprot  (m_axi_awprot),
-    .m_axi_awvalid (m_axi_awvalid),
-    .m_axi_awready (m_axi_awready),
-    .m_axi_wdata   (m_axi_wdata),
-    .m_axi_wstrb   (m_axi_wstrb),
-    .m_axi_wlast   (m_axi_wlast),
-    .m_axi_wvalid  (m_axi_wvalid),
-    .m_axi_wready  (m_axi_wready),
-    .m_axi_bid     (m_axi_bid),
-    .m_axi_bresp   (m_axi_bresp),
-    .m_axi_bvalid  (m_axi_bvalid),
-    .m_axi_bready  (m_axi_bready),
-    .idle_o        (wr_idle),
-    .tile_done_o   (wr_tile_done),
-    .bresp_err_o   (wr_bresp_err)
+    .clk_i          (clk_i),
+    .rst_ni         (rst_ni),
+    .clear_i        (clear),
+    .width_i        (cfg.width),
+    .tile_i         (cfg.tile),
+    .fb_base_i      (cfg.fb_base),
+    .fb_stride_i    (cfg.fb_stride),
+    .src_en_i       (cfg.src_en),
+    .src_base_i     (cfg.src_base),
+    .src_stride_i   (cfg.src_stride),
+    .pix_valid_i    (wr_pix_valid),
+    .pix_ready_o    (wr_pix_ready),
+    .pix_x_i        (eng_pix_x),
+    .pix_y_i        (eng_pix_y),
+    .pix_rgb_i      (eng_pix_rgb),
+    .pix_src_i      (eng_pix_src),
+    .pix_last_i     (eng_pix_last),
+    .m_axi_awid     (m_axi_awid),
+    .m_axi_awaddr   (m_axi_awaddr),
+    .m_axi_awlen    (m_axi_awlen),
+    .m_axi_awsize   (m_axi_awsize),
+    .m_axi_awburst  (m_axi_awburst),
+    .m_axi_awlock   (m_axi_awlock),
+    .m_axi_awcache  (m_axi_awcache),
+    .m_axi_awprot   (m_axi_awprot),
+    .m_axi_awvalid  (m_axi_awvalid),
+    .m_axi_awready  (m_axi_awready),
+    .m_axi_wdata    (m_axi_wdata),
+    .m_axi_wstrb    (m_axi_wstrb),
+    .m_axi_wlast    (m_axi_wlast),
+    .m_axi_wvalid   (m_axi_wvalid),
+    .m_axi_wready   (m_axi_wready),
+    .m_axi_bid      (m_axi_bid),
+    .m_axi_bresp    (m_axi_bresp),
+    .m_axi_bvalid   (m_axi_bvalid),
+    .m_axi_bready   (m_axi_bready),
+    .idle_o         (wr_idle),
+    .tile_done_o    (wr_tile_done),
+    .bresp_err_o    (bresp_err),
+    .bresp_addr_o   (bresp_addr),
+    .b_unexpected_o (b_unexpected)
   );
 
-  // ---- Tile accounting and performance counters -------------------------------------------------
-  logic [31:0] perf_cycles_q, perf_rstall_q, perf_mstall_q;
-  logic [3:0][31:0] perf_traced_q;
-  logic [2:0][31:0] perf_interp_q;
-  logic        count_en;
+  // ---- Performance counters -------------------------------------------------------------------------
+  logic [31:0]      perf_cycles, perf_rstall, perf_mstall;
+  logic [3:0][31:0] perf_traced;
+  logic [2:0][31:0] perf_interp;
 
-  assign count_en = (state_q == ST_RUN);
+  msr_perf_counters #(.NUM_ENGINES(NUM_ENGINES)) u_perf (
+    .clk_i     (clk_i),
+    .rst_ni    (rst_ni),
+    .clear_i   (start || clear),
+    .en_i      (run),
+    .pix_hs_i  (wr_pix_valid & wr_pix_ready),
+    .pix_src_i (eng_pix_src),
+    .rstall_i  (rnd_req_valid_o && !rnd_req_ready_i),
+    .mstall_i  ((eng_pix_valid & ~wr_pix_ready) != '0),
+    .cycles_o  (perf_cycles),
+    .traced_o  (perf_traced),
+    .interp_o  (perf_interp),
+    .rstall_o  (perf_rstall),
+    .mstall_o  (perf_mstall)
+  );
 
-  // Pixels taken this clock, per kind (up to NUM_ENGINES per clock).
-  logic [3:0][EID_W:0] n_traced;
-  logic [2:0][EID_W:0] n_interp;
-  logic [EID_W:0]      n_tiles;
-  always_comb begin
-    n_traced = '0;
-    n_interp = '0;
-    n_tiles  = '0;
-    for (int unsigned i = 0; i < NUM_ENGINES; i++) begin
-      n_tiles += (EID_W + 1)'(wr_tile_done[i]);
-      if (pix_hs[i]) begin
-        // source codes: 0..3 traced at level k, 17..19 interpolated at level 1..3
-        if (eng_pix_src[i][4]) n_interp[eng_pix_src[i][1:0] - 2'd1] += 1'b1;
-        else                   n_traced[eng_pix_src[i][1:0]] += 1'b1;
-      end
-    end
+  assign hwif_in.PERF_CYCLES.COUNT.next       = perf_cycles;
+  assign hwif_in.PERF_RENDER_STALL.COUNT.next = perf_rstall;
+  assign hwif_in.PERF_MEM_STALL.COUNT.next    = perf_mstall;
+  for (genvar k = 0; k < 4; k++) begin : g_perf_traced
+    assign hwif_in.PERF_TRACED[k].COUNT.next = perf_traced[k];
+  end
+  for (genvar k = 0; k < 3; k++) begin : g_perf_interp
+    assign hwif_in.PERF_INTERP[k].COUNT.next = perf_interp[k];
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      tiles_given_q   <= '0;
-      tiles_written_q <= '0;
-      perf_cycles_q   <= '0;
-      perf_rstall_q   <= '0;
-      perf_mstall_q   <= '0;
-      perf_traced_q   <= '0;
-      perf_interp_q   <= '0;
-    end else if (start_frame || clear) begin
-      tiles_given_q   <= '0;
-      tiles_written_q <= '0;
-      perf_cycles_q   <= '0;
-      perf_rstall_q   <= '0;
-      perf_mstall_q   <= '0;
-      perf_traced_q   <= '0;
-      perf_interp_q   <= '0;
-    end else if (count_en) begin
-      if (|eng_desc_valid) tiles_given_q <= tiles_given_q + 1'b1;   // valid only to a ready engine
-      tiles_written_q <= tiles_written_q + 24'(n_tiles);
-      perf_cycles_q <= perf_cycles_q + 1'b1;
-      if (rnd_req_valid_o && !rnd_req_ready_i) perf_rstall_q <= perf_rstall_q + 1'b1;
-      // memory stall: some engine offers a pixel the writer cannot take
-      if ((eng_pix_valid & ~wr_pix_ready) != '0) perf_mstall_q <= perf_mstall_q + 1'b1;
-      for (int unsigned k = 0; k < 4; k++) perf_traced_q[k] <= perf_traced_q[k] + 32'(n_traced[k]);
-      for (int unsigned k = 0; k < 3; k++) perf_interp_q[k] <= perf_interp_q[k] + 32'(n_interp[k]);
-    end
-  end
-
-  assign hwif_in.PERF_CYCLES.COUNT.next       = perf_cycles_q;
-  assign hwif_in.PERF_RENDER_STALL.COUNT.next = perf_rstall_q;
-  assign hwif_in.PERF_MEM_STALL.COUNT.next    = perf_mstall_q;
-  for (genvar k = 0; k < 4; k++) begin : gen_perf_traced
-    assign hwif_in.PERF_TRACED[k].COUNT.next = perf_traced_q[k];
-  end
-  for (genvar k = 0; k < 3; k++) begin : gen_perf_interp
-    assign hwif_in.PERF_INTERP[k].COUNT.next = perf_interp_q[k];
-  end
+  // ---- Debug ports -----------------------------------------------------------------------------------
+  assign dbg_desc_fire_o = |eng_desc_valid;
+  assign dbg_desc_x0_o   = desc.x0;
+  assign dbg_desc_y0_o   = desc.y0;
+  assign dbg_tile_done_o = wr_tile_done;
+  assign dbg_pix_x_o     = eng_pix_x;
+  assign dbg_pix_y_o     = eng_pix_y;
 
   logic unused_top;
-  assign unused_top = ^{tg_busy, eng_busy};
+  assign unused_top = ^{tg_busy, eng_busy, rmux_busy};
 
-`ifndef SYNTHESIS
-  // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
-  /* verilator lint_off SYNCASYNCNET */
-  // Render port: an offered request stays until taken (also across a soft reset).
-  assert property (@(posedge clk_i) disable iff (!rst_ni || clear)
-                   rnd_req_valid_o && !rnd_req_ready_i |=>
-                   rnd_req_valid_o && $stable(rnd_req_tag_o));
-  // A response always names an engine that exists.
-  assert property (@(posedge clk_i) disable iff (!rst_ni)
-                   rnd_rsp_valid_i |->
-                   rsp_eid < EID_W'(NUM_ENGINES) || NUM_ENGINES == (1 << EID_W));
-`endif
-endmodule
+endmodule : msr_top

@@ -41,3 +41,23 @@ def test_memory_bits_sum_every_memory_cell():
              "cell $mem_v2 $b\n  parameter \\WIDTH 8\n  parameter \\SIZE 4\nend\n")
     assert synth.memory_bits(rtlil) == 1024 * 29 + 32
     assert synth.memory_bits("") == 0
+
+
+def test_pixel_rate_per_lut4(tmp_path, monkeypatch):
+    monkeypatch.setattr(synth, "BENCH_REPORT", tmp_path / "report.json")
+    row = synth.add_pixel_rate({"fmax_mhz": 100.0, "luts": 50_000})
+    assert row["pixels_per_clock"] == synth.DEFAULT_PIXELS_PER_CLOCK
+    assert row["pixels_per_second_per_lut4"] == round(100e6 * synth.DEFAULT_PIXELS_PER_CLOCK / 50_000, 1)
+    (tmp_path / "report.json").write_text(
+        '{"goals": {"pixels_per_clock_4_engines_latency_256": {"measured": 3.7}}}')
+    row = synth.add_pixel_rate({"fmax_mhz": 130.0, "luts": 65_000})
+    assert row["pixels_per_clock"] == 3.7 and row["pixels_per_clock_source"].endswith("report.json")
+    assert row["pixels_per_second_per_lut4"] == round(130e6 * 3.7 / 65_000, 1)
+
+
+def test_top_is_placed_flat_with_its_defaults():
+    assert synth.ECP5_TOP_PARAMS == {}
+    assert synth.ECP5_LUTS == 83_640 and synth.ECP5_SPEED == "6"
+    files = synth.read_filelist()
+    units = synth.modules_in(files)
+    assert set(synth.ECP5_UNITS) <= set(units)

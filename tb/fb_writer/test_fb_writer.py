@@ -171,8 +171,9 @@ async def test_random_frames(dut):
 @pytest.mark.parametrize("n_in,width,max_out,seed", [(4, 256, 8, 77), (3, 128, 1, 78), (1, 32, 8, 79),
                                                    (2, 64, 4, 80)])
 def test_fb_writer(n_in, width, max_out, seed):
-    from sys_tb import RTL, run_cocotb
+    from common.msr_runner import RTL, run_cocotb
     run_cocotb("msr_fb_writer", "test_fb_writer", HERE,
                {"MAX_OUT": max_out, "NUM_IN": n_in, "AXI_DATA_W": width}, f"i{n_in}_w{width}_o{max_out}",
-               sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_fifo.sv", RTL / "system/msr_fb_writer.sv"],
+               sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_fifo.sv", RTL / "prim/msr_rr_arb.sv",
+                        RTL / "system/msr_fb_writer.sv"],
                extra_env={"SEED": str(seed), "NUM_IN": str(n_in), "AXI_DATA_W": str(width)})

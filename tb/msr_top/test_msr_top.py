@@ -33,6 +33,7 @@ FB_BASE, SRC_BASE = 0x1000, 0x30000
 # STATUS.ERROR codes (rtl/regs/msr_regs.rdl).
 ERR_NONE, ERR_FRAME_SIZE, ERR_TILE, ERR_LEVELS = 0, 1, 2, 3
 ERR_FB_STRIDE, ERR_FB_BASE, ERR_SRC_STRIDE, ERR_SRC_BASE = 4, 5, 6, 7
+ERR_FB_WRAP, ERR_SRC_WRAP, ERR_OVERLAP = 9, 10, 11
 
 
 def pause(rng, p):
@@ -244,6 +245,11 @@ async def test_bad_registers(dut):
         ("src stride short", dict(src_stride=16), ERR_SRC_STRIDE),
         ("src stride unaligned", dict(src_stride=22), ERR_SRC_STRIDE),
         ("src base +3", dict(src_base=SRC_BASE + 3), ERR_SRC_BASE),
+        ("fb plane wraps past 4 GiB", dict(fb_base=0xFFFFFF00), ERR_FB_WRAP),
+        ("fb plane wraps by its stride", dict(fb_stride=0x20000000), ERR_FB_WRAP),
+        ("src plane wraps past 4 GiB", dict(src_base=0xFFFFFFF0), ERR_SRC_WRAP),
+        ("planes overlap", dict(src_base=FB_BASE + 64), ERR_OVERLAP),
+        ("src plane around the fb plane", dict(src_base=FB_BASE - 4, src_stride=1 << 16), ERR_OVERLAP),
     ]
     env.ram.write(0, bytes([FILL]) * MEM)
     for what, over, code in cases:
@@ -259,8 +265,17 @@ async def test_bad_registers(dut):
         err = (st & R.STATUS_ERROR_MASK) >> R.STATUS_ERROR_LSB
         assert err == code, f"{what}: error code {err}, want {code}"
         assert not st & (R.STATUS_BUSY_MASK | R.STATUS_DONE_MASK), f"{what}: STATUS {st:#x}: something started"
+        assert st & R.STATUS_CFG_ERR_MASK, f"{what}: STATUS {st:#x}: CFG_ERR not set"
         assert not env.render.requests, f"{what}: render requests issued"
         assert set(env.ram.read(0, MEM)) == {FILL}, f"{what}: memory written"
+    # A refused START raises the interrupt while IRQ_EN; CFG_ERR is write-1-to-clear.
+    await env.wr(R.CTRL, R.CTRL_IRQ_EN_MASK)
+    await RisingEdge(dut.clk_i)
+    assert int(dut.irq_o.value) == 1, "no interrupt on a configuration error"
+    await env.wr(R.STATUS, R.STATUS_CFG_ERR_MASK)
+    await RisingEdge(dut.clk_i)
+    assert int(dut.irq_o.value) == 0 and not (await env.rd(R.STATUS)) & R.STATUS_CFG_ERR_MASK
+    await env.wr(R.CTRL, 0)
     # The source-map checks apply only when the plane is enabled.
     env.render.image = make_image(rng, 4, 2)
     await env.program(4, 2, 8, 1, 0, [8], 0, src_en=0, src_stride=1, src_base=3)

@@ -1,0 +1,322 @@
+// Configuration check and frame control of the accelerator.
+//
+// START in idle samples the registers (SAMPLE) and checks them from registers (CHECK, 27
+// clocks): every field check into a flag of its own; the byte range of each plane, end =
+// base + (H-1)*stride + row bytes, as a shift-and-add over 12 clocks into a 48-bit
+// accumulator in 8-bit segments (a carry goes one segment per clock; 6 more clocks settle
+// it), so a plane that wraps past 4 GiB is seen; then whether the two ranges [base, end)
+// overlap, compared segment by segment from the least significant one. The first failing
+// check in the order of the error codes wins: the configuration is latched and the frame
+// starts, or the error is reported (STATUS.ERROR, STATUS.CFG_ERR and the interrupt) and the
+// accelerator stays idle (no render request, no memory write). A frame ends when the tile
+// generator has handed out every tile, every tile's last pixel has reached the writer and the
+// writer is idle. SOFT_RESET in any state: DRAIN until no render request is in flight and the
+// writer is idle, then one CLEAR cycle (every unit's synchronous clear), then idle.
+//
+// Memory errors (SLVERR / DECERR write responses) set STATUS.ERROR = 8 for the frame (the
+// frame still completes), are counted (saturating), and the address of the first failing burst
+// is kept; all three survive a soft reset (a drain is when errors tend to show) and are
+// cleared by the next START.
+`include "msr_assert.svh"
+
+module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
+  parameter int unsigned NUM_ENGINES = 4    // tile engines (tile-done inputs)
+) (
+  input  logic                   clk_i,          // clock
+  input  logic                   rst_ni,         // asynchronous reset, active low
+  // Register interface.
+  input  logic                   start_i,        // CTRL.START written (a pulse)
+  input  logic                   soft_reset_i,   // CTRL.SOFT_RESET written (a pulse)
+  input  cfg_raw_t               raw_i,          // configuration registers
+  output cfg_t                   cfg_o,          // checked configuration of the frame
+  output logic                   busy_o,         // STATUS.BUSY
+  output err_e                   err_o,          // STATUS.ERROR
+  output logic                   done_set_o,     // STATUS.DONE: the frame is complete
+  output logic                   done_clr_o,     // STATUS.DONE, CFG_ERR cleared (START, SOFT_RESET)
+  output logic                   cfg_err_set_o,  // STATUS.CFG_ERR: a START was refused
+  output logic [15:0]            mem_err_cnt_o,  // write error responses (saturating)
+  output logic [31:0]            mem_err_addr_o, // address of the first failing burst
+  output logic                   b_unexp_o,      // a write response came with nothing outstanding
+  output logic [15:0]            rsp_drop_cnt_o, // render responses dropped (saturating)
+  // Units.
+  output logic                   start_o,        // pulse: the frame starts with cfg_o
+  output logic                   run_o,          // a frame runs: tiles may be handed out
+  output logic                   drain_o,        // soft reset: hold requests, drop pixels
+  output logic                   clear_o,        // pulse: synchronous clear of every unit
+  input  logic                   desc_fire_i,    // a tile went to an engine
+  input  logic [NUM_ENGINES-1:0] tile_done_i,    // the last pixel of a tile reached the writer
+  input  logic                   tg_done_i,      // the tile generator handed out every tile
+  input  logic                   rnd_idle_i,     // no render request in flight in any engine
+  input  logic                   wr_idle_i,      // the writer has nothing open or outstanding
+  input  logic                   bresp_err_i,    // pulse: a write error response
+  input  logic [31:0]            bresp_addr_i,   // its burst's address
+  input  logic                   b_unexp_i,      // pulse: a write response with nothing outstanding
+  input  logic                   rsp_drop_i      // pulse: a render response was dropped
+);
+  typedef enum logic [2:0] {
+    ST_IDLE   = 3'd0,   // no frame
+    ST_SAMPLE = 3'd1,   // registers sampled
+    ST_CHECK  = 3'd2,   // checks running
+    ST_RUN    = 3'd3,   // frame in progress
+    ST_DRAIN  = 3'd4,   // soft reset: waiting for outstanding responses and writes
+    ST_CLEAR  = 3'd5    // soft reset: every unit clears
+  } state_e;
+
+  localparam int unsigned NCHK  = 10;
+  localparam int unsigned TIF_W = 8;                  // tiles in flight: engines x (contexts + 1)
+  localparam int unsigned ACC_W = 48;                 // (H-1)*stride + base + row < 2^45
+  localparam int unsigned NSEG  = ACC_W / 8;
+  // CHECK steps: 0..11 shift-and-add, 12 base, 13 row bytes, 14..19 carries settle,
+  // 20..25 range compares (one segment per step), 26 decide.
+  localparam int unsigned STEP_H = 12, STEP_BASE = 12, STEP_ROW = 13, STEP_CMP = 20;
+  localparam int unsigned STEP_END = 26;
+
+  state_e           state_q, state_d;
+  cfg_raw_t         raw_q;
+  cfg_t             cfg_q;
+  err_e             err_q, err_d;
+  logic [NCHK-1:0]  chk_q;             // check k failed (error code order)
+  logic [4:0]       step_q;
+  logic             frame_done_q;
+  logic [TIF_W-1:0] tif_q;             // tiles handed out and not yet fully written
+  logic [$clog2(NUM_ENGINES+1)-1:0] n_done;
+  logic             start_q, refused_q;
+  logic [15:0]      mem_err_cnt_q, rsp_drop_cnt_q;
+  logic [31:0]      mem_err_addr_q;
+  logic             b_unexp_q;
+  logic             accept;            // CHECK ends with every check passed
+
+  // ---- Field checks (from the sampled registers) ---------------------------------------------
+  logic [6:0] fchk;
+  always_comb begin
+    fchk    = '0;
+    fchk[0] = raw_q.width == '0 || raw_q.width > dim_t'(MAX_FRAME) ||
+              raw_q.height == '0 || raw_q.height > dim_t'(MAX_FRAME);
+    fchk[1] = !(raw_q.tile inside {6'd8, 6'd16, 6'd32});
+    fchk[2] = raw_q.levels == '0;
+    fchk[3] = (raw_q.fb_stride[31:15] == '0 && raw_q.fb_stride[14:0] < {raw_q.width, 2'b0}) ||
+              raw_q.fb_stride[1:0] != '0;
+    fchk[4] = raw_q.fb_base[1:0] != '0;
+    fchk[5] = raw_q.src_en && ((raw_q.src_stride[31:13] == '0 &&
+                                raw_q.src_stride[12:0] < raw_q.width) ||
+                               raw_q.src_stride[1:0] != '0);
+    fchk[6] = raw_q.src_en && raw_q.src_base[1:0] != '0;
+  end
+
+  // ---- Plane ranges: end = base + (H-1)*stride + row bytes, per plane (0 fb, 1 src) ----------
+  logic [1:0][ACC_W-1:0]  sh_q;        // stride << step
+  logic [11:0]            hm1_q;       // H-1, shifted right each step
+  logic [1:0][ACC_W-1:0]  acc_q;       // accumulated value (segments)
+  logic [1:0][NSEG-1:0]   cy_q;        // carry pending into segment k
+  logic [1:0]             lt_q;        // fb_base < src_end, src_base < fb_end (so far)
+  logic [1:0][ACC_W-1:0]  addend;
+  logic [1:0][ACC_W-1:0]  acc_d;
+  logic [1:0][NSEG-1:0]   cy_d;
+  logic [1:0]             lt_d;
+  logic [4:0]             cmp_seg;     // segment compared this step
+  assign cmp_seg = step_q - STEP_CMP[4:0];
+
+  always_comb begin
+    for (int unsigned p = 0; p < 2; p++) begin
+      addend[p] = '0;
+      if (step_q < STEP_H[4:0]) begin
+        addend[p] = hm1_q[0] ? sh_q[p] : '0;
+      end else if (step_q == STEP_BASE[4:0]) begin
+        addend[p] = ACC_W'((p != 0) ? raw_q.src_base : raw_q.fb_base);
+      end else if (step_q == STEP_ROW[4:0]) begin
+        addend[p] = (p != 0) ? ACC_W'(raw_q.width) : ACC_W'({raw_q.width, 2'b0});
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      sh_q  <= '0;
+      hm1_q <= '0;
+      acc_q <= '0;
+      cy_q  <= '0;
+      lt_q  <= '0;
+    end else if (state_q == ST_SAMPLE) begin
+      sh_q  <= {ACC_W'(raw_q.src_stride), ACC_W'(raw_q.fb_stride)};
+      hm1_q <= 12'(raw_q.height - 1'b1);
+      acc_q <= '0;
+      cy_q  <= '0;
+      lt_q  <= '0;
+    end else if (state_q == ST_CHECK) begin
+      sh_q  <= {sh_q[1] << 1, sh_q[0] << 1};
+      hm1_q <= hm1_q >> 1;
+      acc_q <= acc_d;
+      cy_q  <= cy_d;
+      // ranges overlap iff fb_base < src_end and src_base < fb_end: compared from segment 0 up
+      if (step_q >= STEP_CMP[4:0] && step_q < STEP_END[4:0]) lt_q <= lt_d;
+    end
+  end
+
+  always_comb begin
+    cy_d = '0;
+    for (int unsigned p = 0; p < 2; p++) begin
+      logic [7:0] a, b;
+      for (int unsigned k = 0; k < NSEG; k++) begin
+        logic [8:0] sum;
+        sum = {1'b0, acc_q[p][8*k +: 8]} + {1'b0, addend[p][8*k +: 8]} +
+              9'((k == 0) ? 1'b0 : cy_q[p][k]);
+        acc_d[p][8*k +: 8] = sum[7:0];
+        if (k + 1 < NSEG) cy_d[p][k+1] = sum[8];
+      end
+      a       = 8'(ACC_W'((p != 0) ? raw_q.src_base : raw_q.fb_base) >> (8 * cmp_seg));
+      b       = 8'(acc_q[1-p] >> (8 * cmp_seg));
+      lt_d[p] = (a < b) || (a == b && lt_q[p]);
+    end
+  end
+
+  // Wraps past 4 GiB: end > 2^32 (the end is exclusive).
+  function automatic logic wraps(logic [ACC_W-1:0] e);
+    return e[ACC_W-1:32] != '0 && !(e[ACC_W-1:32] == (ACC_W-32)'(1) && e[31:0] == '0);
+  endfunction
+
+  logic [NCHK-1:0] chk_all;
+  always_comb begin
+    chk_all      = {3'b0, fchk};
+    chk_all[7]   = 1'b0;                                // code 8 is the memory error
+    chk_all[8]   = wraps(acc_q[0]);
+    chk_all[9]   = raw_q.src_en && wraps(acc_q[1]);
+  end
+
+  // The first failing check, in the order of the codes (code k + 1 for flag k).
+  function automatic err_e first_err(logic [NCHK-1:0] chk, logic overlap);
+    for (int unsigned k = 0; k < NCHK; k++) begin
+      if (chk[k]) return err_e'(k + 1);
+    end
+    if (overlap) return ERR_OVERLAP;
+    return ERR_NONE;
+  endfunction
+
+  always_comb begin
+    n_done = '0;
+    for (int unsigned i = 0; i < NUM_ENGINES; i++) n_done += $bits(n_done)'(tile_done_i[i]);
+  end
+
+  // ---- Control ----------------------------------------------------------------------------------
+  logic overlap;
+  assign overlap = raw_q.src_en && lt_q[0] && lt_q[1];
+  assign accept  = (state_q == ST_CHECK) && (step_q == STEP_END[4:0]) && (chk_q == '0) && !overlap;
+
+  always_comb begin
+    state_d = state_q;
+    err_d   = err_q;
+    unique case (state_q)
+      ST_IDLE:   if (start_i) state_d = ST_SAMPLE;
+      ST_SAMPLE: state_d = ST_CHECK;
+      ST_CHECK: begin
+        if (step_q == STEP_END[4:0]) begin
+          err_d   = first_err(chk_q, overlap);
+          state_d = accept ? ST_RUN : ST_IDLE;
+        end
+      end
+      ST_RUN: begin
+        if (bresp_err_i) err_d = ERR_AXI_WRITE;
+        if (frame_done_q) state_d = ST_IDLE;
+      end
+      ST_DRAIN: begin
+        if (bresp_err_i) err_d = ERR_AXI_WRITE;
+        if (rnd_idle_i && wr_idle_i) state_d = ST_CLEAR;
+      end
+      ST_CLEAR: begin
+        // STATUS returns to 0, except a memory error seen in the frame or the drain
+        if (err_q != ERR_AXI_WRITE) err_d = ERR_NONE;
+        state_d = ST_IDLE;
+      end
+      default: state_d = ST_IDLE;
+    endcase
+    if (soft_reset_i && state_q != ST_DRAIN && state_q != ST_CLEAR) state_d = ST_DRAIN;
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      state_q        <= ST_IDLE;
+      err_q          <= ERR_NONE;
+      raw_q          <= '0;
+      cfg_q          <= '0;
+      chk_q          <= '0;
+      step_q         <= '0;
+      start_q        <= 1'b0;
+      refused_q      <= 1'b0;
+      frame_done_q   <= 1'b0;
+      tif_q          <= '0;
+      mem_err_cnt_q  <= '0;
+      mem_err_addr_q <= '0;
+      b_unexp_q      <= 1'b0;
+      rsp_drop_cnt_q <= '0;
+    end else begin
+      state_q      <= state_d;
+      err_q        <= err_d;
+      start_q      <= accept && state_d == ST_RUN;
+      refused_q    <= (state_q == ST_CHECK) && (step_q == STEP_END[4:0]) && !accept &&
+                      state_d == ST_IDLE;
+      frame_done_q <= (state_q == ST_RUN) && !start_q && tg_done_i && tif_q == '0 && wr_idle_i &&
+                      !frame_done_q;
+      step_q       <= (state_q == ST_CHECK) ? step_q + 1'b1 : '0;
+      if (state_q == ST_IDLE && start_i) raw_q <= raw_i;
+      if (state_q == ST_CHECK && step_q == STEP_CMP[4:0]) chk_q <= chk_all;
+      if (accept) begin
+        cfg_q.width      <= raw_q.width;
+        cfg_q.height     <= raw_q.height;
+        cfg_q.tile       <= (raw_q.tile == 6'd8)  ? TILE_8  :
+                            (raw_q.tile == 6'd32) ? TILE_32 : TILE_16;
+        cfg_q.levels     <= raw_q.levels;
+        cfg_q.metric     <= raw_q.metric;
+        cfg_q.thr        <= raw_q.thr;
+        cfg_q.fov_gain   <= raw_q.fov_gain;
+        cfg_q.fb_base    <= raw_q.fb_base;
+        cfg_q.fb_stride  <= raw_q.fb_stride;
+        cfg_q.src_en     <= raw_q.src_en;
+        cfg_q.src_base   <= raw_q.src_base;
+        cfg_q.src_stride <= raw_q.src_stride;
+      end
+      if (state_q == ST_CLEAR || start_q) begin
+        tif_q <= '0;
+      end else begin
+        tif_q <= tif_q + TIF_W'(desc_fire_i) - TIF_W'(n_done);
+      end
+      // Memory errors and dropped responses: counted, the first address kept, until the next
+      // accepted START (so they survive a soft reset).
+      if (accept) begin
+        mem_err_cnt_q  <= '0;
+        b_unexp_q      <= 1'b0;
+        rsp_drop_cnt_q <= '0;
+      end else begin
+        if (bresp_err_i) begin
+          if (mem_err_cnt_q == '0) mem_err_addr_q <= bresp_addr_i;
+          if (mem_err_cnt_q != '1) mem_err_cnt_q <= mem_err_cnt_q + 1'b1;
+        end
+        if (b_unexp_i) b_unexp_q <= 1'b1;
+        if (rsp_drop_i && rsp_drop_cnt_q != '1) rsp_drop_cnt_q <= rsp_drop_cnt_q + 1'b1;
+      end
+    end
+  end
+
+  assign cfg_o          = cfg_q;
+  assign busy_o         = (state_q != ST_IDLE);
+  assign err_o          = err_q;
+  assign done_set_o     = frame_done_q && (state_q == ST_RUN);
+  assign done_clr_o     = start_q || soft_reset_i;
+  assign cfg_err_set_o  = refused_q;
+  assign mem_err_cnt_o  = mem_err_cnt_q;
+  assign mem_err_addr_o = mem_err_addr_q;
+  assign b_unexp_o      = b_unexp_q;
+  assign rsp_drop_cnt_o = rsp_drop_cnt_q;
+  assign start_o        = start_q;
+  assign run_o          = (state_q == ST_RUN);
+  assign drain_o        = (state_q == ST_DRAIN) || (state_q == ST_CLEAR);
+  assign clear_o        = (state_q == ST_CLEAR);
+
+  /* verilator lint_off SYNCASYNCNET */
+  `MSR_ASSERT(a_tif_no_underflow,
+              (state_q == ST_RUN) |-> !(tif_q == '0 && n_done != '0 && !desc_fire_i))
+  `MSR_ASSERT(a_tif_no_overflow, tif_q != '1)
+  `MSR_COVER(c_refused, refused_q)
+  `MSR_COVER(c_overlap_refused, refused_q && err_q == ERR_OVERLAP)
+  `MSR_COVER(c_drain_with_mem_err, state_q == ST_CLEAR && err_q == ERR_AXI_WRITE)
+  /* verilator lint_on SYNCASYNCNET */
+
+endmodule : msr_cfg_ctrl

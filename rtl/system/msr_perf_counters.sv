@@ -1,0 +1,90 @@
+// Performance counters of the accelerator (registers PERF_*): cycles, traced pixels per
+// level (entry 0 = initial samples), interpolated pixels per level, render-stall cycles (a
+// request offered and not taken) and memory-stall cycles (some engine offered a finished pixel
+// the writer could not take). Up to NUM_ENGINES pixels are counted per clock. The events are
+// registered first (per-kind pixel counts of the clock), then added into saturating counters
+// (msr_sat_counter), so the counters sit two clocks behind the events.
+`include "msr_assert.svh"
+
+module msr_perf_counters import msr_pkg::*; #(
+  parameter int unsigned NUM_ENGINES = 4,
+  localparam int unsigned N_W = $clog2(NUM_ENGINES + 1)
+) (
+  input  logic                   clk_i,        // clock
+  input  logic                   rst_ni,       // asynchronous reset, active low
+  input  logic                   clear_i,      // synchronous: counters to 0 (START, soft reset)
+  input  logic                   en_i,         // a frame runs: count
+  input  logic [NUM_ENGINES-1:0] pix_hs_i,     // a finished pixel went to the writer
+  input  src_t [NUM_ENGINES-1:0] pix_src_i,    // its source code
+  input  logic                   rstall_i,     // a render request waits
+  input  logic                   mstall_i,     // a finished pixel waits for the writer
+  output logic [31:0]            cycles_o,
+  output logic [3:0][31:0]       traced_o,     // [k]: traced at level k (0: initial samples)
+  output logic [2:0][31:0]       interp_o,     // [k-1]: interpolated at level k
+  output logic [31:0]            rstall_o,
+  output logic [31:0]            mstall_o
+);
+  logic [3:0][N_W-1:0] n_traced_d, n_traced_q;
+  logic [2:0][N_W-1:0] n_interp_d, n_interp_q;
+  logic                en_q, rstall_q, mstall_q;
+
+  // Pixels taken this clock, per kind: codes 0..3 traced at level k, 17..19 interpolated.
+  always_comb begin
+    n_traced_d = '0;
+    n_interp_d = '0;
+    for (int unsigned i = 0; i < NUM_ENGINES; i++) begin
+      if (pix_hs_i[i]) begin
+        if (pix_src_i[i][4]) n_interp_d[pix_src_i[i][1:0] - 2'd1] += 1'b1;
+        else                 n_traced_d[pix_src_i[i][1:0]] += 1'b1;
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      n_traced_q <= '0;
+      n_interp_q <= '0;
+      en_q       <= 1'b0;
+      rstall_q   <= 1'b0;
+      mstall_q   <= 1'b0;
+    end else if (clear_i) begin
+      n_traced_q <= '0;
+      n_interp_q <= '0;
+      en_q       <= 1'b0;
+      rstall_q   <= 1'b0;
+      mstall_q   <= 1'b0;
+    end else begin
+      n_traced_q <= en_i ? n_traced_d : '0;
+      n_interp_q <= en_i ? n_interp_d : '0;
+      en_q       <= en_i;
+      rstall_q   <= en_i && rstall_i;
+      mstall_q   <= en_i && mstall_i;
+    end
+  end
+
+  msr_sat_counter #(.WIDTH(32), .INC_W(1)) u_cycles (
+    .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (en_q), .inc_i (1'b1),
+    .count_o (cycles_o)
+  );
+  msr_sat_counter #(.WIDTH(32), .INC_W(1)) u_rstall (
+    .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (rstall_q), .inc_i (1'b1),
+    .count_o (rstall_o)
+  );
+  msr_sat_counter #(.WIDTH(32), .INC_W(1)) u_mstall (
+    .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (mstall_q), .inc_i (1'b1),
+    .count_o (mstall_o)
+  );
+  for (genvar k = 0; k < 4; k++) begin : g_traced
+    msr_sat_counter #(.WIDTH(32), .INC_W(N_W)) u_cnt (
+      .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (1'b1),
+      .inc_i (n_traced_q[k]), .count_o (traced_o[k])
+    );
+  end
+  for (genvar k = 0; k < 3; k++) begin : g_interp
+    msr_sat_counter #(.WIDTH(32), .INC_W(N_W)) u_cnt (
+      .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (1'b1),
+      .inc_i (n_interp_q[k]), .count_o (interp_o[k])
+    );
+  end
+
+endmodule : msr_perf_counters
