@@ -42,6 +42,17 @@ sim: setup renderer $(SIM_BIN)
 	    --fov-gain "$(FOV_GAIN)" --rule "$(RULE)" --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
 	    $(if $(WAVE_TILE),--wave-tile $(WAVE_TILE)) $(if $(WAVE_CYCLES),--wave-cycles $(WAVE_CYCLES))
 
+# make waves / waves-shot: the run named by OUT=, else the last make sim WAVES=1 (its folder is
+# recorded in build/sim/last_waves), else the default scene's folder.
+WAVES_DIR = $(if $(OUT),$(OUT),$(or $(shell cat build/sim/last_waves 2>/dev/null),$(SIM_OUT)))
+WAVES_SHOT ?= docs/img/waves_tile.png
+
+.PHONY: waves waves-shot
 waves:
-	@test -f "$(SIM_OUT)/waves.fst" || { echo "make waves: no $(SIM_OUT)/waves.fst: run make sim WAVES=1 first"; exit 2; }
-	gtkwave "$(SIM_OUT)/waves.fst" "$(SIM_OUT)/waves.gtkw"
+	@test -f "$(WAVES_DIR)/waves.fst" || { echo "make waves: no $(WAVES_DIR)/waves.fst: run make sim WAVES=1 first"; exit 2; }
+	gtkwave --rcvar 'splash_disable on' "$(WAVES_DIR)/waves.fst" "$(WAVES_DIR)/waves.gtkw"
+
+# The saved layout as a picture (GTKWave under Xvfb): WAVES_SHOT=, default docs/img/waves_tile.png.
+waves-shot:
+	@test -f "$(WAVES_DIR)/waves.fst" || { echo "make waves-shot: no $(WAVES_DIR)/waves.fst: run make sim WAVES=1 first"; exit 2; }
+	@$(ENV) python scripts/waves_shot.py "$(WAVES_DIR)/waves.fst" "$(WAVES_DIR)/waves.gtkw" "$(WAVES_SHOT)"

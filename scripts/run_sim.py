@@ -122,6 +122,9 @@ def run(a) -> int:
             raise RunFailed("the harness wrote no waves.fst (was the window ever reached?)")
         subprocess.run([sys.executable, str(ROOT / "scripts" / "gen_gtkw.py"), str(fst), str(out / "waves.gtkw")],
                        check=True)
+        last = ROOT / "build" / "sim" / "last_waves"      # make waves opens this run by default
+        last.parent.mkdir(parents=True, exist_ok=True)
+        last.write_text(f"{out.resolve()}\n")
 
     frame, source = rtl.frame, rtl.source
     verdict = compare(rtl, golden)

@@ -10,6 +10,9 @@ DEB_PKGS=(build-essential cmake pkg-config perl python3-venv
           liblz4-dev zlib1g-dev libembree-dev libassimp-dev
           glmark2-data assimp-testmodels gtkwave libgtest-dev libstb-dev)
 
+# waves screenshots for docs/ (scripts/waves_shot.py: GTKWave under a virtual X server)
+DEB_PKGS+=(xvfb xauth scrot)
+
 missing=()
 for p in "${DEB_PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")

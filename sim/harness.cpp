@@ -127,6 +127,7 @@ class Sim {
  public:
   Sim(VerilatedContext *ctx, const Options &o) : ctx_(ctx), o_(o), rng_(o.seed) {
     top_ = std::make_unique<Vmsr_sim_top>(ctx_, "TOP");
+    half_ = half_period_steps(ctx_);  // the model has set the context's time precision
     fb_stride_ = 4u * static_cast<uint32_t>(o.width);
     src_stride_ = (static_cast<uint32_t>(o.width) + 3u) & ~3u;
     fb_base_ = 0x1000;  // not 0, so a base bug shows
@@ -152,12 +153,20 @@ class Sim {
 #endif
   }
 
+  // Simulated time: the SDC's 100 MHz clock, a 10 ns period, so a waveform viewer reads real
+  // times. Half a period in the model's time precision (Verilator's default 1 ps: 5000 steps).
+  static uint64_t half_period_steps(const VerilatedContext *ctx) {
+    uint64_t steps = 5;  // 5 ns = 5 * 10^(-9 - precision) steps of 10^precision s
+    for (int p = ctx->timeprecision(); p < -9; ++p) steps *= 10;
+    return steps;
+  }
+
   // One clock cycle: inputs settle at the falling edge, agents sample after the rising edge.
   void tick() {
     top_->clk_i = 0;
     top_->eval();
     dump();
-    ctx_->timeInc(1);
+    ctx_->timeInc(half_);
     top_->clk_i = 1;
     top_->eval();
     // Everything visible now is what the rising edge produced; agents react for the next one.
@@ -165,7 +174,7 @@ class Sim {
     lite_agent();
     top_->eval();
     dump();
-    ctx_->timeInc(1);
+    ctx_->timeInc(half_);
     ++cycle_;
     tile_window();
   }
@@ -398,6 +407,7 @@ class Sim {
   }
 
   VerilatedContext *ctx_;
+  uint64_t half_ = 1;  // half a clock period in time steps (set once the model exists)
   const Options &o_;
   std::mt19937 rng_;
   std::unique_ptr<Vmsr_sim_top> top_;
