@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import spec
-from .palette import draw_legend, font, legend_entries, legend_size, source_rgb
+from .palette import draw_legend, font, legend_boxes, legend_entries, legend_size, source_rgb
 
 MAX_PANEL_W = 640            # frames wider than this are reduced by an integer factor
 MIN_PANEL_W = 480            # narrower ones enlarged by an integer factor (nearest)
@@ -190,6 +190,12 @@ def _colour_bar(im, draw, box, cmap, labels, f):
         draw.text((x1 + 7, y), text, fill=INK, font=f, anchor="lm")
 
 
+def legend_swatches(lay: Layout, levels: int, source=None) -> dict[int, tuple]:
+    """{code: swatch box} of the summary's legend (as drawn by summary_image)."""
+    lx0, ly0, _, _ = lay.boxes["legend"]
+    return legend_boxes((lx0, ly0 + 4), legend_entries(levels, source), TEXT_SIZE)
+
+
 def summary_image(frame, reference, source, info: RunInfo):
     """The summary as a PIL image, with its Layout."""
     from PIL import Image, ImageDraw
@@ -240,8 +246,8 @@ def summary_image(frame, reference, source, info: RunInfo):
     entries = legend_entries(info.params.levels, source)
     lx0, ly0, _, _ = lay.boxes["legend"]
     d.text((lx0, ly0 - 6), "source codes (pixels)", fill=INK, font=f_cap, anchor="ld")
-    legend_boxes = draw_legend(d, (lx0, ly0 + 4), entries, TEXT_SIZE, total=W * H)
-    lay.boxes.update({f"legend_{c}": b for c, b in legend_boxes.items()})
+    swatches = draw_legend(d, (lx0, ly0 + 4), entries, TEXT_SIZE, total=W * H)
+    lay.boxes.update({f"legend_{c}": b for c, b in swatches.items()})
     ly = ly0 + 4 + legend_size(entries, TEXT_SIZE)[1] + 12
     for line in (f"err > 0 in {100 * float((err > 0).mean()):.2f} % of pixels, max {int(err.max())}",
                  f"{fr[0]}x{fr[1]} tiles of {info.params.tile}x{info.params.tile}"):

@@ -97,21 +97,26 @@ def _entry_text(e: LegendEntry, total: int | None = None) -> str:
     return f"{e.label}: {100 * e.count / total:.1f} %"
 
 
-def draw_legend(draw, xy, entries, size: int = 15, total: int | None = None) -> dict[int, tuple]:
-    """Draw the legend with its top-left corner at xy; returns {code: swatch box (x0, y0, x1, y1)}
-    (x1, y1 exclusive) so a test can find the swatch colours."""
-    f = font(size)
+def legend_boxes(xy, entries, size: int = 15) -> dict[int, tuple]:
+    """{code: swatch box (x0, y0, x1, y1), x1/y1 exclusive} of a legend drawn at xy."""
     x, y = xy
     row = max(SWATCH[1], size) + 8
-    boxes = {}
-    for i, e in enumerate(entries):
-        y0 = y + i * row
-        box = (x, y0, x + SWATCH[0], y0 + SWATCH[1])
+    return {e.code: (x, y + i * row, x + SWATCH[0], y + i * row + SWATCH[1]) for i, e in enumerate(entries)}
+
+
+def draw_legend(draw, xy, entries, size: int = 15, total: int | None = None) -> dict[int, tuple]:
+    """Draw the legend with its top-left corner at xy; returns `legend_boxes` (so a test can
+    find the swatch colours)."""
+    f = font(size)
+    boxes = legend_boxes(xy, entries, size)
+    for e in entries:
+        box = boxes[e.code]
+        y0 = box[1]
+        x = box[0]
         draw.rectangle((box[0] - 1, box[1] - 1, box[2], box[3]), fill=e.colour, outline=(90, 90, 90))
         draw.rectangle(box[:2] + (box[2] - 1, box[3] - 1), fill=e.colour)
         draw.text((x + SWATCH[0] + 10, y0 + SWATCH[1] // 2), _entry_text(e, total), fill=(0, 0, 0),
                   font=f, anchor="lm")
-        boxes[e.code] = box
     return boxes
 
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from msr_model.overview import layout
+from msr_model.overview import layout, legend_swatches
 from msr_model.palette import SOURCE_COLOURS, source_rgb
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -44,6 +44,7 @@ def test_make_sim_writes_summary(harness, tmp_path):
     assert (crop("source")[::u, ::u] == source_rgb(source)).all()
     assert (crop("frame")[::u, ::u] == np.asarray(Image.open(tmp_path / "frame.png"))).all()
     assert (crop("reference")[::u, ::u] == np.asarray(Image.open(tmp_path / "reference.png"))).all()
+    swatches = legend_swatches(lay, 3, source)
     for code in (0, 1, 2, 3, 17, 18, 19):                      # the legend of a 3-level run
-        x0, y0, x1, y1 = lay.boxes[f"legend_{code}"]
+        x0, y0, x1, y1 = swatches[code]
         assert (png[y0 + 2:y1 - 2, x0 + 2:x1 - 2] == SOURCE_COLOURS[code]).all()
