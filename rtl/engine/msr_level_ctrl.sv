@@ -91,24 +91,6 @@ module msr_level_ctrl
     return gap_t'(b - a);
   endfunction
 
-  typedef gap_t   [7:0]          gap_row_t;
-
-  function automatic gap_row_t gap_row(int unsigned r, int unsigned k);
-    gap_row_t t;
-    for (int unsigned o = 0; o < 8; o++) t[o] = (k == 0) ? '0 : border_gap(r, k, o);
-    return t;
-  endfunction
-
-  localparam gap_row_t BGAP [8][MAX_LEVELS+1] = '{
-    '{gap_row(0, 0), gap_row(0, 1), gap_row(0, 2), gap_row(0, 3)},
-    '{gap_row(1, 0), gap_row(1, 1), gap_row(1, 2), gap_row(1, 3)},
-    '{gap_row(2, 0), gap_row(2, 1), gap_row(2, 2), gap_row(2, 3)},
-    '{gap_row(3, 0), gap_row(3, 1), gap_row(3, 2), gap_row(3, 3)},
-    '{gap_row(4, 0), gap_row(4, 1), gap_row(4, 2), gap_row(4, 3)},
-    '{gap_row(5, 0), gap_row(5, 1), gap_row(5, 2), gap_row(5, 3)},
-    '{gap_row(6, 0), gap_row(6, 1), gap_row(6, 2), gap_row(6, 3)},
-    '{gap_row(7, 0), gap_row(7, 1), gap_row(7, 2), gap_row(7, 3)}};
-
   // Offsets o >= 1 of a border mask in ascending order (a bq, 3 bits each, the first at
   // bits [2:0]) and how many there are.
   typedef logic [6:0][2:0] bqueue_t;
@@ -164,6 +146,26 @@ module msr_level_ctrl
     return t;
   endfunction
 
+  typedef logic [6:0][3:0]      gqueue_t;    // gaps of the new border offsets, in order
+  typedef gqueue_t [MAX_LEVELS:0] gq_row_t;
+  function automatic gq_row_t gq_new_row(int unsigned r);
+    gq_row_t t;
+    int unsigned n;
+    t = '0;
+    for (int unsigned k = 1; k <= MAX_LEVELS; k++) begin
+      n = 0;
+      for (int unsigned o = 1; o < 8; o++) begin
+        if (new_mask(r, k)[o]) begin
+          t[k][n] = 4'(border_gap(r, k, o));
+          n++;
+        end
+      end
+    end
+    return t;
+  endfunction
+  localparam gq_row_t BGQ_NEW [8] = '{gq_new_row(0), gq_new_row(1), gq_new_row(2), gq_new_row(3),
+                                      gq_new_row(4), gq_new_row(5), gq_new_row(6), gq_new_row(7)};
+
   localparam bq_row_t BQ_SET [8] = '{bq_set_row(0), bq_set_row(1), bq_set_row(2), bq_set_row(3),
                                      bq_set_row(4), bq_set_row(5), bq_set_row(6), bq_set_row(7)};
   localparam bn_row_t BN_SET [8] = '{bn_set_row(0), bn_set_row(1), bn_set_row(2), bn_set_row(3),
@@ -193,6 +195,8 @@ module msr_level_ctrl
     logic [LCOORD_W:0] nreg;       // regular entries (0..32)
     logic [LCOORD_W:0] total;      // all entries
     bqueue_t bq;                   // border offsets
+    gqueue_t gq;                   // their gaps (new positions only)
+    gap_t    nk;                   // the gap of a regular new position
   } list_t;
 
   typedef struct packed {
@@ -202,6 +206,8 @@ module msr_level_ctrl
     logic [LCOORD_W:0] reg_left;   // regular entries after cur
     logic [LCOORD_W:0] left;       // entries after cur
     bqueue_t           bq;      // border offsets after cur
+    gap_t              gap;        // gap of cur (new positions only)
+    gqueue_t           gq;         // gaps of the border offsets after cur
   } walk_t;
 
   // The start state needs every field of the list but its step.
@@ -216,12 +222,16 @@ module msr_level_ctrl
       w.cur      = l.first;
       w.border   = 1'b0;
       w.reg_left = l.nreg - 1'b1;
-      w.bq    = q;
+      w.bq       = q;
+      w.gap      = l.nk;
+      w.gq       = l.gq;
     end else begin
       w.cur      = l.p + lcoord_t'(q[0]);
       w.border   = 1'b1;
       w.reg_left = '0;
-      w.bq    = q >> 3;
+      w.bq       = q >> 3;
+      w.gap      = l.gq[0];
+      w.gq       = l.gq >> 4;
     end
     return w;
   endfunction
@@ -237,7 +247,9 @@ module msr_level_ctrl
     end else begin
       n.cur    = p + lcoord_t'(w.bq[0]);
       n.border = 1'b1;
-      n.bq  = w.bq >> 3;
+      n.bq     = w.bq >> 3;
+      n.gap    = w.gq[0];
+      n.gq     = w.gq >> 4;
     end
     return n;
   endfunction
@@ -246,7 +258,8 @@ module msr_level_ctrl
   typedef enum logic [2:0] {
     WS_IDLE   = 3'd0,
     WS_CORNER = 3'd1,
-    WS_SETUP1 = 3'd2,    // the pass's lists from the tile registers
+    WS_SETUP0 = 3'd6,    // the pass's list parameters from the tile registers
+    WS_SETUP1 = 3'd2,    // the lists (table look-ups, counts)
     WS_SETUP2 = 3'd3,    // the walks' start states from the lists
     WS_WALK   = 3'd4,
     WS_DONE   = 3'd5     // every position has left the walk state
@@ -259,8 +272,6 @@ module msr_level_ctrl
   logic       first_q, first_d;      // no position of this pass has been offered yet
   logic       skip_q, skip_d;        // the candidate is the x = 0 of an edge row: not offered
   list_t      lines_q, poss_q;       // the pass's lists (set-up 1)
-  gap_t       nk_q;                  // n_k of the pass (<= 8)
-  gap_row_t   gaps_q;                // border gaps of the pass's new positions
   walk_t      pstart_q;              // walk state at the start of a line (set-up 2)
   walk_t      lw_q, lw_d, pw_q, pw_d;  // line walk, position walk
 
@@ -268,11 +279,12 @@ module msr_level_ctrl
   lcoord_t s_full, nk, nk_half;
   logic [1:0] lst_new;               // log2 of the new positions' step n_k
   list_t   set_lines, set_poss;
-  gap_row_t set_gaps;
 
   function automatic list_t make_list(lcoord_t p, lcoord_t st, logic [1:0] lst, lcoord_t first,
-                                      logic grid, bqueue_t bq, logic [2:0] nb);
+                                      logic grid, bqueue_t bq, logic [2:0] nb, gqueue_t gq);
     list_t l;
+    l.gq    = gq;
+    l.nk    = gap_t'(st);
     l.p     = p;
     l.st    = st;
     l.first = first;
@@ -283,6 +295,35 @@ module msr_level_ctrl
     return l;
   endfunction
 
+  // What a list is made of, chosen per pass (set-up 0) and registered, so that the table
+  // look-ups and counts of set-up 1 start from registers.
+  typedef struct packed {
+    lcoord_t    p;
+    logic [2:0] r;
+    level_t     kt;       // level index of the border table
+    logic       is_new;   // new positions of level kt (else G(kt))
+    lcoord_t    st;
+    logic [1:0] lst;      // log2(st)
+    lcoord_t    first;
+    logic       grid;     // the regular part includes p
+  } lparam_t;
+
+  lparam_t sel_lines, sel_poss, pl_q, pp_q;
+
+  function automatic lparam_t lparam(lcoord_t p, logic [2:0] r, level_t kt, logic is_new,
+                                     lcoord_t st, logic [1:0] lst, lcoord_t first, logic grid);
+    return '{p: p, r: r, kt: kt, is_new: is_new, st: st, lst: lst, first: first, grid: grid};
+  endfunction
+
+  function automatic list_t build_list(lparam_t l);
+    bqueue_t    bq;
+    logic [2:0] nb;
+    bq = l.is_new ? BQ_NEW[l.r][l.kt] : BQ_SET[l.r][l.kt];
+    nb = l.is_new ? BN_NEW[l.r][l.kt] : BN_SET[l.r][l.kt];
+    return make_list(l.p, l.st, l.lst, l.first, l.grid, bq, nb,
+                     l.is_new ? BGQ_NEW[l.r][l.kt] : '0);
+  endfunction
+
   always_comb begin
     s_full  = lcoord_t'(1) << levels_q;
     nk      = (dir_q == DIR_INIT) ? s_full : (s_full >> (k_q - 1'b1));
@@ -290,26 +331,22 @@ module msr_level_ctrl
     lst_new = 2'(levels_q - k_q + 1'b1);
     unique case (dir_q)
       DIR_H: begin   // rows of Gy(k-1), new x of level k
-        set_lines = make_list(py_q, nk, lst_new, '0, 1'b1, BQ_SET[ry_q][k_q - 1'b1],
-                              BN_SET[ry_q][k_q - 1'b1]);
-        set_poss  = make_list(px_q, nk, lst_new, nk_half, 1'b0, BQ_NEW[rx_q][k_q],
-                              BN_NEW[rx_q][k_q]);
-        set_gaps  = BGAP[rx_q][k_q];
+        sel_lines = lparam(py_q, ry_q, k_q - 1'b1, 1'b0, nk, lst_new, '0, 1'b1);
+        sel_poss  = lparam(px_q, rx_q, k_q, 1'b1, nk, lst_new, nk_half, 1'b0);
       end
       DIR_V: begin   // columns of Gx(k), new y of level k
-        set_lines = make_list(px_q, nk_half, 2'(lst_new - 1'b1), '0, 1'b1, BQ_SET[rx_q][k_q],
-                              BN_SET[rx_q][k_q]);
-        set_poss  = make_list(py_q, nk, lst_new, nk_half, 1'b0, BQ_NEW[ry_q][k_q],
-                              BN_NEW[ry_q][k_q]);
-        set_gaps  = BGAP[ry_q][k_q];
+        sel_lines = lparam(px_q, rx_q, k_q, 1'b0, nk_half, 2'(lst_new - 1'b1), '0, 1'b1);
+        sel_poss  = lparam(py_q, ry_q, k_q, 1'b1, nk, lst_new, nk_half, 1'b0);
       end
       default: begin // initial grid: rows of Gy(0), x of Gx(0)
-        set_lines = make_list(py_q, s_full, 2'(levels_q), '0, 1'b1, BQ_SET[ry_q][0], BN_SET[ry_q][0]);
-        set_poss  = make_list(px_q, s_full, 2'(levels_q), '0, 1'b1, BQ_SET[rx_q][0], BN_SET[rx_q][0]);
-        set_gaps  = '0;
+        sel_lines = lparam(py_q, ry_q, '0, 1'b0, s_full, 2'(levels_q), '0, 1'b1);
+        sel_poss  = lparam(px_q, rx_q, '0, 1'b0, s_full, 2'(levels_q), '0, 1'b1);
       end
     endcase
   end
+
+  assign set_lines = build_list(pl_q);
+  assign set_poss  = build_list(pp_q);
 
   // ---- Walk: next candidate ------------------------------------------------------------------
   logic  advance, out_valid_q;
@@ -338,11 +375,12 @@ module msr_level_ctrl
         WS_CORNER: begin
           first_d = 1'b0;
           if (corner_q == 2'd3) begin
-            ws_d  = WS_SETUP1;
+            ws_d  = WS_SETUP0;
             dir_d = DIR_INIT;
           end
           corner_d = corner_q + 1'b1;
         end
+        WS_SETUP0: ws_d = WS_SETUP1;
         WS_SETUP1: ws_d = WS_SETUP2;
         WS_SETUP2: begin
           lw_d    = walk_start(lines_q);
@@ -366,16 +404,16 @@ module msr_level_ctrl
             if (dir_q == DIR_INIT) begin
               dir_d = DIR_H;
               k_d   = level_t'(1);
-              ws_d  = WS_SETUP1;
+              ws_d  = WS_SETUP0;
             end else if (dir_q == DIR_H) begin
               dir_d = DIR_V;
-              ws_d  = WS_SETUP1;
+              ws_d  = WS_SETUP0;
             end else if (k_q == levels_q) begin
               ws_d  = WS_DONE;
             end else begin
               dir_d = DIR_H;
               k_d   = k_q + 1'b1;
-              ws_d  = WS_SETUP1;
+              ws_d  = WS_SETUP0;
             end
           end
         end
@@ -402,7 +440,7 @@ module msr_level_ctrl
     cand_valid = 1'b0;
     cand_x     = '0;
     cand_y     = '0;
-    cand_gap   = pw_q.border ? gaps_q[3'(pw_q.cur - poss_q.p)] : nk_q;
+    cand_gap   = pw_q.gap;
     cand_off   = cand_gap >> 1;
     cand_a     = pw_q.cur - lcoord_t'(cand_off);
     cand_b     = pw_q.cur + lcoord_t'(cand_gap - cand_off);
@@ -467,11 +505,13 @@ module msr_level_ctrl
   // Data registers: gated by the state and valid bits above, no reset needed.
   always_ff @(posedge clk_i) begin
     lw_q <= lw_d;
+    if (ws_q == WS_SETUP0) begin
+      pl_q    <= sel_lines;
+      pp_q    <= sel_poss;
+    end
     if (ws_q == WS_SETUP1) begin
       lines_q <= set_lines;
       poss_q  <= set_poss;
-      gaps_q  <= set_gaps;
-      nk_q    <= gap_t'(nk);
     end
     if (ws_q == WS_SETUP2) pstart_q <= walk_start(poss_q);
     if (ws_q == WS_IDLE && start_valid_i) begin

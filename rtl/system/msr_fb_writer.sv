@@ -742,24 +742,34 @@ module msr_fb_writer import msr_pkg::*; #(
     .count_o (wq_count)
   );
 
-  assign w_issue = wq_valid && (!wv_q || m_axi_wready);
+  // W1: the next beat's buffer address, strobes and WLAST, registered; W2: the buffer read at
+  // that address (LUT RAM, asynchronous) into the W output register. A row's buffer is free
+  // when W2 reads its last beat.
+  logic                  w1_v_q, w1_last_q, w1_src_q, w1_row_last_q, w2_load;
+  in_t                   w1_in_q;
+  buf_t                  w1_buf_q;
+  maddr_t                w1_addr_q;
+  logic [STRB_W-1:0]     w1_strb_q;
+
+  assign w2_load = w1_v_q && (!wv_q || m_axi_wready);
+  assign w_issue = wq_valid && (!w1_v_q || w2_load);
   assign wlast_d = (wcnt_q == wq_data.len);
   assign wq_pop  = w_issue && wlast_d;
-  assign raddr   = maddr_t'(32'(wq_data.mbase) + 32'(wcnt_q));
+  assign raddr   = w1_addr_q;
 
-  assign row_free     = wq_pop && wq_data.row_last;
-  assign row_free_in  = wq_data.in;
-  assign row_free_buf = wq_data.bufi;
+  assign row_free     = w2_load && w1_last_q && w1_row_last_q;
+  assign row_free_in  = w1_in_q;
+  assign row_free_buf = w1_buf_q;
 
   always_comb begin
     for (int unsigned j = 0; j < WPB; j++) begin
       logic [4*CODE_W-1:0] c;
-      c = srd[wq_data.in][j];
-      if (wq_data.src) begin
+      c = srd[w1_in_q][j];
+      if (w1_src_q) begin
         wdata_d[32*j +: 32] = {3'b0, c[3*CODE_W +: CODE_W], 3'b0, c[2*CODE_W +: CODE_W],
                                3'b0, c[CODE_W +: CODE_W], 3'b0, c[0 +: CODE_W]};
       end else begin
-        wdata_d[32*j +: 32] = {8'h00, prd[wq_data.in][j]};
+        wdata_d[32*j +: 32] = {8'h00, prd[w1_in_q][j]};
       end
     end
     for (int unsigned b = 0; b < STRB_W; b++) begin
@@ -769,22 +779,35 @@ module msr_fb_writer import msr_pkg::*; #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      w1_v_q <= 1'b0;
       wv_q   <= 1'b0;
       wcnt_q <= '0;
     end else if (clear_i) begin
+      w1_v_q <= 1'b0;
       wv_q   <= 1'b0;
       wcnt_q <= '0;
     end else begin
-      if (w_issue)           wv_q <= 1'b1;
+      if (w_issue)      w1_v_q <= 1'b1;
+      else if (w2_load) w1_v_q <= 1'b0;
+      if (w2_load)           wv_q <= 1'b1;
       else if (m_axi_wready) wv_q <= 1'b0;
       if (w_issue) wcnt_q <= wlast_d ? '0 : wcnt_q + 1'b1;
     end
   end
   always_ff @(posedge clk_i) begin
     if (w_issue) begin
+      w1_addr_q     <= maddr_t'(32'(wq_data.mbase) + 32'(wcnt_q));
+      w1_in_q       <= wq_data.in;
+      w1_buf_q      <= wq_data.bufi;
+      w1_src_q      <= wq_data.src;
+      w1_strb_q     <= wstrb_d;
+      w1_last_q     <= wlast_d;
+      w1_row_last_q <= wq_data.row_last;
+    end
+    if (w2_load) begin
       wdata_q <= wdata_d;
-      wstrb_q <= wstrb_d;
-      wlast_q <= wlast_d;
+      wstrb_q <= w1_strb_q;
+      wlast_q <= w1_last_q;
     end
   end
 
@@ -796,7 +819,7 @@ module msr_fb_writer import msr_pkg::*; #(
   assign idle_o = (full_q == '0) && (wr_v_q == '0) && (wr2_busy == '0) &&
                   !s1_v_q && !s2_v_q && !s3_v_q && !s4_v_q &&
                   !s5_v_q &&
-                  (blv_q == '0) && !wq_valid && !wv_q && (outst_q == '0);
+                  (blv_q == '0) && !wq_valid && !w1_v_q && !wv_q && (outst_q == '0);
 
   // Codes keep CODE_W bits in the buffers; the upper bits of every code are 0.
   logic [NUM_IN-1:0] code_big;

@@ -118,8 +118,11 @@ class Driver:
             self.last[name] = value
 
 
-async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int):
-    """Drive all tiles through the engine; check requests and pixels as they appear."""
+async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
+                    dup_prob: float = 0.0):
+    """Drive all tiles through the engine; check requests and pixels as they appear. With
+    dup_prob, a response just taken is sent again at once now and then (a duplicate): the
+    engine must drop it (rsp_drop_o), write nothing and free no tag twice."""
     drv = Driver(dut)
     exp_req, exp_pix = [], []                           # per tile: its requests in order
     for t in tiles:
@@ -132,6 +135,7 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int)
     cur = None                                          # tile being streamed out
     pending = {}                                        # tag -> (due cycle, rgb)
     rsp_cur = None
+    dup_sent = dup_seen = 0
     desc_hold = False
     di = ri = pi = 0
     cycle = 0
@@ -193,7 +197,16 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int)
             pending[tag] = (cycle + 1 + rng.randint(0, prof.lat_max), render(x, y))
             ri += 1
         if rsp_cur is not None and dut.rsp_ready_o.value:
+            taken = rsp_cur
             rsp_cur = None
+            # a duplicate only while at least 4 tags are free: the engine reuses a tag only
+            # after every other free one, so the copy cannot meet a new request of that tag
+            if (len(taken) == 2 and rng.random() < dup_prob
+                    and int(dut.u_tag_pool.inflight_cnt_q.value) <= max_out - 4):
+                rsp_cur = (taken[0], taken[1], "duplicate")
+                dup_sent += 1
+        if dut.rsp_drop_o.value:
+            dup_seen += 1
         if pix_ready and dut.pix_valid_o.value:
             got = (int(dut.pix_x_o.value), int(dut.pix_y_o.value), unpack_rgb(dut.pix_rgb_o.value),
                    int(dut.pix_src_o.value), bool(dut.pix_last_o.value))
@@ -212,6 +225,11 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int)
         assert cycle < limit, f"timeout: {ri}/{n_req} requests, {pi}/{n_pix} pixels"
         await next_cycle()
     assert ri == n_req and req_next == [len(r) for r in exp_req]
+    for _ in range(8):                                  # drops still in the response stages
+        await settle()
+        dup_seen += int(dut.rsp_drop_o.value)
+        await next_cycle()
+    assert dup_seen == dup_sent, f"{dup_sent} duplicate responses sent, {dup_seen} dropped"
     # after the last pixel the engine is idle and holds no tags
     drv['pix_ready_i'] = 1
     drv['desc_valid_i'] = 0
@@ -220,6 +238,28 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int)
     assert not dut.busy_o.value and int(dut.inflight_o.value) == 0
     await next_cycle()
     return cycle
+
+
+async def stale_responses(dut, rng: random.Random, max_out: int, n: int = 6):
+    """With nothing in flight, answers for any tag are stale: each is dropped (rsp_drop_o),
+    nothing is written, no tag is freed (the in-flight count stays 0)."""
+    sent = seen = 0
+    while sent < n:
+        dut.rsp_valid_i.value = 1
+        dut.rsp_tag_i.value = rng.randrange(max_out)
+        dut.rsp_rgb_i.value = rng.randrange(1 << 24)
+        await settle()
+        sent += int(dut.rsp_ready_o.value)
+        seen += int(dut.rsp_drop_o.value)
+        await next_cycle()
+    dut.rsp_valid_i.value = 0
+    for _ in range(8):
+        await settle()
+        seen += int(dut.rsp_drop_o.value)
+        await next_cycle()
+    assert seen == n, f"{n} stale responses, {seen} dropped"
+    await settle()
+    assert int(dut.inflight_o.value) == 0 and not dut.busy_o.value
 
 
 IDLE = {"clear_i": 0, "desc_valid_i": 0, "desc_i": 0, "req_ready_i": 0, "rsp_valid_i": 0,
@@ -240,8 +280,10 @@ async def random_tiles(dut):
             for t in tiles:
                 t["w"], t["h"] = min(t["w"], 12), min(t["h"], 12)
                 t["img"] = t["img"][:t["h"], :t["w"]]
-        cycles = await run_tiles(dut, tiles, PROFILES[name], rng, max_out)
+        cycles = await run_tiles(dut, tiles, PROFILES[name], rng, max_out,
+                                 dup_prob=0.05 if name == "jitter" else 0.0)
         total += n
+        await stale_responses(dut, rng, max_out)
         dut._log.info("profile %s: %d tiles in %d cycles", name, n, cycles)
         # soft reset between profiles (nothing in flight): the engine must come back clean
         dut.clear_i.value = 1
