@@ -312,7 +312,7 @@ def example_strip(ref, res, panel_w):
     ph = max(1, round(panel_w * h / w))
     ims = [Image.fromarray(p).resize((panel_w, ph), Image.NEAREST if i == 1 else Image.BILINEAR)
            for i, p in enumerate(panels)]
-    legend = legend_image(res.params.levels, res.source)
+    legend = legend_image(None, res.source)      # the levels present in the map
     strip = Image.new("RGB", (max(3 * panel_w + 8, legend.width), ph + legend.height), (255, 255, 255))
     for i, im in enumerate(ims):
         strip.paste(im, (i * (panel_w + 4), 0))

@@ -25,6 +25,8 @@ SOURCE_COLOURS: dict[int, tuple[int, int, int]] = {
     spec.source_code_interp(1): (86, 180, 233),           # interpolated at level 1: sky blue
     spec.source_code_interp(2): (0, 114, 178),            # interpolated at level 2: blue
     spec.source_code_interp(3): (0, 158, 115),            # interpolated at level 3: bluish green
+    spec.SRC_INTERP_BASE: (170, 200, 220),                # interpolated by a one-level method of
+                                                          # the evaluation (msr_eval): pale blue
     spec.SRC_UNSET: (255, 0, 255),                        # never written (a model bug): magenta
 }
 OTHER_COLOUR = (128, 128, 128)                            # any other code (not in the spec): grey
@@ -39,6 +41,8 @@ def source_label(code: int) -> str:
         return f"traced at level {code - spec.SRC_TRACED_BASE}"
     if spec.SRC_INTERP_BASE < code < spec.SRC_INTERP_BASE + 16:
         return f"interpolated at level {code - spec.SRC_INTERP_BASE}"
+    if code == spec.SRC_INTERP_BASE:
+        return "interpolated (one-level method)"
     if code == spec.SRC_UNSET:
         return "never written"
     return f"code {code} (not in the spec)"
@@ -56,16 +60,30 @@ class LegendEntry(NamedTuple):
     count: int | None          # pixels with this code (None: not counted)
 
 
+def levels_in(source) -> int:
+    """The highest level k whose codes (k or 16+k) occur in `source` (0: none, as in the
+    evaluation's one-level methods, whose codes are 0 traced and 16 interpolated)."""
+    present = np.unique(np.asarray(source, dtype=np.uint8))
+    ks = [int(c) - spec.SRC_TRACED_BASE for c in present if spec.SRC_TRACED_BASE < c < spec.SRC_INTERP_BASE]
+    ks += [int(c) - spec.SRC_INTERP_BASE for c in present if spec.SRC_INTERP_BASE < c < spec.SRC_INTERP_BASE + 16]
+    return max(ks, default=0)
+
+
 def legend_entries(levels: int, source=None) -> list[LegendEntry]:
     """The codes of an L-level run in legend order (initial, traced 1..L, interpolated 1..L),
-    plus any other code present in `source`; with `source`, each entry's pixel count."""
-    codes = ([spec.SRC_INITIAL] + [spec.source_code_traced(k) for k in range(1, levels + 1)]
-             + [spec.source_code_interp(k) for k in range(1, levels + 1)])
+    plus any other code present in `source`; with `source`, each entry's pixel count.
+    levels 0: a one-level method of the evaluation (0 traced, 16 interpolated)."""
+    if levels == 0:
+        codes = [spec.SRC_INITIAL, spec.SRC_INTERP_BASE]
+    else:
+        codes = ([spec.SRC_INITIAL] + [spec.source_code_traced(k) for k in range(1, levels + 1)]
+                 + [spec.source_code_interp(k) for k in range(1, levels + 1)])
     counts = None
     if source is not None:
         counts = np.bincount(np.asarray(source, dtype=np.uint8).ravel(), minlength=256)
         codes += [int(c) for c in np.flatnonzero(counts) if c not in codes]
-    return [LegendEntry(c, tuple(int(v) for v in _LUT[c]), source_label(c),
+    labels = {spec.SRC_INITIAL: "traced"} if levels == 0 else {}
+    return [LegendEntry(c, tuple(int(v) for v in _LUT[c]), labels.get(c, source_label(c)),
                         None if counts is None else int(counts[c])) for c in codes]
 
 
@@ -120,14 +138,15 @@ def draw_legend(draw, xy, entries, size: int = 15, total: int | None = None) -> 
     return boxes
 
 
-def legend_image(levels: int, source=None, size: int = 13):
+def legend_image(levels: int | None, source=None, size: int = 13):
     """The legend alone as a PIL image (white background) in columns: initial grid, traced
-    levels, interpolated levels (and any other code); used under the eval's example strips."""
+    levels, interpolated levels (and any other code); used under the eval's example strips.
+    levels None: the levels present in `source` (`levels_in`)."""
     from PIL import Image, ImageDraw
-    entries = legend_entries(levels, source)
+    entries = legend_entries(levels_in(source) if levels is None else levels, source)
     groups = [[e for e in entries if e.code == spec.SRC_INITIAL],
               [e for e in entries if spec.SRC_TRACED_BASE < e.code < spec.SRC_INTERP_BASE],
-              [e for e in entries if spec.SRC_INTERP_BASE < e.code < spec.SRC_INTERP_BASE + 16]]
+              [e for e in entries if spec.SRC_INTERP_BASE <= e.code < spec.SRC_INTERP_BASE + 16]]
     groups.append([e for e in entries if not any(e in g for g in groups)])
     groups = [g for g in groups if g]
     sizes = [legend_size(g, size) for g in groups]

@@ -99,22 +99,26 @@ def test_summary_panels(tmp_path, w, h):
 
 
 def test_palette_is_categorical_and_shared_with_the_eval_strips():
-    colours = [SOURCE_COLOURS[c] for c in (0, 1, 2, 3, 17, 18, 19)]
-    assert len(set(colours)) == 7
+    colours = [SOURCE_COLOURS[c] for c in (0, 1, 2, 3, 16, 17, 18, 19)]
+    assert len(set(colours)) == 8
     # every pair differs clearly (sum of channel differences)
     for i, a in enumerate(colours):
         for b in colours[i + 1:]:
             assert sum(abs(x - y) for x, y in zip(a, b)) > 60
-    from msr_eval import report
+    from msr_eval import methods, report
     params = Params(tile=16, levels=3, thr=(8, 16, 32), metric="max", fov_gain=0)
-    ref, res = _run(96, 64, params)
-    strip = np.asarray(report.example_strip(ref, res, panel_w=96))
-    panel = strip[:64, 100:196]            # the source-map panel, 1:1 at this size
-    assert (panel == source_rgb(res.source)).all()
-    legend = np.asarray(legend_image(3, res.source))
-    assert (strip[64:64 + legend.shape[0], :legend.shape[1]] == legend).all()
-    present = {tuple(c) for c in legend.reshape(-1, 3)}
-    assert all(SOURCE_COLOURS[c] in present for c in (0, 1, 2, 3, 17, 18, 19))
+    ref = make_image(96, 64)
+    for res in (methods.multi_level(ImageRenderer(ref), 96, 64, params),
+                methods.checkerboard(ImageRenderer(ref), 96, 64)):     # codes 0 and 16 only
+        strip = np.asarray(report.example_strip(ref, res, panel_w=96))
+        panel = strip[:64, 100:196]            # the source-map panel, 1:1 at this size
+        assert (panel == source_rgb(res.source)).all()
+        legend = np.asarray(legend_image(None, res.source))
+        assert (strip[64:64 + legend.shape[0], :legend.shape[1]] == legend).all()
+        present = {tuple(c) for c in legend.reshape(-1, 3)}
+        codes = [int(c) for c in np.unique(res.source)]
+        assert all(SOURCE_COLOURS[c] in present for c in codes), codes
+    assert codes == [0, 16]
 
 
 def test_select_overview_flag(tmp_path):
