@@ -5,10 +5,10 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"
 
-# Debian packages the project uses (build, renderer, models, waves).
+# Debian packages the project uses (build, renderer, models, waves, formal solvers).
 DEB_PKGS=(build-essential cmake pkg-config perl python3-venv
           liblz4-dev zlib1g-dev libembree-dev libassimp-dev
-          glmark2-data assimp-testmodels gtkwave libgtest-dev libstb-dev)
+          glmark2-data assimp-testmodels gtkwave libgtest-dev libstb-dev z3 cvc4)
 
 # waves screenshots for docs/ (scripts/waves_shot.py: GTKWave under a virtual X server)
 DEB_PKGS+=(xvfb xauth scrot)

@@ -9,8 +9,21 @@
 // Every macro expands to nothing when SYNTHESIS is defined, so synthesis drops them. A failing
 // assertion prints its label and its property text. Files that use them wrap the block in
 // `/* verilator lint_off SYNCASYNCNET */` (disable iff reads the asynchronous reset).
+// Formal (make formal, formal/): the jobs read the RTL with yosys's slang front end and define
+// FORMAL. That front end takes concurrent assertions only in their boolean form (no |->, |=>
+// or sequences), so under FORMAL the inline macros expand to nothing and each formal harness
+// (formal/<unit>/*_fv.sv) states the properties of its unit again, in that form, next to the
+// stronger ones it proves.
 `ifndef MSR_ASSERT_SVH
 `define MSR_ASSERT_SVH
+
+`ifdef FORMAL
+
+`define MSR_ASSERT(__name, __prop, __clk = clk_i, __rst = !rst_ni)
+`define MSR_ASSUME(__name, __prop, __clk = clk_i, __rst = !rst_ni)
+`define MSR_COVER(__name, __prop, __clk = clk_i, __rst = !rst_ni)
+
+`else
 
 `define MSR_ASSERT(__name, __prop, __clk = clk_i, __rst = !rst_ni) \
 `ifndef SYNTHESIS \
@@ -28,5 +41,7 @@
 `ifndef SYNTHESIS \
   __name : cover property (@(posedge __clk) disable iff (__rst) (__prop)); \
 `endif
+
+`endif // FORMAL
 
 `endif // MSR_ASSERT_SVH
