@@ -95,7 +95,7 @@ def run_task(sby: Path, text: str, task: str, solver: str | None, timeout: int) 
     m = re.findall(r"DONE \((\w+), rc=\d+\)", log)
     status = m[-1] if m else ("TIMEOUT" if "TIMEOUT after" in log else "ERROR")
     failed = sorted(set(re.findall(r"failed assertion \S+?\.(?:\\\S+\.)?(\w+) at", log)))
-    covers = re.findall(r"summary:\s+reached cover statement", log)
+    covers = sorted(set(re.findall(r"Reached cover statement in step \d+ at \S+: (\S+)", log)))
     unreached = []
     if "unreached cover statements:" in log:
         tail = log.split("unreached cover statements:", 1)[1]

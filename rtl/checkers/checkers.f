@@ -1,0 +1,4 @@
+// Protocol checkers: simulation and formal only, never synthesised (not in rtl/msr.f).
+// Add this list after rtl/msr.f and build with assertions on (Verilator --assert).
+rtl/checkers/msr_axi4_w_checker.sv
+rtl/checkers/msr_axil_checker.sv

@@ -1,0 +1,155 @@
+// AXI4 write-channel protocol checker (AW, W, B), passive: every port an input, so it can be
+// instantiated next to an interface or bound to a module's ports (see docs/verification.md,
+// "Protocol checkers"). Checks, each a labelled assertion that prints its rule:
+//   a_aw_stable   AWVALID held until AWREADY, AW payload stable meanwhile
+//   a_w_stable    WVALID held until WREADY, WDATA/WSTRB/WLAST stable meanwhile
+//   a_b_stable    BVALID held until BREADY, BID/BRESP stable meanwhile
+//   a_wlast       WLAST exactly on beat AWLEN+1 of each burst (bursts in AW order)
+//   a_w_early     a W beat before its burst's AW was accepted (this checker needs the AW no
+//                 later than the first W beat: stricter than AXI4, true of this project's master)
+//   a_4k          an INCR burst does not cross a 4 KiB boundary
+//   a_awsize      AWSIZE not wider than the data bus
+//   a_b_orphan    no BVALID without a write whose AW and last W beat were both accepted earlier
+//   a_capacity    the checker's own limit: at most MAX_OUT bursts between AW and last W, or
+//                 between last W and B (raise MAX_OUT when it fires on a legal master)
+// The rules are written as plain boolean properties over a few registers (no |-> or |=>), so
+// the same file runs in Verilator (--assert) and in yosys's slang front end (make formal).
+// viol_o shows each check's violation in the current cycle (for negative tests and waves),
+// bit i = the i-th check above.
+module msr_axi4_w_checker #(
+  parameter int unsigned ADDR_W  = 32,
+  parameter int unsigned DATA_W  = 64,
+  parameter int unsigned ID_W    = 4,
+  parameter int unsigned MAX_OUT = 16    // bursts the checker can track (power of two)
+) (
+  input logic                clk_i,
+  input logic                rst_ni,
+  input logic [ID_W-1:0]     awid,
+  input logic [ADDR_W-1:0]   awaddr,
+  input logic [7:0]          awlen,
+  input logic [2:0]          awsize,
+  input logic [1:0]          awburst,
+  input logic                awlock,
+  input logic [3:0]          awcache,
+  input logic [2:0]          awprot,
+  input logic                awvalid,
+  input logic                awready,
+  input logic [DATA_W-1:0]   wdata,
+  input logic [DATA_W/8-1:0] wstrb,
+  input logic                wlast,
+  input logic                wvalid,
+  input logic                wready,
+  input logic [ID_W-1:0]     bid,
+  input logic [1:0]          bresp,
+  input logic                bvalid,
+  input logic                bready,
+  output logic [8:0]         viol_o
+);
+  localparam int unsigned PTR_W  = (MAX_OUT > 1) ? $clog2(MAX_OUT) : 1;
+  localparam int unsigned SIZE_MAX = $clog2(DATA_W / 8);
+  localparam int unsigned AW_W   = ID_W + ADDR_W + 8 + 3 + 2 + 1 + 4 + 3;
+  localparam int unsigned WB_W   = DATA_W + DATA_W / 8 + 1;
+  typedef logic [PTR_W:0] cnt_t;
+
+  wire aw_hs = awvalid && awready;
+  wire w_hs  = wvalid && wready;
+  wire b_hs  = bvalid && bready;
+  wire [AW_W-1:0] aw_pl = {awid, awaddr, awlen, awsize, awburst, awlock, awcache, awprot};
+  wire [WB_W-1:0] w_pl  = {wdata, wstrb, wlast};
+  wire [ID_W+1:0] b_pl  = {bid, bresp};
+
+  // Valid held / payload stable: what was offered and not taken last cycle.
+  logic aw_wait_q, w_wait_q, b_wait_q;
+  logic [AW_W-1:0] aw_pl_q;
+  logic [WB_W-1:0] w_pl_q;
+  logic [ID_W+1:0] b_pl_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      aw_wait_q <= 1'b0; w_wait_q <= 1'b0; b_wait_q <= 1'b0;
+      aw_pl_q <= '0; w_pl_q <= '0; b_pl_q <= '0;
+    end else begin
+      aw_wait_q <= awvalid && !awready;
+      w_wait_q  <= wvalid && !wready;
+      b_wait_q  <= bvalid && !bready;
+      aw_pl_q   <= aw_pl;
+      w_pl_q    <= w_pl;
+      b_pl_q    <= b_pl;
+    end
+  end
+
+  // Bursts whose AW is accepted and whose last W beat is not yet: their AWLEN, in order.
+  logic [7:0]       len_q [MAX_OUT];
+  logic [PTR_W-1:0] len_wr_q, len_rd_q;
+  cnt_t             len_cnt_q;    // entries in len_q
+  logic [8:0]       wbeat_q;      // W beats of the current burst so far
+  cnt_t             done_q;       // writes complete (AW and last W), waiting for B
+  logic             head_valid, w_end, push, pop, done_inc;
+  logic [7:0]       head_len;
+
+  assign head_valid = (len_cnt_q != '0) || aw_hs;
+  assign head_len   = (len_cnt_q != '0) ? len_q[len_rd_q] : awlen;
+  assign w_end      = w_hs && head_valid && (wbeat_q == {1'b0, head_len});
+  assign pop        = w_end && (len_cnt_q != '0);
+  assign push       = aw_hs && !(w_end && len_cnt_q == '0);
+  assign done_inc   = w_end;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      len_wr_q <= '0; len_rd_q <= '0; len_cnt_q <= '0; wbeat_q <= '0; done_q <= '0;
+    end else begin
+      if (push && len_cnt_q != cnt_t'(MAX_OUT)) len_wr_q <= len_wr_q + 1'b1;
+      if (pop) len_rd_q <= len_rd_q + 1'b1;
+      if (push && !pop && len_cnt_q != cnt_t'(MAX_OUT)) len_cnt_q <= len_cnt_q + 1'b1;
+      else if (pop && !push) len_cnt_q <= len_cnt_q - 1'b1;
+      if (w_hs) wbeat_q <= (w_end || wlast) ? '0 : wbeat_q + 1'b1;
+      if (done_inc && !b_hs && done_q != cnt_t'(MAX_OUT)) done_q <= done_q + 1'b1;
+      else if (b_hs && !done_inc && done_q != '0) done_q <= done_q - 1'b1;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (push && len_cnt_q != cnt_t'(MAX_OUT)) len_q[len_wr_q] <= awlen;
+  end
+
+  // Bytes of the burst offered on AW, and where it ends inside its 4 KiB page.
+  logic [13:0] aw_bytes;
+  logic [13:0] aw_end;
+  assign aw_bytes = 14'({1'b0, awlen} + 9'd1) << awsize;
+  assign aw_end   = 14'(awaddr[11:0]) + aw_bytes;
+
+  logic [8:0] viol;
+  assign viol[0] = aw_wait_q && !(awvalid && aw_pl == aw_pl_q);
+  assign viol[1] = w_wait_q && !(wvalid && w_pl == w_pl_q);
+  assign viol[2] = b_wait_q && !(bvalid && b_pl == b_pl_q);
+  assign viol[3] = w_hs && head_valid && (wlast != (wbeat_q == {1'b0, head_len}));
+  assign viol[4] = w_hs && !head_valid;
+  assign viol[5] = awvalid && awburst == 2'b01 && aw_end > 14'd4096;
+  assign viol[6] = awvalid && 32'(awsize) > SIZE_MAX;
+  assign viol[7] = bvalid && done_q == '0;
+  assign viol[8] = (push && len_cnt_q == cnt_t'(MAX_OUT)) || (done_inc && done_q == cnt_t'(MAX_OUT));
+  assign viol_o  = viol;
+
+`ifndef SYNTHESIS
+  /* verilator lint_off SYNCASYNCNET */
+  a_aw_stable: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[0])
+    else $error("%m: AXI4 AW: AWVALID dropped or AW payload changed before AWREADY");
+  a_w_stable: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[1])
+    else $error("%m: AXI4 W: WVALID dropped or WDATA/WSTRB/WLAST changed before WREADY");
+  a_b_stable: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[2])
+    else $error("%m: AXI4 B: BVALID dropped or BID/BRESP changed before BREADY");
+  a_wlast: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[3])
+    else $error("%m: AXI4 W: WLAST=%0d on beat %0d of a burst of AWLEN+1=%0d", wlast, wbeat_q + 1,
+                head_len + 1);
+  a_w_early: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[4])
+    else $error("%m: AXI4 W: a beat before its AW (this checker wants AW first)");
+  a_4k: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[5])
+    else $error("%m: AXI4 AW: burst at 0x%0h of %0d bytes crosses 4 KiB", awaddr, aw_bytes);
+  a_awsize: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[6])
+    else $error("%m: AXI4 AW: AWSIZE %0d wider than the %0d-bit bus", awsize, DATA_W);
+  a_b_orphan: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[7])
+    else $error("%m: AXI4 B: BVALID with no completed write outstanding");
+  a_capacity: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[8])
+    else $error("%m: AXI4 checker: more than MAX_OUT=%0d bursts in flight", MAX_OUT);
+  /* verilator lint_on SYNCASYNCNET */
+`endif
+
+endmodule : msr_axi4_w_checker

@@ -1,0 +1,117 @@
+// AXI4-Lite protocol checker (both directions: AW, W, B and AR, R), passive: every port an
+// input, for instantiation or `bind` to a module's ports (docs/verification.md, "Protocol
+// checkers"). Checks, each a labelled assertion that prints its rule:
+//   a_aw_stable  AWVALID held until AWREADY, AWADDR/AWPROT stable meanwhile
+//   a_w_stable   WVALID held until WREADY, WDATA/WSTRB stable meanwhile
+//   a_b_stable   BVALID held until BREADY, BRESP stable meanwhile
+//   a_ar_stable  ARVALID held until ARREADY, ARADDR/ARPROT stable meanwhile
+//   a_r_stable   RVALID held until RREADY, RDATA/RRESP stable meanwhile
+//   a_b_orphan   no BVALID unless a write (its AW and its W both accepted earlier) is unanswered
+//   a_r_orphan   no RVALID unless a read (its AR accepted earlier) is unanswered
+//   a_capacity   the checker's own limit: at most MAX_OUT requests per channel unanswered
+// Plain boolean properties over a few registers: the same file runs in Verilator (--assert) and
+// in yosys's slang front end (make formal). viol_o: bit i = the i-th check above, this cycle.
+module msr_axil_checker #(
+  parameter int unsigned ADDR_W  = 32,
+  parameter int unsigned DATA_W  = 32,
+  parameter int unsigned MAX_OUT = 15    // requests per channel the checker can count
+) (
+  input logic                clk_i,
+  input logic                rst_ni,
+  input logic [ADDR_W-1:0]   awaddr,
+  input logic [2:0]          awprot,
+  input logic                awvalid,
+  input logic                awready,
+  input logic [DATA_W-1:0]   wdata,
+  input logic [DATA_W/8-1:0] wstrb,
+  input logic                wvalid,
+  input logic                wready,
+  input logic [1:0]          bresp,
+  input logic                bvalid,
+  input logic                bready,
+  input logic [ADDR_W-1:0]   araddr,
+  input logic [2:0]          arprot,
+  input logic                arvalid,
+  input logic                arready,
+  input logic [DATA_W-1:0]   rdata,
+  input logic [1:0]          rresp,
+  input logic                rvalid,
+  input logic                rready,
+  output logic [7:0]         viol_o
+);
+  localparam int unsigned CNT_W = $clog2(MAX_OUT + 1);
+  typedef logic [CNT_W-1:0] cnt_t;
+  localparam cnt_t CNT_MAX = cnt_t'(MAX_OUT);
+
+  wire aw_hs = awvalid && awready;
+  wire w_hs  = wvalid && wready;
+  wire b_hs  = bvalid && bready;
+  wire ar_hs = arvalid && arready;
+  wire r_hs  = rvalid && rready;
+  wire [ADDR_W+2:0]          aw_pl = {awaddr, awprot};
+  wire [DATA_W+DATA_W/8-1:0] w_pl  = {wdata, wstrb};
+  wire [ADDR_W+2:0]          ar_pl = {araddr, arprot};
+  wire [DATA_W+1:0]          r_pl  = {rdata, rresp};
+
+  logic aw_wait_q, w_wait_q, b_wait_q, ar_wait_q, r_wait_q;
+  logic [ADDR_W+2:0]          aw_pl_q, ar_pl_q;
+  logic [DATA_W+DATA_W/8-1:0] w_pl_q;
+  logic [1:0]                 b_pl_q;
+  logic [DATA_W+1:0]          r_pl_q;
+  cnt_t aw_out_q, w_out_q, ar_out_q;   // accepted, not yet answered
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      {aw_wait_q, w_wait_q, b_wait_q, ar_wait_q, r_wait_q} <= '0;
+      aw_pl_q <= '0; w_pl_q <= '0; b_pl_q <= '0; ar_pl_q <= '0; r_pl_q <= '0;
+      aw_out_q <= '0; w_out_q <= '0; ar_out_q <= '0;
+    end else begin
+      aw_wait_q <= awvalid && !awready;
+      w_wait_q  <= wvalid && !wready;
+      b_wait_q  <= bvalid && !bready;
+      ar_wait_q <= arvalid && !arready;
+      r_wait_q  <= rvalid && !rready;
+      aw_pl_q <= aw_pl; w_pl_q <= w_pl; b_pl_q <= bresp; ar_pl_q <= ar_pl; r_pl_q <= r_pl;
+      // saturating: a_capacity reports the overflow, a_*_orphan the underflow
+      if (aw_hs && !b_hs && aw_out_q != CNT_MAX) aw_out_q <= aw_out_q + 1'b1;
+      else if (!aw_hs && b_hs && aw_out_q != '0) aw_out_q <= aw_out_q - 1'b1;
+      if (w_hs && !b_hs && w_out_q != CNT_MAX) w_out_q <= w_out_q + 1'b1;
+      else if (!w_hs && b_hs && w_out_q != '0) w_out_q <= w_out_q - 1'b1;
+      if (ar_hs && !r_hs && ar_out_q != CNT_MAX) ar_out_q <= ar_out_q + 1'b1;
+      else if (!ar_hs && r_hs && ar_out_q != '0) ar_out_q <= ar_out_q - 1'b1;
+    end
+  end
+
+  logic [7:0] viol;
+  assign viol[0] = aw_wait_q && !(awvalid && aw_pl == aw_pl_q);
+  assign viol[1] = w_wait_q && !(wvalid && w_pl == w_pl_q);
+  assign viol[2] = b_wait_q && !(bvalid && bresp == b_pl_q);
+  assign viol[3] = ar_wait_q && !(arvalid && ar_pl == ar_pl_q);
+  assign viol[4] = r_wait_q && !(rvalid && r_pl == r_pl_q);
+  assign viol[5] = bvalid && (aw_out_q == '0 || w_out_q == '0);
+  assign viol[6] = rvalid && ar_out_q == '0;
+  assign viol[7] = (aw_hs && !b_hs && aw_out_q == CNT_MAX) || (w_hs && !b_hs && w_out_q == CNT_MAX)
+                || (ar_hs && !r_hs && ar_out_q == CNT_MAX);
+  assign viol_o  = viol;
+
+`ifndef SYNTHESIS
+  /* verilator lint_off SYNCASYNCNET */
+  a_aw_stable: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[0])
+    else $error("%m: AXI4-Lite AW: AWVALID dropped or AWADDR/AWPROT changed before AWREADY");
+  a_w_stable: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[1])
+    else $error("%m: AXI4-Lite W: WVALID dropped or WDATA/WSTRB changed before WREADY");
+  a_b_stable: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[2])
+    else $error("%m: AXI4-Lite B: BVALID dropped or BRESP changed before BREADY");
+  a_ar_stable: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[3])
+    else $error("%m: AXI4-Lite AR: ARVALID dropped or ARADDR/ARPROT changed before ARREADY");
+  a_r_stable: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[4])
+    else $error("%m: AXI4-Lite R: RVALID dropped or RDATA/RRESP changed before RREADY");
+  a_b_orphan: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[5])
+    else $error("%m: AXI4-Lite B: BVALID with no write (AW and W accepted) unanswered");
+  a_r_orphan: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[6])
+    else $error("%m: AXI4-Lite R: RVALID with no read unanswered");
+  a_capacity: assert property (@(posedge clk_i) disable iff (!rst_ni) !viol[7])
+    else $error("%m: AXI4-Lite checker: more than MAX_OUT=%0d requests unanswered", MAX_OUT);
+  /* verilator lint_on SYNCASYNCNET */
+`endif
+
+endmodule : msr_axil_checker
