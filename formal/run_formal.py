@@ -5,6 +5,7 @@ Each formal/<unit>/<unit>.sby lists its tasks; every task runs on its own, one a
 into build/formal/<unit>_<task>/ (the tool chain is the yowasp wheel in .venv/bin; the solver
 is named in the .sby's [engines] section, FORMAL_SOLVER or --solver overrides it).
 
+A task marked `# slow <task>: <why>` runs only when named or with --all (not in make test).
 A task whose .sby carries a line `# expect-fail <task>: <assertion label> -- <reason>` is a
 negative test (a protocol checker fed a violation on purpose) or a known RTL bug: it passes
 when sby reports exactly that assertion failing, and fails otherwise.
@@ -39,6 +40,12 @@ def sby_tasks(text: str) -> list[str]:
         return [""]
     return [ln.split()[0] for ln in m.group(1).splitlines()
             if ln.strip() and not ln.strip().startswith("#")]
+
+
+def slow_tasks(text: str) -> set[str]:
+    """Tasks marked `# slow <task>: <why>`: left out of the default run (make test), run when
+    named (make formal FORMAL_JOBS=...) or with --all."""
+    return set(re.findall(r"^#\s*slow\s+(\S+):", text, re.M))
 
 
 def expected_fails(text: str) -> dict[str, tuple[str, str]]:
@@ -154,6 +161,7 @@ def main() -> int:
                     help="smtbmc solver instead of the .sby's own (cvc4, z3, ...)")
     ap.add_argument("--timeout", type=int, default=600, help="seconds per task")
     ap.add_argument("--list", action="store_true", help="list the jobs and stop")
+    ap.add_argument("--all", action="store_true", help="also the jobs marked slow")
     args = ap.parse_args()
 
     jobs = []
@@ -161,7 +169,10 @@ def main() -> int:
         text = sby.read_text()
         for task in sby_tasks(text):
             name = f"{sby.stem}_{task}" if task else sby.stem
-            if not args.jobs or any(fnmatch.fnmatch(name, p) for p in args.jobs):
+            if args.jobs:
+                if any(fnmatch.fnmatch(name, p) for p in args.jobs):
+                    jobs.append((sby, text, task, name))
+            elif args.all or task not in slow_tasks(text):
                 jobs.append((sby, text, task, name))
     if args.list:
         print("\n".join(j[3] for j in jobs))
