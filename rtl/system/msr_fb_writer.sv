@@ -132,7 +132,7 @@ module msr_fb_writer import msr_pkg::*; #(
     logic [LANE_W-1:0] r;
     r = '0;
     for (int unsigned j = 0; j < LANE_W; j++) begin
-      if (y[j]) r = r + LANE_W'(s << j);
+      if (y[j]) r = r + (s << j);
     end
     return r;
   endfunction
@@ -456,9 +456,19 @@ module msr_fb_writer import msr_pkg::*; #(
   logic   [1:0]       s3_cy_q, s4_cy_q;
   logic   [1:0][8:0]  s4_em1_q;                 // first-beat offset + bytes - 1
   logic   [1:0][12:0] s4_pe_q;                  // address [11:0] + bytes - 1
-  logic   [1:0][31:0] s5_a_q;                   // plane start address
+  // S5 is a spill register (msr_spill_reg): its ready is a register, so AWREADY's way back
+  // into the pipeline ends there.
+  typedef struct packed {
+    in_t                    in;
+    buf_t                   bufi;
+    logic   [1:0][31:0]     a;                  // plane start address
+    shape_t [1:0]           shape;
+    logic   [1:0][MA_W-1:0] mb1;                // buffer beat of the second burst
+  } s5_t;
+  s5_t                s5_q, s5_d;
+  logic   [1:0][31:0] s5_a_q;
   shape_t [1:0]       s5_shape_q;
-  logic   [1:0][MA_W-1:0] s5_mb1_q;             // buffer beat of the second burst
+  logic   [1:0][MA_W-1:0] s5_mb1_q;
   cs_t    [1:0]       s2_cs_d;
   logic   [1:0][11:0] s3_lo_d;
   logic   [1:0][9:0]  s4_mid_d;
@@ -474,7 +484,6 @@ module msr_fb_writer import msr_pkg::*; #(
   logic   [1:0][B4K_W-1:0] to4k_m1;
   /* verilator lint_on UNUSEDSIGNAL */
 
-  assign s5_rdy    = !s5_v_q || s5_take;
   assign s4_rdy    = !s4_v_q || s5_rdy;
   assign s3_rdy    = !s3_v_q || s4_rdy;
   assign s2_rdy    = !s2_v_q || s3_rdy;
@@ -491,7 +500,6 @@ module msr_fb_writer import msr_pkg::*; #(
       s2_v_q <= 1'b0;
       s3_v_q <= 1'b0;
       s4_v_q <= 1'b0;
-      s5_v_q <= 1'b0;
     end else if (clear_i) begin
       s0_v_q <= 1'b0;
       s1_v_q <= 1'b0;
@@ -499,7 +507,6 @@ module msr_fb_writer import msr_pkg::*; #(
       s2_v_q <= 1'b0;
       s3_v_q <= 1'b0;
       s4_v_q <= 1'b0;
-      s5_v_q <= 1'b0;
     end else begin
       if (s0_rdy) s0_v_q <= arb_valid;
       if (s1_rdy) s1_v_q <= s0_v_q;
@@ -507,7 +514,6 @@ module msr_fb_writer import msr_pkg::*; #(
       if (s2_rdy) s2_v_q <= s15_v_q;
       if (s3_rdy) s3_v_q <= s2_v_q;
       if (s4_rdy) s4_v_q <= s3_v_q;
-      if (s5_rdy) s5_v_q <= s4_v_q;
     end
   end
 
@@ -552,13 +558,6 @@ module msr_fb_writer import msr_pkg::*; #(
       s4_cy_q  <= s4_cy_d;
       s4_em1_q <= s4_em1_d;
       s4_pe_q  <= s4_pe_d;
-    end
-    if (s5_rdy && s4_v_q) begin
-      s5_in_q    <= s4_in_q;
-      s5_buf_q   <= s4_buf_q;
-      s5_a_q     <= s5_a_d;
-      s5_shape_q <= s5_shape_d;
-      s5_mb1_q   <= s5_mb1_d;
     end
   end
 
@@ -610,6 +609,25 @@ module msr_fb_writer import msr_pkg::*; #(
       s5_mb1_d[p]        = mb + maddr_t'(to4k_m1[p]) + 1'b1;
     end
   end
+
+  assign s5_d = '{in: s4_in_q, bufi: s4_buf_q, a: s5_a_d, shape: s5_shape_d, mb1: s5_mb1_d};
+
+  msr_spill_reg #(.WIDTH($bits(s5_t))) u_s5_spill (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .clear_i (clear_i),
+    .valid_i (s4_v_q),
+    .ready_o (s5_rdy),
+    .data_i  (s5_d),
+    .valid_o (s5_v_q),
+    .ready_i (s5_take),
+    .data_o  (s5_q)
+  );
+  assign s5_in_q    = s5_q.in;
+  assign s5_buf_q   = s5_q.bufi;
+  assign s5_a_q     = s5_q.a;
+  assign s5_shape_q = s5_q.shape;
+  assign s5_mb1_q   = s5_q.mb1;
 
   // The row's bursts, up to two per plane, issued from a register list one per clock.
   typedef struct packed {

@@ -175,5 +175,5 @@ def test_fb_writer(n_in, width, max_out, seed):
     run_cocotb("msr_fb_writer", "test_fb_writer", HERE,
                {"MAX_OUT": max_out, "NUM_IN": n_in, "AXI_DATA_W": width}, f"i{n_in}_w{width}_o{max_out}",
                sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_fifo.sv", RTL / "prim/msr_rr_arb.sv",
-                        RTL / "system/msr_fb_writer.sv"],
+                        RTL / "prim/msr_spill_reg.sv", RTL / "system/msr_fb_writer.sv"],
                extra_env={"SEED": str(seed), "NUM_IN": str(n_in), "AXI_DATA_W": str(width)})
