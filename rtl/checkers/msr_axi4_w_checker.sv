@@ -51,6 +51,10 @@ module msr_axi4_w_checker #(
   localparam int unsigned WB_W   = DATA_W + DATA_W / 8 + 1;
   typedef logic [PTR_W:0] cnt_t;
 
+  if (MAX_OUT < 2 || (MAX_OUT & (MAX_OUT - 1)) != 0) begin : g_check_max_out
+    $fatal(1, "msr_axi4_w_checker: MAX_OUT %0d must be a power of two >= 2", MAX_OUT);
+  end
+
   wire aw_hs = awvalid && awready;
   wire w_hs  = wvalid && wready;
   wire b_hs  = bvalid && bready;
