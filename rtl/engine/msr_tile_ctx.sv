@@ -71,14 +71,33 @@ module msr_tile_ctx
   logic [PEND_W-1:0] pend_q, pend_d;
   logic              pend_zero;
 
-  // ---- Level processing controller -------------------------------------------------------------
-  logic    step_valid, step_first, ctrl_busy;
+  // ---- Level processing controller and its position queue ------------------------------------
+  // The controller fills a two-entry queue; the engine's arbiter takes positions from the
+  // queue's head. So the walk state (a few hundred flip-flops) advances on a registered
+  // "queue has room", not on the arbiter's grant, which reaches only the queue's pointers;
+  // two entries keep one position per clock for a context that wins every cycle.
+  typedef struct packed {
+    lcoord_t    x;
+    lcoord_t    y;
+    lcoord_t    ax;
+    lcoord_t    ay;
+    lcoord_t    bx;
+    lcoord_t    by;
+    gap_t       gap;
+    gap_t       off;
+    level_t     level;
+    logic [1:0] nshift;
+    dir_e       dir;
+    logic       first;
+  } step_t;
+
+  logic    step_valid, ctrl_busy, q_room, q_valid;
+  step_t   step, q_head;
+  logic [1:0] q_count;
   // The controller is idle whenever the context is free; its own start handshake is not needed.
   /* verilator lint_off UNUSEDSIGNAL */
   logic    ctrl_start_ready;
   /* verilator lint_on UNUSEDSIGNAL */
-  lcoord_t step_ax, step_ay, step_bx, step_by;
-  dir_e    step_dir;
 
   msr_level_ctrl u_level_ctrl (
     .clk_i         (clk_i),
@@ -90,28 +109,50 @@ module msr_tile_ctx
     .h_i           (desc_i.h),
     .levels_i      (desc_i.levels),
     .step_valid_o  (step_valid),
-    .step_ready_i  (issue_i),
-    .step_x_o      (step_x_o),
-    .step_y_o      (step_y_o),
-    .step_ax_o     (step_ax),
-    .step_ay_o     (step_ay),
-    .step_bx_o     (step_bx),
-    .step_by_o     (step_by),
-    .step_gap_o    (step_gap_o),
-    .step_off_o    (step_off_o),
-    .step_level_o  (step_level_o),
-    .step_nshift_o (step_nshift_o),
-    .step_dir_o    (step_dir),
-    .step_first_o  (step_first),
+    .step_ready_i  (q_room),
+    .step_x_o      (step.x),
+    .step_y_o      (step.y),
+    .step_ax_o     (step.ax),
+    .step_ay_o     (step.ay),
+    .step_bx_o     (step.bx),
+    .step_by_o     (step.by),
+    .step_gap_o    (step.gap),
+    .step_off_o    (step.off),
+    .step_level_o  (step.level),
+    .step_nshift_o (step.nshift),
+    .step_dir_o    (step.dir),
+    .step_first_o  (step.first),
     .busy_o        (ctrl_busy)
+  );
+
+  msr_fifo #(
+    .WIDTH ($bits(step_t)),
+    .DEPTH (2)
+  ) u_step_queue (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .flush_i (clear_i),
+    .valid_i (step_valid),
+    .ready_o (q_room),
+    .data_i  (step),
+    .valid_o (q_valid),
+    .ready_i (issue_i),
+    .data_o  (q_head),
+    .count_o (q_count)
   );
 
   // pend_q counts every issue and write before this cycle: zero means every pixel of the
   // passes before is final. (A compare of a register: the arbiter's path starts here.)
-  assign pend_zero    = (pend_q == '0);
-  assign cand_o       = step_valid && (!step_first || pend_zero);
-  assign step_first_o = step_first;
-  assign step_init_o  = (step_dir == DIR_INIT);
+  assign pend_zero     = (pend_q == '0);
+  assign cand_o        = q_valid && (!q_head.first || pend_zero);
+  assign step_first_o  = q_head.first;
+  assign step_init_o   = (q_head.dir == DIR_INIT);
+  assign step_x_o      = q_head.x;
+  assign step_y_o      = q_head.y;
+  assign step_gap_o    = q_head.gap;
+  assign step_off_o    = q_head.off;
+  assign step_level_o  = q_head.level;
+  assign step_nshift_o = q_head.nshift;
 
   // ---- State ----------------------------------------------------------------------------------
   always_comb begin
@@ -119,7 +160,7 @@ module msr_tile_ctx
     pend_d  = pend_q + PEND_W'(issue_i) - PEND_W'(we_i);
     unique case (state_q)
       CTX_FREE:    if (start_i) state_d = CTX_COMPUTE;
-      CTX_COMPUTE: if (!ctrl_busy && pend_zero) state_d = CTX_FULL;
+      CTX_COMPUTE: if (!ctrl_busy && !q_valid && pend_zero) state_d = CTX_FULL;
       CTX_FULL:    if (str_done_i) state_d = CTX_FREE;
       default:     state_d = CTX_FREE;
     endcase
@@ -159,11 +200,11 @@ module msr_tile_ctx
     .DATA_W (WORD_W)
   ) u_tile_sram (
     .clk_i    (clk_i),
-    .re0_i    (str_own_i ? str_re_i : (issue_i && step_dir != DIR_INIT)),
-    .raddr0_i (str_own_i ? str_raddr_i : {step_by, step_bx}),
+    .re0_i    (str_own_i ? str_re_i : (issue_i && q_head.dir != DIR_INIT)),
+    .raddr0_i (str_own_i ? str_raddr_i : {q_head.by, q_head.bx}),
     .rdata0_o (rdata0),
-    .re1_i    (issue_i && step_dir != DIR_INIT),
-    .raddr1_i ({step_ay, step_ax}),
+    .re1_i    (issue_i && q_head.dir != DIR_INIT),
+    .raddr1_i ({q_head.ay, q_head.ax}),
     .rdata1_o (rdata1),
     .we_i     (we_i),
     .waddr_i  (waddr_i),
@@ -212,7 +253,8 @@ module msr_tile_ctx
   `MSR_ASSERT(a_all_written, state_q == CTX_COMPUTE && state_d == CTX_FULL |->
       all_written(written_q, desc_q.w, desc_q.h))
   `MSR_ASSERT(a_stream_full, str_own_i |-> full_o)
-  `MSR_COVER(c_barrier_wait, step_valid && step_first && !pend_zero)
+  `MSR_COVER(c_barrier_wait, q_valid && q_head.first && !pend_zero)
+  `MSR_COVER(c_queue_full, q_count == 2'd2)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_tile_ctx

@@ -6,7 +6,8 @@
 //          context's own tile buffer reads B (port 0) and A (port 1) at its controller's
 //          registered addresses
 //   AB   : the issued context's read data and descriptor fields, registered
-//   msr_decision_pipe (4 stages): decide and interpolate in one handshake
+//   msr_decision_pipe (4 stages): decide and interpolate; never stalls: a position is issued
+//          only with a slot of the 8-entry output buffer reserved (credits)
 //   out  : interpolate -> write {16+k, C} into the context's buffer;
 //          trace -> tag (msr_tag_pool) -> render request {x0+x, y0+y, tag} (spill register)
 //   rsp  : spill register -> R1 (tag looked up, checked in flight) -> write {k, rgb} into
@@ -122,7 +123,7 @@ module msr_tile_engine
   end
 
   // ---- Issue ----------------------------------------------------------------------------------
-  logic             arb_valid, pipe_ready, issue;
+  logic             arb_valid, can_issue, issue;
   logic [CTX_W-1:0] gnt_idx;
   logic [NUM_CTX-1:0] gnt;
 
@@ -134,11 +135,14 @@ module msr_tile_engine
     .gnt_o   (gnt),
     .idx_o   (gnt_idx),
     .valid_o (arb_valid),
-    .ready_i (pipe_ready)
+    .ready_i (can_issue)
   );
 
-  assign issue     = arb_valid && pipe_ready;
-  assign ctx_issue = gnt & {NUM_CTX{pipe_ready}};
+  // No stage between the issue and the output buffer ever stalls: a position is issued only
+  // with a free slot in that buffer reserved for it (a credit), so the pipeline registers need
+  // no enable and the issue does not wait on the output's handshake.
+  assign issue     = arb_valid && can_issue;
+  assign ctx_issue = gnt & {NUM_CTX{can_issue}};
 
   // The issued position, picked with the one-hot grant (an AND-OR, not an index multiplexer).
   typedef struct packed {
@@ -174,7 +178,7 @@ module msr_tile_engine
       is_valid_q <= 1'b0;
     end else if (clear_i) begin
       is_valid_q <= 1'b0;
-    end else if (pipe_ready) begin
+    end else begin
       is_valid_q <= issue;
     end
   end
@@ -216,13 +220,13 @@ module msr_tile_engine
       ab_valid_q <= 1'b0;
     end else if (clear_i) begin
       ab_valid_q <= 1'b0;
-    end else if (pipe_ready) begin
+    end else begin
       ab_valid_q <= is_valid_q;
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (pipe_ready && is_valid_q) begin
+    if (is_valid_q) begin
       ab_a_q      <= ctx_rd_a[is_ctx_q];
       ab_b_q      <= ctx_rd_b[is_ctx_q];
       ab_pos_q    <= is_pos_q;
@@ -235,13 +239,25 @@ module msr_tile_engine
     end
   end
 
-  // ---- Decision pipeline --------------------------------------------------------------------
-  logic  out_valid, out_interp, out_ready;
-  side_t out_side;
-  rgb_t  out_rgb;
-  // d is carried for waveforms only; the engine acts on the decision bit.
+  // ---- Decision pipeline and output buffer ----------------------------------------------------
+  localparam int unsigned OUT_DEPTH = 8;   // >= issue-to-buffer latency (6) + 1: full rate
+
+  typedef struct packed {
+    logic  interp;
+    rgb_t  rgb;
+    side_t side;
+  } result_t;
+
+  logic    pv_valid, pv_interp, out_valid, out_interp, out_ready, ob_ready;
+  logic    ob_valid, os_ready;
+  side_t   pv_side, out_side;
+  rgb_t    pv_rgb, out_rgb;
+  result_t pv_result, ob_result, out_result;
+  logic [$clog2(OUT_DEPTH):0] credit_q, ob_count;
+  // d is carried for waveforms only, and the pipeline never waits (ready_i is 1).
   /* verilator lint_off UNUSEDSIGNAL */
-  diff_t out_diff;
+  diff_t   pv_diff;
+  logic    pv_ready;
   /* verilator lint_on UNUSEDSIGNAL */
 
   msr_decision_pipe #(
@@ -251,7 +267,7 @@ module msr_tile_engine
     .rst_ni   (rst_ni),
     .clear_i  (clear_i),
     .valid_i  (ab_valid_q),
-    .ready_o  (pipe_ready),
+    .ready_o  (pv_ready),
     .a_i      (ab_a_q),
     .b_i      (ab_b_q),
     .metric_i (ab_metric_q),
@@ -260,13 +276,64 @@ module msr_tile_engine
     .off_i    (ab_pos_q.init ? gap_t'(1) : ab_pos_q.off),
     .nshift_i (ab_pos_q.nshift),
     .user_i   (ab_side_q),
-    .valid_o  (out_valid),
-    .ready_i  (out_ready),
-    .interp_o (out_interp),
-    .diff_o   (out_diff),
-    .rgb_o    (out_rgb),
-    .user_o   (out_side)
+    .valid_o  (pv_valid),
+    .ready_i  (1'b1),
+    .interp_o (pv_interp),
+    .diff_o   (pv_diff),
+    .rgb_o    (pv_rgb),
+    .user_o   (pv_side)
   );
+
+  assign pv_result = '{interp: pv_interp, rgb: pv_rgb, side: pv_side};
+
+  msr_fifo #(
+    .WIDTH ($bits(result_t)),
+    .DEPTH (OUT_DEPTH)
+  ) u_out_buf (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .flush_i (clear_i),
+    .valid_i (pv_valid),
+    .ready_o (ob_ready),
+    .data_i  (pv_result),
+    .valid_o (ob_valid),
+    .ready_i (os_ready),
+    .data_o  (ob_result),
+    .count_o (ob_count)
+  );
+
+  // The output logic works on a register, not on the buffer's read multiplexer.
+  msr_spill_reg #(
+    .WIDTH ($bits(result_t))
+  ) u_out_spill (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .clear_i (clear_i),
+    .valid_i (ob_valid),
+    .ready_o (os_ready),
+    .data_i  (ob_result),
+    .valid_o (out_valid),
+    .ready_i (out_ready),
+    .data_o  (out_result)
+  );
+
+  assign out_interp = out_result.interp;
+  assign out_rgb    = out_result.rgb;
+  assign out_side   = out_result.side;
+
+  // Credits: output-buffer slots not yet reserved by an issued position.
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      credit_q <= ($clog2(OUT_DEPTH)+1)'(OUT_DEPTH);
+    end else if (clear_i) begin
+      credit_q <= ($clog2(OUT_DEPTH)+1)'(OUT_DEPTH);
+    end else begin
+      credit_q <= credit_q - ($clog2(OUT_DEPTH)+1)'(issue)
+                           + ($clog2(OUT_DEPTH)+1)'(ob_valid && os_ready);
+    end
+  end
+
+  assign can_issue = (credit_q != '0);
 
   // ---- Output: interpolate -> write, trace -> tag and render request -----------------------------
   typedef struct packed {
@@ -546,6 +613,8 @@ module msr_tile_engine
   // Internal invariants.
   `MSR_ASSERT(a_one_writer, !(out_write && r2_write && out_side.ctx == r2_entry_q.ctx))
   `MSR_ASSERT(a_issue_onehot, $onehot0(ctx_issue))
+  `MSR_ASSERT(a_out_buf_room, pv_valid |-> ob_ready)
+  `MSR_ASSERT(a_credits, 32'(credit_q) + 32'(ob_count) <= OUT_DEPTH)
   `MSR_COVER(c_rsp_dropped, rsp_drop_o)
   `MSR_COVER(c_all_ctx_busy, none_free)
   /* verilator lint_on SYNCASYNCNET */

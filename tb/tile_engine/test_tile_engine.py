@@ -260,6 +260,7 @@ async def stale_responses(dut, rng: random.Random, max_out: int, n: int = 6):
     assert seen == n, f"{n} stale responses, {seen} dropped"
     await settle()
     assert int(dut.inflight_o.value) == 0 and not dut.busy_o.value
+    await next_cycle()
 
 
 IDLE = {"clear_i": 0, "desc_valid_i": 0, "desc_i": 0, "req_ready_i": 0, "rsp_valid_i": 0,
