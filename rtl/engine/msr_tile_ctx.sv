@@ -188,7 +188,15 @@ module msr_tile_ctx
   assign desc_o = desc_q;
 
   // ---- Tile buffer ----------------------------------------------------------------------------
-  // Port 0: B of the issued position, or the streamer once the tile is full; port 1: A.
+  // Port 0: B of the queue's head, or the streamer once the tile is full; port 1: A. While
+  // computing, both ports read the head's neighbours every clock, whether or not the head is
+  // issued: the read enable is a register, not the arbiter's grant (that path set the clock),
+  // and the data of an issued position is there the clock after. A re-read is harmless: the
+  // pass barrier keeps a position from being a candidate, hence from being issued, until its
+  // neighbours are written, and a write is visible to the read of the next clock.
+  logic computing;
+  assign computing = (state_q == CTX_COMPUTE);
+
   logic [WORD_W-1:0] rdata0;
   // A decision needs the colour of A, not its source code.
   /* verilator lint_off UNUSEDSIGNAL */
@@ -200,10 +208,10 @@ module msr_tile_ctx
     .DATA_W (WORD_W)
   ) u_tile_sram (
     .clk_i    (clk_i),
-    .re0_i    (str_own_i ? str_re_i : (issue_i && q_head.dir != DIR_INIT)),
+    .re0_i    (str_own_i ? str_re_i : computing),
     .raddr0_i (str_own_i ? str_raddr_i : {q_head.by, q_head.bx}),
     .rdata0_o (rdata0),
-    .re1_i    (issue_i && q_head.dir != DIR_INIT),
+    .re1_i    (computing),
     .raddr1_i ({q_head.ay, q_head.ax}),
     .rdata1_o (rdata1),
     .we_i     (we_i),
