@@ -34,6 +34,7 @@ help: ## list the targets
 	@echo "  make test   set up, then run every test (pytest, cocotb on Verilator)"
 	@echo "  make lint   Verilator -Wall, Verible and slang on every RTL module"
 	@echo "  make synth  Yosys synthesis reports"
+	@echo "  make formal SymbiYosys proofs of the primitives, tag pool and register block (part of make test)"
 	@echo "  make bench  golden-model and hardware throughput benchmarks"
 	@echo "  make eval   quality against traced pixels (FULL=1 for 1920x1080; DASK_SCHEDULER=tcp://host:port)"
 	@echo "  make setup  only install what is missing (apt-get, .venv)"
