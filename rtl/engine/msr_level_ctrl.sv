@@ -335,7 +335,7 @@ module msr_level_ctrl
         sel_poss  = lparam(px_q, rx_q, k_q, 1'b1, nk, lst_new, nk_half, 1'b0);
       end
       DIR_V: begin   // columns of Gx(k), new y of level k
-        sel_lines = lparam(px_q, rx_q, k_q, 1'b0, nk_half, 2'(lst_new - 1'b1), '0, 1'b1);
+        sel_lines = lparam(px_q, rx_q, k_q, 1'b0, nk_half, lst_new - 1'b1, '0, 1'b1);
         sel_poss  = lparam(py_q, ry_q, k_q, 1'b1, nk, lst_new, nk_half, 1'b0);
       end
       default: begin // initial grid: rows of Gy(0), x of Gx(0)
