@@ -122,27 +122,21 @@ module msr_level_ctrl
   typedef bqueue_t     [MAX_LEVELS:0] bq_row_t;
   typedef logic [MAX_LEVELS:0][2:0] bn_row_t;
 
-  function automatic bq_row_t bq_set_row(int unsigned r);
-    bq_row_t t;
-    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_queue(border_set(r, k));
-    return t;
-  endfunction
-  function automatic bn_row_t bn_set_row(int unsigned r);
-    bn_row_t t;
-    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_count(border_set(r, k));
-    return t;
-  endfunction
   function automatic bmask_t new_mask(int unsigned r, int unsigned k);
     return (k == 0) ? '0 : (border_set(r, k) & ~border_set(r, k - 1));
   endfunction
-  function automatic bq_row_t bq_new_row(int unsigned r);
+  // The offsets of G(k) (is_new = 0) or of level k's new positions (is_new = 1).
+  function automatic bmask_t list_mask(int unsigned r, int unsigned k, bit is_new);
+    return is_new ? new_mask(r, k) : border_set(r, k);
+  endfunction
+  function automatic bq_row_t bq_row(int unsigned r, bit is_new);
     bq_row_t t;
-    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_queue(new_mask(r, k));
+    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_queue(list_mask(r, k, is_new));
     return t;
   endfunction
-  function automatic bn_row_t bn_new_row(int unsigned r);
+  function automatic bn_row_t bn_row(int unsigned r, bit is_new);
     bn_row_t t;
-    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_count(new_mask(r, k));
+    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_count(list_mask(r, k, is_new));
     return t;
   endfunction
 
@@ -166,14 +160,14 @@ module msr_level_ctrl
   localparam gq_row_t BGQ_NEW [8] = '{gq_new_row(0), gq_new_row(1), gq_new_row(2), gq_new_row(3),
                                       gq_new_row(4), gq_new_row(5), gq_new_row(6), gq_new_row(7)};
 
-  localparam bq_row_t BQ_SET [8] = '{bq_set_row(0), bq_set_row(1), bq_set_row(2), bq_set_row(3),
-                                     bq_set_row(4), bq_set_row(5), bq_set_row(6), bq_set_row(7)};
-  localparam bn_row_t BN_SET [8] = '{bn_set_row(0), bn_set_row(1), bn_set_row(2), bn_set_row(3),
-                                     bn_set_row(4), bn_set_row(5), bn_set_row(6), bn_set_row(7)};
-  localparam bq_row_t BQ_NEW [8] = '{bq_new_row(0), bq_new_row(1), bq_new_row(2), bq_new_row(3),
-                                     bq_new_row(4), bq_new_row(5), bq_new_row(6), bq_new_row(7)};
-  localparam bn_row_t BN_NEW [8] = '{bn_new_row(0), bn_new_row(1), bn_new_row(2), bn_new_row(3),
-                                     bn_new_row(4), bn_new_row(5), bn_new_row(6), bn_new_row(7)};
+  localparam bq_row_t BQ_SET [8] = '{bq_row(0, 0), bq_row(1, 0), bq_row(2, 0), bq_row(3, 0),
+                                     bq_row(4, 0), bq_row(5, 0), bq_row(6, 0), bq_row(7, 0)};
+  localparam bn_row_t BN_SET [8] = '{bn_row(0, 0), bn_row(1, 0), bn_row(2, 0), bn_row(3, 0),
+                                     bn_row(4, 0), bn_row(5, 0), bn_row(6, 0), bn_row(7, 0)};
+  localparam bq_row_t BQ_NEW [8] = '{bq_row(0, 1), bq_row(1, 1), bq_row(2, 1), bq_row(3, 1),
+                                     bq_row(4, 1), bq_row(5, 1), bq_row(6, 1), bq_row(7, 1)};
+  localparam bn_row_t BN_NEW [8] = '{bn_row(0, 1), bn_row(1, 1), bn_row(2, 1), bn_row(3, 1),
+                                     bn_row(4, 1), bn_row(5, 1), bn_row(6, 1), bn_row(7, 1)};
 
   /* verilator lint_on UNUSEDSIGNAL */
 
