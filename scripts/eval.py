@@ -120,7 +120,7 @@ def main(argv=None):
         if not rs:
             continue
         r = rs[0]
-        res = S.rerun(refs[(scene, ex_mode)], r, sweep)
+        res = S.rerun(refs[(scene, ex_mode)], r, sweep, gbuf=S.gbuffer_of(backend, scene, cfg))
         strip = R.example_strip(refs[(scene, ex_mode)], res, panel_w=min(320, W))
         name = f"example_{scene_id(scene)}_{ex_mode}.png"
         strip.save(out / name, optimize=True)

@@ -153,3 +153,39 @@ def multi_level_gbuffer(renderer, width: int, height: int, params: Params, combi
     r = select(gb, width, height, params, rule=rule)
     settings = {**params.as_dict(), "rule": rule.__name__, "id": id_kind, "depth_tol": depth_tol}
     return M.MethodResult(r.frame, r.source, c.requests, f"multi_{rule.__name__}", settings)
+
+
+# --- in the evaluation sweep (msr_eval.sweep) ----------------------------------------------
+
+METHOD = "msr_eval.gbuffer_rule:multi_level_gbuffer"      # a Setting's method name
+# family -> the rule it combines with; T=16, L=3 like the families it is compared with
+SWEEP_FAMILIES = {"multi_L3_T16_gbuf": "patent", "multi_L3_T16_gbuflindilate": "lindilate"}
+
+
+def needs_gbuffer(setting) -> bool:
+    return getattr(setting, "method", None) == METHOD
+
+
+def rendering_unit(ref, gbuffer=None):
+    """The cached reference as the rendering unit, with its G-buffer when there is one."""
+    return ImageRenderer(ref) if gbuffer is None else GBufferImage(ref, gbuffer)
+
+
+def scene_gbuffer(backend: str, scene: str, width: int, height: int, cache=None, key: str = ""):
+    """(prim, material, depth) of every pixel of a scene (the primary ray's hit, the same in
+    both renderer modes), cached as .npz under `cache` with `key` in its name; a flat
+    G-buffer for the test-picture backend."""
+    if backend == "image":
+        return flat_gbuffer(height, width)
+    from pathlib import Path
+    path = Path(cache) / f"gbuffer_{key}.npz" if cache else None
+    if path is not None and path.is_file():
+        with np.load(path) as z:
+            return z["prim"], z["mat"], z["depth"]
+    from msr_model import embree
+    with embree.open_renderer(scene, width, height, quality="fast") as r:
+        prim, mat, depth = r.gbuffer_full()
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        np.savez_compressed(path, prim=prim, mat=mat, depth=depth)
+    return prim, mat, depth

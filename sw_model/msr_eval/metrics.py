@@ -96,7 +96,8 @@ def summarise(records, modes):
 
 
 def rule_comparison(records, base="multi_L3_T16", others=("multi_L3_T16_dilate", "multi_L3_T16_linear",
-                                                           "multi_L3_T16_lindilate", "multi_L3_T16_diag")):
+                                                           "multi_L3_T16_lindilate", "multi_L3_T16_diag",
+                                                           "multi_L3_T16_gbuf", "multi_L3_T16_gbuflindilate")):
     """PSNR of each rule minus the patent's at equal traced fraction (interpolated along the
     patent's Pareto front), per scene and mode, at every setting of the rule that lies inside
     the patent curve's fraction range."""

@@ -23,6 +23,7 @@ from pathlib import Path
 from msr_model import ImageRenderer, Params, load_rgb, save_png, spec
 from msr_model.testimage import test_image
 
+from . import gbuffer_rule as G
 from . import methods as M
 from .metrics import TARGETS_DB, pick_near, psnr, ssim, flip
 
@@ -34,25 +35,31 @@ MODEL_FILES = [
     "/usr/share/glmark2/models/cat.3ds",
     "/usr/share/glmark2/models/asteroid-high.3ds",
     "/usr/share/assimp/models/OBJ/WusonOBJ.obj",
+    # textured (besides the built-in duck and teapots): OBJ + .mtl + JPEG, glTF 1.0, glTF 2.0
+    "/usr/share/assimp/models/OBJ/spider.obj",
+    "/usr/share/assimp/models/glTF/CesiumMilkTruck/CesiumMilkTruck.gltf",
+    "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf",
 ]
+# Scenes whose surfaces carry diffuse textures (scene ids), reported on their own.
+TEXTURED_SCENES = ("duck", "teapots", "spider", "CesiumMilkTruck", "BoxTextured")
 # Threshold scales s: the patent's families use thr = (s, 2s, 4s)[:L] (at least 1 each).
 # Main families get the dense list, the others the sparse one (1080p costs ~0.6 s a setting).
 FULL_SCALES = (0.25, 0.5, 1, 2, 3, 4, 6, 8, 16, 64)
 SPARSE_SCALES = (0.5, 2, 8, 32)
 QUICK_SCALES = (0.25, 1, 2, 4, 8, 16, 64)
 MAIN_FAMILIES = ("multi_L3_T16", "multi_L3_T32", "multi_L3_T16_dilate", "multi_L3_T16_lindilate",
-                 "multi_L3_T32_lindilate")
+                 "multi_L3_T32_lindilate", *G.SWEEP_FAMILIES)
 # SSIM and FLIP (FLIP ~6 s per 1080p frame) are computed for these families' key settings.
 KEY_FAMILIES = ("grid2", "grid4", "checkerboard", "single_traced", "single_borrowed", "multi_L1_T16",
                 "multi_L2_T16", "multi_L3_T16", "multi_L3_T32", "multi_L3_T16_fov", "multi_L3_T16_dilate",
-                "multi_L3_T16_lindilate", "multi_L3_T32_lindilate")
+                "multi_L3_T16_lindilate", "multi_L3_T32_lindilate", *G.SWEEP_FAMILIES)
 # FLIP in the full run only for these (the quick run: all key families)
 FLIP_FAMILIES_FULL = ("grid2", "checkerboard", "single_borrowed", "multi_L3_T16", "multi_L3_T16_dilate",
                       "multi_L3_T16_lindilate")
 # The code a record depends on: a change to any of these invalidates the record cache.
 RECORD_CODE = ("sw_model/msr_model/golden.py", "sw_model/msr_model/spec.py", "sw_model/msr_model/rules.py",
                "sw_model/msr_model/passview.py", "sw_model/msr_eval/methods.py", "sw_model/msr_eval/rules.py",
-               "sw_model/msr_eval/metrics.py", "sw_model/msr_eval/sweep.py")
+               "sw_model/msr_eval/metrics.py", "sw_model/msr_eval/sweep.py", "sw_model/msr_eval/gbuffer_rule.py")
 
 
 # --- scenes and renderers ------------------------------------------------------------------
@@ -138,6 +145,10 @@ class Setting:
     setting: dict = field(default_factory=dict)   # what the record shows of it
 
     def run(self, renderer, width: int, height: int) -> M.MethodResult:
+        if ":" in self.method:                    # "package.module:function"
+            import importlib
+            mod, fn = self.method.split(":")
+            return getattr(importlib.import_module(mod), fn)(renderer, width, height, **self.kwargs)
         return getattr(M, self.method)(renderer, width, height, **self.kwargs)
 
 
@@ -169,6 +180,12 @@ def settings(width, height, scales, quick) -> list[Setting]:
             p = Params(tile=tile, levels=levels, thr=level_thr(levels, s), fov_gain=gain)
             out.append(Setting(fam, f"thr={','.join(map(str, p.thr))}", "multi_level",
                                {"params": p, "rule": rule}, {**p.as_dict(), "rule": rule}))
+    for fam, combine in G.SWEEP_FAMILIES.items():    # the G-buffer edge rule (msr_eval.gbuffer_rule)
+        for s in (scales if fam in MAIN_FAMILIES else sparse):
+            p = Params(tile=16, levels=3, thr=level_thr(3, s), fov_gain=0)
+            kw = {"combine": combine, "id_kind": "material", "depth_tol": G.DEFAULT_DEPTH_TOL}
+            out.append(Setting(fam, f"thr={','.join(map(str, p.thr))}", G.METHOD, {"params": p, **kw},
+                               {**p.as_dict(), "rule": fam.split("_")[-1], **kw}))
     return out
 
 
@@ -205,6 +222,12 @@ class SweepConfig:
 
 # --- tasks (pure functions of their arguments) -----------------------------------------------
 
+def gbuffer_of(backend: Backend, scene: str, cfg: SweepConfig):
+    """The scene's G-buffer at the sweep's size (msr_eval.gbuffer_rule), cached beside the references."""
+    return G.scene_gbuffer(backend.name, scene, cfg.width, cfg.height, cfg.cache,
+                           f"{scene_id(scene)}_{cfg.width}x{cfg.height}_{backend.lib_hash}")
+
+
 def _timed(renderer, run):
     """run(renderer) and its wall time in seconds; the renderer is closed afterwards."""
     try:
@@ -221,10 +244,10 @@ def task_reference(backend: str, scene: str, mode: str, width: int, height: int)
     return res.frame, {"full_render_s": dt, "traced": res.traced}
 
 
-def task_record(ref, sid: str, mode: str, setting: Setting, all_metrics: bool) -> dict:
-    """One setting on one scene's reference: its record."""
+def task_record(ref, sid: str, mode: str, setting: Setting, all_metrics: bool, gbuf=None) -> dict:
+    """One setting on one scene's reference (and its G-buffer, for the G-buffer rule): its record."""
     H, W = ref.shape[:2]
-    rr = ImageRenderer(ref)
+    rr = G.rendering_unit(ref, gbuf)
     t0 = time.perf_counter()
     res = setting.run(rr, W, H)
     dt = time.perf_counter() - t0
@@ -240,10 +263,10 @@ def task_record(ref, sid: str, mode: str, setting: Setting, all_metrics: bool) -
     return rec
 
 
-def task_key_metrics(ref, setting: Setting, want_flip: bool) -> dict:
+def task_key_metrics(ref, setting: Setting, want_flip: bool, gbuf=None) -> dict:
     """SSIM (and FLIP) of one setting, run again on the reference."""
     H, W = ref.shape[:2]
-    res = setting.run(ImageRenderer(ref), W, H)
+    res = setting.run(G.rendering_unit(ref, gbuf), W, H)
     out = {"ssim": ssim(ref, res.frame)}
     if want_flip:
         out["flip"] = flip(ref, res.frame)
@@ -377,6 +400,11 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
             meta.write_text(json.dumps(info))
             refs[(scene, mode)], infos[(scene, mode)] = frame, info
 
+    # G-buffers (one primary ray a pixel), for the settings that read them: cached per scene.
+    gbufs = {}
+    if any(G.needs_gbuffer(s) for s in sweep):
+        gbufs = {scene: gbuffer_of(backend, scene, cfg) for scene in scenes}
+
     # Records: from the per-scene cache, else one task per setting.
     records, pending = {}, []
     for scene, mode in pairs:
@@ -388,7 +416,14 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
             pending.append((scene, mode, rfile))
     t0 = time.perf_counter()
     shared = {(scene, mode): executor.scatter(refs[(scene, mode)]) for scene, mode, _ in pending}
-    futs = [executor.submit(task_record, shared[(scene, mode)], scene_id(scene), mode, s, cfg.all_metrics)
+    # (a G-buffer is a tuple of three arrays: scattered inside a list, so as one object)
+    gshared = {scene: executor.scatter([gbufs[scene]])[0] for scene in {p[0] for p in pending} if scene in gbufs}
+
+    def gb(scene, s):       # the G-buffer as a task's last argument, for the settings that read it
+        return (gshared[scene],) if G.needs_gbuffer(s) else ()
+
+    futs = [executor.submit(task_record, shared[(scene, mode)], scene_id(scene), mode, s, cfg.all_metrics,
+                            *gb(scene, s))
             for scene, mode, _ in pending for s in sweep]
     with bar(len(futs), "eval: settings") as b:
         flat = executor.results(futs, b)
@@ -407,8 +442,9 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
                 r["key_setting"] = True
                 if "ssim" not in r and not any(r is j[0] for j in jobs):
                     want_flip = cfg.quick or fam in FLIP_FAMILIES_FULL
-                    jobs.append((r, executor.submit(task_key_metrics, shared[(scene, mode)],
-                                                    find_setting(sweep, r), want_flip)))
+                    st = find_setting(sweep, r)
+                    jobs.append((r, executor.submit(task_key_metrics, shared[(scene, mode)], st, want_flip,
+                                                    *gb(scene, st))))
     with bar(len(jobs), "eval: key metrics") as b:
         for (r, _), extra in zip(jobs, executor.results([f for _, f in jobs], b)):
             r.update(extra)
@@ -421,10 +457,11 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     return [r for pair in pairs for r in records[pair]], refs, infos
 
 
-def rerun(ref, rec: dict, sweep: list[Setting]) -> M.MethodResult:
-    """Run one recorded setting again on the reference (for images and late metrics)."""
+def rerun(ref, rec: dict, sweep: list[Setting], gbuf=None) -> M.MethodResult:
+    """Run one recorded setting again on the reference (for images and late metrics); the
+    G-buffer rule's settings need the scene's G-buffer (G.scene_gbuffer)."""
     H, W = ref.shape[:2]
-    return find_setting(sweep, rec).run(ImageRenderer(ref), W, H)
+    return find_setting(sweep, rec).run(G.rendering_unit(ref, gbuf), W, H)
 
 
 def speedup(backend: Backend, scene, mode, rec, ref, info, sweep: list[Setting]) -> dict:
