@@ -24,6 +24,9 @@ import numpy as np
 from . import spec
 
 QUALITIES = {"fast": 0, "heavy": 1}
+HEAVY_GRID = 4          # heavy mode: 4 x 4 samples per pixel (msr::Renderer::kHeavyGrid)
+MAX_GRID = 64           # msr_render_create_spp: grid 1..64
+DEFAULT_SEED = 0x4D5352  # MSR_RENDER_DEFAULT_SEED, the seed of the two quality modes
 _BATCH = 8192  # pixels per C call: big enough to hide call overhead, small for a smooth progress bar
 
 class RendererUnavailable(spec.SpecError):
@@ -58,6 +61,11 @@ def _load():
         lib.msr_render_create_view.restype = ctypes.c_void_p
         lib.msr_render_create_view.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int, ctypes.c_int,
                                                ctypes.c_int, ctypes.c_char_p, ctypes.c_size_t]
+        if hasattr(lib, "msr_render_create_spp"):
+            lib.msr_render_create_spp.restype = ctypes.c_void_p
+            lib.msr_render_create_spp.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int, ctypes.c_int,
+                                                  ctypes.c_int, ctypes.c_int, ctypes.c_uint32, ctypes.c_char_p,
+                                                  ctypes.c_size_t]
         lib.msr_render_pixel.restype = None
         lib.msr_render_pixel.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.c_int, ctypes.POINTER(ctypes.c_uint8)]
         lib.msr_render_pixels.restype = None
@@ -115,7 +123,8 @@ class EmbreeRenderer:
     """A renderer object for the golden model: `.render(xs, ys) -> (N, 3) uint8`."""
 
     def __init__(self, scene: str, width: int, height: int, quality: str | int = "fast",
-                 threads: int | None = None, camera: str | None = None):
+                 threads: int | None = None, camera: str | None = None, grid: int | None = None,
+                 seed: int | None = None):
         spec.check_frame_size(width, height)
         if isinstance(quality, str):
             if quality not in QUALITIES:
@@ -129,10 +138,22 @@ class EmbreeRenderer:
             raise spec.SpecError(f"scene must be a built-in name or a model file path, got {scene!r}")
         if camera is not None and camera != "":
             check_camera(camera)
+        if grid is not None and not (isinstance(grid, (int, np.integer)) and 1 <= grid <= MAX_GRID):
+            raise spec.SpecError(f"grid must be an integer in 1..{MAX_GRID}, got {grid!r}")
+        if seed is not None and not (isinstance(seed, (int, np.integer)) and 0 <= seed < 2 ** 32):
+            raise spec.SpecError(f"seed must be an integer in 0..2^32-1, got {seed!r}")
         self._lib = _load()
         err = ctypes.create_string_buffer(512)
-        handle = self._lib.msr_render_create_view(os.fsencode(str(scene)), camera.encode() if camera else None,
-                                                  int(width), int(height), q, err, len(err))
+        cam = camera.encode() if camera else None
+        if grid is None and seed is None:     # the two quality modes, through the DPI's call
+            handle = self._lib.msr_render_create_view(os.fsencode(str(scene)), cam, int(width), int(height), q,
+                                                      err, len(err))
+        else:
+            if not hasattr(self._lib, "msr_render_create_spp"):
+                raise RendererUnavailable("the rendering library has no msr_render_create_spp: run `make renderer`")
+            handle = self._lib.msr_render_create_spp(os.fsencode(str(scene)), cam, int(width), int(height), q,
+                                                     int(grid or 0), int(DEFAULT_SEED if seed is None else seed),
+                                                     err, len(err))
         if not handle:
             msg = err.value.decode(errors="replace") or f"cannot open scene {scene}"
             raise spec.SpecError(msg)
@@ -142,6 +163,9 @@ class EmbreeRenderer:
         self.width = int(width)
         self.height = int(height)
         self.quality = [k for k, v in QUALITIES.items() if v == q][0]
+        self.grid = int(grid) if grid is not None else (HEAVY_GRID if q == 1 else 1)
+        self.seed = int(DEFAULT_SEED if seed is None else seed)
+        self.samples_per_pixel = self.grid * self.grid
         self.threads = max(1, int(threads)) if threads else _threads()
         self.calls = 0
         self.pixels_traced = 0
@@ -276,11 +300,16 @@ class EmbreeRenderer:
 
 
 def open_renderer(scene: str, width: int, height: int, quality: str | int = "fast",
-                  threads: int | None = None, camera: str | None = None) -> EmbreeRenderer:
+                  threads: int | None = None, camera: str | None = None, grid: int | None = None,
+                  seed: int | None = None) -> EmbreeRenderer:
     """Open the Embree rendering unit on a built-in scene name or a model file path, seen from
     the scene's own view or from `camera` ("EX,EY,EZ,TX,TY,TZ,FOV", model units, degrees).
 
     Raises spec.SpecError with a one-line message for an unknown scene, an unreadable file,
     a file without triangles, a malformed camera or a bad frame size.
+
+    grid, seed (the evaluation's converged references): grid x grid stratified samples per
+    pixel and the seed of the pixel hashes (msr_render_create_spp); left out, the quality
+    mode's own sampling, bit for bit.
     """
-    return EmbreeRenderer(scene, width, height, quality, threads, camera)
+    return EmbreeRenderer(scene, width, height, quality, threads, camera, grid, seed)

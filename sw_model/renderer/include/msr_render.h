@@ -4,7 +4,8 @@
  * the Python golden model (ctypes) and the RTL simulation (DPI-C) both call these functions,
  * so they see bit-identical pixels by construction.
  *
- * Determinism: a pixel's colour depends only on (scene, width, height, quality, x, y), never on
+ * Determinism: a pixel's colour depends only on (scene, width, height, quality, x, y) (and the
+ * grid and seed of msr_render_create_spp), never on
  * call order, batch split or thread. The scene is read-only after msr_render_create, so any
  * number of threads may call msr_render_pixel(s) on one context at the same time.
  */
@@ -35,6 +36,18 @@ msr_render_ctx *msr_render_create(const char *scene, int width, int height, int 
  * scene. msr_render_create(s, ...) is msr_render_create_view(s, NULL, ...). */
 msr_render_ctx *msr_render_create_view(const char *scene, const char *camera, int width, int height,
                                        int quality, char *err, size_t errlen);
+
+/* Extension (converged references): the same with the sampling chosen. grid: grid x grid
+ * stratified, jittered samples per pixel, 1..64 (in heavy mode each sample also takes one
+ * area-light point, the strata shuffled per pixel, and one ambient-occlusion ray; in fast mode
+ * the shading stays noise-free and the samples only antialias; fast with grid 1 samples the
+ * pixel centre); 0 = the quality's own (1 fast, 4 heavy). seed: the seed of every pixel hash
+ * (MSR_RENDER_DEFAULT_SEED is the fixed one). msr_render_create_view(s, c, w, h, q, e, n) is
+ * msr_render_create_spp(s, c, w, h, q, 0, MSR_RENDER_DEFAULT_SEED, e, n), pixel for pixel.
+ * Two seeds give independent renders of the same scene (the evaluation's convergence check). */
+#define MSR_RENDER_DEFAULT_SEED 0x4d5352u
+msr_render_ctx *msr_render_create_spp(const char *scene, const char *camera, int width, int height,
+                                      int quality, int grid, uint32_t seed, char *err, size_t errlen);
 
 /* Colour of pixel (x, y), (0, 0) top left, as 8-bit sRGB. A pixel outside the frame (or a NULL
  * context) gives (0, 0, 0). */

@@ -28,6 +28,7 @@ struct msr_render_ctx {
 namespace {
 
 constexpr int kMaxSize = 4096;
+static_assert(MSR_RENDER_DEFAULT_SEED == msr::Renderer::kDefaultSeed, "one default seed");
 
 void set_err(char *err, size_t errlen, const std::string &msg) {
     if (!err || errlen == 0) return;
@@ -91,7 +92,17 @@ msr_render_ctx *msr_render_create(const char *scene, int width, int height, int 
 
 msr_render_ctx *msr_render_create_view(const char *scene, const char *camera, int width, int height, int quality,
                                        char *err, size_t errlen) {
+    return msr_render_create_spp(scene, camera, width, height, quality, 0, msr::Renderer::kDefaultSeed, err, errlen);
+}
+
+msr_render_ctx *msr_render_create_spp(const char *scene, const char *camera, int width, int height, int quality,
+                                      int grid, uint32_t seed, char *err, size_t errlen) {
     set_err(err, errlen, "");
+    if (grid < 0 || grid > msr::Renderer::kMaxGrid) {
+        set_err(err, errlen, "antialiasing grid " + std::to_string(grid) + " outside 0.." +
+                                 std::to_string(msr::Renderer::kMaxGrid));
+        return nullptr;
+    }
     if (!scene) { set_err(err, errlen, "scene is NULL"); return nullptr; }
     if (width < 1 || width > kMaxSize || height < 1 || height > kMaxSize) {
         set_err(err, errlen, "frame size " + std::to_string(width) + "x" + std::to_string(height) + " outside 1..4096");
@@ -131,7 +142,7 @@ msr_render_ctx *msr_render_create_view(const char *scene, const char *camera, in
             return nullptr;
         }
         ctx->renderer = std::make_unique<msr::Renderer>(std::move(sc), width, height,
-                                                        quality ? msr::Quality::Heavy : msr::Quality::Fast);
+                                                        quality ? msr::Quality::Heavy : msr::Quality::Fast, grid, seed);
         return ctx.release();
     } catch (const std::exception &e) {
         set_err(err, errlen, std::string("renderer: ") + e.what());

@@ -14,7 +14,6 @@ namespace {
 constexpr float kPi = float(kPiD);
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kMinWeight = 1.f / 512.f;  // prune secondary rays that cannot change 8-bit output
-constexpr uint32_t kSeed = 0x4d5352u;      // "MSR": the fixed seed of every pixel hash
 constexpr float kGlassShadow = 0.55f;      // light passing a glass occluder (stands in for caustics)
 
 // Purposes of the per-sample random numbers (mixed into the hash with the depth).
@@ -121,9 +120,10 @@ struct Renderer::Sample {
     }
 };
 
-Renderer::Renderer(std::unique_ptr<Scene> scene, int width, int height, Quality q)
+Renderer::Renderer(std::unique_ptr<Scene> scene, int width, int height, Quality q, int grid, uint32_t seed)
     : scene_(std::move(scene)), width_(width), height_(height), quality_(q),
-      spp_(q == Quality::Heavy ? kHeavyGrid * kHeavyGrid : 1) {
+      grid_(grid > 0 ? std::min(grid, kMaxGrid) : (q == Quality::Heavy ? kHeavyGrid : 1)),
+      spp_(grid_ * grid_), seed_(seed) {
     const Camera &c = scene_->camera;
     eye_ = c.eye;
     fwd_ = normalize(c.target - c.eye);
@@ -241,8 +241,10 @@ Vec3 Renderer::shade_diffuse(const Hit &h, Vec3 view, Vec3 nf, Vec3 ngf, Vec3 al
         } else {
             // One stratified point per sample; the strata are shuffled per pixel so that
             // the antialiasing strata and the light strata are not correlated.
-            const int g = kHeavyGrid;
-            uint32_t st = (uint32_t(s.index) + (hash32(s.pix) & 15u) * 5u) % uint32_t(g * g);
+            // (grid 4: (index + (h & 15) * 5) % 16, the heavy mode's own shuffle)
+            const int g = grid_;
+            const uint32_t n = uint32_t(g * g);
+            uint32_t st = (uint32_t(s.index) + (hash32(s.pix) % n) * 5u) % n;
             probe((float(st % g) + s.rnd(R_LIGHT_U, 0)) / float(g), (float(st / g) + s.rnd(R_LIGHT_V, 0)) / float(g));
         }
         if (n == 0) vis = {1.f, 1.f, 1.f}, n = 1;  // a sliver above the horizon missed by every probe
@@ -334,14 +336,14 @@ Vec3 Renderer::trace(Vec3 org, Vec3 dir, int depth, float weight, float path, co
 
 Vec3 Renderer::radiance(int x, int y, uint64_t *rays) const {
     Sample s;
-    s.pix = hash_combine(hash_combine(kSeed, uint32_t(x)), uint32_t(y));
+    s.pix = hash_combine(hash_combine(seed_, uint32_t(x)), uint32_t(y));
     Vec3 sum{0.f, 0.f, 0.f};
     for (int i = 0; i < spp_; ++i) {
         s.index = i;
         float fx = float(x) + 0.5f, fy = float(y) + 0.5f;
-        if (quality_ == Quality::Heavy) {  // stratified, jittered antialiasing
-            fx = float(x) + (float(i % kHeavyGrid) + s.rnd(R_AA_X, 0)) / float(kHeavyGrid);
-            fy = float(y) + (float(i / kHeavyGrid) + s.rnd(R_AA_Y, 0)) / float(kHeavyGrid);
+        if (quality_ == Quality::Heavy || grid_ > 1) {  // stratified, jittered antialiasing
+            fx = float(x) + (float(i % grid_) + s.rnd(R_AA_X, 0)) / float(grid_);
+            fy = float(y) + (float(i / grid_) + s.rnd(R_AA_Y, 0)) / float(grid_);
         }
         Vec3 org, dir;
         primary_ray(fx, fy, org, dir);

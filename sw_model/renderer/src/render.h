@@ -20,8 +20,12 @@ enum class Quality { Fast = 0, Heavy = 1 };
 
 class Renderer {
 public:
-    // Takes a committed scene. width, height >= 1.
-    Renderer(std::unique_ptr<Scene> scene, int width, int height, Quality q);
+    // Takes a committed scene. width, height >= 1. grid: the antialiasing grid, grid x grid
+    // stratified jittered samples per pixel (0 = the quality's own: 1 fast, kHeavyGrid heavy;
+    // fast with grid 1 samples the pixel centre); seed: the seed of every pixel hash. The
+    // defaults give the pixels of the two quality modes, bit for bit.
+    Renderer(std::unique_ptr<Scene> scene, int width, int height, Quality q, int grid = 0,
+             uint32_t seed = kDefaultSeed);
 
     // Linear radiance of pixel (x, y) (averaged over its samples), before exposure; adds the
     // number of rays cast to *rays when given.
@@ -45,9 +49,13 @@ public:
     int height() const { return height_; }
     Quality quality() const { return quality_; }
     int samples_per_pixel() const { return spp_; }
+    int grid() const { return grid_; }
+    uint32_t seed() const { return seed_; }
 
     static constexpr int kMaxDepth = 6;        // Whitted recursion limit (reflection/refraction)
     static constexpr int kHeavyGrid = 4;       // heavy mode: kHeavyGrid^2 samples per pixel
+    static constexpr int kMaxGrid = 64;        // largest antialiasing grid (4096 samples per pixel)
+    static constexpr uint32_t kDefaultSeed = 0x4d5352u;  // "MSR": the fixed seed of every pixel hash
 
 private:
     struct Sample;
@@ -61,7 +69,9 @@ private:
     std::unique_ptr<Scene> scene_;
     int width_, height_;
     Quality quality_;
+    int grid_;
     int spp_;
+    uint32_t seed_;
     Vec3 eye_, fwd_, right_, up_;
     float scale_;  // tan(fov/2) / (shorter side / 2): a pixel's width at unit distance
 };

@@ -1,0 +1,158 @@
+"""DACS (msr_eval.dacs) and the VRS-like baseline (msr_eval.vrs) on small hand cases."""
+import numpy as np
+import pytest
+
+from msr_model import SpecError
+from msr_model.testimage import test_image as make_test_image
+from msr_eval import dacs as D
+from msr_eval import vrs as V
+
+
+class Recorder:
+    """A renderer that remembers every pixel it was asked for, duplicates included."""
+
+    def __init__(self, image):
+        self.image = image
+        self.asked = []
+
+    def render(self, xs, ys):
+        xs, ys = np.asarray(xs), np.asarray(ys)
+        self.asked += list(zip(xs.tolist(), ys.tolist()))
+        return self.image[ys, xs]
+
+
+def _honest(res, rec, image):
+    assert res.traced == len(rec.asked) == len(set(rec.asked))          # no pixel twice
+    assert {(x, y) for y, x in zip(*np.nonzero(res.source < 16))} == set(rec.asked)
+    m = res.source < 16
+    assert (res.frame[m] == image[m]).all()
+
+
+def _ramp(w, h):
+    """Grey ramp 10 * x (all channels)."""
+    img = np.zeros((h, w, 3), np.uint8)
+    img[:] = (10 * np.arange(w, dtype=np.uint8))[None, :, None]
+    return img
+
+
+# --- DACS ------------------------------------------------------------------------------------
+
+def test_dacs_pass_order_covers_each_pixel_once():
+    p = D.pass_of(8, 8)
+    assert (np.bincount(p.ravel()) == [4, 4, 8, 16, 32]).all()
+    assert p[0, 0] == 0 and p[2, 2] == 1 and p[0, 2] == 2 and p[2, 0] == 2 and p[1, 1] == 3 and p[3, 3] == 3
+    assert p[0, 1] == 4 and p[1, 0] == 4
+
+
+def test_dacs_ramp_by_hand():
+    """5x5 ramp 10*x, variance threshold 300. Pass 0 traces the corners (0, 40 in x).
+    (2,2): neighbours 0,40,0,40: variance 400 > 300 -> traced (20).
+    (2,0): (0,0)=0, (4,0)=40, (2,2)=20 (the fourth is off the frame): variance 266.7 -> mean 20.
+    (0,2): (2,2)=20, (0,0)=0, (0,4)=0: variance 88.9 -> (20 + 1) // 3 = 7 (the truth is 0).
+    (4,2): (2,2)=20, (4,0)=40, (4,4)=40: variance 88.9 -> (100 + 1) // 3 = 33."""
+    img = _ramp(5, 5)
+    rec = Recorder(img)
+    res = D.dacs(rec, 5, 5, thr=300)
+    _honest(res, rec, img)
+    f = res.frame[..., 0]
+    assert res.source[2, 2] == D.SRC_TRACED and f[2, 2] == 20
+    assert res.source[0, 2] == D.SRC_INTERP and f[0, 2] == 20 and f[4, 2] == 20
+    assert res.source[2, 0] == D.SRC_INTERP and f[2, 0] == 7
+    assert res.source[2, 4] == D.SRC_INTERP and f[2, 4] == 33
+    # one notch lower than (2,2)'s 400 traces it, exactly at 400 interpolates it
+    assert D.dacs(Recorder(img), 5, 5, thr=399.9).source[2, 2] == D.SRC_TRACED
+    r400 = D.dacs(Recorder(img), 5, 5, thr=400)
+    assert r400.source[2, 2] == D.SRC_INTERP and r400.frame[2, 2, 0] == 20
+
+
+def test_dacs_metrics_by_hand():
+    img = _ramp(5, 5)
+    # range of (2,2)'s neighbours is 40
+    assert D.dacs(Recorder(img), 5, 5, thr=40, metric="range").source[2, 2] == D.SRC_INTERP
+    assert D.dacs(Recorder(img), 5, 5, thr=39, metric="range").source[2, 2] == D.SRC_TRACED
+    # luma of a grey is the grey (weights sum to 1): the same 400 as per channel
+    assert D.dacs(Recorder(img), 5, 5, thr=401, metric="lumvar").source[2, 2] == D.SRC_INTERP
+    assert D.dacs(Recorder(img), 5, 5, thr=399, metric="lumvar").source[2, 2] == D.SRC_TRACED
+    # a pure chroma edge: red 200 | green 200 (luma differs, but per channel variance is larger)
+    nb = np.array([[[200, 0, 0], [200, 0, 0], [0, 200, 0], [0, 200, 0]]], np.uint8)
+    valid = np.ones((1, 4), bool)
+    assert D.statistic(nb, valid, "var")[0] == pytest.approx(100 ** 2)
+    assert D.statistic(nb, valid, "lumvar")[0] == pytest.approx(((0.7152 - 0.2126) * 200 / 2) ** 2)
+    assert D.statistic(nb, valid, "range")[0] == 200
+    # invalid neighbours do not count
+    valid = np.array([[True, True, False, False]])
+    assert D.statistic(nb, valid, "var")[0] == 0 and D.statistic(nb, valid, "range")[0] == 0
+
+
+def test_dacs_extremes_and_counts():
+    img = np.full((12, 16, 3), 77, np.uint8)
+    rec = Recorder(img)
+    res = D.dacs(rec, 16, 12, thr=0)              # flat: pass 0 traced, and the two pixels
+    _honest(res, rec, img)                        # with one neighbour in the frame:
+    assert res.traced == 4 * 3 + 2 and (res.frame == 77).all()
+    # (14,10) (pass 1: only (12,8) inside) and (15,11) (pass 3: only (14,10) inside)
+    assert {(x, y) for x, y in rec.asked if x % 4 or y % 4} == {(14, 10), (15, 11)}
+    img = make_test_image(37, 29)
+    rec = Recorder(img)
+    res = D.dacs(rec, 37, 29, thr=-1)             # negative threshold: everything traced
+    _honest(res, rec, img)
+    assert res.traced == 37 * 29 and (res.frame == img).all()
+    fr = []
+    for t in (0, 4, 64, 1024, 1e9):
+        rec = Recorder(img)
+        r = D.dacs(rec, 37, 29, thr=t)
+        _honest(r, rec, img)
+        fr.append(r.traced)
+    assert fr == sorted(fr, reverse=True) and fr[-1] < fr[0]
+    # a huge threshold interpolates every pixel but pass 0's (37 x 29: the last row and column
+    # lie on the grid, so every pixel has >= 2 neighbours in the frame)
+    assert fr[-1] == len(range(0, 37, 4)) * len(range(0, 29, 4))
+    with pytest.raises(SpecError):
+        D.dacs(Recorder(img), 37, 29, thr=1, metric="median")
+
+
+# --- VRS-like ---------------------------------------------------------------------------------
+
+def test_vrs_rates_and_replication_by_hand():
+    """16x16, tiles of 8, s = 2. Pre-pass samples at multiples of 4; the tile (0,0) brackets
+    samples x, y in {0, 4, 8}, so the marks at (12,4), (4,12), (12,12) reach only their own
+    tile: contrasts 0, 3, 7, 50 -> rates 4x4, 2x2, 2x1, 1x1."""
+    img = np.full((16, 16, 3), 100, np.uint8)
+    img[4, 12] = 103
+    img[12, 4] = 107
+    img[12, 12] = 150
+    img[13, 13] = 10                                   # not a pre-pass pixel
+    rec = Recorder(img)
+    res = V.vrs_tier2(rec, 16, 16, thr=2, tile=8)
+    _honest(res, rec, img)
+    assert res.rates.tolist() == [[0, 1], [2, 3]]
+    # 16 pre-pass + 12 (2x2 anchors not pre-pass) + 28 (2x1) + 60 (1x1)
+    assert res.traced == 16 + 12 + 28 + 60
+    assert (res.frame[8:, 8:] == img[8:, 8:]).all()    # the 1x1 tile is exact
+    assert tuple(res.frame[4, 13]) == (103,) * 3 and tuple(res.frame[5, 13]) == (103,) * 3   # 2x2 copies
+    assert tuple(res.frame[12, 5]) == (107,) * 3 and tuple(res.frame[13, 4]) == (100,) * 3   # 2x1: rows apart
+    assert (res.frame[:8, :8] == 100).all()
+    # a larger s coarsens every tile but the 1x1 one; s = 50 makes everything 4x4
+    assert V.vrs_tier2(Recorder(img), 16, 16, thr=4, tile=8).rates.tolist() == [[0, 0], [1, 3]]
+    r = V.vrs_tier2(Recorder(img), 16, 16, thr=50, tile=8)
+    assert r.rates.tolist() == [[0, 0], [0, 0]] and r.traced == 16
+    assert tuple(r.frame[15, 15]) == (150,) * 3     # replicated from (12, 12)
+
+
+def test_vrs_tile16_and_odd_frame():
+    img = make_test_image(45, 27)
+    for tile in (8, 16):
+        prev = None
+        for s in (0, 2, 8, 32, 255):
+            rec = Recorder(img)
+            res = V.vrs_tier2(rec, 45, 27, thr=s, tile=tile)
+            _honest(res, rec, img)
+            assert res.rates.shape == (-(-27 // tile), -(-45 // tile))
+            assert prev is None or res.traced <= prev
+            prev = res.traced
+        assert prev == 12 * 7                          # all 4x4: just the pre-pass
+    rec = Recorder(img)
+    r = V.vrs_tier2(rec, 45, 27, thr=-1, tile=16)      # all 1x1: the frame exactly
+    assert r.traced == 45 * 27 and (r.frame == img).all()
+    with pytest.raises(SpecError):
+        V.vrs_tier2(Recorder(img), 45, 27, thr=1, tile=12)
