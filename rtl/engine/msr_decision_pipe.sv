@@ -4,12 +4,13 @@
 // valid/ready handshake. Division by g in 2..8 is a multiply by RECIP[g] = ceil(2^14 / g) and
 // a shift by 14, exact for every numerator 0..2047 (tb/interp proves it over the whole range).
 //
-// Four register stages, each a few logic levels, so the unit closes timing far above the
-// engine's clock on an FPGA and fits a short cycle on an ASIC:
+// Five register stages, each under 30 levels of generic logic, so the unit closes timing far
+// above the engine's clock on an FPGA and fits a short cycle on an ASIC:
 //   S1  per-channel |A - B|, thr * g, (g - o) * A and o * B
 //   S2  max and sum of the differences, numerator (g - o) * A + o * B + floor(g / 2)
-//   S3  d << log2(n_k) against thr * g; numerator times the low and high halves of RECIP[g]
-//   S4  product = low + high << 7; C is its bits 14..21 (output register)
+//   S3  d << log2(n_k) against thr * g; numerator times the four 4-bit pieces of RECIP[g]
+//   S4  pieces summed in pairs: p0 + p1 << 4, p2 + p3 << 4
+//   S5  product = pair0 + pair1 << 8; C is its bits 14..21 (output register)
 // Global-stall pipeline: every stage advances when the output register is empty or taken.
 // A trace-only step (the initial grid) passes through with any A / B; the caller ignores C.
 `include "msr_assert.svh"
@@ -43,20 +44,19 @@ module msr_decision_pipe
   localparam int unsigned PROD_W = THR_W + GAP_W;  // 12 bit: 255 * 8, 255 * 7 + 255 * 1
   localparam int unsigned NUM_W  = 11;             // numerator <= 8 * 255 + 4 = 2044
   localparam int unsigned LHS_W  = DIFF_W + 3;     // d << 3
-  localparam int unsigned HALF_W = 7;              // RECIP split into two 7-bit halves
   localparam int unsigned SHIFT  = 14;
 
   // ceil(2^SHIFT / g); entries 0 and 1 are never used (g >= 2 wherever C is used).
-  function automatic logic [2*HALF_W-1:0] recip(gap_t g);
+  function automatic logic [15:0] recip(gap_t g);
     unique case (g)
-      4'd2:    return 14'd8192;
-      4'd3:    return 14'd5462;
-      4'd4:    return 14'd4096;
-      4'd5:    return 14'd3277;
-      4'd6:    return 14'd2731;
-      4'd7:    return 14'd2341;
-      4'd8:    return 14'd2048;
-      default: return 14'd0;
+      4'd2:    return 16'd8192;
+      4'd3:    return 16'd5462;
+      4'd4:    return 16'd4096;
+      4'd5:    return 16'd3277;
+      4'd6:    return 16'd2731;
+      4'd7:    return 16'd2341;
+      4'd8:    return 16'd2048;
+      default: return 16'd0;
     endcase
   endfunction
 
@@ -103,7 +103,7 @@ module msr_decision_pipe
   logic  [2:0][NUM_W-1:0]  s2_num_q;
   logic  [PROD_W-1:0]      s2_rhs_q;
   logic  [1:0]             s2_nshift_q;
-  logic  [2*HALF_W-1:0]    s2_recip_q;
+  logic  [15:0]            s2_recip_q;   // 14 bits and two zeros: four 4-bit pieces
   logic  [USER_W-1:0]      s2_user_q;
   diff_t                   d_max, d_sum;
 
@@ -127,43 +127,72 @@ module msr_decision_pipe
     end
   end
 
-  // ---- S3 ---------------------------------------------------------------------------------------
-  localparam int unsigned PART_W = NUM_W + HALF_W;
-  logic                    s3_valid_q;
-  logic                    s3_interp_q;
-  diff_t                   s3_d_q;
-  logic  [2:0][PART_W-1:0] s3_lo_q, s3_hi_q;
-  logic  [USER_W-1:0]      s3_user_q;
+  // ---- S3: the numerator times four 4-bit pieces of RECIP[g] -----------------------------------
+  // No stage holds more than an 11 x 4 product or a 15-bit sum: both are under 30 levels of
+  // generic logic (an 11 x 7 product is 34), which is what an ASIC clock of several hundred
+  // MHz asks for; the FPGA maps the products to LUTs or multiplier blocks as it likes.
+  localparam int unsigned PIECE_W = 4;
+  localparam int unsigned PART_W  = NUM_W + PIECE_W;          // 15: num * 4-bit piece
+  localparam int unsigned PAIR_W  = PART_W + PIECE_W;         // 19: p0 + p1 << 4
+  localparam int unsigned OUT_MSB = SHIFT + 8;                 // bits 14..21 hold C
+  logic                        s3_valid_q;
+  logic                        s3_interp_q;
+  diff_t                       s3_d_q;
+  logic  [2:0][3:0][PART_W-1:0] s3_part_q;
+  logic  [USER_W-1:0]          s3_user_q;
 
   always_ff @(posedge clk_i) begin
     if (advance && s2_valid_q) begin
       s3_interp_q <= (LHS_W'(s2_d_q) << s2_nshift_q) < LHS_W'(s2_rhs_q);
       s3_d_q      <= s2_d_q;
       for (int unsigned c = 0; c < 3; c++) begin
-        s3_lo_q[c] <= PART_W'(s2_num_q[c]) * PART_W'(s2_recip_q[HALF_W-1:0]);
-        s3_hi_q[c] <= PART_W'(s2_num_q[c]) * PART_W'(s2_recip_q[2*HALF_W-1:HALF_W]);
+        for (int unsigned k = 0; k < 4; k++) begin
+          s3_part_q[c][k] <= PART_W'(s2_num_q[c]) *
+                             PART_W'(s2_recip_q[PIECE_W*k +: PIECE_W]);
+        end
       end
       s3_user_q   <= s2_user_q;
     end
   end
 
-  // ---- S4: output register ------------------------------------------------------------------
-  localparam int unsigned FULL_W = PART_W + HALF_W;
-  logic [2:0][FULL_W-1:0] prod;
+  // ---- S4: pairs of pieces summed ----------------------------------------------------------
+  logic                        s4_valid_q;
+  logic                        s4_interp_q;
+  diff_t                       s4_d_q;
+  logic  [2:0][1:0][PAIR_W-1:0] s4_pair_q;   // p0 + p1 << 4, p2 + p3 << 4
+  logic  [USER_W-1:0]          s4_user_q;
+
+  always_ff @(posedge clk_i) begin
+    if (advance && s3_valid_q) begin
+      s4_interp_q <= s3_interp_q;
+      s4_d_q      <= s3_d_q;
+      for (int unsigned c = 0; c < 3; c++) begin
+        for (int unsigned j = 0; j < 2; j++) begin
+          s4_pair_q[c][j] <= PAIR_W'(s3_part_q[c][2*j]) +
+                             (PAIR_W'(s3_part_q[c][2*j+1]) << PIECE_W);
+        end
+      end
+      s4_user_q   <= s3_user_q;
+    end
+  end
+
+  // ---- S5: output register; product = pair0 + pair1 << 8 -----------------------------------
+  // Only bits up to 21 are formed: the quotient is <= 255, so the 8 bits above the shift are
+  // the whole result and nothing above them is ever set.
+  logic [2:0][OUT_MSB-1:0] prod;
 
   always_comb begin
     for (int unsigned c = 0; c < 3; c++) begin
-      prod[c] = FULL_W'(s3_lo_q[c]) + (FULL_W'(s3_hi_q[c]) << HALF_W);
+      prod[c] = OUT_MSB'(s4_pair_q[c][0]) + (OUT_MSB'(s4_pair_q[c][1]) << (2 * PIECE_W));
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (advance && s3_valid_q) begin
-      interp_o <= s3_interp_q;
-      diff_o   <= s3_d_q;
-      // the quotient is <= 255: the 8 bits above the shift are the whole result
+    if (advance && s4_valid_q) begin
+      interp_o <= s4_interp_q;
+      diff_o   <= s4_d_q;
       rgb_o    <= '{r: prod[2][SHIFT +: 8], g: prod[1][SHIFT +: 8], b: prod[0][SHIFT +: 8]};
-      user_o   <= s3_user_q;
+      user_o   <= s4_user_q;
     end
   end
 
@@ -173,17 +202,20 @@ module msr_decision_pipe
       s1_valid_q <= 1'b0;
       s2_valid_q <= 1'b0;
       s3_valid_q <= 1'b0;
+      s4_valid_q <= 1'b0;
       valid_o    <= 1'b0;
     end else if (clear_i) begin
       s1_valid_q <= 1'b0;
       s2_valid_q <= 1'b0;
       s3_valid_q <= 1'b0;
+      s4_valid_q <= 1'b0;
       valid_o    <= 1'b0;
     end else if (advance) begin
       s1_valid_q <= valid_i;
       s2_valid_q <= s1_valid_q;
       s3_valid_q <= s2_valid_q;
-      valid_o    <= s3_valid_q;
+      s4_valid_q <= s3_valid_q;
+      valid_o    <= s4_valid_q;
     end
   end
 

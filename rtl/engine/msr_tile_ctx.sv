@@ -69,13 +69,16 @@ module msr_tile_ctx
   ctx_state_e        state_q, state_d;
   tile_desc_t        desc_q;
   logic [PEND_W-1:0] pend_q, pend_d;
-  logic              pend_zero;
-
+  
   // ---- Level processing controller and its position queue ------------------------------------
   // The controller fills a two-entry queue; the engine's arbiter takes positions from the
   // queue's head. So the walk state (a few hundred flip-flops) advances on a registered
-  // "queue has room", not on the arbiter's grant, which reaches only the queue's pointers;
+  // "queue has room", not on the arbiter's grant, which reaches only the queue's registers;
   // two entries keep one position per clock for a context that wins every cycle.
+  //
+  // The queue is a head register and a tail register (not a FIFO with pointers): the head's
+  // fields, hence the candidate bit and the tile buffer's read addresses, come straight from
+  // flip-flops, so the engine's issue path starts at a register and one LUT.
   typedef struct packed {
     lcoord_t    x;
     lcoord_t    y;
@@ -91,9 +94,10 @@ module msr_tile_ctx
     logic       first;
   } step_t;
 
-  logic    step_valid, ctrl_busy, q_room, q_valid;
-  step_t   step, q_head;
-  logic [1:0] q_count;
+  logic    step_valid, ctrl_busy, q_room, q_push;
+  step_t   step;
+  logic    head_valid_q, tail_valid_q;
+  step_t   head_q, tail_q;
   // The controller is idle whenever the context is free; its own start handshake is not needed.
   /* verilator lint_off UNUSEDSIGNAL */
   logic    ctrl_start_ready;
@@ -125,34 +129,54 @@ module msr_tile_ctx
     .busy_o        (ctrl_busy)
   );
 
-  msr_fifo #(
-    .WIDTH ($bits(step_t)),
-    .DEPTH (2)
-  ) u_step_queue (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .flush_i (clear_i),
-    .valid_i (step_valid),
-    .ready_o (q_room),
-    .data_i  (step),
-    .valid_o (q_valid),
-    .ready_i (issue_i),
-    .data_o  (q_head),
-    .count_o (q_count)
-  );
+  // Room while the tail is empty (a register: a push into a full queue waits a clock even
+  // when the head leaves in the same one).
+  assign q_room = !tail_valid_q;
+  assign q_push = step_valid && q_room;
 
-  // pend_q counts every issue and write before this cycle: zero means every pixel of the
-  // passes before is final. (A compare of a register: the arbiter's path starts here.)
-  assign pend_zero     = (pend_q == '0);
-  assign cand_o        = q_valid && (!q_head.first || pend_zero);
-  assign step_first_o  = q_head.first;
-  assign step_init_o   = (q_head.dir == DIR_INIT);
-  assign step_x_o      = q_head.x;
-  assign step_y_o      = q_head.y;
-  assign step_gap_o    = q_head.gap;
-  assign step_off_o    = q_head.off;
-  assign step_level_o  = q_head.level;
-  assign step_nshift_o = q_head.nshift;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      head_valid_q <= 1'b0;
+      tail_valid_q <= 1'b0;
+    end else if (clear_i) begin
+      head_valid_q <= 1'b0;
+      tail_valid_q <= 1'b0;
+    end else if (issue_i) begin
+      // the head leaves: the tail (if any) moves up, else a push lands in the head
+      head_valid_q <= tail_valid_q || q_push;
+      tail_valid_q <= 1'b0;
+    end else if (q_push) begin
+      head_valid_q <= 1'b1;
+      tail_valid_q <= head_valid_q;
+    end
+  end
+
+  // Entries have no reset: each is written with its valid bit.
+  always_ff @(posedge clk_i) begin
+    if (issue_i) begin
+      head_q <= tail_valid_q ? tail_q : step;
+    end else if (q_push && !head_valid_q) begin
+      head_q <= step;
+    end
+    if (q_push && head_valid_q && !issue_i) begin
+      tail_q <= step;
+    end
+  end
+
+  // pend_zero_q is "pend_q == 0", kept as a register: it changes only when an issue and a
+  // write do not cancel, and then depends on "pend_q == 1" (a compare of a register). So the
+  // candidate bit is one LUT of flip-flops, and the arbiter's grant feeds it back through one.
+  logic pend_zero_q, pend_one;
+  assign pend_one      = (pend_q == PEND_W'(1));
+  assign cand_o        = head_valid_q && (!head_q.first || pend_zero_q);
+  assign step_first_o  = head_q.first;
+  assign step_init_o   = (head_q.dir == DIR_INIT);
+  assign step_x_o      = head_q.x;
+  assign step_y_o      = head_q.y;
+  assign step_gap_o    = head_q.gap;
+  assign step_off_o    = head_q.off;
+  assign step_level_o  = head_q.level;
+  assign step_nshift_o = head_q.nshift;
 
   // ---- State ----------------------------------------------------------------------------------
   always_comb begin
@@ -160,7 +184,7 @@ module msr_tile_ctx
     pend_d  = pend_q + PEND_W'(issue_i) - PEND_W'(we_i);
     unique case (state_q)
       CTX_FREE:    if (start_i) state_d = CTX_COMPUTE;
-      CTX_COMPUTE: if (!ctrl_busy && !q_valid && pend_zero) state_d = CTX_FULL;
+      CTX_COMPUTE: if (!ctrl_busy && !head_valid_q && pend_zero_q) state_d = CTX_FULL;
       CTX_FULL:    if (str_done_i) state_d = CTX_FREE;
       default:     state_d = CTX_FREE;
     endcase
@@ -168,14 +192,17 @@ module msr_tile_ctx
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      state_q <= CTX_FREE;
-      pend_q  <= '0;
+      state_q     <= CTX_FREE;
+      pend_q      <= '0;
+      pend_zero_q <= 1'b1;
     end else if (clear_i) begin
-      state_q <= CTX_FREE;
-      pend_q  <= '0;
+      state_q     <= CTX_FREE;
+      pend_q      <= '0;
+      pend_zero_q <= 1'b1;
     end else begin
-      state_q <= state_d;
-      pend_q  <= pend_d;
+      state_q     <= state_d;
+      pend_q      <= pend_d;
+      if (issue_i != we_i) pend_zero_q <= we_i && pend_one;
     end
   end
 
@@ -209,10 +236,10 @@ module msr_tile_ctx
   ) u_tile_sram (
     .clk_i    (clk_i),
     .re0_i    (str_own_i ? str_re_i : computing),
-    .raddr0_i (str_own_i ? str_raddr_i : {q_head.by, q_head.bx}),
+    .raddr0_i (str_own_i ? str_raddr_i : {head_q.by, head_q.bx}),
     .rdata0_o (rdata0),
     .re1_i    (computing),
-    .raddr1_i ({q_head.ay, q_head.ax}),
+    .raddr1_i ({head_q.ay, head_q.ax}),
     .rdata1_o (rdata1),
     .we_i     (we_i),
     .waddr_i  (waddr_i),
@@ -261,8 +288,10 @@ module msr_tile_ctx
   `MSR_ASSERT(a_all_written, state_q == CTX_COMPUTE && state_d == CTX_FULL |->
       all_written(written_q, desc_q.w, desc_q.h))
   `MSR_ASSERT(a_stream_full, str_own_i |-> full_o)
-  `MSR_COVER(c_barrier_wait, q_valid && q_head.first && !pend_zero)
-  `MSR_COVER(c_queue_full, q_count == 2'd2)
+  `MSR_ASSERT(a_pend_zero, pend_zero_q == (pend_q == '0))
+  `MSR_ASSERT(a_tail_has_head, tail_valid_q |-> head_valid_q)
+  `MSR_COVER(c_barrier_wait, head_valid_q && head_q.first && !pend_zero_q)
+  `MSR_COVER(c_queue_full, tail_valid_q)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_tile_ctx

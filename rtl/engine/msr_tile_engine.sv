@@ -6,7 +6,7 @@
 //          context's own tile buffer reads B (port 0) and A (port 1) at its controller's
 //          registered addresses
 //   AB   : the issued context's read data and descriptor fields, registered
-//   msr_decision_pipe (4 stages): decide and interpolate; never stalls: a position is issued
+//   msr_decision_pipe (5 stages): decide and interpolate; never stalls: a position is issued
 //          only with a slot of the 8-entry output buffer reserved (credits)
 //   out  : interpolate -> write {16+k, C} into the context's buffer;
 //          trace -> tag (msr_tag_pool) -> render request {x0+x, y0+y, tag} (spill register)
@@ -183,11 +183,11 @@ module msr_tile_engine
     end
   end
 
+  // No enable: is_valid_q says whether they hold an issue (an enable would hang the grant's
+  // fan-out on every one of these flip-flops).
   always_ff @(posedge clk_i) begin
-    if (issue) begin
-      is_ctx_q <= gnt_idx;
-      is_pos_q <= iss_pos;
-    end
+    is_ctx_q <= gnt_idx;
+    is_pos_q <= iss_pos;
   end
 
   // ---- AB: read data and the context's descriptor, registered ----------------------------------
@@ -240,7 +240,7 @@ module msr_tile_engine
   end
 
   // ---- Decision pipeline and output buffer ----------------------------------------------------
-  localparam int unsigned OUT_DEPTH = 8;   // >= issue-to-buffer latency (6) + 1: full rate
+  localparam int unsigned OUT_DEPTH = 8;   // >= issue-to-buffer latency (7) + 1: full rate
 
   typedef struct packed {
     logic  interp;
