@@ -23,6 +23,7 @@ import subprocess
 import time
 from pathlib import Path
 
+from msr_eval import reference as REF
 from msr_eval import report as R
 from msr_eval import sweep as S
 from msr_eval.metrics import PSNR_CAP, pick_near, rule_comparison, summarise
@@ -53,6 +54,13 @@ def main(argv=None):
     ap.add_argument("--workers", type=int, default=None,
                     help="LocalCluster workers (default: one per CPU); 0 = serial")
     ap.add_argument("--no-progress", action="store_true", help="no progress bars")
+    ap.add_argument("--no-conv", action="store_true",
+                    help="no converged reference (score against the full render only)")
+    ap.add_argument("--conv-grid", type=int, default=None,
+                    help="converged reference: GRID x GRID samples per pixel (default: msr_eval.reference."
+                         "CONV_GRID, 32 heavy = 1024 spp, 16 fast = 256 spp)")
+    ap.add_argument("--no-conv-check", action="store_true",
+                    help="skip the second-seed render of each converged reference (no two-seed PSNR)")
     a = ap.parse_args(argv)
 
     if a.report_only:
@@ -75,7 +83,8 @@ def main(argv=None):
         scenes = scenes[:a.max_scenes]
     modes = a.modes.split(",") if a.modes else (["fast", "heavy"] if backend.embree else ["image"])
     out = Path(a.out)
-    cfg = S.SweepConfig(W, H, tuple(scales), quick, a.all_metrics, out / "cache")
+    cfg = S.SweepConfig(W, H, tuple(scales), quick, a.all_metrics, out / "cache", conv=not a.no_conv,
+                        conv_grid=a.conv_grid, conv_check=not a.no_conv_check)
     sweep = cfg.sweep
     log = lambda s: print(s, flush=True)  # noqa: E731
     scene_id = S.scene_id
@@ -91,6 +100,8 @@ def main(argv=None):
         executor.close()
 
     needed, set_curves, headline = summarise(records, modes)
+    conv_records = REF.as_conv(records)
+    needed_c, set_curves_c, headline_c = summarise(conv_records, modes) if conv_records else ({}, {}, {})
     rules_cmp = rule_comparison(records)
 
     speed = []
@@ -109,6 +120,9 @@ def main(argv=None):
     for mode in modes:
         R.plot_curves(records, mode, out / f"curves_{mode}.png", f"PSNR against traced pixels, {mode} renderer, {W}x{H}")
         R.plot_set(set_curves, mode, out / f"pareto_{mode}.png", f"Mean over the scene set, {mode} renderer, {W}x{H}")
+        if conv_records:
+            REF.plot_scene_fronts(records, mode, out / f"fronts_conv_{mode}.png",
+                                  f"Pareto fronts against the converged reference, {mode} renderer, {W}x{H}")
     examples = []
     ex_mode = "heavy" if "heavy" in modes else modes[0]
     for scene in scenes[:2] + ([scenes[-1]] if len(scenes) > 2 else []):
@@ -149,6 +163,9 @@ def main(argv=None):
         "set_curves": set_curves,
         "headline": headline,
         "rule_vs_patent": rules_cmp,
+        "converged": {"needed_fraction": needed_c, "set_curves": set_curves_c, "headline": headline_c,
+                      "conv_grid": {m: REF.conv_grid_for(m, a.conv_grid) for m in modes},
+                      "seeds": list(REF.CONV_SEEDS)} if conv_records else None,
         "speedup": speed,
         "examples": examples,
     }

@@ -27,6 +27,8 @@ FAMILY_NAMES = {
     "multi_L3_T16_dilate": "**new** dilate rule, L=3, T=16", "multi_L3_T16_linear": "**new** linear rule, L=3, T=16",
     "multi_L3_T16_lindilate": "**new** lindilate rule, L=3, T=16", "multi_L3_T16_diag": "**new** diag rule, L=3, T=16",
     "multi_L3_T32_lindilate": "**new** lindilate rule, L=3, T=32",
+    "dacs": "DACS (Mallett and Yuksel 2018), variance threshold", "vrs_T8": "VRS-like (tier 2), 8x8 rate tiles",
+    "vrs_T16": "VRS-like (tier 2), 16x16 rate tiles",
 }
 
 
@@ -98,6 +100,18 @@ def write_docs(result: dict, out: Path, docs: Path):
     w(f"Scene set ({len(cfg['scenes'])}): " + ", ".join(f"`{s}`" for s in cfg["scene_sources"]) + "\n")
     notes = docs / "results_notes.md"
     w(HOW_TO_RERUN)
+    if result.get("converged"):                   # the converged comparison leads (msr_eval.reference)
+        from .reference import docs_lines
+        cfigs = []
+        for mode in cfg["modes"]:
+            src = out / f"fronts_conv_{mode}.png"
+            if src.is_file():
+                _small_png(src, img / f"eval_fronts_conv_{mode}.png", 900)
+                cfigs.append((mode, f"img/eval_fronts_conv_{mode}.png"))
+        L.extend(docs_lines(result, cfigs))
+        w("## Against the renderer's own full render\n")
+        w("Everything below scores against the renderer's full render of the same mode (the "
+          "evaluation's original reference), as before.\n")
 
     w("## Headline\n")
     for mode, h in result["headline"].items():
@@ -234,6 +248,8 @@ FAMILY_STYLE = {
     "multi_L3_T16_lindilate": ("new rule: lindilate, L3 T16", "*", "tab:red"),
     "multi_L3_T16_diag": ("new rule: diag, L3 T16", "2", "gold"),
     "multi_L3_T32_lindilate": ("new rule: lindilate, L3 T32", "*", "darkred"),
+    "dacs": ("DACS", "s", "tab:green"), "vrs_T8": ("VRS-like 8x8", "D", "tab:purple"),
+    "vrs_T16": ("VRS-like 16x16", "d", "violet"),
 }
 
 

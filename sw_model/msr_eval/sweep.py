@@ -25,6 +25,7 @@ from msr_model.testimage import test_image
 
 from . import gbuffer_rule as G
 from . import methods as M
+from . import reference as REF
 from .metrics import TARGETS_DB, pick_near, psnr, ssim, flip
 
 REPO = Path(__file__).resolve().parents[2]
@@ -52,14 +53,22 @@ MAIN_FAMILIES = ("multi_L3_T16", "multi_L3_T32", "multi_L3_T16_dilate", "multi_L
 # SSIM and FLIP (FLIP ~6 s per 1080p frame) are computed for these families' key settings.
 KEY_FAMILIES = ("grid2", "grid4", "checkerboard", "single_traced", "single_borrowed", "multi_L1_T16",
                 "multi_L2_T16", "multi_L3_T16", "multi_L3_T32", "multi_L3_T16_fov", "multi_L3_T16_dilate",
-                "multi_L3_T16_lindilate", "multi_L3_T32_lindilate", *G.SWEEP_FAMILIES)
+                "multi_L3_T16_lindilate", "multi_L3_T32_lindilate", *G.SWEEP_FAMILIES,
+                "dacs", "vrs_T8", "vrs_T16")
 # FLIP in the full run only for these (the quick run: all key families)
 FLIP_FAMILIES_FULL = ("grid2", "checkerboard", "single_borrowed", "multi_L3_T16", "multi_L3_T16_dilate",
-                      "multi_L3_T16_lindilate")
+                      "multi_L3_T16_lindilate", "dacs", "vrs_T8", "vrs_T16")
 # The code a record depends on: a change to any of these invalidates the record cache.
 RECORD_CODE = ("sw_model/msr_model/golden.py", "sw_model/msr_model/spec.py", "sw_model/msr_model/rules.py",
                "sw_model/msr_model/passview.py", "sw_model/msr_eval/methods.py", "sw_model/msr_eval/rules.py",
-               "sw_model/msr_eval/metrics.py", "sw_model/msr_eval/sweep.py", "sw_model/msr_eval/gbuffer_rule.py")
+               "sw_model/msr_eval/metrics.py", "sw_model/msr_eval/sweep.py", "sw_model/msr_eval/gbuffer_rule.py",
+               "sw_model/msr_eval/dacs.py", "sw_model/msr_eval/vrs.py", "sw_model/msr_eval/reference.py")
+# The peers (issue 17): DACS (msr_eval.dacs) over its variance threshold, the VRS-like baseline
+# (msr_eval.vrs) over its contrast scale, per 8x8 and 16x16 tile.
+DACS_THR = (0, 1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 4096)
+DACS_THR_QUICK = (0, 2, 8, 32, 128, 512, 2048)
+VRS_THR = (1, 2, 4, 8, 16, 32, 64, 128)
+VRS_THR_QUICK = (2, 4, 8, 16, 32, 64)
 
 
 # --- scenes and renderers ------------------------------------------------------------------
@@ -180,6 +189,13 @@ def settings(width, height, scales, quick) -> list[Setting]:
             p = Params(tile=tile, levels=levels, thr=level_thr(levels, s), fov_gain=gain)
             out.append(Setting(fam, f"thr={','.join(map(str, p.thr))}", "multi_level",
                                {"params": p, "rule": rule}, {**p.as_dict(), "rule": rule}))
+    for t in (DACS_THR_QUICK if quick else DACS_THR):
+        out.append(Setting("dacs", f"var<={t}", "msr_eval.dacs:dacs", {"thr": t, "metric": "var"},
+                           {"thr": t, "metric": "var"}))
+    for tile in (8, 16):
+        for t in (VRS_THR_QUICK if quick else VRS_THR):
+            out.append(Setting(f"vrs_T{tile}", f"s={t}", "msr_eval.vrs:vrs_tier2", {"thr": t, "tile": tile},
+                               {"thr": t, "tile": tile}))
     for fam, combine in G.SWEEP_FAMILIES.items():    # the G-buffer edge rule (msr_eval.gbuffer_rule)
         for s in (scales if fam in MAIN_FAMILIES else sparse):
             p = Params(tile=16, levels=3, thr=level_thr(3, s), fov_gain=0)
@@ -204,6 +220,9 @@ class SweepConfig:
     quick: bool
     all_metrics: bool
     cache: Path
+    conv: bool = True                 # score against the converged reference too (msr_eval.reference)
+    conv_grid: int | None = None      # its antialiasing grid (None: reference.CONV_GRID per mode)
+    conv_check: bool = True           # and a second seed's render, for the two-seed PSNR
 
     @property
     def sweep(self) -> list[Setting]:
@@ -217,6 +236,8 @@ class SweepConfig:
         for f in RECORD_CODE:
             h.update((REPO / f).read_bytes())
         h.update(repr((self.all_metrics, KEY_FAMILIES, FLIP_FAMILIES_FULL, TARGETS_DB)).encode())
+        if self.conv:
+            h.update(repr(("conv", self.conv_grid, REF.CONV_GRID, REF.CONV_SEEDS)).encode())
         return h.hexdigest()[:10]
 
 
@@ -244,8 +265,9 @@ def task_reference(backend: str, scene: str, mode: str, width: int, height: int)
     return res.frame, {"full_render_s": dt, "traced": res.traced}
 
 
-def task_record(ref, sid: str, mode: str, setting: Setting, all_metrics: bool, gbuf=None) -> dict:
-    """One setting on one scene's reference (and its G-buffer, for the G-buffer rule): its record."""
+def task_record(ref, sid: str, mode: str, setting: Setting, all_metrics: bool, gbuf=None, conv=None) -> dict:
+    """One setting on one scene's reference (and its G-buffer, for the G-buffer rule): its record;
+    with `conv` (the converged reference) also its scores against that (msr_eval.reference.score)."""
     H, W = ref.shape[:2]
     rr = G.rendering_unit(ref, gbuf)
     t0 = time.perf_counter()
@@ -260,16 +282,23 @@ def task_record(ref, sid: str, mode: str, setting: Setting, all_metrics: bool, g
     if all_metrics:
         rec["ssim"] = ssim(ref, res.frame)
         rec["flip"] = flip(ref, res.frame)
+    if conv is not None:
+        rec.update(REF.score(conv, res.frame, all_metrics))
     return rec
 
 
-def task_key_metrics(ref, setting: Setting, want_flip: bool, gbuf=None) -> dict:
-    """SSIM (and FLIP) of one setting, run again on the reference."""
+def task_key_metrics(ref, setting: Setting, want_flip: bool, gbuf=None, conv=None) -> dict:
+    """SSIM (and FLIP) of one setting, run again on the reference (and against `conv`, the
+    converged reference, when given)."""
     H, W = ref.shape[:2]
     res = setting.run(G.rendering_unit(ref, gbuf), W, H)
     out = {"ssim": ssim(ref, res.frame)}
     if want_flip:
         out["flip"] = flip(ref, res.frame)
+    if conv is not None:
+        out["ssim_conv"] = ssim(conv, res.frame)
+        if want_flip:
+            out["flip_conv"] = flip(conv, res.frame)
     return out
 
 
@@ -400,6 +429,32 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
             meta.write_text(json.dumps(info))
             refs[(scene, mode)], infos[(scene, mode)] = frame, info
 
+    # Converged references (msr_eval.reference): from the cache, else rendered as tasks.
+    convs = {}
+    if cfg.conv:
+        todo = []
+        for scene, mode in pairs:
+            g = REF.conv_grid_for(mode, cfg.conv_grid)
+            key = f"conv_{scene_id(scene)}_{mode}_{W}x{H}_{backend.lib_hash}_g{g}"
+            png, meta = cache / f"{key}.png", cache / f"{key}.json"
+            if png.is_file() and meta.is_file():
+                info = json.loads(meta.read_text())
+                if not cfg.conv_check or "psnr_two_seeds" in info:
+                    convs[(scene, mode)] = load_rgb(png)
+                    infos[(scene, mode)]["converged"] = info
+                    continue
+            todo.append((scene, mode, g, png, meta))
+        with bar(len(todo), "eval: converged references") as b:
+            futs = [executor.submit(REF.task_converged, backend.name, scene, mode, W, H, g, cfg.conv_check)
+                    for scene, mode, g, _, _ in todo]
+            for (scene, mode, g, png, meta), (frame, info) in zip(todo, executor.results(futs, b)):
+                save_png(png, frame)
+                meta.write_text(json.dumps(info))
+                convs[(scene, mode)] = frame
+                infos[(scene, mode)]["converged"] = info
+                log(f"  {scene_id(scene)}/{mode}: converged reference, {info['spp']} samples per pixel"
+                    + (f", two seeds {info['psnr_two_seeds']:.2f} dB" if info.get("psnr_two_seeds") else ""))
+
     # G-buffers (one primary ray a pixel), for the settings that read them: cached per scene.
     gbufs = {}
     if any(G.needs_gbuffer(s) for s in sweep):
@@ -419,11 +474,17 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     # (a G-buffer is a tuple of three arrays: scattered inside a list, so as one object)
     gshared = {scene: executor.scatter([gbufs[scene]])[0] for scene in {p[0] for p in pending} if scene in gbufs}
 
-    def gb(scene, s):       # the G-buffer as a task's last argument, for the settings that read it
-        return (gshared[scene],) if G.needs_gbuffer(s) else ()
+    cshared = {(scene, mode): executor.scatter(convs[(scene, mode)]) for scene, mode, _ in pending
+               if (scene, mode) in convs}
+
+    def gb(scene, s):       # the G-buffer (for the settings that read it), then the converged reference
+        return (gshared[scene] if G.needs_gbuffer(s) else None,)
+
+    def cv(scene, mode):
+        return (cshared.get((scene, mode)),)
 
     futs = [executor.submit(task_record, shared[(scene, mode)], scene_id(scene), mode, s, cfg.all_metrics,
-                            *gb(scene, s))
+                            *gb(scene, s), *cv(scene, mode))
             for scene, mode, _ in pending for s in sweep]
     with bar(len(futs), "eval: settings") as b:
         flat = executor.results(futs, b)
@@ -444,7 +505,19 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
                     want_flip = cfg.quick or fam in FLIP_FAMILIES_FULL
                     st = find_setting(sweep, r)
                     jobs.append((r, executor.submit(task_key_metrics, shared[(scene, mode)], st, want_flip,
-                                                    *gb(scene, st))))
+                                                    *gb(scene, st), *cv(scene, mode))))
+        if (scene, mode) in convs:      # ... and against the converged reference (the full render too)
+            for fam in (*KEY_FAMILIES, "full"):
+                for t in (TARGETS_DB if cfg.quick else (40.0,)):
+                    r = REF.pick_near_conv(recs, scene_id(scene), mode, fam, t)
+                    if r is None:
+                        continue
+                    r["key_setting_conv"] = True
+                    if "ssim_conv" not in r and not any(r is j[0] for j in jobs):
+                        want_flip = cfg.quick or fam in FLIP_FAMILIES_FULL
+                        st = find_setting(sweep, r)
+                        jobs.append((r, executor.submit(task_key_metrics, shared[(scene, mode)], st, want_flip,
+                                                        *gb(scene, st), *cv(scene, mode))))
     with bar(len(jobs), "eval: key metrics") as b:
         for (r, _), extra in zip(jobs, executor.results([f for _, f in jobs], b)):
             r.update(extra)
