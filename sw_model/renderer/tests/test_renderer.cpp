@@ -202,11 +202,19 @@ double irradiance_numeric(Vec3 p, Vec3 n, const AreaLight &l, int steps = 600) {
     return sum * area / (double(steps) * steps);
 }
 
-TEST(Shading, PolygonIrradianceMatchesClosedFormAndIntegration) {
-    AreaLight l;  // 2 x 2 square at height 3, emitting down
+// The light of the shading tests: a 2 x 2 square centred above the origin at height 3,
+// emitting down.
+AreaLight square_light(Vec3 radiance = {1.f, 1.f, 1.f}) {
+    AreaLight l;
     l.corner = {-1.f, 3.f, -1.f};
     l.e1 = {2.f, 0.f, 0.f};
     l.e2 = {0.f, 0.f, 2.f};
+    l.radiance = radiance;
+    return l;
+}
+
+TEST(Shading, PolygonIrradianceMatchesClosedFormAndIntegration) {
+    AreaLight l = square_light();
     // Point under the centre: 4 x the corner form factor of a 1 x 1 rectangle at height 3
     // (F = (1/2pi)[X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2) atan(X/sqrt(1+Y^2))]);
     // E = pi * F for unit radiance.
@@ -232,11 +240,7 @@ TEST(Shading, AreaLightFloorPixel) {
     auto s = std::make_unique<Scene>();
     int m = s->add_material(Material::diffuse({0.6f, 0.6f, 0.6f}));
     s->add_quad({-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, {10, 0, -10}, m);
-    AreaLight l;
-    l.corner = {-1.f, 3.f, -1.f};
-    l.e1 = {2.f, 0.f, 0.f};
-    l.e2 = {0.f, 0.f, 2.f};
-    l.radiance = {2.f, 1.f, 0.5f};
+    AreaLight l = square_light({2.f, 1.f, 0.5f});
     s->add_area_light(l);
     aim(*s, {0.f, 2.f, 0.f}, {0.f, 0.f, 0.f}, {0.f, 0.f, 1.f});
     double e = irradiance_numeric({0, 0, 0}, {0, 1, 0}, l, 800);
@@ -254,11 +258,7 @@ TEST(Shading, AreaLightCutByTheHorizonIsNotShadowedTwice) {
         auto s = std::make_unique<Scene>();
         int m = s->add_material(Material::diffuse({0.6f, 0.6f, 0.6f}));
         s->add_quad({0, -5, -5}, {0, -5, 5}, {0, 2, 5}, {0, 2, -5}, m);
-        AreaLight l;
-        l.corner = {-1.f, 3.f, -1.f};
-        l.e1 = {2.f, 0.f, 0.f};
-        l.e2 = {0.f, 0.f, 2.f};
-        l.radiance = {1.f, 1.f, 1.f};
+        AreaLight l = square_light();
         s->add_area_light(l);
         aim(*s, {2.f, 1.f, 0.f}, {0.f, 1.f, 0.f});
         double e = irradiance_numeric({0, 1, 0}, {1, 0, 0}, l, 800);
