@@ -29,6 +29,8 @@ FAMILY_NAMES = {
     "multi_L3_T32_lindilate": "**new** lindilate rule, L=3, T=32",
     "dacs": "DACS (Mallett and Yuksel 2018), variance threshold", "vrs_T8": "VRS-like (tier 2), 8x8 rate tiles",
     "vrs_T16": "VRS-like (tier 2), 16x16 rate tiles",
+    "multi_L3_T16_gbuf": "**new** G-buffer rule (gbuf), L=3, T=16",
+    "multi_L3_T16_gbuflindilate": "**new** G-buffer + lindilate (gbuflindilate), L=3, T=16",
 }
 
 
@@ -156,6 +158,9 @@ def write_docs(result: dict, out: Path, docs: Path):
             w(f"| {FAMILY_NAMES[f]} | " + " | ".join(cells) + " |")
         w("")
 
+    from .textured import section as textured_section  # noqa: PLC0415 - it imports this module
+    L.extend(textured_section(result))
+
     w("## New decision rules against the patent's rule\n")
     w("PSNR of the rule minus the PSNR of the patent's rule (L=3, T=16, same threshold scales) at "
       "the same traced fraction, the patent's value interpolated along its Pareto front; over the "
@@ -250,6 +255,8 @@ FAMILY_STYLE = {
     "multi_L3_T32_lindilate": ("new rule: lindilate, L3 T32", "*", "darkred"),
     "dacs": ("DACS", "s", "tab:green"), "vrs_T8": ("VRS-like 8x8", "D", "tab:purple"),
     "vrs_T16": ("VRS-like 16x16", "d", "violet"),
+    "multi_L3_T16_gbuf": ("new rule: G-buffer, L3 T16", "X", "teal"),
+    "multi_L3_T16_gbuflindilate": ("new rule: G-buffer + lindilate, L3 T16", "X", "darkcyan"),
 }
 
 
