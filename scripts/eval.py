@@ -58,14 +58,20 @@ def main(argv=None):
                     help="no converged reference (score against the full render only)")
     ap.add_argument("--conv-grid", type=int, default=None,
                     help="converged reference: GRID x GRID samples per pixel (default: msr_eval.reference."
-                         "CONV_GRID, 32 heavy = 1024 spp, 16 fast = 256 spp)")
+                         "CONV_GRIDS: heavy 256 spp, 1024 where two seeds differ by more than "
+                         "CONV_TARGET_DB; fast 256 spp)")
+    ap.add_argument("--conv-page", default=None, metavar="NAME",
+                    help="also write the converged comparison alone as DOCS_DIR/NAME (e.g. results_converged.md)")
     ap.add_argument("--no-conv-check", action="store_true",
                     help="skip the second-seed render of each converged reference (no two-seed PSNR)")
     a = ap.parse_args(argv)
 
     if a.report_only:
         result = json.loads((Path(a.out) / "results.json").read_text())
-        R.write_docs(result, Path(a.out), Path(a.docs_dir))
+        if a.docs or not a.conv_page:
+            R.write_docs(result, Path(a.out), Path(a.docs_dir))
+        if a.conv_page and result.get("converged"):
+            REF.write_page(result, Path(a.out), Path(a.docs_dir), a.conv_page)
         return result
     full = a.full
     W = a.width or (1920 if full else 192)
@@ -164,7 +170,8 @@ def main(argv=None):
         "headline": headline,
         "rule_vs_patent": rules_cmp,
         "converged": {"needed_fraction": needed_c, "set_curves": set_curves_c, "headline": headline_c,
-                      "conv_grid": {m: REF.conv_grid_for(m, a.conv_grid) for m in modes},
+                      "conv_grids": {m: list(REF.conv_grids_for(m, a.conv_grid)) for m in modes},
+                      "target_two_seeds_db": REF.CONV_TARGET_DB,
                       "seeds": list(REF.CONV_SEEDS)} if conv_records else None,
         "speedup": speed,
         "examples": examples,
@@ -180,6 +187,8 @@ def main(argv=None):
             log(f"  {mode}: cheapest >= 40 dB mean: {100 * c['traced_fraction']:.1f} % ({c['family']} {c['label']})")
     if a.docs:
         R.write_docs(result, out, Path(a.docs_dir))
+    if a.conv_page and result.get("converged"):
+        REF.write_page(result, out, Path(a.docs_dir), a.conv_page)
     return result
 
 

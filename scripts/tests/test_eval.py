@@ -38,7 +38,7 @@ def test_small_eval_run(tmp_path):
     """The quick run end to end on two scenes (Embree when built, else the test picture)."""
     t0 = time.perf_counter()
     args = ["--width", "96", "--height", "64", "--max-scenes", "2", "--out", str(tmp_path),
-            "--all-metrics", "--workers", "0", "--no-progress"]
+            "--all-metrics", "--workers", "0", "--no-progress", "--conv-grid", "8"]
     backend = S.Backend("auto")
     if backend.embree:
         args += ["--modes", "fast"]
@@ -57,7 +57,29 @@ def test_small_eval_run(tmp_path):
             assert 0 < r["traced_fraction"] <= 1
             assert r["psnr"] is None or r["psnr"] > 10
             assert 0 <= r["flip"] <= 1 and -1 <= r["ssim"] <= 1
+            # scored against the converged reference too (issue 17)
+            assert r["psnr_conv"] is None or r["psnr_conv"] > 10
+            assert 0 <= r["flip_conv"] <= 1 and -1 <= r["ssim_conv"] <= 1
+            assert r["tile32_min_psnr_conv"] <= (r["psnr_conv"] or 100) + 1e-9
+        # the peers: DACS over its threshold, VRS-like at 8x8 and 16x16, honest counts
+        dacs = sorted(r["traced_fraction"] for (f, _), r in recs.items() if f == "dacs")
+        assert len(dacs) == len(S.DACS_THR_QUICK) and dacs[0] < dacs[-1] <= 1.0
+        for fam in ("vrs_T8", "vrs_T16"):
+            fr = [r["traced_fraction"] for (f, _), r in recs.items() if f == fam]
+            assert len(fr) == len(S.VRS_THR_QUICK) and min(fr) >= 1 / 16 - 1e-9
+        if backend.embree:      # the noise-free test picture has no converged reference to speak of
+            conv = [i for i in data["full_render"] if i["scene"] == scene][0]["converged"]
+            assert conv["spp"] == 64 and conv["psnr_two_seeds"] > 20
+            assert recs[("full", "full")]["psnr_conv"] is not None
     assert (tmp_path / f"curves_{data['config']['modes'][0]}.png").is_file()
+    assert (tmp_path / f"fronts_conv_{data['config']['modes'][0]}.png").is_file()
+    assert data["converged"]["needed_fraction"] and data["converged"]["headline"]
+    docs = tmp_path / "docs"
+    docs.mkdir()
+    ev.main(["--report-only", "--out", str(tmp_path), "--docs-dir", str(docs)])
+    text = (docs / "results.md").read_text()
+    assert text.index("## Against the converged reference") < text.index("## Headline")
+    assert "DACS" in text and "VRS-like" in text
     assert data["needed_fraction"] and data["headline"]
     assert time.perf_counter() - t0 < 120
 
@@ -70,7 +92,7 @@ def test_dask_sweep_equals_serial(tmp_path):
     modes = ["fast"] if backend.embree else ["image"]
 
     def sweep(executor, cache):
-        cfg = S.SweepConfig(64, 48, (1, 8), True, False, cache)
+        cfg = S.SweepConfig(64, 48, (1, 8), True, False, cache, conv_grid=4)
         try:
             recs, _, _ = S.run_sweep(backend, scenes, modes, cfg, executor, log=lambda s: None,
                                      show_progress=False)
@@ -83,6 +105,7 @@ def test_dask_sweep_equals_serial(tmp_path):
     assert len(serial) == len(S.settings(64, 48, (1, 8), True)) * len(scenes) * len(modes)
     assert dask == serial
     assert any(r["key_setting"] and "ssim" in r for r in serial)
+    assert all("psnr_conv" in r for r in serial) and any("ssim_conv" in r for r in serial)
     again = sweep(S.SerialExecutor(), tmp_path / "dask")     # every scene from the cache
     assert again == serial
 

@@ -237,7 +237,8 @@ class SweepConfig:
             h.update((REPO / f).read_bytes())
         h.update(repr((self.all_metrics, KEY_FAMILIES, FLIP_FAMILIES_FULL, TARGETS_DB)).encode())
         if self.conv:
-            h.update(repr(("conv", self.conv_grid, REF.CONV_GRID, REF.CONV_SEEDS)).encode())
+            h.update(repr(("conv", self.conv_grid, self.conv_check, REF.CONV_GRIDS, REF.CONV_TARGET_DB,
+                           REF.CONV_SEEDS)).encode())
         return h.hexdigest()[:10]
 
 
@@ -434,8 +435,8 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     if cfg.conv:
         todo = []
         for scene, mode in pairs:
-            g = REF.conv_grid_for(mode, cfg.conv_grid)
-            key = f"conv_{scene_id(scene)}_{mode}_{W}x{H}_{backend.lib_hash}_g{g}"
+            g = REF.conv_grids_for(mode, cfg.conv_grid)
+            key = f"conv_{scene_id(scene)}_{mode}_{W}x{H}_{backend.lib_hash}_{REF.conv_key(mode, cfg.conv_grid, cfg.conv_check)}"
             png, meta = cache / f"{key}.png", cache / f"{key}.json"
             if png.is_file() and meta.is_file():
                 info = json.loads(meta.read_text())
