@@ -381,6 +381,9 @@ def docs_lines(result: dict, figs: list) -> list[str]:
             cells.append(_db(cb[0]["psnr_conv"]) if cb else "-")
             w(f"| {s} | " + " | ".join(cells) + " |")
         w("")
+    notes = result.get("_conv_notes")             # hand-written findings (docs/results_converged_notes.md)
+    if notes:
+        w(notes)
     cmp_ = comparisons(recs, modes)
     w("### DACS and VRS-like against the patent's rule and ours, at equal traced fraction\n")
     w("Mean PSNR difference (against the converged reference) of the peer minus the base, at the "
@@ -460,5 +463,6 @@ def write_page(result: dict, out, docs, name: str = "results_converged.md"):
             f"{', '.join(cfg['modes'])}, {len(cfg['scenes'])} scenes, run time {cfg['runtime_s'] / 60:.0f} min. "
             "The same section leads [results.md](results.md) once a full run (`make eval FULL=1`) has "
             "produced it at 1920x1080. Methods and choices: [dacs.md](dacs.md).\n"]
-    lines = docs_lines(result, figs)
+    notes = docs / "results_converged_notes.md"
+    lines = docs_lines({**result, "_conv_notes": notes.read_text() if notes.is_file() else None}, figs)
     (docs / name).write_text("\n".join(head + lines[1:]) + "\n")

@@ -110,7 +110,8 @@ def write_docs(result: dict, out: Path, docs: Path):
             if src.is_file():
                 _small_png(src, img / f"eval_fronts_conv_{mode}.png", 900)
                 cfigs.append((mode, f"img/eval_fronts_conv_{mode}.png"))
-        L.extend(docs_lines(result, cfigs))
+        cnotes = docs / "results_converged_notes.md"      # hand-written findings, pasted in
+        L.extend(docs_lines({**result, "_conv_notes": cnotes.read_text() if cnotes.is_file() else None}, cfigs))
         w("## Against the renderer's own full render\n")
         w("Everything below scores against the renderer's full render of the same mode (the "
           "evaluation's original reference), as before.\n")
