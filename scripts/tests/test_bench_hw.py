@@ -82,9 +82,30 @@ def test_w_beats_hand_counts():
     # 0x1000 + 80y (+0, +32, +64): row 1 starts 16 bytes into a beat, so its two 8-pixel runs
     # take 2 beats each: 3 + 5 + 3 = 11. Codes at 0x2000 + 20y + x0: offsets 0/8/16, 20/28/36,
     # 40/48/56 (mod 32); only (y=1, x0=8) crosses a beat (28 + 8 bytes): 3 + 4 + 3 = 10.
-    assert MemoryLayout(20, 3).w_beats(8) == 21
+    assert MemoryLayout(20, 3, 0x1000, 80, 0x2000, 20).w_beats(8, 32) == 21
     # 35 wide, T=32, one row: 128 pixel bytes (4 beats) + 12 (1); codes 32 bytes (1) + 4 (1).
-    assert MemoryLayout(35, 1).w_beats(32) == 7
+    assert MemoryLayout(35, 1, 0x1000, 140, 0x2000, 36).w_beats(32, 32) == 7
+    # Row 1 of the first case alone (pixels from 0x1050, codes from 0x2000) on a 64-byte bus:
+    # pixel runs at offsets 16, 48, 16 (mod 64) of 32, 32, 16 bytes: 1 + 2 + 1 beats (5 on
+    # the 32-byte bus); codes at 0, 8, 16 of 8, 8, 4 bytes: 1 + 1 + 1.
+    assert MemoryLayout(20, 1, 0x1050, 80, 0x2000, 20).w_beats(8, 64) == 4 + 3
+    assert MemoryLayout(20, 1, 0x1050, 80, 0x2000, 20).w_beats(8, 32) == 5 + 3
+
+
+def test_stats_carry_the_build_and_the_layout(tmp_path):
+    """The harness says what it is and where it wrote: the one-engine build, 16 tags, its
+    memory layout, the frame's registers; the scripts take these instead of constants."""
+    _need_harness()
+    from msr_harness import HarnessRun
+    p = bench_hw.params_for(8, 2)
+    rtl = HarnessRun(HARNESS, "cornell", 20, 12, p, latency=0, jitter=0, quiet=True).run()
+    st = rtl.stats
+    assert st["build"] == {"num_engines": 1, "max_outstanding": 16, "num_ctx": 8, "axi_beat_bytes": 32}
+    # frame buffer at 0x1000, stride 4 * 20; codes on the next 4 KiB page, stride 20
+    assert st["layout"] == {"fb_base": 0x1000, "fb_stride": 80, "src_base": 0x2000, "src_stride": 20}
+    assert st["params"] == {"width": 20, "height": 12, "tile": 8, "levels": 2, "thr": [8, 16, 0],
+                            "metric": "max", "fov_gain": 0}
+    assert rtl.layout == MemoryLayout(20, 12, 0x1000, 80, 0x2000, 20)
 
 
 def test_bad_config_is_a_usage_error(capsys):
