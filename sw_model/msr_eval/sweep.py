@@ -448,7 +448,9 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
         with bar(len(todo), "eval: converged references") as b:
             futs = [executor.submit(REF.task_converged, backend.name, scene, mode, W, H, g, cfg.conv_check)
                     for scene, mode, g, _, _ in todo]
-            for (scene, mode, g, png, meta), (frame, info) in zip(todo, executor.results(futs, b)):
+            for (scene, mode, g, png, meta), fut in zip(todo, futs):
+                frame, info = fut.result()    # in order, each cached as soon as it is done (hours at 1080p)
+                b.update(1)
                 save_png(png, frame)
                 meta.write_text(json.dumps(info))
                 convs[(scene, mode)] = frame
