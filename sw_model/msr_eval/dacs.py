@@ -55,21 +55,23 @@ def pass_of(width: int, height: int) -> np.ndarray:
 
 
 def statistic(nb: np.ndarray, valid: np.ndarray, metric: str) -> np.ndarray:
-    """nb: (N, 4, 3) neighbour colours, valid: (N, 4) bool. The per-pixel statistic (N,) over the
-    valid neighbours only."""
-    v = valid[:, :, None].astype(np.float64)
-    n = np.maximum(valid.sum(axis=1), 1).astype(np.float64)
-    x = nb.astype(np.float64)
+    """nb: (..., 4, 3) neighbour colours, valid: (..., 4) bool. The per-pixel statistic (...)
+    over the valid neighbours only."""
+    x = nb.astype(np.int64)
+    v = valid[..., None]
     if metric == "range":
-        hi = np.where(valid[:, :, None], x, -np.inf).max(axis=1)
-        lo = np.where(valid[:, :, None], x, np.inf).min(axis=1)
-        return (hi - lo).max(axis=1)
+        hi = np.where(v, x, -1).max(axis=-2)
+        lo = np.where(v, x, 256).min(axis=-2)
+        return np.maximum(hi - lo, 0).max(axis=-1).astype(np.float64)
+    n = np.maximum(valid.sum(axis=-1), 1)[..., None].astype(np.float64)
     if metric == "lumvar":
-        x = (x @ LUMA)[:, :, None]
-        v = v[:, :, :1]
-    mean = (x * v).sum(axis=1) / n[:, None]
-    var = (((x - mean[:, None, :]) ** 2) * v).sum(axis=1) / n[:, None]
-    return var.max(axis=1)
+        y = (x @ LUMA) * valid
+        s1, s2 = y.sum(axis=-1), (y * y).sum(axis=-1)
+        n = n[..., 0]
+        return (n * s2 - s1 * s1) / (n * n)
+    xv = x * v
+    s1, s2 = xv.sum(axis=-2), (xv * x).sum(axis=-2)          # exact integer sums
+    return ((n * s2 - s1 * s1) / (n * n)).max(axis=-1)
 
 
 def dacs(renderer, width: int, height: int, thr: float, metric: str = "var",
@@ -81,39 +83,41 @@ def dacs(renderer, width: int, height: int, thr: float, metric: str = "var",
     if not 1 <= min_neighbours <= 4:
         raise spec.SpecError(f"min_neighbours must be 1..4, got {min_neighbours}")
     c = CountingRenderer(renderer, width, height)
-    frame = np.zeros((height, width, 3), np.uint8)
+    P = 2                                             # padding: neighbours up to 2 pixels off the frame
+    F = np.zeros((height + 2 * P, width + 2 * P, 3), np.uint8)     # the frame, padded
+    V = np.zeros((height + 2 * P, width + 2 * P), bool)            # final (inside the frame only)
     source = np.full((height, width), spec.SRC_UNSET, np.uint8)
-    final = np.zeros((height, width), bool)
-    ys, xs = np.mgrid[0:height:4, 0:width:4]
-    frame[ys, xs] = c.render(xs.ravel(), ys.ravel()).reshape(ys.shape + (3,))
-    source[ys, xs] = SRC_TRACED
-    final[ys, xs] = True
+    ys, xs = np.arange(0, height, 4), np.arange(0, width, 4)
+    yy, xx = np.meshgrid(ys, xs, indexing="ij")
+    F[P:P + height:4, P:P + width:4] = c.render(xx.ravel(), yy.ravel()).reshape(yy.shape + (3,))
+    V[P:P + height:4, P:P + width:4] = True
+    source[0::4, 0::4] = SRC_TRACED
     for pos, offs in PASSES:
-        px, py = [], []
-        for dx, dy in pos:
-            yy, xx = np.mgrid[dy:height:4, dx:width:4]
-            px.append(xx.ravel())
-            py.append(yy.ravel())
-        px, py = np.concatenate(px), np.concatenate(py)
-        if px.size == 0:
-            continue
-        nx = px[:, None] + np.array([o[0] for o in offs])[None, :]
-        ny = py[:, None] + np.array([o[1] for o in offs])[None, :]
-        valid = (nx >= 0) & (nx < width) & (ny >= 0) & (ny < height)
-        cx, cy = np.clip(nx, 0, width - 1), np.clip(ny, 0, height - 1)
-        assert final[cy, cx][valid].all(), "a neighbour is not final yet"
-        nb = frame[cy, cx]                                     # (N, 4, 3)
-        stat = statistic(nb, valid, metric)
-        nvalid = valid.sum(axis=1)
-        ok = (nvalid >= min_neighbours) & (stat <= thr)
-        if ok.any():
-            cnt = nvalid[ok][:, None]
-            s = (nb[ok].astype(np.int64) * valid[ok][:, :, None]).sum(axis=1)
-            frame[py[ok], px[ok]] = ((s + cnt // 2) // cnt).astype(np.uint8)
-            source[py[ok], px[ok]] = SRC_INTERP
-        if (~ok).any():
-            frame[py[~ok], px[~ok]] = c.render(px[~ok], py[~ok])
-            source[py[~ok], px[~ok]] = SRC_TRACED
-        final[py, px] = True
-    assert final.all() and not (source == spec.SRC_UNSET).any(), "every pixel is final"
+        for dx, dy in pos:                            # each position class is a regular sub-grid
+            ny, nx = len(range(dy, height, 4)), len(range(dx, width, 4))
+            if ny == 0 or nx == 0:
+                continue
+            sl = [(slice(P + dy + oy, P + dy + oy + 4 * (ny - 1) + 1, 4),
+                   slice(P + dx + ox, P + dx + ox + 4 * (nx - 1) + 1, 4)) for ox, oy in offs]
+            xs4 = [F[a, b].astype(np.int64) * V[a, b][..., None] for a, b in sl]   # 0 where not valid
+            vs4 = [V[a, b] for a, b in sl]
+            nvalid = vs4[0].astype(np.int64) + vs4[1] + vs4[2] + vs4[3]
+            s1 = xs4[0] + xs4[1] + xs4[2] + xs4[3]                    # (ny, nx, 3), exact
+            if metric == "var":                                        # the sweep's: no (.., 4, 3) stack
+                s2 = xs4[0] * xs4[0] + xs4[1] * xs4[1] + xs4[2] * xs4[2] + xs4[3] * xs4[3]
+                n = np.maximum(nvalid, 1)[..., None].astype(np.float64)
+                stat = ((n * s2 - s1 * s1) / (n * n)).max(axis=-1)
+            else:
+                stat = statistic(np.stack([F[a, b] for a, b in sl], axis=2), np.stack(vs4, axis=2), metric)
+            ok = (nvalid >= min_neighbours) & (stat <= thr)
+            cnt = np.maximum(nvalid, 1)[..., None]
+            val = ((s1 + cnt // 2) // cnt).astype(np.uint8)            # rounded mean of the valid ones
+            ty, tx = np.nonzero(~ok)
+            if ty.size:
+                val[ty, tx] = c.render(dx + 4 * tx, dy + 4 * ty)
+            F[P + dy:P + dy + 4 * (ny - 1) + 1:4, P + dx:P + dx + 4 * (nx - 1) + 1:4] = val
+            V[P + dy:P + dy + 4 * (ny - 1) + 1:4, P + dx:P + dx + 4 * (nx - 1) + 1:4] = True
+            source[dy::4, dx::4] = np.where(ok, SRC_INTERP, SRC_TRACED)
+    assert V[P:P + height, P:P + width].all() and not (source == spec.SRC_UNSET).any(), "every pixel is final"
+    frame = np.ascontiguousarray(F[P:P + height, P:P + width])
     return MethodResult(frame, source, c.requests, "dacs", {"thr": thr, "metric": metric})

@@ -156,3 +156,58 @@ def test_vrs_tile16_and_odd_frame():
     assert r.traced == 45 * 27 and (r.frame == img).all()
     with pytest.raises(SpecError):
         V.vrs_tier2(Recorder(img), 45, 27, thr=1, tile=12)
+
+
+def _dacs_oracle(img, thr, metric):
+    """DACS pixel by pixel, written from the module docstring (no numpy tricks)."""
+    h, w = img.shape[:2]
+    frame = np.zeros_like(img)
+    done = np.zeros((h, w), bool)
+    traced = set()
+    for y in range(0, h, 4):
+        for x in range(0, w, 4):
+            frame[y, x] = img[y, x]
+            done[y, x] = True
+            traced.add((x, y))
+    for pos, offs in D.PASSES:
+        for dy in range(4):
+            for dx in range(4):
+                if (dx, dy) not in pos:
+                    continue
+                for y in range(dy, h, 4):
+                    for x in range(dx, w, 4):
+                        nb = [frame[y + oy, x + ox].astype(int) for ox, oy in offs
+                              if 0 <= x + ox < w and 0 <= y + oy < h]
+                        assert all(done[y + oy, x + ox] for ox, oy in offs if 0 <= x + ox < w and 0 <= y + oy < h)
+                        ok = False
+                        if len(nb) >= 2:
+                            a = np.array(nb, float)
+                            if metric == "var":
+                                stat = max(a[:, k].var() for k in range(3))
+                            elif metric == "lumvar":
+                                stat = (a @ D.LUMA).var()
+                            else:
+                                stat = max(a[:, k].max() - a[:, k].min() for k in range(3))
+                            ok = stat <= thr + 1e-9 * max(1.0, abs(thr))
+                        if ok:
+                            n = len(nb)
+                            frame[y, x] = [(sum(v[k] for v in nb) + n // 2) // n for k in range(3)]
+                        else:
+                            frame[y, x] = img[y, x]
+                            traced.add((x, y))
+                        done[y, x] = True
+    return frame, traced
+
+
+@pytest.mark.parametrize("metric", D.METRICS)
+def test_dacs_against_a_pixel_by_pixel_oracle(metric):
+    rng = np.random.default_rng(5)
+    for w, h in ((13, 9), (17, 11), (8, 8)):
+        for img in (make_test_image(w, h), (rng.integers(0, 4, (h, w, 3)) * 60).astype(np.uint8)):
+            for thr in (0, 10, 300, 3000):
+                rec = Recorder(img)
+                res = D.dacs(rec, w, h, thr=thr, metric=metric)
+                _honest(res, rec, img)
+                frame, traced = _dacs_oracle(img, thr, metric)
+                assert set(rec.asked) == traced, (w, h, thr)
+                assert (res.frame == frame).all(), (w, h, thr)
