@@ -27,16 +27,24 @@ COARSE = 4                                  # pre-pass pitch
 
 
 def tile_contrast(pre: np.ndarray, width: int, height: int, tile: int) -> np.ndarray:
-    """(tiles_y, tiles_x) contrast from the pre-pass samples pre (ceil(H/4), ceil(W/4), 3)."""
+    """(tiles_y, tiles_x) contrast from the pre-pass samples pre (ceil(H/4), ceil(W/4), 3): per
+    tile, the largest per-channel max - min over the (k+1) x (k+1) samples from its first one
+    (k = tile / 4), clipped to the frame."""
     ntx, nty = -(-width // tile), -(-height // tile)
     k = tile // COARSE
-    out = np.zeros((nty, ntx), np.int32)
     p = pre.astype(np.int32)
-    for ty in range(nty):
-        for tx in range(ntx):
-            blk = p[ty * k:(ty + 1) * k + 1, tx * k:(tx + 1) * k + 1]
-            out[ty, tx] = int((blk.max(axis=(0, 1)) - blk.min(axis=(0, 1))).max())
-    return out
+    # edge rows/columns repeated: a clipped window holds the last real sample, so copies of it
+    # change neither its max nor its min
+    p = np.pad(p, ((0, max(0, nty * k + 1 - p.shape[0])), (0, max(0, ntx * k + 1 - p.shape[1])), (0, 0)),
+               mode="edge")
+    hi = np.full((nty, ntx, 3), -1, np.int32)
+    lo = np.full((nty, ntx, 3), 256, np.int32)
+    for dy in range(k + 1):
+        for dx in range(k + 1):
+            v = p[dy:dy + k * (nty - 1) + 1:k, dx:dx + k * (ntx - 1) + 1:k]
+            np.maximum(hi, v, out=hi)
+            np.minimum(lo, v, out=lo)
+    return (hi - lo).max(axis=2)
 
 
 def rate_index(contrast: np.ndarray, s: float) -> np.ndarray:
