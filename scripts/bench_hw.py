@@ -120,6 +120,7 @@ def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, 
         "memory_stall_cycles": st["memory_stall_cycles"],
         # Lower bounds on the frame's cycles, one per shared resource (see the module docstring).
         "axi_w_beats": beats,
+        "axi_beat_bits": 8 * rtl.build["axi_beat_bytes"],       # the harness build's W channel
         "bound_writer_cycles": beats,
         "bound_tags_cycles": traced * latency / (engines * mo),
         "bound_render_port_cycles": traced,
@@ -135,7 +136,8 @@ def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, 
 
 def bottleneck(pt: dict) -> str:
     """The resource whose lower bound comes closest to the measured cycles."""
-    bounds = {"frame-buffer writer AXI W (256-bit beats: pixels + source codes)": pt["bound_writer_cycles"],
+    bounds = {f"frame-buffer writer AXI W ({pt['axi_beat_bits']}-bit beats: pixels + source codes)":
+              pt["bound_writer_cycles"],
               "render tags (MAX_OUTSTANDING per engine)": pt["bound_tags_cycles"],
               "shared render port (1 request/clock)": pt["bound_render_port_cycles"],
               "engine decisions (1 position/clock/engine)": pt["bound_decisions_cycles"]}
@@ -149,7 +151,7 @@ def analysis(pts: list[dict]) -> dict:
         return {}
     p0 = pts[0]
     out = {
-        # The writer's W channel moves one 256-bit beat per clock.
+        # The writer's W channel moves one beat (axi_beat_bits) per clock.
         "writer_limit_pixels_per_clock": p0["pixels"] / p0["axi_w_beats"],
         "w_beats_per_pixel": p0["axi_w_beats"] / p0["pixels"],
         "w_beats_per_clock_needed_for_goal": GOAL_PIXELS * p0["axi_w_beats"] / p0["pixels"],
@@ -194,7 +196,8 @@ def plot(report: dict, path: Path) -> None:
                 label=f"{e} engine{'s' if e > 1 else ''}, MAX_OUTSTANDING {mo}")
     ax.axhline(GOAL_PIXELS, color="grey", ls="--", lw=1, label=f"goal {GOAL_PIXELS} (4 engines, latency 256)")
     wl = pts[0]["pixels"] / pts[0]["bound_writer_cycles"]
-    ax.axhline(wl, color="red", ls=":", lw=1, label=f"frame-buffer writer limit ({wl:.2f} pixels/clock, 256-bit AXI)")
+    ax.axhline(wl, color="red", ls=":", lw=1, label=f"frame-buffer writer limit ({wl:.2f} pixels/clock, "
+               f"{pts[0]['axi_beat_bits']}-bit AXI)")
     s = report["setup"]
     ax.set_title(f"msr_top, {s['scene']} {s['width']}x{s['height']}, T={s['tile']} L={s['levels']} "
                  f"thr {','.join(map(str, s['thr']))}", fontsize=10)
