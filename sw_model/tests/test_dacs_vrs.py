@@ -6,19 +6,7 @@ from msr_model import SpecError
 from msr_model.testimage import test_image as make_test_image
 from msr_eval import dacs as D
 from msr_eval import vrs as V
-
-
-class Recorder:
-    """A renderer that remembers every pixel it was asked for, duplicates included."""
-
-    def __init__(self, image):
-        self.image = image
-        self.asked = []
-
-    def render(self, xs, ys):
-        xs, ys = np.asarray(xs), np.asarray(ys)
-        self.asked += list(zip(xs.tolist(), ys.tolist()))
-        return self.image[ys, xs]
+from recorder import Recorder
 
 
 def _honest(res, rec, image):

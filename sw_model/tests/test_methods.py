@@ -5,19 +5,7 @@ import pytest
 from msr_model import ImageRenderer, Params, SpecError, select
 from msr_eval import methods as M
 from msr_model.testimage import test_image as make_test_image
-
-
-class Recorder:
-    """A renderer that remembers every pixel it was asked for, duplicates included."""
-
-    def __init__(self, image):
-        self.image = image
-        self.asked = []
-
-    def render(self, xs, ys):
-        xs, ys = np.asarray(xs), np.asarray(ys)
-        self.asked += list(zip(xs.tolist(), ys.tolist()))
-        return self.image[ys, xs]
+from recorder import Recorder
 
 
 def _rand(h, w, seed=1):
