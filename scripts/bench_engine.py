@@ -94,9 +94,10 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
                 traced += 1
             if rsp is not None and dut.rsp_ready_o.value:
                 rsp = None
-            if dut.issue.value:
-                # the granted context's position: its pass-start flag and direction
-                gi = int(dut.gnt_idx.value)
+            if dut.gr_valid_q.value:
+                # the position issued this cycle (granted the cycle before, still its
+                # context's head): its pass-start flag and direction
+                gi = int(dut.gr_ctx_q.value)
                 g_first = (int(dut.ctx_first.value) >> gi) & 1
                 g_hv = not (int(dut.iss_pos.value) & 1)          # pos_t.init is its last bit
                 if g_first and g_hv:
@@ -108,7 +109,7 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
                 free = bin(int(dut.ctx_free.value)).count("1")
                 full = bin(int(dut.ctx_full.value)).count("1")
                 key = ("issue" if int(dut.issue.value) else
-                       "pipe_stall" if not int(dut.pipe_ready.value) else
+                       "no_credit" if not int(dut.can_issue.value) else
                        "no_ctx" if free == NUM_CTX else
                        "barrier_or_idle")
                 PROBE[key] = PROBE.get(key, 0) + 1

@@ -30,7 +30,7 @@ module msr_tile_ctx
   output logic               free_o,        // no tile: may start one
   output tile_desc_t         desc_o,        // the tile held
   // the position on offer
-  output logic               cand_o,        // a position that may be issued now
+  output logic               cand_o,        // a position that may be granted now (issued next cycle)
   output logic               step_first_o,  // it is the first of its pass (waveforms)
   output lcoord_t            step_x_o,
   output lcoord_t            step_y_o,
@@ -39,7 +39,7 @@ module msr_tile_ctx
   output level_t             step_level_o,
   output logic [1:0]         step_nshift_o,
   output logic               step_init_o,   // initial-grid position: traced, no reads
-  input  logic               issue_i,       // the engine takes the position this cycle
+  input  logic               issue_i,       // the head leaves this cycle (granted the cycle before)
   // decision reads: the neighbours of the position issued last cycle (registered, held)
   output rgb_t               rd_a_o,
   output rgb_t               rd_b_o,
@@ -129,9 +129,11 @@ module msr_tile_ctx
     .busy_o        (ctrl_busy)
   );
 
-  // Room while the tail is empty (a register: a push into a full queue waits a clock even
-  // when the head leaves in the same one).
-  assign q_room = !tail_valid_q;
+  // The engine's grant is registered: issue_i is a flip-flop, and the position granted the
+  // clock before is still the head while issue_i is high (it leaves at the end of that
+  // clock). So the queue has room while its tail is empty or the head is leaving: both are
+  // registers, and a context that wins every clock gets a new position every clock.
+  assign q_room = !tail_valid_q || issue_i;
   assign q_push = step_valid && q_room;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -142,9 +144,9 @@ module msr_tile_ctx
       head_valid_q <= 1'b0;
       tail_valid_q <= 1'b0;
     end else if (issue_i) begin
-      // the head leaves: the tail (if any) moves up, else a push lands in the head
+      // the head leaves: the tail (if any) moves up and a push goes behind it
       head_valid_q <= tail_valid_q || q_push;
-      tail_valid_q <= 1'b0;
+      tail_valid_q <= tail_valid_q && q_push;
     end else if (q_push) begin
       head_valid_q <= 1'b1;
       tail_valid_q <= head_valid_q;
@@ -158,17 +160,22 @@ module msr_tile_ctx
     end else if (q_push && !head_valid_q) begin
       head_q <= step;
     end
-    if (q_push && head_valid_q && !issue_i) begin
+    if (q_push && head_valid_q && (tail_valid_q || !issue_i)) begin
       tail_q <= step;
     end
   end
 
   // pend_zero_q is "pend_q == 0", kept as a register: it changes only when an issue and a
-  // write do not cancel, and then depends on "pend_q == 1" (a compare of a register). So the
-  // candidate bit is one LUT of flip-flops, and the arbiter's grant feeds it back through one.
+  // write do not cancel, and then depends on "pend_q == 1" (a compare of a register).
+  //
+  // The candidate: the position that is head once the one leaving now (issue_i) has left.
+  // While a head leaves, that is the tail, and only if it is not the first of a pass (the
+  // leaving position is not yet written, so the barrier holds anyway). Otherwise the head,
+  // the first of a pass only when nothing issued is pending. One LUT of flip-flops.
   logic pend_zero_q, pend_one;
   assign pend_one      = (pend_q == PEND_W'(1));
-  assign cand_o        = head_valid_q && (!head_q.first || pend_zero_q);
+  assign cand_o        = issue_i ? (tail_valid_q && !tail_q.first)
+                                 : (head_valid_q && (!head_q.first || pend_zero_q));
   assign step_first_o  = head_q.first;
   assign step_init_o   = (head_q.dir == DIR_INIT);
   assign step_x_o      = head_q.x;
@@ -279,7 +286,8 @@ module msr_tile_ctx
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_start_free, start_i |-> free_o)
-  `MSR_ASSERT(a_issue_cand, issue_i |-> cand_o && state_q == CTX_COMPUTE)
+  `MSR_ASSERT(a_issue_head, issue_i |-> head_valid_q && state_q == CTX_COMPUTE &&
+      (!head_q.first || pend_zero_q))
   `MSR_ASSERT(a_pend_no_wrap, !(pend_q == '0 && we_i && !issue_i) &&
       !(pend_q == '1 && issue_i && !we_i))
   `MSR_ASSERT(a_write_once, we_i |-> state_q == CTX_COMPUTE && !written_q[waddr_i] &&

@@ -138,11 +138,38 @@ module msr_tile_engine
     .ready_i (can_issue)
   );
 
-  // No stage between the issue and the output buffer ever stalls: a position is issued only
+  // No stage between the issue and the output buffer ever stalls: a position is granted only
   // with a free slot in that buffer reserved for it (a credit), so the pipeline registers need
   // no enable and the issue does not wait on the output's handshake.
-  assign issue     = arb_valid && can_issue;
-  assign ctx_issue = gnt & {NUM_CTX{can_issue}};
+  //
+  // The grant is registered (GR): the arbiter's output goes into flip-flops beside it, and the
+  // contexts, spread over the die with their tile buffers, see a register one clock later
+  // (their issue_i: the head leaves, the buffer reads it). The contexts' candidate bits know
+  // about the grant in flight, so a context can still win every clock.
+  assign issue = arb_valid && can_issue;
+
+  logic               gr_valid_q;
+  logic [NUM_CTX-1:0] gr_gnt_q;
+  ctx_t               gr_ctx_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      gr_valid_q <= 1'b0;
+      gr_gnt_q   <= '0;
+    end else if (clear_i) begin
+      gr_valid_q <= 1'b0;
+      gr_gnt_q   <= '0;
+    end else begin
+      gr_valid_q <= issue;
+      gr_gnt_q   <= gnt & {NUM_CTX{can_issue}};
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    gr_ctx_q <= gnt_idx;
+  end
+
+  assign ctx_issue = gr_gnt_q;
 
   // The issued position, picked with the one-hot grant (an AND-OR, not an index multiplexer).
   typedef struct packed {
@@ -164,11 +191,11 @@ module msr_tile_engine
   always_comb begin
     iss_pos = '0;
     for (int unsigned c = 0; c < NUM_CTX; c++) begin
-      iss_pos |= ctx_pos[c] & {$bits(pos_t){gnt[c]}};
+      iss_pos |= ctx_pos[c] & {$bits(pos_t){gr_gnt_q[c]}};
     end
   end
 
-  // ---- IS: the issue registers (the buffer reads happen this cycle) ----------------------------
+  // ---- IS: the issue registers (the buffer reads happen in the GR cycle) ----------------------
   logic is_valid_q;
   ctx_t is_ctx_q;
   pos_t is_pos_q;
@@ -179,14 +206,14 @@ module msr_tile_engine
     end else if (clear_i) begin
       is_valid_q <= 1'b0;
     end else begin
-      is_valid_q <= issue;
+      is_valid_q <= gr_valid_q;
     end
   end
 
   // No enable: is_valid_q says whether they hold an issue (an enable would hang the grant's
   // fan-out on every one of these flip-flops).
   always_ff @(posedge clk_i) begin
-    is_ctx_q <= gnt_idx;
+    is_ctx_q <= gr_ctx_q;
     is_pos_q <= iss_pos;
   end
 
@@ -240,7 +267,9 @@ module msr_tile_engine
   end
 
   // ---- Decision pipeline and output buffer ----------------------------------------------------
-  localparam int unsigned OUT_DEPTH = 8;   // >= issue-to-buffer latency (7) + 1: full rate
+  // Credits in flight per position: grant -> GR -> IS -> AB -> S1..S5 -> buffer -> out, ~10
+  // clocks; 16 (the next power of two) keeps one grant per clock.
+  localparam int unsigned OUT_DEPTH = 16;
 
   typedef struct packed {
     logic  interp;

@@ -5,8 +5,9 @@
 // its request stays up, so a valid/ready consumer sees stable data.
 //
 // Timing: the "requests above the last winner" mask is a register (a thermometer code), and
-// the lowest set bit of a vector is isolated with x & -x (a carry chain), so the grant is a
-// handful of LUT levels for any N.
+// the grant and the next mask both come from one 2N-bit carry chain (the lowest set bit of
+// {requests, requests above the last winner}), so the grant is a handful of LUT levels for
+// any N.
 `include "msr_assert.svh"
 
 module msr_rr_arb #(
@@ -28,17 +29,29 @@ module msr_rr_arb #(
     $fatal(1, "msr_rr_arb: N must be >= 1, got %0d", N);
   end
 
-  logic [N-1:0] above_q, above_d;   // requesters strictly after the last winner
-  logic [N-1:0] masked, pick_from, gnt;
+  logic [N-1:0]   above_q, above_d;   // requesters strictly after the last winner
+  logic [2*N-1:0] both, below_incl, lowest;
+  logic [N-1:0]   gnt, above_pick;
 
-  assign masked    = req_i & above_q;
-  assign pick_from = (masked != '0) ? masked : req_i;
-  assign gnt       = pick_from & (~pick_from + 1'b1);     // lowest set bit
+  // One carry chain for the whole choice: the requests above the last winner in the low half,
+  // all requests in the high half; the lowest set bit of that 2N-bit vector is the winner (in
+  // the high half only when nobody above the last winner asks). x ^ (x - 1) marks the bits
+  // up to and including the lowest set one; the pointer for the next round comes from the
+  // same subtraction, not from a second chain behind the grant.
+  assign both       = {req_i, req_i & above_q};
+  assign below_incl = both ^ (both - 1'b1);
+  assign lowest     = both & below_incl;
+  assign gnt        = lowest[N-1:0] | lowest[2*N-1:N];
+  assign above_pick = below_incl[N] ? ~below_incl[2*N-1:N] : ~below_incl[N-1:0];
 
   if (LOCK) begin : g_lock
     logic [N-1:0] locked_q;   // the grant offered last cycle
     logic         lock_q;     // ... and not taken
-    assign gnt_o = (lock_q && (req_i & locked_q) != '0) ? locked_q : gnt;
+    logic         hold;
+    assign hold    = lock_q && (req_i & locked_q) != '0;
+    assign gnt_o   = hold ? locked_q : gnt;
+    // after a held winner w: every requester above w (thermometer ~(w | (w - 1)))
+    assign above_d = hold ? ~(locked_q | (locked_q - 1'b1)) : above_pick;
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         lock_q   <= 1'b0;
@@ -52,12 +65,11 @@ module msr_rr_arb #(
       end
     end
   end else begin : g_no_lock
-    assign gnt_o = gnt;
+    assign gnt_o   = gnt;
+    assign above_d = above_pick;
   end
 
   assign valid_o = (req_i != '0);
-  // after a winner w: every requester above w (thermometer ~(w | (w - 1)))
-  assign above_d = ~(gnt_o | (gnt_o - 1'b1));
 
   always_comb begin
     idx_o = '0;
