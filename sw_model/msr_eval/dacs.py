@@ -18,8 +18,11 @@ Choices the paper leaves open, or that we could not take from it (docs/dacs.md):
 - statistic `metric`: "var" (default) the population variance of each RGB channel over the
   neighbours, the largest of the three (8-bit sRGB units squared); "lumvar" the variance of
   the Rec. 709 luma; "range" the largest per-channel max - min (the patent's kind of test);
-- neighbours outside the frame are left out; a pixel with fewer than `min_neighbours` (2)
-  neighbours inside the frame is traced;
+- frame edges: neighbours outside the frame are left out, and a pixel is interpolated only
+  if at least one opposite pair of its neighbours (left and right, up and down, or two
+  opposite corners) lies inside the frame, so nothing is extrapolated: beyond the last grid
+  row or column (a frame size not 1 more than a multiple of 4) pixels are traced, as the
+  evaluation's grids trace their last row and column;
 - the test is `stat <= thr`, so thr = 0 interpolates only between identical neighbours and a
   negative thr traces everything.
 """
@@ -74,14 +77,11 @@ def statistic(nb: np.ndarray, valid: np.ndarray, metric: str) -> np.ndarray:
     return ((n * s2 - s1 * s1) / (n * n)).max(axis=-1)
 
 
-def dacs(renderer, width: int, height: int, thr: float, metric: str = "var",
-         min_neighbours: int = 2) -> MethodResult:
+def dacs(renderer, width: int, height: int, thr: float, metric: str = "var") -> MethodResult:
     """DACS on the whole frame with threshold `thr` on `metric` (module docstring)."""
     spec.check_frame_size(width, height)
     if metric not in METRICS:
         raise spec.SpecError(f"DACS metric must be one of {', '.join(METRICS)}, got {metric!r}")
-    if not 1 <= min_neighbours <= 4:
-        raise spec.SpecError(f"min_neighbours must be 1..4, got {min_neighbours}")
     c = CountingRenderer(renderer, width, height)
     P = 2                                             # padding: neighbours up to 2 pixels off the frame
     F = np.zeros((height + 2 * P, width + 2 * P, 3), np.uint8)     # the frame, padded
@@ -109,7 +109,10 @@ def dacs(renderer, width: int, height: int, thr: float, metric: str = "var",
                 stat = ((n * s2 - s1 * s1) / (n * n)).max(axis=-1)
             else:
                 stat = statistic(np.stack([F[a, b] for a, b in sl], axis=2), np.stack(vs4, axis=2), metric)
-            ok = (nvalid >= min_neighbours) & (stat <= thr)
+            # offsets come as two opposite pairs (0, 3), (1, 2) diagonal or (0, 1), (2, 3) axial
+            pairs = ((0, 3), (1, 2)) if offs[0][0] and offs[0][1] else ((0, 1), (2, 3))
+            between = (vs4[pairs[0][0]] & vs4[pairs[0][1]]) | (vs4[pairs[1][0]] & vs4[pairs[1][1]])
+            ok = between & (stat <= thr)
             cnt = np.maximum(nvalid, 1)[..., None]
             val = ((s1 + cnt // 2) // cnt).astype(np.uint8)            # rounded mean of the valid ones
             ty, tx = np.nonzero(~ok)

@@ -75,11 +75,15 @@ def test_dacs_metrics_by_hand():
 def test_dacs_extremes_and_counts():
     img = np.full((12, 16, 3), 77, np.uint8)
     rec = Recorder(img)
-    res = D.dacs(rec, 16, 12, thr=0)              # flat: pass 0 traced, and the two pixels
-    _honest(res, rec, img)                        # with one neighbour in the frame:
-    assert res.traced == 4 * 3 + 2 and (res.frame == 77).all()
-    # (14,10) (pass 1: only (12,8) inside) and (15,11) (pass 3: only (14,10) inside)
-    assert {(x, y) for x, y in rec.asked if x % 4 or y % 4} == {(14, 10), (15, 11)}
+    res = D.dacs(rec, 16, 12, thr=0)              # flat: pass 0 traced, and the pixels beyond
+    _honest(res, rec, img)                        # the last grid row (8) and column (12) that
+    assert (res.frame == 77).all()                # no opposite pair of neighbours surrounds
+    extra = {(x, y) for x, y in rec.asked if x % 4 or y % 4}
+    assert res.traced == 4 * 3 + len(extra) and len(extra) == 23
+    assert all(x > 12 or y > 8 for x, y in extra)
+    # (2,10): corners (0,8), (4,8) only, one side: traced. (4,10): (2,10) and (6,10) left and
+    # right: interpolated. (0,10): right and up only: traced. (2,11): left and right: interpolated.
+    assert (2, 10) in extra and (4, 10) not in extra and (0, 10) in extra and (2, 11) not in extra
     img = make_test_image(37, 29)
     rec = Recorder(img)
     res = D.dacs(rec, 37, 29, thr=-1)             # negative threshold: everything traced
@@ -93,7 +97,7 @@ def test_dacs_extremes_and_counts():
         fr.append(r.traced)
     assert fr == sorted(fr, reverse=True) and fr[-1] < fr[0]
     # a huge threshold interpolates every pixel but pass 0's (37 x 29: the last row and column
-    # lie on the grid, so every pixel has >= 2 neighbours in the frame)
+    # lie on the grid, so every pixel lies between two of its neighbours)
     assert fr[-1] == len(range(0, 37, 4)) * len(range(0, 29, 4))
     with pytest.raises(SpecError):
         D.dacs(Recorder(img), 37, 29, thr=1, metric="median")
@@ -167,8 +171,10 @@ def _dacs_oracle(img, thr, metric):
                         nb = [frame[y + oy, x + ox].astype(int) for ox, oy in offs
                               if 0 <= x + ox < w and 0 <= y + oy < h]
                         assert all(done[y + oy, x + ox] for ox, oy in offs if 0 <= x + ox < w and 0 <= y + oy < h)
+                        inside = [0 <= x + ox < w and 0 <= y + oy < h for ox, oy in offs]
+                        pairs = ((0, 3), (1, 2)) if offs[0][0] and offs[0][1] else ((0, 1), (2, 3))
                         ok = False
-                        if len(nb) >= 2:
+                        if any(inside[i] and inside[j] for i, j in pairs):
                             a = np.array(nb, float)
                             if metric == "var":
                                 stat = max(a[:, k].var() for k in range(3))
