@@ -1,8 +1,11 @@
 """msr_eval: the evaluation on top of msr_model's public API (research code, not the contract).
 
 - rules:    decision rules compared by the evaluation (functions of msr_model.PassView)
+- gbuffer_rule: the G-buffer edge rules (gbuf, gbuflindilate): the renderer's material id and
+            depth with each traced pixel force traces across surfaces
 - methods:  rendering methods compared (full, grid, checkerboard, single level, multi level)
 - metrics:  PSNR, SSIM, FLIP, Pareto fronts, summaries
 - sweep:    the sweep of scenes x modes x methods x settings, serial or on Dask distributed
 - report:   plots, example strips and docs/results.md
+- textured: docs/results.md sections on the textured scenes and the G-buffer rule
 """
