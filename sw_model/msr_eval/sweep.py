@@ -65,8 +65,9 @@ RECORD_CODE = ("sw_model/msr_model/golden.py", "sw_model/msr_model/spec.py", "sw
                "sw_model/msr_eval/dacs.py", "sw_model/msr_eval/vrs.py", "sw_model/msr_eval/reference.py")
 # The peers (issue 17): DACS (msr_eval.dacs) over its variance threshold, the VRS-like baseline
 # (msr_eval.vrs) over its contrast scale, per 8x8 and 16x16 tile.
-DACS_THR = (0, 1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 4096)
-DACS_THR_QUICK = (0, 2, 8, 32, 128, 512, 2048)
+# (a variance of 16256 = 127.5^2 is the largest 8-bit neighbours can have: everything interpolated)
+DACS_THR = (0, 1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 4096, 8192, 16384)
+DACS_THR_QUICK = (0, 2, 8, 32, 128, 512, 2048, 8192, 16384)
 VRS_THR = (1, 2, 4, 8, 16, 32, 64, 128)
 VRS_THR_QUICK = (2, 4, 8, 16, 32, 64)
 
