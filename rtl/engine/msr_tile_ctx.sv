@@ -40,7 +40,7 @@ module msr_tile_ctx
   output logic [1:0]         step_nshift_o,
   output logic               step_init_o,   // initial-grid position: traced, no reads
   input  logic               issue_i,       // the head leaves this cycle (granted the cycle before)
-  // decision reads: the neighbours of the position issued last cycle (registered, held)
+  // decision reads: the neighbours of the position issued two cycles before
   output rgb_t               rd_a_o,
   output rgb_t               rd_b_o,
   // the one write port: an interpolated value or a render response, one per cycle
@@ -53,7 +53,7 @@ module msr_tile_ctx
   input  logic               str_own_i,     // the streamer reads port 0 now
   input  logic               str_re_i,
   input  logic [TADDR_W-1:0] str_raddr_i,
-  output rgb_t               str_rgb_o,
+  output rgb_t               str_rgb_o,     // two cycles after str_re_i
   output src_t               str_src_o,
   input  logic               str_done_i     // the streamer has emitted the whole tile
 );
@@ -231,10 +231,10 @@ module msr_tile_ctx
   logic computing;
   assign computing = (state_q == CTX_COMPUTE);
 
-  logic [WORD_W-1:0] rdata0;
+  logic [WORD_W-1:0] rdata0, rdata0_q;
   // A decision needs the colour of A, not its source code.
   /* verilator lint_off UNUSEDSIGNAL */
-  logic [WORD_W-1:0] rdata1;
+  logic [WORD_W-1:0] rdata1, rdata1_q;
   /* verilator lint_on UNUSEDSIGNAL */
 
   msr_tile_sram #(
@@ -253,11 +253,19 @@ module msr_tile_ctx
     .wdata_i  ({wsrc_i, wrgb_i})
   );
 
+  // The read data is registered once more, beside the memory, before anything selects between
+  // contexts: a block RAM's clock-to-output (5.8 ns on an ECP5 DP16KD) leaves no room for the
+  // 8:1 choice behind it. Read data reaches the engine two clocks after the address.
+  always_ff @(posedge clk_i) begin
+    rdata0_q <= rdata0;
+    rdata1_q <= rdata1;
+  end
+
   // After an initial-grid position the read data is stale: the engine forces a trace there.
-  assign rd_a_o    = rgb_t'(rdata1[$bits(rgb_t)-1:0]);
-  assign rd_b_o    = rgb_t'(rdata0[$bits(rgb_t)-1:0]);
-  assign str_rgb_o = rgb_t'(rdata0[$bits(rgb_t)-1:0]);
-  assign str_src_o = src_t'(rdata0[WORD_W-1:$bits(rgb_t)]);
+  assign rd_a_o    = rgb_t'(rdata1_q[$bits(rgb_t)-1:0]);
+  assign rd_b_o    = rgb_t'(rdata0_q[$bits(rgb_t)-1:0]);
+  assign str_rgb_o = rgb_t'(rdata0_q[$bits(rgb_t)-1:0]);
+  assign str_src_o = src_t'(rdata0_q[WORD_W-1:$bits(rgb_t)]);
 
   // ---- Checks ---------------------------------------------------------------------------------
 `ifndef SYNTHESIS

@@ -2,10 +2,13 @@
 //
 //   desc --> lowest free context c (msr_tile_ctx: descriptor, level controller, pass
 //            barrier, tile buffer)
-//   issue: round robin (msr_rr_arb) over the contexts whose next position may go; the
-//          context's own tile buffer reads B (port 0) and A (port 1) at its controller's
-//          registered addresses
-//   AB   : the issued context's read data and descriptor fields, registered
+//   issue: round robin (msr_rr_arb) over the contexts whose next position may go; the grant
+//          is registered (GR), then the context's head leaves and its own tile buffer reads
+//          B (port 0) and A (port 1) at the head's registered addresses
+//   IS   : the issued position (AND-OR over the registered one-hot grant)
+//   RD   : the context's descriptor fields (global coordinates, level threshold), registered
+//          while the read data pass the block RAM and the register beside it
+//   AB   : the issued context's read data, registered
 //   msr_decision_pipe (5 stages): decide and interpolate; never stalls: a position is issued
 //          only with a slot of the 8-entry output buffer reserved (credits)
 //   out  : interpolate -> write {16+k, C} into the context's buffer;
@@ -217,7 +220,6 @@ module msr_tile_engine
     is_pos_q <= iss_pos;
   end
 
-  // ---- AB: read data and the context's descriptor, registered ----------------------------------
   // What travels with a decision to the output.
   typedef struct packed {
     ctx_t    ctx;
@@ -229,14 +231,18 @@ module msr_tile_engine
     logic    init;
   } side_t;
 
-  logic       ab_valid_q;
-  rgb_t       ab_a_q, ab_b_q;
-  side_t      ab_side_q;
-  metric_e    ab_metric_q;
-  thr_t       ab_thr_q;
+  // ---- RD: the context's descriptor fields, registered (the read data is on its way) ---------
+  // The tile buffer's data arrive two clocks after the read (GR): the block RAM's registered
+  // read, then the register beside it in the context. This stage uses the wait for the
+  // descriptor: global coordinates and the threshold of the position's level.
+  logic       rd_valid_q;
+  ctx_t       rd_ctx_q;
+  side_t      rd_side_q;
+  metric_e    rd_metric_q;
+  thr_t       rd_thr_q;
   // Each of these is read in part: the position's x / y and the tile's size go elsewhere.
   /* verilator lint_off UNUSEDSIGNAL */
-  pos_t       ab_pos_q;
+  pos_t       rd_pos_q;
   tile_desc_t is_desc;
   /* verilator lint_on UNUSEDSIGNAL */
 
@@ -244,31 +250,62 @@ module msr_tile_engine
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      ab_valid_q <= 1'b0;
+      rd_valid_q <= 1'b0;
     end else if (clear_i) begin
-      ab_valid_q <= 1'b0;
+      rd_valid_q <= 1'b0;
     end else begin
-      ab_valid_q <= is_valid_q;
+      rd_valid_q <= is_valid_q;
     end
   end
 
   always_ff @(posedge clk_i) begin
     if (is_valid_q) begin
-      ab_a_q      <= ctx_rd_a[is_ctx_q];
-      ab_b_q      <= ctx_rd_b[is_ctx_q];
-      ab_pos_q    <= is_pos_q;
-      ab_side_q   <= '{ctx: is_ctx_q, x: is_pos_q.x, y: is_pos_q.y,
+      rd_ctx_q    <= is_ctx_q;
+      rd_pos_q    <= is_pos_q;
+      rd_side_q   <= '{ctx: is_ctx_q, x: is_pos_q.x, y: is_pos_q.y,
                        gx: is_desc.x0 + coord_t'(is_pos_q.x), gy: is_desc.y0 + coord_t'(is_pos_q.y),
                        level: is_pos_q.level, init: is_pos_q.init};
-      ab_metric_q <= is_desc.metric;
+      rd_metric_q <= is_desc.metric;
       // threshold of the position's level; an initial-grid position gets 0 (always trace)
-      ab_thr_q    <= is_pos_q.init ? '0 : is_desc.thr[is_pos_q.level - 1'b1];
+      rd_thr_q    <= is_pos_q.init ? '0 : is_desc.thr[is_pos_q.level - 1'b1];
+    end
+  end
+
+  // ---- AB: the issued context's read data, registered -----------------------------------------
+  logic       ab_valid_q;
+  rgb_t       ab_a_q, ab_b_q;
+  side_t      ab_side_q;
+  metric_e    ab_metric_q;
+  thr_t       ab_thr_q;
+  // Each of these is read in part: the position's x / y go elsewhere.
+  /* verilator lint_off UNUSEDSIGNAL */
+  pos_t       ab_pos_q;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ab_valid_q <= 1'b0;
+    end else if (clear_i) begin
+      ab_valid_q <= 1'b0;
+    end else begin
+      ab_valid_q <= rd_valid_q;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (rd_valid_q) begin
+      ab_a_q      <= ctx_rd_a[rd_ctx_q];
+      ab_b_q      <= ctx_rd_b[rd_ctx_q];
+      ab_pos_q    <= rd_pos_q;
+      ab_side_q   <= rd_side_q;
+      ab_metric_q <= rd_metric_q;
+      ab_thr_q    <= rd_thr_q;
     end
   end
 
   // ---- Decision pipeline and output buffer ----------------------------------------------------
-  // Credits in flight per position: grant -> GR -> IS -> AB -> S1..S5 -> buffer -> out, ~10
-  // clocks; 16 (the next power of two) keeps one grant per clock.
+  // Credits in flight per position: grant -> GR -> IS -> RD -> AB -> S1..S5 -> buffer -> out,
+  // ~11 clocks; 16 (the next power of two) keeps one grant per clock.
   localparam int unsigned OUT_DEPTH = 16;
 
   typedef struct packed {

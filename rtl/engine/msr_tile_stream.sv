@@ -1,7 +1,9 @@
 // Output streamer: reads a finished tile from the tile buffer row-major and emits it as a
 // valid/ready pixel stream in global coordinates (claim 10's hand-over to the frame
-// buffer). Reads are issued only when the skid FIFO has room for every read in flight, so
-// a stalled consumer never loses data and a ready consumer gets one pixel per clock.
+// buffer). Read data arrives two cycles after the address (the tile buffer's registered read
+// and the register behind it). Reads are issued only when the skid FIFO has room for every
+// read in flight, so a stalled consumer never loses data and a ready consumer gets one pixel
+// per clock.
 module msr_tile_stream
   import msr_pkg::*;
 #(
@@ -18,7 +20,7 @@ module msr_tile_stream
   input  ldim_t                h_i,
   output logic                 re_o,         // tile buffer read port
   output logic [TADDR_W-1:0]   raddr_o,
-  input  rgb_t                 rdata_rgb_i,  // one cycle after re_o
+  input  rgb_t                 rdata_rgb_i,  // two cycles after re_o
   input  src_t                 rdata_src_i,
   output logic                 pix_valid_o,  // pixel stream
   input  logic                 pix_ready_i,
@@ -51,10 +53,10 @@ module msr_tile_stream
   lcoord_t rx_q, ry_q;          // next pixel to read
   logic    rd_done_q;           // all reads issued
 
-  // Read in flight (data arrives next cycle) and its coordinates.
-  logic    rd_pend_q;
-  lcoord_t pend_x_q, pend_y_q;
-  logic    pend_last_q;
+  // Reads in flight (data arrives two cycles after the read) and their coordinates.
+  logic    [1:0] rd_pend_q;
+  lcoord_t [1:0] pend_x_q, pend_y_q;
+  logic    [1:0] pend_last_q;
 
   entry_t [FIFO_DEPTH-1:0] fifo_q;
   logic [PTR_W-1:0] wptr_q, rptr_q;
@@ -64,10 +66,10 @@ module msr_tile_stream
 
   assign start_ready_o = !active_q;
   assign last_rd  = (rx_q == wm1_q) && (ry_q == hm1_q);
-  // room for the read in flight plus this one, without looking at this cycle's pop
+  // room for the reads in flight plus this one, without looking at this cycle's pop
   assign issue    = active_q && !rd_done_q &&
-                    (32'(cnt_q) + 32'(rd_pend_q) < FIFO_DEPTH - 1);
-  assign push     = rd_pend_q;
+                    (32'(cnt_q) + 32'(rd_pend_q[0]) + 32'(rd_pend_q[1]) < FIFO_DEPTH);
+  assign push     = rd_pend_q[1];
   assign pop      = pix_valid_o && pix_ready_i;
   assign re_o     = issue;
   assign raddr_o  = {ry_q, rx_q};
@@ -84,7 +86,7 @@ module msr_tile_stream
     if (!rst_ni) begin
       active_q    <= 1'b0;
       rd_done_q   <= 1'b0;
-      rd_pend_q   <= 1'b0;
+      rd_pend_q   <= '0;
       wptr_q      <= '0;
       rptr_q      <= '0;
       cnt_q       <= '0;
@@ -96,11 +98,11 @@ module msr_tile_stream
       ry_q        <= '0;
       pend_x_q    <= '0;
       pend_y_q    <= '0;
-      pend_last_q <= 1'b0;
+      pend_last_q <= '0;
     end else if (clear_i) begin
       active_q  <= 1'b0;
       rd_done_q <= 1'b0;
-      rd_pend_q <= 1'b0;
+      rd_pend_q <= '0;
       wptr_q    <= '0;
       rptr_q    <= '0;
       cnt_q     <= '0;
@@ -115,11 +117,11 @@ module msr_tile_stream
         rx_q      <= '0;
         ry_q      <= '0;
       end
-      rd_pend_q <= issue;
+      rd_pend_q   <= {rd_pend_q[0], issue};
+      pend_x_q    <= {pend_x_q[0], rx_q};
+      pend_y_q    <= {pend_y_q[0], ry_q};
+      pend_last_q <= {pend_last_q[0], last_rd && issue};
       if (issue) begin
-        pend_x_q    <= rx_q;
-        pend_y_q    <= ry_q;
-        pend_last_q <= last_rd;
         if (last_rd) begin
           rd_done_q <= 1'b1;
         end else if (rx_q == wm1_q) begin
@@ -138,8 +140,8 @@ module msr_tile_stream
 
   always_ff @(posedge clk_i) begin
     if (push) begin
-      fifo_q[wptr_q] <= '{x: x0_q + coord_t'(pend_x_q), y: y0_q + coord_t'(pend_y_q),
-                          rgb: rdata_rgb_i, src: rdata_src_i, last: pend_last_q};
+      fifo_q[wptr_q] <= '{x: x0_q + coord_t'(pend_x_q[1]), y: y0_q + coord_t'(pend_y_q[1]),
+                          rgb: rdata_rgb_i, src: rdata_src_i, last: pend_last_q[1]};
     end
   end
 
@@ -153,6 +155,9 @@ module msr_tile_stream
   a_no_overflow : assert property (@(posedge clk_i) disable iff (!rst_ni)
       push |-> 32'(cnt_q) < FIFO_DEPTH || pop)
     else $error("msr_tile_stream: FIFO overflow");
+  a_no_wrap : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
+      32'(cnt_q) + 32'(rd_pend_q[0]) + 32'(rd_pend_q[1]) <= FIFO_DEPTH)
+    else $error("msr_tile_stream: reads in flight beyond the FIFO");
   /* verilator lint_on SYNCASYNCNET */
 `endif
 
