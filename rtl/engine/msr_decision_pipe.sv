@@ -4,8 +4,9 @@
 // valid/ready handshake. Division by g in 2..8 is a multiply by RECIP[g] = ceil(2^14 / g) and
 // a shift by 14, exact for every numerator 0..2047 (tb/interp proves it over the whole range).
 //
-// Five register stages, each under 30 levels of generic logic, so the unit closes timing far
+// Six register stages, each under 30 levels of generic logic, so the unit closes timing far
 // above the engine's clock on an FPGA and fits a short cycle on an ASIC:
+//   S0  inputs registered; g - o
 //   S1  per-channel |A - B|, thr * g, (g - o) * A and o * B
 //   S2  max and sum of the differences, numerator (g - o) * A + o * B + floor(g / 2)
 //   S3  d << log2(n_k) against thr * g; numerator times the four 4-bit pieces of RECIP[g]
@@ -68,6 +69,30 @@ module msr_decision_pipe
   assign advance = !valid_o || ready_i;
   assign ready_o = advance;
 
+  // ---- S0: inputs registered, g - o formed ---------------------------------------------------
+  // The S1 products then start at flip-flops: on an FPGA a multiplier block alone is ~4 ns.
+  logic               s0_valid_q;
+  rgb_t               s0_a_q, s0_b_q;
+  metric_e            s0_metric_q;
+  thr_t               s0_thr_q;
+  gap_t               s0_gap_q, s0_off_q, s0_gmo_q;
+  logic [1:0]         s0_nshift_q;
+  logic [USER_W-1:0]  s0_user_q;
+
+  always_ff @(posedge clk_i) begin
+    if (advance && valid_i) begin
+      s0_a_q      <= a_i;
+      s0_b_q      <= b_i;
+      s0_metric_q <= metric_i;
+      s0_thr_q    <= thr_i;
+      s0_gap_q    <= gap_i;
+      s0_off_q    <= off_i;
+      s0_gmo_q    <= gap_i - off_i;
+      s0_nshift_q <= nshift_i;
+      s0_user_q   <= user_i;
+    end
+  end
+
   // ---- S1 ---------------------------------------------------------------------------------------
   logic                    s1_valid_q;
   chan_t [2:0]             s1_abs_q;
@@ -79,21 +104,21 @@ module msr_decision_pipe
   logic  [USER_W-1:0]      s1_user_q;
 
   always_ff @(posedge clk_i) begin
-    if (advance && valid_i) begin
-      s1_abs_q[2] <= absdiff(a_i.r, b_i.r);
-      s1_abs_q[1] <= absdiff(a_i.g, b_i.g);
-      s1_abs_q[0] <= absdiff(a_i.b, b_i.b);
-      s1_pa_q[2]  <= PROD_W'(gap_i - off_i) * PROD_W'(a_i.r);
-      s1_pa_q[1]  <= PROD_W'(gap_i - off_i) * PROD_W'(a_i.g);
-      s1_pa_q[0]  <= PROD_W'(gap_i - off_i) * PROD_W'(a_i.b);
-      s1_pb_q[2]  <= PROD_W'(off_i) * PROD_W'(b_i.r);
-      s1_pb_q[1]  <= PROD_W'(off_i) * PROD_W'(b_i.g);
-      s1_pb_q[0]  <= PROD_W'(off_i) * PROD_W'(b_i.b);
-      s1_rhs_q    <= PROD_W'(thr_i) * PROD_W'(gap_i);
-      s1_metric_q <= metric_i;
-      s1_nshift_q <= nshift_i;
-      s1_gap_q    <= gap_i;
-      s1_user_q   <= user_i;
+    if (advance && s0_valid_q) begin
+      s1_abs_q[2] <= absdiff(s0_a_q.r, s0_b_q.r);
+      s1_abs_q[1] <= absdiff(s0_a_q.g, s0_b_q.g);
+      s1_abs_q[0] <= absdiff(s0_a_q.b, s0_b_q.b);
+      s1_pa_q[2]  <= PROD_W'(s0_gmo_q) * PROD_W'(s0_a_q.r);
+      s1_pa_q[1]  <= PROD_W'(s0_gmo_q) * PROD_W'(s0_a_q.g);
+      s1_pa_q[0]  <= PROD_W'(s0_gmo_q) * PROD_W'(s0_a_q.b);
+      s1_pb_q[2]  <= PROD_W'(s0_off_q) * PROD_W'(s0_b_q.r);
+      s1_pb_q[1]  <= PROD_W'(s0_off_q) * PROD_W'(s0_b_q.g);
+      s1_pb_q[0]  <= PROD_W'(s0_off_q) * PROD_W'(s0_b_q.b);
+      s1_rhs_q    <= PROD_W'(s0_thr_q) * PROD_W'(s0_gap_q);
+      s1_metric_q <= s0_metric_q;
+      s1_nshift_q <= s0_nshift_q;
+      s1_gap_q    <= s0_gap_q;
+      s1_user_q   <= s0_user_q;
     end
   end
 
@@ -199,19 +224,22 @@ module msr_decision_pipe
   // ---- Valid bits ------------------------------------------------------------------------------
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      s0_valid_q <= 1'b0;
       s1_valid_q <= 1'b0;
       s2_valid_q <= 1'b0;
       s3_valid_q <= 1'b0;
       s4_valid_q <= 1'b0;
       valid_o    <= 1'b0;
     end else if (clear_i) begin
+      s0_valid_q <= 1'b0;
       s1_valid_q <= 1'b0;
       s2_valid_q <= 1'b0;
       s3_valid_q <= 1'b0;
       s4_valid_q <= 1'b0;
       valid_o    <= 1'b0;
     end else if (advance) begin
-      s1_valid_q <= valid_i;
+      s0_valid_q <= valid_i;
+      s1_valid_q <= s0_valid_q;
       s2_valid_q <= s1_valid_q;
       s3_valid_q <= s2_valid_q;
       s4_valid_q <= s3_valid_q;

@@ -9,7 +9,7 @@
 //   RD   : the context's descriptor fields (global coordinates, level threshold), registered
 //          while the read data pass the block RAM and the register beside it
 //   AB   : the issued context's read data, registered
-//   msr_decision_pipe (5 stages): decide and interpolate; never stalls: a position is issued
+//   msr_decision_pipe (6 stages): decide and interpolate; never stalls: a position is issued
 //          only with a slot of the 8-entry output buffer reserved (credits)
 //   out  : interpolate -> write {16+k, C} into the context's buffer;
 //          trace -> tag (msr_tag_pool) -> render request {x0+x, y0+y, tag} (spill register)
@@ -304,8 +304,8 @@ module msr_tile_engine
   end
 
   // ---- Decision pipeline and output buffer ----------------------------------------------------
-  // Credits in flight per position: grant -> GR -> IS -> RD -> AB -> S1..S5 -> buffer -> out,
-  // ~11 clocks; 16 (the next power of two) keeps one grant per clock.
+  // Credits in flight per position: grant -> GR -> IS -> RD -> AB -> S0..S5 -> buffer -> out,
+  // ~12 clocks; 16 (the next power of two) keeps one grant per clock.
   localparam int unsigned OUT_DEPTH = 16;
 
   typedef struct packed {
