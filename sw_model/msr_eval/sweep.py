@@ -426,7 +426,9 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
             todo.append((scene, mode, png, meta))
     with bar(len(todo), "eval: references") as b:
         futs = [executor.submit(task_reference, backend.name, scene, mode, W, H) for scene, mode, _, _ in todo]
-        for (scene, mode, png, meta), (frame, info) in zip(todo, executor.results(futs, b)):
+        for (scene, mode, png, meta), fut in zip(todo, futs):
+            frame, info = fut.result()          # in order, each cached as soon as it is done
+            b.update(1)
             save_png(png, frame)
             meta.write_text(json.dumps(info))
             refs[(scene, mode)], infos[(scene, mode)] = frame, info
