@@ -491,4 +491,6 @@ def write_page(result: dict, out, docs, name: str = "results_converged.md"):
             "produced it at 1920x1080. Methods and choices: [dacs.md](dacs.md).\n"]
     notes = docs / "results_converged_notes.md"
     lines = docs_lines({**result, "_conv_notes": notes.read_text() if notes.is_file() else None}, figs)
+    lines = [ln.replace(" The scores against the full render follow further down, unchanged.",
+                        " The scores of the same run against the full render: its results.json.") for ln in lines]
     (docs / name).write_text("\n".join(head + lines[1:]) + "\n")
