@@ -36,6 +36,10 @@ extern "C" {
 #define MSR_REGS__STATUS__CFG_ERR_bp 2
 #define MSR_REGS__STATUS__CFG_ERR_bw 1
 #define MSR_REGS__STATUS__CFG_ERR_reset 0x0
+#define MSR_REGS__STATUS__WDOG_bm 0x8
+#define MSR_REGS__STATUS__WDOG_bp 3
+#define MSR_REGS__STATUS__WDOG_bw 1
+#define MSR_REGS__STATUS__WDOG_reset 0x0
 #define MSR_REGS__STATUS__ERROR_bm 0xf0
 #define MSR_REGS__STATUS__ERROR_bp 4
 #define MSR_REGS__STATUS__ERROR_bw 4
@@ -157,6 +161,12 @@ extern "C" {
 #define MSR_REGS__RSP_DROP__COUNT_bp 0
 #define MSR_REGS__RSP_DROP__COUNT_bw 16
 
+// reg - msr_regs::WATCHDOG
+#define MSR_REGS__WATCHDOG__CYCLES_bm 0xffffffff
+#define MSR_REGS__WATCHDOG__CYCLES_bp 0
+#define MSR_REGS__WATCHDOG__CYCLES_bw 32
+#define MSR_REGS__WATCHDOG__CYCLES_reset 0x0
+
 // addrmap - msr_regs
 typedef struct __attribute__ ((__packed__)) {
     uint32_t CTRL;
@@ -179,10 +189,11 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t MEM_ERR;
     uint32_t MEM_ERR_ADDR;
     uint32_t RSP_DROP;
+    uint32_t WATCHDOG;
 } msr_regs_t;
 
 
-static_assert(sizeof(msr_regs_t) == 0x74, "Packing error");
+static_assert(sizeof(msr_regs_t) == 0x78, "Packing error");
 
 #ifdef __cplusplus
 }

@@ -254,6 +254,7 @@ module msr_regs (
         logic MEM_ERR;
         logic MEM_ERR_ADDR;
         logic RSP_DROP;
+        logic WATCHDOG;
     } decoded_reg_strb_t;
     decoded_reg_strb_t decoded_reg_strb;
     logic decoded_err;
@@ -310,6 +311,8 @@ module msr_regs (
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h6c);
         decoded_reg_strb.RSP_DROP = cpuif_req_masked & (cpuif_addr == 7'h70) & !cpuif_req_is_wr;
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h70);
+        decoded_reg_strb.WATCHDOG = cpuif_req_masked & (cpuif_addr == 7'h74);
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h74);
         decoded_err = ~is_valid_addr & decoded_req;
     end
 
@@ -347,6 +350,10 @@ module msr_regs (
                 logic next;
                 logic load_next;
             } CFG_ERR;
+            struct {
+                logic next;
+                logic load_next;
+            } WDOG;
         } STATUS;
         struct {
             struct {
@@ -422,6 +429,12 @@ module msr_regs (
                 logic load_next;
             } ENABLE;
         } SRC_CTRL;
+        struct {
+            struct {
+                logic [31:0] next;
+                logic load_next;
+            } CYCLES;
+        } WATCHDOG;
     } field_combo_t;
     field_combo_t field_combo;
 
@@ -444,6 +457,9 @@ module msr_regs (
             struct {
                 logic value;
             } CFG_ERR;
+            struct {
+                logic value;
+            } WDOG;
         } STATUS;
         struct {
             struct {
@@ -505,6 +521,11 @@ module msr_regs (
                 logic value;
             } ENABLE;
         } SRC_CTRL;
+        struct {
+            struct {
+                logic [31:0] value;
+            } CYCLES;
+        } WATCHDOG;
     } field_storage_t;
     field_storage_t field_storage;
 
@@ -641,6 +662,35 @@ module msr_regs (
         end
     end
     assign hwif_out.STATUS.CFG_ERR.value = field_storage.STATUS.CFG_ERR.value;
+    // Field: msr_regs.STATUS.WDOG
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.STATUS.WDOG.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.STATUS && decoded_req_is_wr) begin // SW write 1 clear
+            next_c = field_storage.STATUS.WDOG.value & ~(decoded_wr_data[3:3] & decoded_wr_biten[3:3]);
+            load_next_c = '1;
+        end else if(hwif_in.STATUS.WDOG.hwset) begin // HW Set
+            next_c = '1;
+            load_next_c = '1;
+        end else if(hwif_in.STATUS.WDOG.hwclr) begin // HW Clear
+            next_c = '0;
+            load_next_c = '1;
+        end
+        field_combo.STATUS.WDOG.next = next_c;
+        field_combo.STATUS.WDOG.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.STATUS.WDOG.value <= 1'h0;
+        end else begin
+            if(field_combo.STATUS.WDOG.load_next) begin
+                field_storage.STATUS.WDOG.value <= field_combo.STATUS.WDOG.next;
+            end
+        end
+    end
+    assign hwif_out.STATUS.WDOG.value = field_storage.STATUS.WDOG.value;
     // Field: msr_regs.FRAME_SIZE.WIDTH
     always_comb begin
         automatic logic [12:0] next_c;
@@ -963,6 +1013,29 @@ module msr_regs (
         end
     end
     assign hwif_out.SRC_CTRL.ENABLE.value = field_storage.SRC_CTRL.ENABLE.value;
+    // Field: msr_regs.WATCHDOG.CYCLES
+    always_comb begin
+        automatic logic [31:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.WATCHDOG.CYCLES.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.WATCHDOG && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.WATCHDOG.CYCLES.value & ~decoded_wr_biten[31:0]) | (decoded_wr_data[31:0] & decoded_wr_biten[31:0]);
+            load_next_c = '1;
+        end
+        field_combo.WATCHDOG.CYCLES.next = next_c;
+        field_combo.WATCHDOG.CYCLES.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.WATCHDOG.CYCLES.value <= 32'h0;
+        end else begin
+            if(field_combo.WATCHDOG.CYCLES.load_next) begin
+                field_storage.WATCHDOG.CYCLES.value <= field_combo.WATCHDOG.CYCLES.next;
+            end
+        end
+    end
+    assign hwif_out.WATCHDOG.CYCLES.value = field_storage.WATCHDOG.CYCLES.value;
 
     //--------------------------------------------------------------------------
     // Write response
@@ -1000,6 +1073,7 @@ module msr_regs (
             readback_data_var[ad_hi(7'h4)][0] = hwif_in.STATUS.BUSY.next;
             readback_data_var[ad_hi(7'h4)][1] = field_storage.STATUS.DONE.value;
             readback_data_var[ad_hi(7'h4)][2] = field_storage.STATUS.CFG_ERR.value;
+            readback_data_var[ad_hi(7'h4)][3] = field_storage.STATUS.WDOG.value;
             readback_data_var[ad_hi(7'h4)][7:4] = hwif_in.STATUS.ERROR.next;
         end
         if(ad_low(rd_mux_addr) == ad_low(7'h8)) begin
@@ -1062,6 +1136,9 @@ module msr_regs (
         end
         if(ad_low(rd_mux_addr) == ad_low(7'h70)) begin
             readback_data_var[ad_hi(7'h70)][15:0] = hwif_in.RSP_DROP.COUNT.next;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(7'h74)) begin
+            readback_data_var[ad_hi(7'h74)][31:0] = field_storage.WATCHDOG.CYCLES.value;
         end
         readback_data_rt_c = readback_data_var;
     end

@@ -5,7 +5,7 @@ package msr_regs_pkg;
 
     localparam MSR_REGS_DATA_WIDTH = 32;
     localparam MSR_REGS_MIN_ADDR_WIDTH = 7;
-    localparam MSR_REGS_SIZE = 'h74;
+    localparam MSR_REGS_SIZE = 'h78;
 
     typedef struct {
         logic next;
@@ -22,6 +22,11 @@ package msr_regs_pkg;
     } msr_regs__STATUS__CFG_ERR__in_t;
 
     typedef struct {
+        logic hwclr;
+        logic hwset;
+    } msr_regs__STATUS__WDOG__in_t;
+
+    typedef struct {
         logic [3:0] next;
     } msr_regs__STATUS__ERROR__in_t;
 
@@ -29,6 +34,7 @@ package msr_regs_pkg;
         msr_regs__STATUS__BUSY__in_t BUSY;
         msr_regs__STATUS__DONE__in_t DONE;
         msr_regs__STATUS__CFG_ERR__in_t CFG_ERR;
+        msr_regs__STATUS__WDOG__in_t WDOG;
         msr_regs__STATUS__ERROR__in_t ERROR;
     } msr_regs__STATUS__in_t;
 
@@ -140,8 +146,13 @@ package msr_regs_pkg;
     } msr_regs__STATUS__CFG_ERR__out_t;
 
     typedef struct {
+        logic value;
+    } msr_regs__STATUS__WDOG__out_t;
+
+    typedef struct {
         msr_regs__STATUS__DONE__out_t DONE;
         msr_regs__STATUS__CFG_ERR__out_t CFG_ERR;
+        msr_regs__STATUS__WDOG__out_t WDOG;
     } msr_regs__STATUS__out_t;
 
     typedef struct {
@@ -242,6 +253,14 @@ package msr_regs_pkg;
     } msr_regs__SRC_CTRL__out_t;
 
     typedef struct {
+        logic [31:0] value;
+    } msr_regs__WATCHDOG__CYCLES__out_t;
+
+    typedef struct {
+        msr_regs__WATCHDOG__CYCLES__out_t CYCLES;
+    } msr_regs__WATCHDOG__out_t;
+
+    typedef struct {
         msr_regs__CTRL__out_t CTRL;
         msr_regs__STATUS__out_t STATUS;
         msr_regs__FRAME_SIZE__out_t FRAME_SIZE;
@@ -253,5 +272,6 @@ package msr_regs_pkg;
         msr_regs__SRC_BASE__out_t SRC_BASE;
         msr_regs__SRC_STRIDE__out_t SRC_STRIDE;
         msr_regs__SRC_CTRL__out_t SRC_CTRL;
+        msr_regs__WATCHDOG__out_t WATCHDOG;
     } msr_regs__out_t;
 endpackage

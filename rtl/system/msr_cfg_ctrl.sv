@@ -13,6 +13,15 @@
 // writer is idle. SOFT_RESET in any state: DRAIN until no render request is in flight and the
 // writer is idle, then one CLEAR cycle (every unit's synchronous clear), then idle.
 //
+// Watchdog: while a frame runs, WATCHDOG cycles in a row without progress (progress_i: a render
+// request or, while running, a response taken; an AW, W or expected B handshake; a finished
+// pixel taken) end the frame: CLEAR at once, STATUS.ERROR = 12, STATUS.WDOG (the interrupt).
+// The same count bounds a soft reset's drain (with WATCHDOG 0, DRAIN_TIMEOUT cycles): responses
+// do not count as progress there, so a unit that keeps sending responses cannot hold the drain
+// open; the events that do count are finite once no tile is handed out, so the drain always
+// ends. A forced CLEAR is safe for the engines (their tags are freed; late responses are then
+// dropped as stale); what it means for the AXI write port is in docs/system.md.
+//
 // Memory errors (SLVERR / DECERR write responses) set STATUS.ERROR = 8 for the frame (the
 // frame still completes), are counted (saturating), and the address of the first failing burst
 // is kept; all three survive a soft reset (a drain is when errors tend to show) and are
@@ -20,13 +29,15 @@
 `include "msr_assert.svh"
 
 module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
-  parameter int unsigned NUM_ENGINES = 4    // tile engines (tile-done inputs)
+  parameter int unsigned NUM_ENGINES   = 4,      // tile engines (tile-done inputs)
+  parameter int unsigned DRAIN_TIMEOUT = 16384   // drain bound without progress when WATCHDOG is 0
 ) (
   input  logic                   clk_i,          // clock
   input  logic                   rst_ni,         // asynchronous reset, active low
   // Register interface.
   input  logic                   start_i,        // CTRL.START written (a pulse)
   input  logic                   soft_reset_i,   // CTRL.SOFT_RESET written (a pulse)
+  input  logic [31:0]            wdog_limit_i,   // WATCHDOG: cycles without progress, 0 = off
   input  cfg_raw_t               raw_i,          // configuration registers
   output cfg_t                   cfg_o,          // checked configuration of the frame
   output logic                   busy_o,         // STATUS.BUSY
@@ -34,6 +45,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   output logic                   done_set_o,     // STATUS.DONE: the frame is complete
   output logic                   done_clr_o,     // STATUS.DONE, CFG_ERR cleared (START, SOFT_RESET)
   output logic                   cfg_err_set_o,  // STATUS.CFG_ERR: a START was refused
+  output logic                   wdog_set_o,     // STATUS.WDOG: the watchdog forced a CLEAR
   output logic [15:0]            mem_err_cnt_o,  // write error responses (saturating)
   output logic [31:0]            mem_err_addr_o, // address of the first failing burst
   output logic                   b_unexp_o,      // a write response came with nothing outstanding
@@ -51,7 +63,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   input  logic                   bresp_err_i,    // pulse: a write error response
   input  logic [31:0]            bresp_addr_i,   // its burst's address
   input  logic                   b_unexp_i,      // pulse: a write response with nothing outstanding
-  input  logic                   rsp_drop_i      // pulse: a render response was dropped
+  input  logic                   rsp_drop_i,     // pulse: a render response was dropped
+  input  logic                   progress_i      // something moved on the ports this clock
 );
   typedef enum logic [2:0] {
     ST_IDLE   = 3'd0,   // no frame
@@ -85,6 +98,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   logic [31:0]      mem_err_addr_q;
   logic             b_unexp_q;
   logic             accept;            // CHECK ends with every check passed
+  logic [31:0]      wd_q;              // cycles in a row without progress
+  logic             wd_fire;           // the watchdog ends the frame or the drain
 
   // ---- Field checks (from the sampled registers) ---------------------------------------------
   logic [6:0] fchk;
@@ -222,13 +237,35 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
         if (rnd_idle_i && wr_idle_i) state_d = ST_CLEAR;
       end
       ST_CLEAR: begin
-        // STATUS returns to 0, except a memory error seen in the frame or the drain
-        if (err_q != ERR_AXI_WRITE) err_d = ERR_NONE;
+        // STATUS returns to 0, except a memory error or a watchdog seen in the frame or the drain
+        if (err_q != ERR_AXI_WRITE && err_q != ERR_WATCHDOG) err_d = ERR_NONE;
         state_d = ST_IDLE;
       end
       default: state_d = ST_IDLE;
     endcase
     if (soft_reset_i && state_q != ST_DRAIN && state_q != ST_CLEAR) state_d = ST_DRAIN;
+    if (wd_fire) begin
+      state_d = ST_CLEAR;
+      err_d   = ERR_WATCHDOG;
+    end
+  end
+
+  // ---- Watchdog: cycles without progress in RUN and DRAIN ----------------------------------------
+  logic        wd_on;
+  logic [31:0] wd_limit;
+  assign wd_on    = (state_q == ST_RUN) || (state_q == ST_DRAIN);
+  assign wd_limit = (state_q == ST_DRAIN && wdog_limit_i == '0) ? DRAIN_TIMEOUT : wdog_limit_i;
+  // A soft reset written while running starts the drain with a fresh count.
+  assign wd_fire  = wd_on && !soft_reset_i && wd_limit != '0 && wd_q == wd_limit;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      wd_q <= '0;
+    end else if (!wd_on || progress_i || wd_fire || soft_reset_i) begin
+      wd_q <= '0;
+    end else begin
+      wd_q <= wd_q + 1'b1;
+    end
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -301,6 +338,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   assign done_set_o     = frame_done_q && (state_q == ST_RUN);
   assign done_clr_o     = start_q || soft_reset_i;
   assign cfg_err_set_o  = refused_q;
+  assign wdog_set_o     = wd_fire;
   assign mem_err_cnt_o  = mem_err_cnt_q;
   assign mem_err_addr_o = mem_err_addr_q;
   assign b_unexp_o      = b_unexp_q;
@@ -317,6 +355,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   `MSR_COVER(c_refused, refused_q)
   `MSR_COVER(c_overlap_refused, refused_q && err_q == ERR_OVERLAP)
   `MSR_COVER(c_drain_with_mem_err, state_q == ST_CLEAR && err_q == ERR_AXI_WRITE)
+  `MSR_COVER(c_wdog_run, wd_fire && state_q == ST_RUN)
+  `MSR_COVER(c_wdog_drain, wd_fire && state_q == ST_DRAIN)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_cfg_ctrl

@@ -47,7 +47,8 @@ package msr_sys_pkg;
     ERR_AXI_WRITE  = 4'd8,
     ERR_FB_WRAP    = 4'd9,
     ERR_SRC_WRAP   = 4'd10,
-    ERR_OVERLAP    = 4'd11
+    ERR_OVERLAP    = 4'd11,
+    ERR_WATCHDOG   = 4'd12   // no progress for WATCHDOG cycles: frame or drain ended by force
   } err_e;
 
 endpackage : msr_sys_pkg

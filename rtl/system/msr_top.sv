@@ -6,7 +6,8 @@
 // Render port: requests carry tag {engine id, engine tag}; responses may come back in any
 // order and are routed to the engine named in their tag. Soft reset: new requests are held,
 // responses are still taken until no engine has one outstanding, finished pixels are
-// dropped, open bursts complete; then every unit is cleared.
+// dropped, open bursts complete; then every unit is cleared. Watchdog (WATCHDOG register): no
+// progress on the ports for that many cycles ends the frame, or a soft reset's wait, by force.
 `include "msr_assert.svh"
 
 module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
@@ -136,7 +137,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   // ---- Configuration check and control ----------------------------------------------------------
   cfg_t  cfg;
   err_e  err;
-  logic  busy, done_set, done_clr, cfg_err_set, start, run, drain, clear, b_unexp_flag;
+  logic  busy, done_set, done_clr, cfg_err_set, wdog_set, start, run, drain, clear, b_unexp_flag;
+  logic  progress;
   logic  tg_done, tg_busy, rnd_idle, wr_idle, bresp_err, b_unexpected;
   logic  [31:0] bresp_addr, mem_err_addr;
   logic  [15:0] mem_err_cnt, rsp_drop_cnt;
@@ -149,6 +151,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .rst_ni         (rst_ni),
     .start_i        (hwif_out.CTRL.START.value),
     .soft_reset_i   (hwif_out.CTRL.SOFT_RESET.value),
+    .wdog_limit_i   (hwif_out.WATCHDOG.CYCLES.value),
     .raw_i          (raw),
     .cfg_o          (cfg),
     .busy_o         (busy),
@@ -156,6 +159,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .done_set_o     (done_set),
     .done_clr_o     (done_clr),
     .cfg_err_set_o  (cfg_err_set),
+    .wdog_set_o     (wdog_set),
     .mem_err_cnt_o  (mem_err_cnt),
     .mem_err_addr_o (mem_err_addr),
     .b_unexp_o      (b_unexp_flag),
@@ -172,7 +176,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .bresp_err_i    (bresp_err),
     .bresp_addr_i   (bresp_addr),
     .b_unexp_i      (b_unexpected),
-    .rsp_drop_i     ((eng_rsp_drop != '0) || bad_eid)
+    .rsp_drop_i     ((eng_rsp_drop != '0) || bad_eid),
+    .progress_i     (progress)
   );
 
   assign hwif_in.STATUS.BUSY.next  = busy;
@@ -181,12 +186,15 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   assign hwif_in.STATUS.DONE.hwclr = done_clr;
   assign hwif_in.STATUS.CFG_ERR.hwset = cfg_err_set;
   assign hwif_in.STATUS.CFG_ERR.hwclr = done_clr;
+  assign hwif_in.STATUS.WDOG.hwset = wdog_set;
+  assign hwif_in.STATUS.WDOG.hwclr = done_clr;
   assign hwif_in.MEM_ERR.COUNT.next = mem_err_cnt;
   assign hwif_in.MEM_ERR.UNEXPECTED_B.next = b_unexp_flag;
   assign hwif_in.MEM_ERR_ADDR.ADDR.next = mem_err_addr;
   assign hwif_in.RSP_DROP.COUNT.next = rsp_drop_cnt;
   assign irq_o = hwif_out.CTRL.IRQ_EN.value &&
-                 (hwif_out.STATUS.DONE.value || hwif_out.STATUS.CFG_ERR.value);
+                 (hwif_out.STATUS.DONE.value || hwif_out.STATUS.CFG_ERR.value ||
+                  hwif_out.STATUS.WDOG.value);
 
   // ---- Tile generation -------------------------------------------------------------------------
   tile_desc_t desc;
@@ -349,6 +357,16 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .bresp_addr_o   (bresp_addr),
     .b_unexpected_o (b_unexpected)
   );
+
+  // ---- Watchdog progress -------------------------------------------------------------------------
+  // Render requests and finished pixels, the write channels, and B responses the writer expected
+  // (a spurious B is not progress). Responses count only while running: during a drain they
+  // cannot keep the wait open (msr_cfg_ctrl).
+  assign progress = (rnd_req_valid_o && rnd_req_ready_i) ||
+                    (run && rnd_rsp_valid_i && rnd_rsp_ready_o) ||
+                    ((eng_pix_valid & eng_pix_ready) != '0) ||
+                    (m_axi_awvalid && m_axi_awready) || (m_axi_wvalid && m_axi_wready) ||
+                    (m_axi_bvalid && m_axi_bready && !b_unexpected);
 
   // ---- Performance counters -------------------------------------------------------------------------
   logic [31:0]      perf_cycles, perf_rstall, perf_mstall;
