@@ -1,12 +1,12 @@
 // Tile buffer: behavioural 2R1W SRAM, one word per pixel of a MAX_TILE x MAX_TILE tile.
-// Read data is registered (one cycle) and holds its value while the port is not enabled,
-// as compiled SRAM macros do; the engine relies on that while its pipeline is stalled.
-// Why two read ports: a decision reads its right/bottom neighbour B on port 0 every cycle
-// (A is B of the decision before, kept in a register), and port 1 fetches A only where it
-// cannot be reused: the first position of every row / column and after a gap of 1. With a
-// single port those extra reads cost one cycle per row, i.e. 0.8 decisions per clock on a
-// 16-wide tile; with port 1 the rate is one per clock. A hand-off maps this onto two 1R1W
-// macros written in parallel (or one 2R1W register file). No reset on the array.
+// Read data is registered (one cycle) and holds its value while the port is not enabled, as
+// compiled SRAM macros do (the engine does not need the hold: it registers the data once more
+// beside the memory and uses it exactly two clocks after the address).
+// Why two read ports: a decision reads both neighbours, A and B, of the position at the head
+// of its context's queue, one per port, so one position can be issued every clock. A
+// hand-off maps this onto two 1R1W macros written in parallel (or one 2R1W register file).
+// A port may read a word in the cycle it is written; the engine never uses such a read's
+// data. No reset on the array.
 module msr_tile_sram #(
   parameter int unsigned DEPTH  = 1024,
   parameter int unsigned DATA_W = 32,
