@@ -41,6 +41,7 @@ HOW_TO_RERUN = """## How to rerun
     make eval FULL=1 DASK_SCHEDULER=tcp://host:8786   # the sweep's tasks on an existing Dask cluster
     make eval DASK_SCHEDULER=serial            # everything in one process
     .venv/bin/python scripts/eval.py --report-only --docs   # only rewrite this page from out/eval/results.json
+    make eval EVAL_ARGS="--conv-grid 16"       # converged references at one sample count (--no-conv: none)
 
 The sweep (scenes x modes x methods x settings) runs as tasks on Dask distributed
 (`msr_eval.sweep`): by default a LocalCluster with one worker per CPU; `DASK_SCHEDULER=` or the
