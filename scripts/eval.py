@@ -23,6 +23,7 @@ import subprocess
 import time
 from pathlib import Path
 
+from msr_eval import conv_report as CR
 from msr_eval import reference as REF
 from msr_eval import report as R
 from msr_eval import sweep as S
@@ -71,7 +72,7 @@ def main(argv=None):
         if a.docs or not a.conv_page:
             R.write_docs(result, Path(a.out), Path(a.docs_dir))
         if a.conv_page and result.get("converged"):
-            REF.write_page(result, Path(a.out), Path(a.docs_dir), a.conv_page)
+            CR.write_page(result, Path(a.out), Path(a.docs_dir), a.conv_page)
         return result
     full = a.full
     W = a.width or (1920 if full else 192)
@@ -127,7 +128,7 @@ def main(argv=None):
         R.plot_curves(records, mode, out / f"curves_{mode}.png", f"PSNR against traced pixels, {mode} renderer, {W}x{H}")
         R.plot_set(set_curves, mode, out / f"pareto_{mode}.png", f"Mean over the scene set, {mode} renderer, {W}x{H}")
         if conv_records:
-            REF.plot_scene_fronts(records, mode, out / f"fronts_conv_{mode}.png",
+            CR.plot_scene_fronts(records, mode, out / f"fronts_conv_{mode}.png",
                                   f"Pareto fronts against the converged reference, {mode} renderer, {W}x{H}")
     examples = []
     ex_mode = "heavy" if "heavy" in modes else modes[0]
@@ -188,7 +189,7 @@ def main(argv=None):
     if a.docs:
         R.write_docs(result, out, Path(a.docs_dir))
     if a.conv_page and result.get("converged"):
-        REF.write_page(result, out, Path(a.docs_dir), a.conv_page)
+        CR.write_page(result, out, Path(a.docs_dir), a.conv_page)
     return result
 
 

@@ -6,6 +6,10 @@
 - methods:  rendering methods compared (full, grid, checkerboard, single level, multi level)
 - metrics:  PSNR, SSIM, FLIP, Pareto fronts, summaries
 - sweep:    the sweep of scenes x modes x methods x settings, serial or on Dask distributed
+- dacs:     Deferred Adaptive Compute Shading (Mallett and Yuksel 2018), a peer method
+- vrs:      a VRS-like baseline (one shading rate per 8x8 or 16x16 tile)
+- reference: the converged reference per scene and mode and the scores against it
+- conv_report: the comparison against it (tables, plots, the section leading docs/results.md)
 - report:   plots, example strips and docs/results.md
 - textured: docs/results.md sections on the textured scenes and the G-buffer rule
 """

@@ -104,7 +104,7 @@ def write_docs(result: dict, out: Path, docs: Path):
     notes = docs / "results_notes.md"
     w(HOW_TO_RERUN)
     if result.get("converged"):                   # the converged comparison leads (msr_eval.reference)
-        from .reference import docs_lines
+        from .conv_report import docs_lines
         cfigs = []
         for mode in cfg["modes"]:
             src = out / f"fronts_conv_{mode}.png"

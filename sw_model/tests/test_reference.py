@@ -1,9 +1,10 @@
-"""The converged-reference helpers (msr_eval.reference) on hand cases."""
+"""The converged-reference helpers (msr_eval.reference, msr_eval.conv_report) on hand cases."""
 import math
 
 import numpy as np
 import pytest
 
+from msr_eval import conv_report as CR
 from msr_eval import reference as REF
 
 
@@ -22,11 +23,11 @@ def test_tile_psnrs_by_hand():
 
 def test_psnr_at_front():
     pts = [(0.10, 30.0), (0.20, 36.0), (0.15, 29.0), (0.40, 44.0)]    # (0.15, 29) is dominated
-    assert REF.psnr_at(pts, 0.05) is None                              # cheaper than every setting
-    assert REF.psnr_at(pts, 0.10) == 30.0
-    assert REF.psnr_at(pts, 0.15) == pytest.approx(33.0)               # on the front, not 29
-    assert REF.psnr_at(pts, 0.30) == pytest.approx(40.0)
-    assert REF.psnr_at(pts, 0.90) == 44.0                              # more than the family spends
+    assert CR.psnr_at(pts, 0.05) is None                              # cheaper than every setting
+    assert CR.psnr_at(pts, 0.10) == 30.0
+    assert CR.psnr_at(pts, 0.15) == pytest.approx(33.0)               # on the front, not 29
+    assert CR.psnr_at(pts, 0.30) == pytest.approx(40.0)
+    assert CR.psnr_at(pts, 0.90) == 44.0                              # more than the family spends
 
 
 def _rec(scene, fam, f, p, pc, label="x"):
@@ -42,10 +43,10 @@ def test_conv_views_and_head_to_head():
     assert [r["psnr"] for r in conv] == [33, 41, 40, 28, 36, 37]
     assert REF.pick_near_conv(recs, "a", "heavy", "multi_L3_T16", 40)["label"] == "t2"
     assert REF.pick_near_conv(recs, "a", "heavy", "vrs_T8", 40)["label"] == "v1"      # best if none reaches
-    need = REF.needed_conv(recs)
+    need = CR.needed_conv(recs)
     # patent: 33 @ 0.1 -> 41 @ 0.3: 40 dB at 0.1 + 7/8 * 0.2 = 0.275; DACS reaches 40 at its 0.2 setting
     assert need["a"]["heavy"]["multi_L3_T16"]["40"]["fraction"] == pytest.approx(0.275)
-    h = REF.head_to_head(need, ["a"], "heavy", "40")[0]
+    h = CR.head_to_head(need, ["a"], "heavy", "40")[0]
     assert h["patent"][0] == "multi_L3_T16" and h["patent"][1] == pytest.approx(0.275)
     assert h["dacs"][1] == pytest.approx(0.2) and h["vrs"] is None and h["ours"] is None
     # the full render alone does not reach 40 dB against the converged reference
