@@ -109,20 +109,33 @@ module msr_tile_engine
   src_t       [NUM_CTX-1:0] ctx_wsrc;
   rgb_t       [NUM_CTX-1:0] ctx_wrgb;
 
-  // ---- Tile start: the lowest free context --------------------------------------------------
-  logic [CTX_W-1:0] alloc;
-  logic             none_free, tags_init;
+  // ---- Tile start: the lowest free context, chosen a clock ahead --------------------------------
+  // The choice is registered: the lowest context that is free and not starting this cycle. So
+  // a descriptor's handshake and the start of a context (whose controller loads on it) are a
+  // LUT from flip-flops. A context freed this cycle is seen next cycle.
+  logic [CTX_W-1:0] alloc, alloc_q;
+  logic             none_avail, any_free_q, tags_init;
 
   msr_lzc #(.WIDTH(NUM_CTX), .CNT_W(CTX_W)) u_alloc (
-    .in_i    (ctx_free),
+    .in_i    (ctx_free & ~ctx_start),
     .cnt_o   (alloc),
-    .empty_o (none_free)
+    .empty_o (none_avail)
   );
 
-  assign desc_ready_o = !none_free && !clear_i && !tags_init;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      alloc_q    <= '0;
+      any_free_q <= 1'b0;
+    end else begin
+      alloc_q    <= alloc;
+      any_free_q <= !none_avail;
+    end
+  end
+
+  assign desc_ready_o = any_free_q && !clear_i && !tags_init;
 
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_start
-    assign ctx_start[c] = desc_valid_i && desc_ready_o && (alloc == ctx_t'(c));
+    assign ctx_start[c] = desc_valid_i && desc_ready_o && (alloc_q == ctx_t'(c));
   end
 
   // ---- Issue ----------------------------------------------------------------------------------
@@ -682,7 +695,7 @@ module msr_tile_engine
   `MSR_ASSERT(a_out_buf_room, pv_valid |-> ob_ready)
   `MSR_ASSERT(a_credits, 32'(credit_q) + 32'(ob_count) <= OUT_DEPTH)
   `MSR_COVER(c_rsp_dropped, rsp_drop_o)
-  `MSR_COVER(c_all_ctx_busy, none_free)
+  `MSR_COVER(c_all_ctx_busy, ctx_free == '0)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_tile_engine
