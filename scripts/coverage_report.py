@@ -9,8 +9,8 @@ t (line, branch or user), page (v_line/<module>, v_branch/<module>, v_user/<modu
 o (the point's comment: block, if, else, ... or the cover property's name), S (the source
 lines the point stands for, e.g. `140-149,151`), h (the instance's hierarchy).
 
-Merging: the same point of every instance and of every run is one point (key without h),
-counts summed. Line coverage: a source line of rtl/ is a line some line or branch point
+Merging: the same point of every instance, every parameter specialization and every run is
+one point (key without h and page), counts summed. Line coverage: a source line of rtl/ is a line some line or branch point
 stands for (S); it is hit when every point standing for it was hit at least once, as
 verilator_coverage --annotate marks a line by its least-hit point. Cover points: every
 `MSR_COVER(name, ...)` and `cover property` label in rtl/ (found in the source, so a unit no
@@ -60,7 +60,9 @@ def merge(paths):
     points: dict[tuple, list] = {}
     for p in paths:
         for fields, count in parse_dat(p):
-            key = tuple(sorted((k, v) for k, v in fields.items() if k != "h"))
+            # page names the parameter specialization (v_line/msr_fifo__W1c): a source line
+            # of any instance of any specialization is the same line
+            key = tuple(sorted((k, v) for k, v in fields.items() if k not in ("h", "page")))
             if key in points:
                 points[key][1] += count
             else:
