@@ -35,6 +35,8 @@ help: ## list the targets
 	@echo "  make lint   Verilator -Wall, Verible and slang on every RTL module"
 	@echo "  make synth  Yosys synthesis reports"
 	@echo "  make formal SymbiYosys proofs of the primitives, tag pool and register block (part of make test)"
+	@echo "  make coverage  line, cover-point and functional coverage of the benches -> build/coverage/"
+	@echo "  make soak   random frames through msr_top until SOAK_MINUTES (default 10), seeds in build/soak/"
 	@echo "  make bench  golden-model and hardware throughput benchmarks"
 	@echo "  make eval   quality against traced pixels (FULL=1 for 1920x1080; DASK_SCHEDULER=tcp://host:port)"
 	@echo "  make setup  only install what is missing (apt-get, .venv)"
