@@ -107,11 +107,12 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
             testcase=testcase,
             waves=waves,
         )
-    except SystemExit as e:
-        # The runner exits on a failing test; say how to replay it.
+    except (SystemExit, RuntimeError) as e:
+        # The runner exits on a failing test and raises when the simulator itself fails (an
+        # SVA %Error stops Verilator); say how to replay it.
         replay = f"SEED={seed} " if seed is not None else ""
         replay += "MSR_RAND_RESET=1 " if os.environ.get("MSR_RAND_RESET", "0") == "1" else ""
-        raise AssertionError(f"{toplevel} ({name}) failed (exit {e.code}); replay with "
+        raise AssertionError(f"{toplevel} ({name}) failed ({getattr(e, 'code', e)}); replay with "
                              f"{replay}pytest {test_dir.relative_to(ROOT) if test_dir.is_absolute() else test_dir}"
                              ) from None
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import cocotb
 from cocotb.clock import Clock
-from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
 
 
 def pack_rgb(c) -> int:
@@ -22,11 +22,14 @@ def unpack_rgb(v: int) -> tuple[int, int, int]:
 
 
 async def start_clock_and_reset(dut, idle_inputs: dict, cycles: int = 3) -> None:
-    """10 ns clock on clk_i, inputs to their idle values, rst_ni low for a few cycles."""
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    """10 ns clock on clk_i, inputs to their idle values, rst_ni low for a few cycles. The reset
+    is low before the first clock edge: with a random initial state (MSR_RAND_RESET=1) rst_ni
+    starts random, and an edge before the reset would check random state."""
+    dut.rst_ni.value = 0
     for name, val in idle_inputs.items():
         getattr(dut, name).value = val
-    dut.rst_ni.value = 0
+    await Timer(1, unit="ns")
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
     for _ in range(cycles):
         await RisingEdge(dut.clk_i)
     await FallingEdge(dut.clk_i)

@@ -22,7 +22,7 @@ sys.path.insert(0, str(HERE.parent))
 
 import cocotb  # noqa: E402
 from cocotb.clock import Clock  # noqa: E402
-from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly  # noqa: E402
+from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly, Timer  # noqa: E402
 from cocotbext.axi import AxiLiteBus, AxiLiteMaster, AxiRamWrite, AxiWriteBus  # noqa: E402
 
 import msr_regs as R  # noqa: E402  (generated from rtl/regs/msr_regs.rdl)
@@ -214,8 +214,11 @@ async def setup(dut, seed):
         seed = int(os.environ["SEED"]) * 1000 + seed
     dut._log.info("SEED %s (stream %d)", os.environ.get("SEED", "unset"), seed)
     rng = random.Random(seed)
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    # Reset before the first clock edge: with a random initial state (+verilator+rand+reset+2)
+    # rst_ni itself starts random, and an edge before the reset would check random state.
     dut.rst_ni.value = 0
+    await Timer(1, unit="ns")
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
     env = Env(dut, rng)
     await ClockCycles(dut.clk_i, 4)
     dut.rst_ni.value = 1
