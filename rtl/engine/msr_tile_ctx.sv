@@ -30,7 +30,7 @@ module msr_tile_ctx
   output logic               free_o,        // no tile: may start one
   output tile_desc_t         desc_o,        // the tile held
   // the position on offer
-  output logic               cand_o,        // a position that may be granted now (issued next cycle)
+  output logic               cand_o,        // a position that may be granted (issued a cycle later)
   output logic               step_first_o,  // it is the first of its pass (waveforms)
   output lcoord_t            step_x_o,
   output lcoord_t            step_y_o,
@@ -69,7 +69,7 @@ module msr_tile_ctx
   ctx_state_e        state_q, state_d;
   tile_desc_t        desc_q;
   logic [PEND_W-1:0] pend_q, pend_d;
-  
+
   // ---- Level processing controller and its position queue ------------------------------------
   // The controller fills a two-entry queue; the engine's arbiter takes positions from the
   // queue's head. So the walk state (a few hundred flip-flops) advances on a registered

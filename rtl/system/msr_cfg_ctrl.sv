@@ -258,13 +258,23 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   // A soft reset written while running starts the drain with a fresh count.
   assign wd_fire  = wd_on && !soft_reset_i && wd_limit != '0 && wd_q == wd_limit;
 
+  // The 32-bit count is two 16-bit halves; the upper half steps on a registered "lower half is
+  // all ones" flag (set the clock before the lower half reaches it), so no path holds a
+  // 32-bit carry: the count is exact, the logic depth that of a 16-bit counter.
+  logic wd_clr, wd_lo_ones_q;
+  assign wd_clr = !wd_on || progress_i || wd_fire || soft_reset_i;
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      wd_q <= '0;
-    end else if (!wd_on || progress_i || wd_fire || soft_reset_i) begin
-      wd_q <= '0;
+      wd_q         <= '0;
+      wd_lo_ones_q <= 1'b0;
+    end else if (wd_clr) begin
+      wd_q         <= '0;
+      wd_lo_ones_q <= 1'b0;
     end else begin
-      wd_q <= wd_q + 1'b1;
+      wd_q[15:0]   <= wd_q[15:0] + 1'b1;
+      if (wd_lo_ones_q) wd_q[31:16] <= wd_q[31:16] + 1'b1;
+      wd_lo_ones_q <= (wd_q[15:0] == 16'hFFFE);
     end
   end
 
@@ -355,6 +365,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   `MSR_COVER(c_refused, refused_q)
   `MSR_COVER(c_overlap_refused, refused_q && err_q == ERR_OVERLAP)
   `MSR_COVER(c_drain_with_mem_err, state_q == ST_CLEAR && err_q == ERR_AXI_WRITE)
+  `MSR_ASSERT(a_wd_lo_ones, wd_lo_ones_q == (wd_q[15:0] == 16'hFFFF))
   `MSR_COVER(c_wdog_run, wd_fire && state_q == ST_RUN)
   `MSR_COVER(c_wdog_drain, wd_fire && state_q == ST_DRAIN)
   /* verilator lint_on SYNCASYNCNET */
