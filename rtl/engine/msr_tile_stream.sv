@@ -148,14 +148,14 @@ module msr_tile_stream
 `ifndef SYNTHESIS
   // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
   /* verilator lint_off SYNCASYNCNET */
-  a_pix_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
+  a_pix_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i || $time == 0)
       pix_valid_o && !pix_ready_i |=> pix_valid_o &&
         $stable({pix_x_o, pix_y_o, pix_rgb_o, pix_src_o, pix_last_o}))
     else $error("msr_tile_stream: pixel changed while stalled");
-  a_no_overflow : assert property (@(posedge clk_i) disable iff (!rst_ni)
+  a_no_overflow : assert property (@(posedge clk_i) disable iff (!rst_ni || $time == 0)
       push |-> 32'(cnt_q) < FIFO_DEPTH || pop)
     else $error("msr_tile_stream: FIFO overflow");
-  a_no_wrap : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
+  a_no_wrap : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i || $time == 0)
       32'(cnt_q) + 32'(rd_pend_q[0]) + 32'(rd_pend_q[1]) <= FIFO_DEPTH)
     else $error("msr_tile_stream: reads in flight beyond the FIFO");
   /* verilator lint_on SYNCASYNCNET */

@@ -6,6 +6,9 @@
 //   `MSR_ASSUME(...)                   the same as an assumption (formal environments)
 //   `MSR_COVER(name, prop)             cover property (coverage and formal non-vacuity)
 //
+// Nothing is checked at time 0: with a random initial state (+verilator+rand+reset+2) the
+// simulator may see a first clock edge while rst_ni, random too, is still high, before any
+// bench can drive the reset; that edge would check random state.
 // Every macro expands to nothing when SYNTHESIS is defined, so synthesis drops them. A failing
 // assertion prints its label and its property text. Files that use them wrap the block in
 // `/* verilator lint_off SYNCASYNCNET */` (disable iff reads the asynchronous reset).
@@ -27,19 +30,19 @@
 
 `define MSR_ASSERT(__name, __prop, __clk = clk_i, __rst = !rst_ni) \
 `ifndef SYNTHESIS \
-  __name : assert property (@(posedge __clk) disable iff (__rst) (__prop)) \
+  __name : assert property (@(posedge __clk) disable iff ((__rst) || $time == 0) (__prop)) \
     else $error("%m: assertion %s failed: %s", `"__name`", `"__prop`"); \
 `endif
 
 `define MSR_ASSUME(__name, __prop, __clk = clk_i, __rst = !rst_ni) \
 `ifndef SYNTHESIS \
-  __name : assume property (@(posedge __clk) disable iff (__rst) (__prop)) \
+  __name : assume property (@(posedge __clk) disable iff ((__rst) || $time == 0) (__prop)) \
     else $error("%m: assumption %s failed: %s", `"__name`", `"__prop`"); \
 `endif
 
 `define MSR_COVER(__name, __prop, __clk = clk_i, __rst = !rst_ni) \
 `ifndef SYNTHESIS \
-  __name : cover property (@(posedge __clk) disable iff (__rst) (__prop)); \
+  __name : cover property (@(posedge __clk) disable iff ((__rst) || $time == 0) (__prop)); \
 `endif
 
 `endif // FORMAL
