@@ -136,6 +136,27 @@ module msr_tile_ctx
   assign q_room = !tail_valid_q || issue_i;
   assign q_push = step_valid && q_room;
 
+  // Next state of the queue, written out so that the candidate bits below can be registered
+  // from it.
+  logic head_valid_d, tail_valid_d, head_first_d, tail_first_d;
+  always_comb begin
+    head_valid_d = head_valid_q;
+    tail_valid_d = tail_valid_q;
+    if (issue_i) begin
+      // the head leaves: the tail (if any) moves up and a push goes behind it
+      head_valid_d = tail_valid_q || q_push;
+      tail_valid_d = tail_valid_q && q_push;
+    end else if (q_push) begin
+      head_valid_d = 1'b1;
+      tail_valid_d = head_valid_q;
+    end
+    head_first_d = head_q.first;
+    if (issue_i)                        head_first_d = tail_valid_q ? tail_q.first : step.first;
+    else if (q_push && !head_valid_q)   head_first_d = step.first;
+    tail_first_d = (q_push && head_valid_q && (tail_valid_q || !issue_i)) ? step.first
+                                                                          : tail_q.first;
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       head_valid_q <= 1'b0;
@@ -143,13 +164,9 @@ module msr_tile_ctx
     end else if (clear_i) begin
       head_valid_q <= 1'b0;
       tail_valid_q <= 1'b0;
-    end else if (issue_i) begin
-      // the head leaves: the tail (if any) moves up and a push goes behind it
-      head_valid_q <= tail_valid_q || q_push;
-      tail_valid_q <= tail_valid_q && q_push;
-    end else if (q_push) begin
-      head_valid_q <= 1'b1;
-      tail_valid_q <= head_valid_q;
+    end else begin
+      head_valid_q <= head_valid_d;
+      tail_valid_q <= tail_valid_d;
     end
   end
 
@@ -171,11 +188,26 @@ module msr_tile_ctx
   // The candidate: the position that is head once the one leaving now (issue_i) has left.
   // While a head leaves, that is the tail, and only if it is not the first of a pass (the
   // leaving position is not yet written, so the barrier holds anyway). Otherwise the head,
-  // the first of a pass only when nothing issued is pending. One LUT of flip-flops.
-  logic pend_zero_q, pend_one;
-  assign pend_one      = (pend_q == PEND_W'(1));
-  assign cand_o        = issue_i ? (tail_valid_q && !tail_q.first)
-                                 : (head_valid_q && (!head_q.first || pend_zero_q));
+  // the first of a pass only when nothing issued is pending. Both alternatives are registered
+  // from the next state (cand_tail_q, cand_head_q), so the candidate is one 3-input mux of
+  // flip-flops: the arbiter's path (the engine's longest) starts right there.
+  logic pend_zero_q, pend_zero_d, pend_one, cand_tail_q, cand_head_q;
+  assign pend_one    = (pend_q == PEND_W'(1));
+  assign pend_zero_d = (issue_i != we_i) ? (we_i && pend_one) : pend_zero_q;
+  assign cand_o      = issue_i ? cand_tail_q : cand_head_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      cand_tail_q <= 1'b0;
+      cand_head_q <= 1'b0;
+    end else if (clear_i) begin
+      cand_tail_q <= 1'b0;
+      cand_head_q <= 1'b0;
+    end else begin
+      cand_tail_q <= tail_valid_d && !tail_first_d;
+      cand_head_q <= head_valid_d && (!head_first_d || pend_zero_d);
+    end
+  end
   assign step_first_o  = head_q.first;
   assign step_init_o   = (head_q.dir == DIR_INIT);
   assign step_x_o      = head_q.x;
@@ -209,7 +241,7 @@ module msr_tile_ctx
     end else begin
       state_q     <= state_d;
       pend_q      <= pend_d;
-      if (issue_i != we_i) pend_zero_q <= we_i && pend_one;
+      pend_zero_q <= pend_zero_d;
     end
   end
 
@@ -306,6 +338,8 @@ module msr_tile_ctx
   `MSR_ASSERT(a_stream_full, str_own_i |-> full_o)
   `MSR_ASSERT(a_pend_zero, pend_zero_q == (pend_q == '0))
   `MSR_ASSERT(a_tail_has_head, tail_valid_q |-> head_valid_q)
+  `MSR_ASSERT(a_cand_regs, cand_tail_q == (tail_valid_q && !tail_q.first) &&
+      cand_head_q == (head_valid_q && (!head_q.first || pend_zero_q)))
   `MSR_COVER(c_barrier_wait, head_valid_q && head_q.first && !pend_zero_q)
   `MSR_COVER(c_queue_full, tail_valid_q)
   /* verilator lint_on SYNCASYNCNET */
