@@ -34,6 +34,30 @@ $(SIM_BIN): $(SIM_RTL) $(SIM_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f mk/sim.
 
 .PHONY: sim-build
 sim-build: setup renderer $(SIM_BIN)
+# The same harness with assertions on: --assert, the RTL's MSR_ASSERT/MSR_COVER and the AXI
+# protocol checkers of rtl/checkers bound to msr_fb_writer and msr_regs (checkers.f, then
+# msr_checker_binds.sv, after rtl/msr.f). make test runs one small frame through it
+# (tb/msr_sim/test_assert_harness.py); make sim keeps the fast build above. No tracing.
+SIM_ASSERT_BIN := build/sim/assert/Vmsr_sim_top
+SIM_CHECKERS   := $(filter-out //%,$(shell sed 's://.*::' rtl/checkers/checkers.f)) rtl/checkers/msr_checker_binds.sv
+SIM_ASSERT_VFLAGS := --cc --exe --build -j 2 -O3 --x-assign fast --x-initial fast --assert -Wno-fatal \
+    --top-module msr_sim_top --threads 1 --public-params \
+    -CFLAGS "-O2 -I$(CURDIR)/sim -I$(CURDIR)/sw_model/renderer/include" \
+    -LDFLAGS "-L$(CURDIR)/build/renderer -lmsr_render -Wl,-rpath,$(CURDIR)/build/renderer" \
+    -MAKEFLAGS "OPT_FAST=-O2 OPT_SLOW=-O1 OPT_GLOBAL=-O2 PYTHON3=python3 CFG_CXXFLAGS_PCH_I=-include"
+
+$(SIM_ASSERT_BIN): $(MSR_RTL_FILES) $(SIM_CHECKERS) rtl/checkers/checkers.f sim/render_dpi.sv sim/msr_sim_top.sv \
+        $(SIM_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f mk/sim.mk build/renderer/libmsr_render.so
+	@mkdir -p $(@D)
+	@echo "make sim-assert-build: building the harness with assertions and checkers into $(@D) (log: $(@D)/build.log)"
+	@$(ENV) verilator $(SIM_ASSERT_VFLAGS) -Mdir $(@D) -o Vmsr_sim_top $(MSR_RTL_OPTS) $(MSR_RTL_FILES) \
+	    $(SIM_CHECKERS) sim/render_dpi.sv sim/msr_sim_top.sv $(SIM_CPP) > $(@D)/build.log 2>&1 || \
+	    { tail -40 $(@D)/build.log; exit 1; }
+
+.PHONY: sim-assert-build
+sim-assert-build: setup renderer $(SIM_ASSERT_BIN)
+TEST_DEPS += $(SIM_ASSERT_BIN)
+
 # tb/msr_sim runs the harness: it is built before pytest starts, not inside a pytest worker
 # next to the cocotb builds (two 2-3 GB compilers at once on a 2-core machine).
 TEST_DEPS += build/sim/fast/Vmsr_sim_top
