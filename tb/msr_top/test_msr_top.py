@@ -65,6 +65,7 @@ class RenderModel:
         self.requests = []
         self.ready_p, self.max_lat = 0.8, 20
         self.lose = set()          # indices (into requests) whose response is never sent
+        self.flush = False         # set by a hard reset: forget every request taken
         dut.rnd_req_ready_i.value = 0
         dut.rnd_rsp_valid_i.value = 0
         cocotb.start_soon(self.run())
@@ -75,6 +76,10 @@ class RenderModel:
         while True:
             await RisingEdge(dut.clk_i)
             cycle += 1
+            if self.flush:
+                self.pending.clear()
+                current = None
+                self.flush = False
             # Handshakes of this edge (values before the edge are still visible here).
             if int(dut.rnd_req_valid_o.value) and int(dut.rnd_req_ready_i.value):
                 x, y, tag = int(dut.rnd_req_x_o.value), int(dut.rnd_req_y_o.value), int(dut.rnd_req_tag_o.value)
@@ -109,6 +114,27 @@ class Env:
         self.render = RenderModel(dut, rng)
         self.mem_pause = 0.0
         self.hold_b = False        # withhold every write response while set
+        # Write-response faults: each B the memory model sends is SLVERR or DECERR with
+        # probability b_err_p (b_err_codes to choose from), or only while b_err_when() is true.
+        self.b_err_p, self.b_err_codes, self.b_err_when = 0.0, (2, 3), None
+        self.b_log = []            # bresp of every B the model queued, in burst order
+        self.aw_log = []           # AWADDR of every burst accepted, in order
+        self._b_send = self.ram.b_channel.send
+        self.ram.b_channel.send = self._b_send_faulty
+        cocotb.start_soon(self._aw_monitor())
+
+    async def _b_send_faulty(self, b):
+        if self.b_err_p and self.rng.random() < self.b_err_p and (self.b_err_when is None or self.b_err_when()):
+            b.bresp = self.rng.choice(self.b_err_codes)
+        self.b_log.append(int(b.bresp))
+        await self._b_send(b)
+
+    async def _aw_monitor(self):
+        dut = self.dut
+        while True:
+            await RisingEdge(dut.clk_i)
+            if int(dut.rst_ni.value) and int(dut.m_axi_awvalid.value) and int(dut.m_axi_awready.value):
+                self.aw_log.append(int(dut.m_axi_awaddr.value))
 
     def b_pause(self, p):
         while True:
@@ -156,33 +182,56 @@ class Env:
                 return st
         raise AssertionError("accelerator still busy")
 
-    async def frame(self, W, H, tile, levels, metric, thr, gain, src_en=1):
-        from msr_model import ImageRenderer, Params, select
-
+    async def start_frame(self, W, H, tile, levels, metric, thr, gain, src_en=1, fill=True):
+        """Program a frame of a new random image and START it (IRQ_EN); the memory is filled
+        with FILL first unless fill=False. Returns what check_frame needs."""
         img = make_image(self.rng, W, H)
         self.render.image = img
         self.render.requests = []
-        self.ram.write(0, bytes([FILL]) * MEM)
+        self.b_log, self.aw_log = [], []
+        if fill:
+            self.ram.write(0, bytes([FILL]) * MEM)
         fb_stride, src_stride = await self.program(W, H, tile, levels, metric, thr, gain, src_en=src_en)
         await self.wr(R.CTRL, R.CTRL_START_MASK | R.CTRL_IRQ_EN_MASK)
-        st = await self.wait_idle()
-        assert st & R.STATUS_DONE_MASK and (st & R.STATUS_ERROR_MASK) == 0, f"STATUS {st:#x}"
-        assert int(self.dut.irq_o.value) == 1, "interrupt not raised at DONE"
+        return dict(img=img, W=W, H=H, tile=tile, levels=levels, metric=metric, thr=list(thr), gain=gain,
+                    src_en=src_en, fb_stride=fb_stride, src_stride=src_stride)
 
-        params = Params(tile=tile, levels=levels, thr=tuple(thr), metric=("max", "sum")[metric], fov_gain=gain)
-        gold = select(ImageRenderer(img), W, H, params)
+    def check_memory(self, f, exact=True):
+        """The frame's pixels and source codes bit-exact with the golden model (exact=False: a
+        frame cut short, not checked), and not one byte written outside them (padding of the
+        strides included). Returns the golden result."""
+        from msr_model import ImageRenderer, Params, select
+
+        W, H, thr = f["W"], f["H"], f["thr"]
+        params = Params(tile=f["tile"], levels=f["levels"], thr=tuple(thr), metric=("max", "sum")[f["metric"]],
+                        fov_gain=f["gain"])
+        gold = select(ImageRenderer(f["img"]), W, H, params)
+        fb_stride, src_stride = f["fb_stride"], f["src_stride"]
         mem = self.ram.read(0, MEM)
         fb = np.frombuffer(mem[FB_BASE:FB_BASE + fb_stride * H], dtype="<u4").reshape(H, fb_stride // 4)[:, :W]
         rgb = np.stack([(fb >> 16) & 0xFF, (fb >> 8) & 0xFF, fb & 0xFF], axis=2).astype(np.uint8)
-        bad = np.argwhere((rgb != gold.frame).any(axis=2))
+        bad = np.argwhere((rgb != gold.frame).any(axis=2)) if exact else []
         assert not len(bad), f"{len(bad)} pixels differ from the golden model, first (y,x) {tuple(bad[0])}"
-        assert not (fb >> 24).any(), "frame-buffer pixel with a non-zero top byte"
-        if src_en:
+        assert not exact or not (fb >> 24).any(), "frame-buffer pixel with a non-zero top byte"
+        written = np.zeros(MEM, dtype=bool)
+        for y in range(H):
+            written[FB_BASE + y * fb_stride:FB_BASE + y * fb_stride + 4 * W] = True
+        if f["src_en"]:
             src = np.frombuffer(mem[SRC_BASE:SRC_BASE + src_stride * H], dtype=np.uint8).reshape(H, src_stride)[:, :W]
-            bad = np.argwhere(src != gold.source)
+            bad = np.argwhere(src != gold.source) if exact else []
             assert not len(bad), f"{len(bad)} source codes differ, first (y,x) {tuple(bad[0])}"
-        else:
-            assert set(mem[SRC_BASE:SRC_BASE + 4096]) == {FILL}, "source plane written while disabled"
+            for y in range(H):
+                written[SRC_BASE + y * src_stride:SRC_BASE + y * src_stride + W] = True
+        outside = np.argwhere((np.frombuffer(mem, dtype=np.uint8) != FILL) & ~written)
+        assert not len(outside), f"{len(outside)} bytes written outside the frame planes, first {int(outside[0][0]):#x}"
+        return gold
+
+    async def frame(self, W, H, tile, levels, metric, thr, gain, src_en=1):
+        f = await self.start_frame(W, H, tile, levels, metric, thr, gain, src_en=src_en)
+        st = await self.wait_idle()
+        assert st & R.STATUS_DONE_MASK and (st & R.STATUS_ERROR_MASK) == 0, f"STATUS {st:#x}"
+        assert int(self.dut.irq_o.value) == 1, "interrupt not raised at DONE"
+        gold = self.check_memory(f)
         # Requests: exactly the golden model's traced pixels, each once.
         assert len(self.render.requests) == gold.stats["traced"]
         assert len(set(self.render.requests)) == len(self.render.requests), "a pixel traced twice"
@@ -409,6 +458,298 @@ async def test_watchdog(dut):
             assert await env.rd(R.MEM_ERR) == 0, "MEM_ERR not cleared by START"
 
 
+SLVERR, DECERR = 2, 3
+REG_ADDRS = [v for k, v in vars(R).items() if k.isupper() and isinstance(v, int)
+             and not k.endswith(("_MASK", "_LSB", "_WIDTH"))]     # every register of the map
+
+
+async def snapshot(env):
+    """Every register of the map, read back (CTRL's fields are pulses or a plain bit)."""
+    return {a: await env.rd(a) for a in sorted(set(REG_ADDRS))}
+
+
+async def wait_state(dut, states, limit=100000):
+    """Wait until msr_cfg_ctrl's state is one of `states` (cycles waited)."""
+    for n in range(limit):
+        await RisingEdge(dut.clk_i)
+        if int(dut.u_ctrl.state_q.value) in states:
+            return n
+    raise AssertionError(f"state never in {states}")
+
+
+ST_IDLE, ST_SAMPLE, ST_CHECK, ST_RUN, ST_DRAIN, ST_CLEAR = range(6)   # msr_cfg_ctrl's state_e
+
+
+@cocotb.test()
+async def test_mem_errors(dut):
+    """SLVERR and DECERR write responses at random: STATUS.ERROR 8 with DONE (the frame still
+    completes, every pixel written), MEM_ERR.COUNT = the number injected, MEM_ERR_ADDR = the
+    address of the first failing burst, the interrupt; error responses during a soft reset's
+    drain keep code 8 and the count through it (sticky); the next frame, clean, is bit-exact with
+    MEM_ERR 0 (cleared by START). Nothing is written outside the frame planes."""
+    env, rng = await setup(dut, 16)
+    env.set_pauses(0.2)
+    for p, codes in ((0.3, (SLVERR, DECERR)), (0.05, (SLVERR,)), (1.0, (DECERR,))):
+        env.b_err_p, env.b_err_codes = p, codes
+        W, H = rng.randint(20, 44), rng.randint(8, 30)
+        f = await env.start_frame(W, H, rng.choice((8, 16)), 2, rng.randint(0, 1), [8, 16], 0)
+        st = await env.wait_idle()
+        env.b_err_p = 0.0
+        errs = [i for i, b in enumerate(env.b_log) if b]
+        err = (st & R.STATUS_ERROR_MASK) >> R.STATUS_ERROR_LSB
+        cnt = await env.rd(R.MEM_ERR)
+        if not errs:       # p 0.05 on a few bursts: possibly none, then the frame must be clean
+            assert err == 0 and cnt == 0, f"no error injected, STATUS {st:#x} MEM_ERR {cnt:#x}"
+        else:
+            assert err == 8 and st & R.STATUS_DONE_MASK and not st & R.STATUS_BUSY_MASK, f"STATUS {st:#x}"
+            assert cnt & R.MEM_ERR_COUNT_MASK == len(errs) and not cnt & R.MEM_ERR_UNEXPECTED_B_MASK, \
+                f"MEM_ERR {cnt:#x}, {len(errs)} errors injected in {len(env.b_log)} responses"
+            addr = await env.rd(R.MEM_ERR_ADDR)
+            assert addr == env.aw_log[errs[0]], f"MEM_ERR_ADDR {addr:#x}, first failing burst {env.aw_log[errs[0]]:#x}"
+            assert int(dut.irq_o.value) == 1
+        assert len(env.b_log) == len(env.aw_log)
+        env.check_memory(f)        # the memory took the data: bit-exact, nothing outside
+        dut._log.info("write errors p %.2f %s: %d of %d responses, STATUS %#x MEM_ERR %#x", p, codes, len(errs),
+                      len(env.b_log), st, cnt)
+        await env.frame(23, 17, 8, 2, 0, [8, 16], 0)
+        assert await env.rd(R.MEM_ERR) == 0, "MEM_ERR not cleared by START"
+    # Errors during the drain of a soft reset: only responses queued while DRAIN get an error.
+    env.render.max_lat = 60
+    for attempt in range(4):
+        env.b_err_p, env.b_err_codes = 1.0, (SLVERR, DECERR)
+        env.b_err_when = lambda: int(dut.u_ctrl.state_q.value) == ST_DRAIN
+        f = await env.start_frame(48, 32, 8, 2, 0, [8, 16], 0)
+        while not env.aw_log:                  # bursts are going out: the drain will have some
+            await RisingEdge(dut.clk_i)
+        await ClockCycles(dut.clk_i, rng.randint(1, 60))
+        await env.wr(R.CTRL, R.CTRL_SOFT_RESET_MASK)
+        st = await env.wait_idle()
+        env.b_err_p, env.b_err_when = 0.0, None
+        errs = [i for i, b in enumerate(env.b_log) if b]
+        cnt = await env.rd(R.MEM_ERR)
+        env.check_memory(f, exact=False)
+        dut._log.info("soft reset with write errors in the drain: %d of %d, STATUS %#x", len(errs), len(env.b_log), st)
+        while env.render.pending:
+            await ClockCycles(dut.clk_i, 16)
+        if errs:
+            assert (st & R.STATUS_ERROR_MASK) >> R.STATUS_ERROR_LSB == 8 and not st & R.STATUS_DONE_MASK, \
+                f"STATUS {st:#x} after a drain with write errors"
+            assert cnt & R.MEM_ERR_COUNT_MASK == len(errs), f"MEM_ERR {cnt:#x}, {len(errs)} injected"
+            assert await env.rd(R.MEM_ERR_ADDR) == env.aw_log[errs[0]]
+            break
+    else:
+        raise AssertionError("no write response fell in a drain in 4 attempts")
+    env.render.max_lat = 20
+    await env.frame(31, 22, 16, 3, 1, [4, 8, 16], 30)
+    assert await env.rd(R.MEM_ERR) == 0 and not (await env.rd(R.STATUS)) & R.STATUS_ERROR_MASK
+
+
+@cocotb.test()
+async def test_spurious_b(dut):
+    """A write response with no burst outstanding (the memory breaks AXI on purpose): flagged in
+    MEM_ERR.UNEXPECTED_B, not counted down (the next frame's DONE waits for all its own
+    responses, so it is bit-exact and every counter right), cleared by START. The bound AXI
+    checker flags it too (its a_b_orphan rule is masked for that one response)."""
+    env, rng = await setup(dut, 17)
+    env.set_pauses(0.2)
+    chk = dut.u_fb_writer.u_axi4_w_chk
+    for when in ("idle", "after a frame"):
+        if when == "after a frame":
+            await env.frame(25, 14, 8, 2, 0, [8, 16], 0)
+        chk.mask.value = 1 << 7          # a_b_orphan: this bench breaks the rule on purpose
+        b = env.ram.b_channel._transaction_obj()
+        b.bid, b.bresp = 0, 0
+        await env._b_send(b)
+        seen = False
+        for _ in range(50):
+            await RisingEdge(dut.clk_i)
+            await ReadOnly()
+            if int(dut.m_axi_bvalid.value):
+                assert int(dut.m_axi_bready.value), "BREADY low"
+                seen = bool(int(chk.viol.value) >> 7 & 1)
+                break
+        else:
+            raise AssertionError("the spurious B never came")
+        await ClockCycles(dut.clk_i, 2)          # the handshake edge, then one more
+        assert not int(dut.m_axi_bvalid.value)
+        chk.mask.value = 0
+        assert seen, "the AXI checker did not flag the orphan B"
+        m = await env.rd(R.MEM_ERR)
+        st = await env.rd(R.STATUS)
+        assert m & R.MEM_ERR_UNEXPECTED_B_MASK and m & R.MEM_ERR_COUNT_MASK == 0, f"{when}: MEM_ERR {m:#x}"
+        assert not st & R.STATUS_BUSY_MASK, f"{when}: STATUS {st:#x}"
+        await env.frame(rng.randint(17, 40), rng.randint(5, 30), 16, 2, 0, [8, 16], 0)
+        assert await env.rd(R.MEM_ERR) == 0, "UNEXPECTED_B not cleared by START"
+
+
+@cocotb.test()
+async def test_bad_register_address(dut):
+    """Reads and writes of words off the register map: SLVERR, nothing changed (every register
+    read back the same), nothing started or written; idle and while a frame runs."""
+    env, rng = await setup(dut, 18)
+    env.set_pauses(0.2)
+    regs = set(REG_ADDRS)
+    bad = [a for a in range(0, 0x80, 4) if a not in regs]
+    assert bad, "no free word in the map"
+    await env.program(30, 20, 16, 2, 0, [8, 16], 0)
+    env.ram.write(0, bytes([FILL]) * MEM)
+    before = await snapshot(env)
+    for a in bad:
+        w = await env.lite.write(a, (0xFFFFFFFF).to_bytes(4, "little"))
+        r = await env.lite.read(a, 4)
+        assert int(w.resp) == SLVERR and int(r.resp) == SLVERR, f"{a:#x}: write {w.resp}, read {r.resp}"
+    after = await snapshot(env)
+    assert after == before, {hex(a): (before[a], after[a]) for a in before if before[a] != after[a]}
+    assert not env.render.requests and set(env.ram.read(0, MEM)) == {FILL}
+    # While busy: SLVERR again, the frame is not disturbed.
+    f = await env.start_frame(30, 20, 16, 2, 0, [8, 16], 0)
+    for a in rng.sample(bad, min(4, len(bad))):
+        w = await env.lite.write(a, rng.randrange(1 << 32).to_bytes(4, "little"))
+        r = await env.lite.read(a, 4)
+        assert int(w.resp) == SLVERR and int(r.resp) == SLVERR
+    st = await env.wait_idle()
+    assert st & R.STATUS_DONE_MASK and not st & R.STATUS_ERROR_MASK, f"STATUS {st:#x}"
+    env.check_memory(f)
+    await env.frame(19, 11, 8, 1, 1, [12], 0)
+
+
+@cocotb.test()
+async def test_writes_while_busy(dut):
+    """START and every configuration register written while a frame runs: the running frame
+    keeps the configuration sampled at its START (bit-exact, nothing outside its planes), the
+    second START is ignored (nothing starts after DONE); the values written while busy are
+    kept and the next START renders them bit-exact."""
+    env, rng = await setup(dut, 19)
+    for _ in range(2):
+        env.set_pauses(rng.choice((0.0, 0.3)))
+        f = await env.start_frame(48, 40, rng.choice((8, 16)), 2, 0, [8, 16], 0)
+        await ClockCycles(dut.clk_i, rng.randint(60, 300))
+        assert (await env.rd(R.STATUS)) & R.STATUS_BUSY_MASK, "frame over before the writes"
+        await env.wr(R.CTRL, R.CTRL_START_MASK | R.CTRL_IRQ_EN_MASK)
+        c2 = dict(W=rng.randint(9, 30), H=rng.randint(5, 20), tile=rng.choice((8, 32)), levels=3, metric=1,
+                  thr=[rng.randrange(40) for _ in range(3)], gain=rng.choice((0, 90)))
+        src_en2 = rng.randint(0, 1)
+        fb2, src2 = await env.program(c2["W"], c2["H"], c2["tile"], c2["levels"], c2["metric"], c2["thr"],
+                                      c2["gain"], src_en=src_en2)
+        await env.wr(R.CTRL, R.CTRL_START_MASK | R.CTRL_IRQ_EN_MASK)
+        assert (await env.rd(R.STATUS)) & R.STATUS_BUSY_MASK, "frame over before the writes ended"
+        st = await env.wait_idle()
+        assert st & R.STATUS_DONE_MASK and not st & R.STATUS_ERROR_MASK, f"STATUS {st:#x}"
+        gold = env.check_memory(f)
+        assert len(env.render.requests) == gold.stats["traced"]
+        n = len(env.render.requests)
+        await ClockCycles(dut.clk_i, 300)
+        assert not (await env.rd(R.STATUS)) & R.STATUS_BUSY_MASK and len(env.render.requests) == n, \
+            "a START written while busy started a frame later"
+        # The next START renders what was written while busy.
+        img = make_image(rng, c2["W"], c2["H"])
+        env.render.image, env.render.requests = img, []
+        env.ram.write(0, bytes([FILL]) * MEM)
+        await env.wr(R.CTRL, R.CTRL_START_MASK | R.CTRL_IRQ_EN_MASK)
+        st = await env.wait_idle()
+        assert st & R.STATUS_DONE_MASK and not st & R.STATUS_ERROR_MASK, f"STATUS {st:#x}"
+        gold = env.check_memory(dict(img=img, src_en=src_en2, fb_stride=fb2, src_stride=src2, **c2))
+        assert len(env.render.requests) == gold.stats["traced"]
+        await env.wr(R.STATUS, R.STATUS_DONE_MASK)
+
+
+@cocotb.test()
+async def test_soft_reset_states(dut):
+    """CTRL.SOFT_RESET written in every state of msr_cfg_ctrl a register write can reach: idle,
+    just after a START (sample / check), with START in the same write, running, during the
+    drain of an earlier soft reset, after DONE, after a refused START. Each time: idle after it,
+    DONE 0, ERROR 0, nothing written outside the planes, and the next frame bit-exact."""
+    env, rng = await setup(dut, 20)
+    env.set_pauses(0.2)
+    seen = set()
+
+    async def monitor():
+        while True:
+            await RisingEdge(dut.clk_i)
+            if int(dut.u_ctrl.soft_reset_i.value):
+                seen.add(int(dut.u_ctrl.state_q.value))
+    cocotb.start_soon(monitor())
+    for case in ("idle", "check", "start+soft", "run", "drain", "done", "refused"):
+        env.render.max_lat = 200 if case == "drain" else 20
+        f = None
+        if case == "idle":
+            await env.wr(R.CTRL, R.CTRL_SOFT_RESET_MASK)
+        elif case in ("check", "run", "drain"):
+            env.set_pauses(0.0 if case == "check" else 0.2)
+            f = await env.start_frame(40, 32, 8, 2, 0, [8, 16], 0)
+            if case != "check":
+                await ClockCycles(dut.clk_i, rng.randint(100, 400))
+            await env.wr(R.CTRL, R.CTRL_SOFT_RESET_MASK)
+            if case == "drain":
+                await wait_state(dut, (ST_DRAIN,))
+                await env.wr(R.CTRL, R.CTRL_SOFT_RESET_MASK)
+        elif case == "start+soft":
+            img = make_image(rng, 40, 32)
+            env.render.image = img
+            env.ram.write(0, bytes([FILL]) * MEM)
+            fbs, srcs = await env.program(40, 32, 8, 2, 0, [8, 16], 0)
+            await env.wr(R.CTRL, R.CTRL_START_MASK | R.CTRL_SOFT_RESET_MASK)     # both in one write
+            f = dict(img=img, W=40, H=32, tile=8, levels=2, metric=0, thr=[8, 16], gain=0, src_en=1,
+                     fb_stride=fbs, src_stride=srcs)
+        elif case == "done":
+            f = await env.start_frame(20, 12, 8, 2, 0, [8, 16], 0)
+            st = await env.wait_idle()
+            assert st & R.STATUS_DONE_MASK
+            await env.wr(R.CTRL, R.CTRL_SOFT_RESET_MASK)
+        elif case == "refused":
+            env.ram.write(0, bytes([FILL]) * MEM)
+            await env.program(20, 12, 12, 2, 0, [8, 16], 0)
+            await env.wr(R.CTRL, R.CTRL_START_MASK)
+            await ClockCycles(dut.clk_i, 40)
+            assert (await env.rd(R.STATUS)) & R.STATUS_CFG_ERR_MASK
+            await env.wr(R.STATUS, R.STATUS_CFG_ERR_MASK)
+            await env.wr(R.CTRL, R.CTRL_SOFT_RESET_MASK)
+        st = await env.wait_idle()
+        assert not st & (R.STATUS_BUSY_MASK | R.STATUS_DONE_MASK | R.STATUS_ERROR_MASK), f"{case}: STATUS {st:#x}"
+        while env.render.pending:
+            await ClockCycles(dut.clk_i, 16)
+        if f is not None:
+            env.check_memory(f, exact=(case == "done"))
+        dut._log.info("soft reset %s: STATUS %#x, states seen so far %s", case, st, sorted(seen))
+        await env.frame(rng.randint(9, 33), rng.randint(3, 21), rng.choice((8, 16, 32)), 2, 0, [8, 16], 0)
+    assert {ST_IDLE, ST_RUN, ST_DRAIN} <= seen and seen & {ST_SAMPLE, ST_CHECK}, f"states seen {sorted(seen)}"
+
+
+@cocotb.test()
+async def test_hard_reset_mid_burst(dut):
+    """rst_ni low at a random cycle in the middle of a write burst (a W beat offered, not the
+    last of its burst), for 1..5 cycles; the memory and register models are reset with it, the
+    rendering model forgets its requests. Afterwards every register reads its reset value,
+    nothing was written outside the planes, and the next frame is bit-exact."""
+    env, rng = await setup(dut, 21)
+    reset_values = await snapshot(env)
+    for k in range(3):
+        env.set_pauses(rng.choice((0.0, 0.2, 0.5)))
+        f = await env.start_frame(48, 32, rng.choice((8, 16)), 2, 0, [8, 16], 0)
+        await ClockCycles(dut.clk_i, rng.randint(0, 300))
+        for _ in range(100000):
+            await RisingEdge(dut.clk_i)
+            if int(dut.m_axi_wvalid.value) and not int(dut.m_axi_wlast.value):
+                break
+        else:
+            raise AssertionError("no burst of two or more beats")
+        for _ in range(rng.randint(0, 2)):
+            await ClockCycles(dut.clk_i, 1, rising=False)
+        dut.rst_ni.value = 0
+        env.render.flush = True
+        await ClockCycles(dut.clk_i, rng.randint(1, 5))
+        dut.rst_ni.value = 1
+        await ClockCycles(dut.clk_i, 4)
+        env.render.flush = True
+        await ClockCycles(dut.clk_i, 2)
+        assert int(dut.irq_o.value) == 0
+        regs = await snapshot(env)
+        assert regs == reset_values, {hex(a): (reset_values[a], regs[a]) for a in regs if regs[a] != reset_values[a]}
+        env.check_memory(f, exact=False)
+        dut._log.info("hard reset %d mid burst: registers at reset values, nothing outside the planes", k)
+        await env.frame(rng.randint(9, 40), rng.randint(3, 30), rng.choice((8, 16, 32)), 2, 0, [8, 16], 0)
+
+
 @cocotb.test(skip=not os.environ.get("SOAK_SECONDS"))
 async def test_soak(dut):
     """make soak (scripts/soak.py): random configurations, back-pressure and frames until
@@ -448,7 +789,10 @@ async def test_soak(dut):
 
 @pytest.mark.parametrize("engines,outstanding,ctx,width", [(4, 16, 8, 256), (3, 4, 3, 64)])
 def test_msr_top(engines, outstanding, ctx, width):
-    from common.msr_runner import run_cocotb
+    from common.msr_runner import ROOT, rtl_entries, rtl_sources, run_cocotb
+    # The AXI protocol checkers bound to the writer and the register block (rtl/checkers).
+    checkers = [ROOT / e for e in rtl_entries(ROOT / "rtl" / "checkers" / "checkers.f")]
     run_cocotb("msr_top", "test_msr_top", HERE,
                {"NUM_ENGINES": engines, "MAX_OUTSTANDING": outstanding, "NUM_CTX": ctx, "AXI_DATA_W": width},
-               f"e{engines}_o{outstanding}_c{ctx}_w{width}", extra_env={"NUM_ENGINES": str(engines)})
+               f"e{engines}_o{outstanding}_c{ctx}_w{width}", extra_env={"NUM_ENGINES": str(engines)},
+               sources=rtl_sources() + checkers + [ROOT / "rtl" / "checkers" / "msr_checker_binds.sv"])

@@ -14,7 +14,7 @@ sys.path.insert(0, str(HERE.parent))
 
 import cocotb  # noqa: E402
 from cocotb.clock import Clock  # noqa: E402
-from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly  # noqa: E402
+from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly, Timer  # noqa: E402
 from common.msr_funcov import partial, record  # noqa: E402
 
 TILE_ENC = {8: 0, 16: 1, 32: 2}
@@ -81,11 +81,14 @@ async def test_frames(dut):
     # SEED (environment) replaces the default stream; printed so a failure can be replayed
     rng = random.Random(int(os.environ["SEED"]) if os.environ.get("SEED") else 1234 + n_eng)
     dut._log.info("SEED %s", os.environ.get("SEED", "unset"))
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    # Reset (and every input) before the first clock edge: with a random initial state
+    # (MSR_RAND_RESET=1, +verilator+rand+reset+2) an edge before it would see random state.
     dut.rst_ni.value = 0
     dut.clear_i.value = 0
     dut.start_i.value = 0
     dut.desc_ready_i.value = 0
+    await Timer(1, unit="ns")
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
     await ClockCycles(dut.clk_i, 2)
     dut.rst_ni.value = 1
     await RisingEdge(dut.clk_i)
