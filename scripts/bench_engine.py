@@ -97,7 +97,7 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
             if dut.gr_valid_q.value:
                 # the position issued this cycle (granted the cycle before, still its
                 # context's head): its pass-start flag and direction
-                gi = int(dut.gr_ctx_q.value)
+                gi = int(dut.gr_ctx.value)
                 g_first = (int(dut.ctx_first.value) >> gi) & 1
                 g_hv = not (int(dut.iss_pos.value) & 1)          # pos_t.init is its last bit
                 if g_first and g_hv:

@@ -166,7 +166,7 @@ module msr_tile_engine
 
   logic               gr_valid_q;
   logic [NUM_CTX-1:0] gr_gnt_q;
-  ctx_t               gr_ctx_q;
+  ctx_t               gr_ctx;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -181,9 +181,17 @@ module msr_tile_engine
     end
   end
 
-  always_ff @(posedge clk_i) begin
-    gr_ctx_q <= gnt_idx;
+  // The granted context's index, encoded from the registered one-hot grant (one LUT level in
+  // the short GR -> IS path) rather than registered from the arbiter's index output (two LUT
+  // levels more behind its carry chain, the engine's longest path).
+  always_comb begin
+    gr_ctx = '0;
+    for (int unsigned c = 0; c < NUM_CTX; c++) begin
+      if (gr_gnt_q[c]) gr_ctx |= ctx_t'(c);
+    end
   end
+  logic unused_gnt_idx;
+  assign unused_gnt_idx = ^gnt_idx;
 
   assign ctx_issue = gr_gnt_q;
 
@@ -229,7 +237,7 @@ module msr_tile_engine
   // No enable: is_valid_q says whether they hold an issue (an enable would hang the grant's
   // fan-out on every one of these flip-flops).
   always_ff @(posedge clk_i) begin
-    is_ctx_q <= gr_ctx_q;
+    is_ctx_q <= gr_ctx;
     is_pos_q <= iss_pos;
   end
 
