@@ -26,6 +26,8 @@
 `define MSR_CHK_OFF (!rst_ni || $time == 0)
 `endif
 `endif
+// Verification IP, not design: no coverage points (make coverage reports the design's lines).
+/* verilator coverage_off */
 module msr_axi4_w_checker #(
   parameter int unsigned ADDR_W  = 32,
   parameter int unsigned DATA_W  = 64,
@@ -176,3 +178,4 @@ module msr_axi4_w_checker #(
 `endif
 
 endmodule : msr_axi4_w_checker
+/* verilator coverage_on */

@@ -21,6 +21,8 @@
 `define MSR_CHK_OFF (!rst_ni || $time == 0)
 `endif
 `endif
+// Verification IP, not design: no coverage points (make coverage reports the design's lines).
+/* verilator coverage_off */
 module msr_axil_checker #(
   parameter int unsigned ADDR_W  = 32,
   parameter int unsigned DATA_W  = 32,
@@ -134,3 +136,4 @@ module msr_axil_checker #(
 `endif
 
 endmodule : msr_axil_checker
+/* verilator coverage_on */
