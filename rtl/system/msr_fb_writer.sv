@@ -436,16 +436,15 @@ module msr_fb_writer import msr_pkg::*; #(
     logic [BB_W-1:0]  hi;        // last byte in the last beat
   } shape_t;
 
-  logic   s0_v_q, s0_rdy;                       // S0: the arbiter's pick, registered
+  logic   s0_v_q;                               // S0: the arbiter's pick, registered
   in_t    s0_in_q;
   buf_t   s0_buf_q;
   logic   s1_v_q, s15_v_q, s2_v_q, s3_v_q, s4_v_q, s5_v_q;
-  logic   s15_rdy;                               // S1.5: stride multiples, first 3:2 level
   in_t    s15_in_q;
   buf_t   s15_buf_q;
   lcoord_t s15_l_q;
   cs_t    [1:0][1:0] s15_cs_q, s15_cs_d;         // per plane: two carry-save pairs
-  logic   s1_rdy, s2_rdy, s3_rdy, s4_rdy, s5_rdy, s5_take;
+  logic   s5_take;
   in_t    s1_in_q, s2_in_q, s3_in_q, s4_in_q, s5_in_q;
   buf_t   s1_buf_q, s2_buf_q, s3_buf_q, s4_buf_q, s5_buf_q;
   lcoord_t s1_l_q, s2_l_q, s3_l_q;             // pixels of the row - 1
@@ -456,8 +455,10 @@ module msr_fb_writer import msr_pkg::*; #(
   logic   [1:0]       s3_cy_q, s4_cy_q;
   logic   [1:0][8:0]  s4_em1_q;                 // first-beat offset + bytes - 1
   logic   [1:0][12:0] s4_pe_q;                  // address [11:0] + bytes - 1
-  // S5 is a spill register (msr_spill_reg): its ready is a register, so AWREADY's way back
-  // into the pipeline ends there.
+  // S0..S4 never stall: a row enters S0 only with a place reserved for it in the S5 queue
+  // (a credit), so the stage registers load every clock, without an enable. (A ready chain
+  // back through the stages was an enable on some 600 flip-flops: its fan-out net alone was
+  // 6.9 ns after placement.) S5 is a short FIFO; AWREADY's way back ends at its pop.
   typedef struct packed {
     in_t                    in;
     buf_t                   bufi;
@@ -484,13 +485,21 @@ module msr_fb_writer import msr_pkg::*; #(
   logic   [1:0][B4K_W-1:0] to4k_m1;
   /* verilator lint_on UNUSEDSIGNAL */
 
-  assign s4_rdy    = !s4_v_q || s5_rdy;
-  assign s3_rdy    = !s3_v_q || s4_rdy;
-  assign s2_rdy    = !s2_v_q || s3_rdy;
-  assign s15_rdy   = !s15_v_q || s2_rdy;
-  assign s1_rdy    = !s1_v_q || s15_rdy;
-  assign s0_rdy    = !s0_v_q || s1_rdy;
-  assign arb_ready = s0_rdy;
+  // Rows between the arbiter and the end of the S5 queue, at most S5_D: a row is taken only
+  // while that count is below S5_D (a compare of a register), so the queue always has room.
+  localparam int unsigned S5_D = 8;   // >= the 6 stages S0..S4 + 1 for a row per clock
+  logic [$clog2(S5_D):0] s5_credit_q;
+  assign arb_ready = (s5_credit_q != ($clog2(S5_D) + 1)'(S5_D));
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      s5_credit_q <= '0;
+    end else if (clear_i) begin
+      s5_credit_q <= '0;
+    end else begin
+      s5_credit_q <= s5_credit_q + ($clog2(S5_D) + 1)'(arb_take) - ($clog2(S5_D) + 1)'(s5_take);
+    end
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -508,57 +517,46 @@ module msr_fb_writer import msr_pkg::*; #(
       s3_v_q <= 1'b0;
       s4_v_q <= 1'b0;
     end else begin
-      if (s0_rdy) s0_v_q <= arb_valid;
-      if (s1_rdy) s1_v_q <= s0_v_q;
-      if (s15_rdy) s15_v_q <= s1_v_q;
-      if (s2_rdy) s2_v_q <= s15_v_q;
-      if (s3_rdy) s3_v_q <= s2_v_q;
-      if (s4_rdy) s4_v_q <= s3_v_q;
+      s0_v_q  <= arb_take;
+      s1_v_q  <= s0_v_q;
+      s15_v_q <= s1_v_q;
+      s2_v_q  <= s15_v_q;
+      s3_v_q  <= s2_v_q;
+      s4_v_q  <= s3_v_q;
     end
   end
 
+  // No enables: each stage's valid bit says whether its registers hold a row.
   always_ff @(posedge clk_i) begin
-    if (arb_take) begin
-      s0_in_q  <= arb_idx;
-      s0_buf_q <= pick_q[arb_idx];
-    end
-    if (s1_rdy && s0_v_q) begin
-      s1_in_q  <= s0_in_q;
-      s1_buf_q <= s0_buf_q;
-      s1_y_q   <= meta_y_q[s0_in_q][s0_buf_q];
-      s1_x0_q  <= meta_x0_q[s0_in_q][s0_buf_q];
-      s1_l_q   <= meta_l_q[s0_in_q][s0_buf_q];
-    end
-    if (s15_rdy && s1_v_q) begin
-      s15_in_q  <= s1_in_q;
-      s15_buf_q <= s1_buf_q;
-      s15_l_q   <= s1_l_q;
-      s15_cs_q  <= s15_cs_d;
-    end
-    if (s2_rdy && s15_v_q) begin
-      s2_in_q  <= s15_in_q;
-      s2_buf_q <= s15_buf_q;
-      s2_l_q   <= s15_l_q;
-      s2_cs_q  <= s2_cs_d;
-    end
-    if (s3_rdy && s2_v_q) begin
-      s3_in_q  <= s2_in_q;
-      s3_buf_q <= s2_buf_q;
-      s3_l_q   <= s2_l_q;
-      s3_cs_q  <= s2_cs_q;
-      s3_lo_q  <= s3_lo_d;
-      s3_cy_q  <= s3_cy_d;
-    end
-    if (s4_rdy && s3_v_q) begin
-      s4_in_q  <= s3_in_q;
-      s4_buf_q <= s3_buf_q;
-      s4_cs_q  <= s3_cs_q;
-      s4_lo_q  <= s3_lo_q;
-      s4_mid_q <= s4_mid_d;
-      s4_cy_q  <= s4_cy_d;
-      s4_em1_q <= s4_em1_d;
-      s4_pe_q  <= s4_pe_d;
-    end
+    s0_in_q   <= arb_idx;
+    s0_buf_q  <= pick_q[arb_idx];
+    s1_in_q   <= s0_in_q;
+    s1_buf_q  <= s0_buf_q;
+    s1_y_q    <= meta_y_q[s0_in_q][s0_buf_q];
+    s1_x0_q   <= meta_x0_q[s0_in_q][s0_buf_q];
+    s1_l_q    <= meta_l_q[s0_in_q][s0_buf_q];
+    s15_in_q  <= s1_in_q;
+    s15_buf_q <= s1_buf_q;
+    s15_l_q   <= s1_l_q;
+    s15_cs_q  <= s15_cs_d;
+    s2_in_q   <= s15_in_q;
+    s2_buf_q  <= s15_buf_q;
+    s2_l_q    <= s15_l_q;
+    s2_cs_q   <= s2_cs_d;
+    s3_in_q   <= s2_in_q;
+    s3_buf_q  <= s2_buf_q;
+    s3_l_q    <= s2_l_q;
+    s3_cs_q   <= s2_cs_q;
+    s3_lo_q   <= s3_lo_d;
+    s3_cy_q   <= s3_cy_d;
+    s4_in_q   <= s3_in_q;
+    s4_buf_q  <= s3_buf_q;
+    s4_cs_q   <= s3_cs_q;
+    s4_lo_q   <= s3_lo_q;
+    s4_mid_q  <= s4_mid_d;
+    s4_cy_q   <= s4_cy_d;
+    s4_em1_q  <= s4_em1_d;
+    s4_pe_q   <= s4_pe_d;
   end
 
   // The stages' arithmetic, per plane.
@@ -612,16 +610,19 @@ module msr_fb_writer import msr_pkg::*; #(
 
   assign s5_d = '{in: s4_in_q, bufi: s4_buf_q, a: s5_a_d, shape: s5_shape_d, mb1: s5_mb1_d};
 
-  msr_spill_reg #(.WIDTH($bits(s5_t))) u_s5_spill (
+  logic                  s5_room;   // always 1 (credits): checked below
+  logic [$clog2(S5_D):0] s5_count;
+  msr_fifo #(.WIDTH($bits(s5_t)), .DEPTH(S5_D)) u_s5_queue (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
-    .clear_i (clear_i),
+    .flush_i (clear_i),
     .valid_i (s4_v_q),
-    .ready_o (s5_rdy),
+    .ready_o (s5_room),
     .data_i  (s5_d),
     .valid_o (s5_v_q),
     .ready_i (s5_take),
-    .data_o  (s5_q)
+    .data_o  (s5_q),
+    .count_o (s5_count)
   );
   assign s5_in_q    = s5_q.in;
   assign s5_buf_q   = s5_q.bufi;
@@ -876,7 +877,8 @@ module msr_fb_writer import msr_pkg::*; #(
   end
 
   logic unused_b;
-  assign unused_b = ^{m_axi_bid, m_axi_bresp[0], aq_valid, aq_ready, aq_count, wq_count, code_big};
+  assign unused_b = ^{m_axi_bid, m_axi_bresp[0], aq_valid, aq_ready, aq_count, wq_count, code_big,
+                      s5_count};
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_aw_stable, m_axi_awvalid && !m_axi_awready |=>
@@ -887,6 +889,8 @@ module msr_fb_writer import msr_pkg::*; #(
   `MSR_ASSERT(a_no_4k_cross, m_axi_awvalid |-> (32'(m_axi_awaddr[11:0]) +
               (32'(m_axi_awlen) + 1) * STRB_W) <= 32'h1000)
   `MSR_ASSERT(a_addr_fifo_room, aw_hs |-> aq_ready)
+  `MSR_ASSERT(a_s5_room, s4_v_q |-> s5_room)
+  `MSR_ASSERT(a_s5_credit, s5_credit_q <= ($clog2(S5_D) + 1)'(S5_D))
   `MSR_ASSERT(a_code_fits, code_big == '0)
   /* verilator lint_on SYNCASYNCNET */
 
