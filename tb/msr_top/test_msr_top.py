@@ -66,6 +66,7 @@ class RenderModel:
         self.ready_p, self.max_lat = 0.8, 20
         self.lose = set()          # indices (into requests) whose response is never sent
         self.flush = False         # set by a hard reset: forget every request taken
+        self.inject = []           # (tag, rgb) responses to send for no request (stale, bad engine id)
         dut.rnd_req_ready_i.value = 0
         dut.rnd_rsp_valid_i.value = 0
         cocotb.start_soon(self.run())
@@ -92,6 +93,8 @@ class RenderModel:
                                          (int(rgb[0]) << 16) | (int(rgb[1]) << 8) | int(rgb[2])])
             if current is not None and int(dut.rnd_rsp_ready_o.value):
                 current = None
+            if current is None and self.inject:
+                current = [cycle, *self.inject.pop(0)]
             if current is None:
                 due = [p for p in self.pending if p[0] <= cycle]
                 if due:
@@ -749,6 +752,54 @@ async def test_hard_reset_mid_burst(dut):
         env.check_memory(f, exact=False)
         dut._log.info("hard reset %d mid burst: registers at reset values, nothing outside the planes", k)
         await env.frame(rng.randint(9, 40), rng.randint(3, 30), rng.choice((8, 16, 32)), 2, 0, [8, 16], 0)
+
+
+@cocotb.test()
+async def test_render_faults(dut):
+    """Render responses for no request at the top: stale ones (a tag of an existing engine, none
+    in flight, after a frame) and, where NUM_ENGINES leaves an engine id unused (3 engines), ones
+    with an engine id that does not exist, idle and in the middle of a frame. Each is dropped
+    and counted (RSP_DROP), nothing is written, the running frame is bit-exact, and RSP_DROP is
+    cleared by the next START."""
+    env, rng = await setup(dut, 22)
+    env.set_pauses(0.2)
+    engines = int(os.environ["NUM_ENGINES"])
+    tag_w = len(dut.rnd_rsp_tag_i)
+    eid_w = max(1, (engines - 1).bit_length())
+    etag_w = tag_w - eid_w
+    bad_eids = list(range(engines, 1 << eid_w))
+    await env.frame(30, 20, 16, 2, 0, [8, 16], 0)
+    env.ram.write(0, bytes([FILL]) * MEM)
+    inj = [((rng.randrange(engines) << etag_w) | rng.randrange(1 << etag_w), rng.randrange(1 << 24))
+           for _ in range(6)]
+    inj += [((e << etag_w) | rng.randrange(1 << etag_w), rng.randrange(1 << 24)) for e in bad_eids for _ in range(3)]
+    env.render.inject += inj
+    while env.render.inject:
+        await ClockCycles(dut.clk_i, 8)
+    await ClockCycles(dut.clk_i, 20)
+    drop = await env.rd(R.RSP_DROP)
+    st = await env.rd(R.STATUS)
+    assert drop & R.RSP_DROP_COUNT_MASK == len(inj), f"RSP_DROP {drop}, {len(inj)} injected"
+    assert not st & R.STATUS_BUSY_MASK and set(env.ram.read(0, MEM)) == {FILL}, "an injected response wrote"
+    dut._log.info("%d stale responses and %d with engine ids %s dropped and counted", 6, len(inj) - 6, bad_eids)
+    if bad_eids:
+        f = await env.start_frame(40, 30, 8, 2, 0, [8, 16], 0)
+        await wait_state(dut, (ST_RUN,))
+        n = 0
+        while True:
+            await ClockCycles(dut.clk_i, rng.randint(10, 80))
+            if not int(dut.u_ctrl.busy_o.value) or n == 12:
+                break
+            env.render.inject.append(((rng.choice(bad_eids) << etag_w) | rng.randrange(1 << etag_w),
+                                      rng.randrange(1 << 24)))
+            n += 1
+        st = await env.wait_idle()
+        assert st & R.STATUS_DONE_MASK and not st & R.STATUS_ERROR_MASK, f"STATUS {st:#x}"
+        env.check_memory(f)
+        assert not env.render.inject and await env.rd(R.RSP_DROP) == n, "bad engine ids in a frame not all counted"
+        dut._log.info("%d responses with a bad engine id in a frame: dropped, frame bit-exact", n)
+    await env.frame(25, 18, 8, 2, 1, [8, 16], 0)
+    assert await env.rd(R.RSP_DROP) == 0, "RSP_DROP not cleared by START"
 
 
 @cocotb.test(skip=not os.environ.get("SOAK_SECONDS"))
