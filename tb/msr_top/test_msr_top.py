@@ -770,13 +770,19 @@ async def test_render_faults(dut):
     bad_eids = list(range(engines, 1 << eid_w))
     await env.frame(30, 20, 16, 2, 0, [8, 16], 0)
     env.ram.write(0, bytes([FILL]) * MEM)
-    inj = [((rng.randrange(engines) << etag_w) | rng.randrange(1 << etag_w), rng.randrange(1 << 24))
-           for _ in range(6)]
-    inj += [((e << etag_w) | rng.randrange(1 << etag_w), rng.randrange(1 << 24)) for e in bad_eids for _ in range(3)]
-    env.render.inject += inj
-    while env.render.inject:
-        await ClockCycles(dut.clk_i, 8)
-    await ClockCycles(dut.clk_i, 20)
+    # Stale ones first, then (once those are counted) the bad engine ids, each kind back to back:
+    # the two kinds must not be dropped in one clock (test_rsp_drop_coincident).
+    inj = []
+    for kind in ("stale", "bad eid"):
+        batch = ([((rng.randrange(engines) << etag_w) | rng.randrange(1 << etag_w), rng.randrange(1 << 24))
+                  for _ in range(6)] if kind == "stale" else
+                 [((e << etag_w) | rng.randrange(1 << etag_w), rng.randrange(1 << 24)) for e in bad_eids
+                  for _ in range(3)])
+        inj += batch
+        env.render.inject += batch
+        while env.render.inject:
+            await ClockCycles(dut.clk_i, 8)
+        await ClockCycles(dut.clk_i, 20)
     drop = await env.rd(R.RSP_DROP)
     st = await env.rd(R.STATUS)
     assert drop & R.RSP_DROP_COUNT_MASK == len(inj), f"RSP_DROP {drop}, {len(inj)} injected"
@@ -800,6 +806,31 @@ async def test_render_faults(dut):
         dut._log.info("%d responses with a bad engine id in a frame: dropped, frame bit-exact", n)
     await env.frame(25, 18, 8, 2, 1, [8, 16], 0)
     assert await env.rd(R.RSP_DROP) == 0, "RSP_DROP not cleared by START"
+
+
+@cocotb.test(skip=not os.environ.get("MSR_KNOWN_BUGS"))
+async def test_rsp_drop_coincident(dut):
+    """Known RTL bug (run by test_msr_top_rsp_drop_coincident, xfail): a stale response and a
+    response with a nonexistent engine id sent alternately, back to back, after a frame. The
+    engine reports its drop a few clocks after it took the response (rsp_drop_o from its R2
+    stage), the render mux reports a bad engine id in the clock it takes it (bad_eid_o), and
+    msr_top counts `(eng_rsp_drop != '0) || bad_eid` into RSP_DROP: one count for two drops in
+    the same clock. RSP_DROP must equal the number of responses dropped."""
+    env, rng = await setup(dut, 23)
+    engines = int(os.environ["NUM_ENGINES"])
+    tag_w = len(dut.rnd_rsp_tag_i)
+    eid_w = max(1, (engines - 1).bit_length())
+    etag_w = tag_w - eid_w
+    assert engines < (1 << eid_w), "needs an unused engine id (3 engines)"
+    await env.frame(30, 20, 16, 2, 0, [8, 16], 0)
+    for _ in range(8):
+        env.render.inject.append(((rng.randrange(engines) << etag_w) | rng.randrange(1 << etag_w), 0x123456))
+        env.render.inject.append(((engines << etag_w) | rng.randrange(1 << etag_w), 0x654321))
+    while env.render.inject:
+        await ClockCycles(dut.clk_i, 8)
+    await ClockCycles(dut.clk_i, 20)
+    drop = await env.rd(R.RSP_DROP)
+    assert drop == 16, f"RSP_DROP {drop}, 16 responses dropped (8 stale, 8 with engine id {engines})"
 
 
 @cocotb.test(skip=not os.environ.get("SOAK_SECONDS"))
@@ -849,4 +880,16 @@ def test_msr_top(engines, outstanding, ctx, width):
     run_cocotb("msr_top", "test_msr_top", HERE,
                {"NUM_ENGINES": engines, "MAX_OUTSTANDING": outstanding, "NUM_CTX": ctx, "AXI_DATA_W": width},
                f"e{engines}_o{outstanding}_c{ctx}_w{width}_chk", extra_env={"NUM_ENGINES": str(engines)},
+               sources=rtl_sources() + checkers + [ROOT / "rtl" / "checkers" / "msr_checker_binds.sv"])
+
+
+@pytest.mark.xfail(strict=True, reason="RTL bug: RSP_DROP counts one drop when an engine's drop (msr_tile_engine "
+                   "rsp_drop_o, R2 stage) and the render mux's bad engine id (bad_eid_o) fall in the same clock: "
+                   "msr_top.sv feeds msr_cfg_ctrl rsp_drop_i = (eng_rsp_drop != '0) || bad_eid, one count per clock")
+def test_msr_top_rsp_drop_coincident():
+    from common.msr_runner import ROOT, rtl_entries, rtl_sources, run_cocotb
+    checkers = [ROOT / e for e in rtl_entries(ROOT / "rtl" / "checkers" / "checkers.f")]
+    run_cocotb("msr_top", "test_msr_top", HERE,
+               {"NUM_ENGINES": 3, "MAX_OUTSTANDING": 4, "NUM_CTX": 3, "AXI_DATA_W": 64}, "e3_o4_c3_w64_chk",
+               extra_env={"NUM_ENGINES": "3", "MSR_KNOWN_BUGS": "1"}, testcase="test_rsp_drop_coincident",
                sources=rtl_sources() + checkers + [ROOT / "rtl" / "checkers" / "msr_checker_binds.sv"])
