@@ -50,8 +50,10 @@ ECP5_DEVICE = ("--85k", "CABGA381", "LFE5U-85F-CABGA381")
 ECP5_SPEED = "6"            # speed grade (nextpnr's default, written out)
 ECP5_LUTS = 83_640          # LUT4s of the LFE5U-85F
 ECP5_TARGET_MHZ = 100
-# router2 routes the 50 k-LUT top in a fraction of router1's time, at a like Fmax (measured).
-ECP5_ROUTER = "router2"
+# router1 (nextpnr-ecp5's default): on msr_fb_writer it routed in 33 s to 104.1 MHz where
+# router2 took 50 s to 87.4 MHz (518 s to 97.2 MHz with --router2-tmg-ripup), and on the
+# engine router2 cost 12 % of Fmax (91.4 against 103.8 MHz), same placement.
+ECP5_ROUTER = "router1"
 # The ECP5 row of the top is the default msr_top (no parameter overridden), placed flat.
 ECP5_TOP_PARAMS: dict = {}
 # Units that get an ECP5 row of their own (besides the engine and the top).
