@@ -5,7 +5,7 @@
 # over rtl/, cover_points_hit, cover_points_total, per file, functional bins) and
 # build/coverage/report.md (missed lines with their source). The Verilator frame harness
 # (tb/msr_sim) is not instrumented. A failing bench fails the target after the report.
-#   make coverage                          every bench (about 40 min on 2 shared cores)
+#   make coverage                          every bench (about 70 min on 2 shared cores)
 #   make coverage COVERAGE_TESTS=tb/msr_top  some benches (a partial report)
 # make soak: scripts/soak.py, random frames through tb/msr_top until SOAK_MINUTES (default 10),
 # seeds and results in build/soak/; a one-minute soak is part of make test
