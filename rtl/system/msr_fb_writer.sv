@@ -187,16 +187,18 @@ module msr_fb_writer import msr_pkg::*; #(
   logic   [NUM_IN-1:0][2:0][CODE_W-1:0] asm_q;   // codes 0..2 of the current word
 
   // Row free (from the W side): input, buffer.
-  logic row_free;
-  in_t  row_free_in;
-  buf_t row_free_buf;
+  // Registered: the buffers' flags sit with their inputs, spread over the die, and the W side
+  // is in one place; a buffer is free a clock after its last beat is read.
+  logic row_free_q;
+  in_t  row_free_in_q;
+  buf_t row_free_buf_q;
   // Row picked (address side).
   logic arb_valid, arb_ready, arb_take;
   in_t  arb_idx;
   logic [NUM_IN-1:0] arb_gnt;
 
   // Read side, shared by the inputs: beat address; per input and lane the read data.
-  maddr_t raddr;
+  maddr_t [NUM_IN-1:0] raddr_q;     // per input: only that input's memories hang on its copy
   logic [NUM_IN-1:0][WPB-1:0][23:0]         prd;
   logic [NUM_IN-1:0][WPB-1:0][4*CODE_W-1:0] srd;
   logic [NUM_IN-1:0] wr2_busy;       // a memory write is pending in stage 2
@@ -232,9 +234,9 @@ module msr_fb_writer import msr_pkg::*; #(
           picked_q[i][pick_q[i]] <= 1'b1;
           pick_q[i]              <= buf_next(pick_q[i]);
         end
-        if (row_free && row_free_in == in_t'(i)) begin
-          full_q[i][row_free_buf]   <= 1'b0;
-          picked_q[i][row_free_buf] <= 1'b0;
+        if (row_free_q && row_free_in_q == in_t'(i)) begin
+          full_q[i][row_free_buf_q]   <= 1'b0;
+          picked_q[i][row_free_buf_q] <= 1'b0;
         end
       end
     end
@@ -328,8 +330,8 @@ module msr_fb_writer import msr_pkg::*; #(
         if (pwe_q[j]) pmem_q[paddr_q] <= prgb_q;
         if (swe_q[j]) smem_q[saddr_q] <= sword_q;
       end
-      assign prd[i][j] = pmem_q[raddr];
-      assign srd[i][j] = smem_q[raddr[SA_W-1:0]];
+      assign prd[i][j] = pmem_q[raddr_q[i]];
+      assign srd[i][j] = smem_q[raddr_q[i][SA_W-1:0]];
     end
   end
 
@@ -655,10 +657,16 @@ module msr_fb_writer import msr_pkg::*; #(
     logic             row_last;
   } wburst_t;
 
-  burst_t [3:0] bl_q, bl_d;       // the list; entry 0 is on AW
+  burst_t [3:0] bl_q, bl_d;       // the list; entry 0 goes to the AW register next
   logic   [3:0] blv_q, blv_d;
   burst_t [1:0] b0, b1;           // per plane: first and second burst
-  logic         aw_hs, w_push_ready, out_ok, b_hs;
+  logic         aw_hs, aw_push, w_push_ready, b_hs;
+  // AW register (msr_spill_reg): the list's head moves into it on aw_push, a decision made from
+  // flip-flops only (list valid, budget, the register's registered ready). So the list's shift
+  // and reload (an enable on some 280 flip-flops) never wait on AWREADY or on a count compare.
+  logic         aw_sp_ready, aw_sp_valid;
+  burst_t       aw_sp;
+  logic         out_ok_q;         // another burst fits the budget (registered compare)
 
   always_comb begin
     for (int unsigned p = 0; p < 2; p++) begin
@@ -673,8 +681,9 @@ module msr_fb_writer import msr_pkg::*; #(
     end
   end
 
+  assign aw_push = blv_q[0] && out_ok_q && aw_sp_ready;
   // A new row enters when the list is empty or its last burst goes this clock.
-  assign s5_take = s5_v_q && (blv_q == '0 || (aw_hs && blv_q[3:1] == '0));
+  assign s5_take = s5_v_q && (blv_q == '0 || (aw_push && blv_q[3:1] == '0));
 
   always_comb begin
     logic ptwo, stwo;
@@ -682,7 +691,7 @@ module msr_fb_writer import msr_pkg::*; #(
     stwo  = s5_shape_q[1].two;
     bl_d  = bl_q;
     blv_d = blv_q;
-    if (aw_hs) begin
+    if (aw_push) begin
       bl_d  = {bl_q[3], bl_q[3:1]};
       blv_d = {1'b0, blv_q[3:1]};
     end
@@ -716,18 +725,34 @@ module msr_fb_writer import msr_pkg::*; #(
     bl_q <= bl_d;
   end
 
-  // Outstanding bursts (B budget) and their addresses, in order (one ID: B comes in order).
-  logic [OUT_W-1:0] outst_q;
+  msr_spill_reg #(.WIDTH($bits(burst_t))) u_aw_reg (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .clear_i (clear_i),
+    .valid_i (aw_push),
+    .ready_o (aw_sp_ready),
+    .data_i  (bl_q[0]),
+    .valid_o (aw_sp_valid),
+    .ready_i (w_push_ready && m_axi_awready),
+    .data_o  (aw_sp)
+  );
+
+  // Bursts against the budget of MAX_OUT: counted from the AW register on (budget_q), so the
+  // check that lets the next one in is a register; B responses are expected only for bursts
+  // whose address went out on the bus (onbus_q). One ID: B comes in order, and the addresses
+  // of the bursts on the bus wait in order for theirs.
+  logic [OUT_W-1:0] budget_q, budget_d, onbus_q;
   logic             b_expected, aq_valid, aq_ready;
   logic [31:0]      aq_addr;
   logic [$clog2(AQ_D):0] aq_count;
 
-  assign out_ok        = (outst_q != OUT_W'(MAX_OUT));
-  assign m_axi_awvalid = blv_q[0] && w_push_ready && out_ok;
+  // AWVALID waits for room in the W side's burst queue; that room only grows while AWVALID
+  // waits (the queue takes a burst only on the AW handshake), so AWVALID is never withdrawn.
+  assign m_axi_awvalid = aw_sp_valid && w_push_ready;
   assign aw_hs         = m_axi_awvalid && m_axi_awready;
   assign m_axi_awid    = '0;
-  assign m_axi_awaddr  = bl_q[0].addr;
-  assign m_axi_awlen   = bl_q[0].len;
+  assign m_axi_awaddr  = aw_sp.addr;
+  assign m_axi_awlen   = aw_sp.len;
   assign m_axi_awsize  = 3'(BB_W);   // a full beat
   assign m_axi_awburst = 2'b01;      // INCR
   assign m_axi_awlock  = 1'b0;
@@ -736,18 +761,25 @@ module msr_fb_writer import msr_pkg::*; #(
 
   assign m_axi_bready   = 1'b1;
   assign b_hs           = m_axi_bvalid && m_axi_bready;
-  assign b_expected     = (outst_q != '0);
+  assign b_expected     = (onbus_q != '0);
   assign bresp_err_o    = b_hs && b_expected && m_axi_bresp[1];
   assign bresp_addr_o   = aq_addr;
   assign b_unexpected_o = b_hs && !b_expected;
+  assign budget_d       = budget_q + OUT_W'(aw_push) - OUT_W'(b_hs && b_expected);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      outst_q <= '0;
+      budget_q <= '0;
+      onbus_q  <= '0;
+      out_ok_q <= 1'b1;
     end else if (clear_i) begin
-      outst_q <= '0;
+      budget_q <= '0;
+      onbus_q  <= '0;
+      out_ok_q <= 1'b1;
     end else begin
-      outst_q <= outst_q + OUT_W'(aw_hs) - OUT_W'(b_hs && b_expected);
+      budget_q <= budget_d;
+      onbus_q  <= onbus_q + OUT_W'(aw_hs) - OUT_W'(b_hs && b_expected);
+      out_ok_q <= (budget_d != OUT_W'(MAX_OUT));
     end
   end
 
@@ -773,9 +805,8 @@ module msr_fb_writer import msr_pkg::*; #(
   logic [STRB_W-1:0]     wstrb_q, wstrb_d;
   logic                  wlast_q;
 
-  assign wq_push = '{len: bl_q[0].len, in: bl_q[0].in, bufi: bl_q[0].bufi, src: bl_q[0].src,
-                     mbase: bl_q[0].mbase, lo: bl_q[0].lo, hi: bl_q[0].hi,
-                     row_last: bl_q[0].row_last};
+  assign wq_push = '{len: aw_sp.len, in: aw_sp.in, bufi: aw_sp.bufi, src: aw_sp.src,
+                     mbase: aw_sp.mbase, lo: aw_sp.lo, hi: aw_sp.hi, row_last: aw_sp.row_last};
   logic [2:0] wq_count;
 
   msr_fifo #(.WIDTH($bits(wburst_t)), .DEPTH(4)) u_burst_fifo (
@@ -797,18 +828,26 @@ module msr_fb_writer import msr_pkg::*; #(
   logic                  w1_v_q, w1_last_q, w1_src_q, w1_row_last_q, w2_load;
   in_t                   w1_in_q;
   buf_t                  w1_buf_q;
-  maddr_t                w1_addr_q;
   logic [STRB_W-1:0]     w1_strb_q;
 
   assign w2_load = w1_v_q && (!wv_q || m_axi_wready);
   assign w_issue = wq_valid && (!w1_v_q || w2_load);
   assign wlast_d = (wcnt_q == wq_data.len);
   assign wq_pop  = w_issue && wlast_d;
-  assign raddr   = w1_addr_q;
 
-  assign row_free     = w2_load && w1_last_q && w1_row_last_q;
-  assign row_free_in  = w1_in_q;
-  assign row_free_buf = w1_buf_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      row_free_q <= 1'b0;
+    end else if (clear_i) begin
+      row_free_q <= 1'b0;
+    end else begin
+      row_free_q <= w2_load && w1_last_q && w1_row_last_q;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    row_free_in_q  <= w1_in_q;
+    row_free_buf_q <= w1_buf_q;
+  end
 
   always_comb begin
     for (int unsigned j = 0; j < WPB; j++) begin
@@ -843,9 +882,18 @@ module msr_fb_writer import msr_pkg::*; #(
       if (w_issue) wcnt_q <= wlast_d ? '0 : wcnt_q + 1'b1;
     end
   end
+  // The beat's buffer address goes only to the copy of the input it reads (the others keep
+  // theirs: their read data is not selected), so each copy drives a quarter of the memories.
+  for (genvar i = 0; i < NUM_IN; i++) begin : g_raddr
+    always_ff @(posedge clk_i) begin
+      if (w_issue && wq_data.in == in_t'(i)) begin
+        raddr_q[i] <= maddr_t'(32'(wq_data.mbase) + 32'(wcnt_q));
+      end
+    end
+  end
+
   always_ff @(posedge clk_i) begin
     if (w_issue) begin
-      w1_addr_q     <= maddr_t'(32'(wq_data.mbase) + 32'(wcnt_q));
       w1_in_q       <= wq_data.in;
       w1_buf_q      <= wq_data.bufi;
       w1_src_q      <= wq_data.src;
@@ -868,7 +916,8 @@ module msr_fb_writer import msr_pkg::*; #(
   assign idle_o = (full_q == '0) && (wr_v_q == '0) && (wr2_busy == '0) &&
                   !s0_v_q && !s1_v_q && !s15_v_q && !s2_v_q && !s3_v_q && !s4_v_q &&
                   !s5_v_q &&
-                  (blv_q == '0) && !wq_valid && !w1_v_q && !wv_q && (outst_q == '0);
+                  (blv_q == '0) && !aw_sp_valid && !wq_valid && !w1_v_q && !wv_q &&
+                  (budget_q == '0);
 
   // Codes keep CODE_W bits in the buffers; the upper bits of every code are 0.
   logic [NUM_IN-1:0] code_big;
@@ -890,6 +939,7 @@ module msr_fb_writer import msr_pkg::*; #(
               (32'(m_axi_awlen) + 1) * STRB_W) <= 32'h1000)
   `MSR_ASSERT(a_addr_fifo_room, aw_hs |-> aq_ready)
   `MSR_ASSERT(a_s5_room, s4_v_q |-> s5_room)
+  `MSR_ASSERT(a_onbus_in_budget, onbus_q <= budget_q)
   `MSR_ASSERT(a_s5_credit, s5_credit_q <= ($clog2(S5_D) + 1)'(S5_D))
   `MSR_ASSERT(a_code_fits, code_big == '0)
   /* verilator lint_on SYNCASYNCNET */
