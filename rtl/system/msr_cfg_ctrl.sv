@@ -63,7 +63,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   input  logic                   bresp_err_i,    // pulse: a write error response
   input  logic [31:0]            bresp_addr_i,   // its burst's address
   input  logic                   b_unexp_i,      // pulse: a write response with nothing outstanding
-  input  logic                   rsp_drop_i,     // pulse: a render response was dropped
+  input  logic [4:0]             rsp_drop_n_i,   // render responses dropped this clock
   input  logic                   progress_i      // something moved on the ports this clock
 );
   typedef enum logic [2:0] {
@@ -94,7 +94,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   logic [TIF_W-1:0] tif_q;             // tiles handed out and not yet fully written
   logic [$clog2(NUM_ENGINES+1)-1:0] n_done;
   logic             start_q, refused_q;
-  logic [15:0]      mem_err_cnt_q, rsp_drop_cnt_q;
+  logic [15:0]      mem_err_cnt_q;
   logic [31:0]      mem_err_addr_q;
   logic             b_unexp_q;
   logic             accept;            // CHECK ends with every check passed
@@ -293,7 +293,6 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       mem_err_cnt_q  <= '0;
       mem_err_addr_q <= '0;
       b_unexp_q      <= 1'b0;
-      rsp_drop_cnt_q <= '0;
     end else begin
       state_q      <= state_d;
       err_q        <= err_d;
@@ -320,9 +319,11 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
         cfg_q.src_base   <= raw_q.src_base;
         cfg_q.src_stride <= raw_q.src_stride;
       end
+      // Counted in RUN and DRAIN only: the units clear a clock after ST_CLEAR (msr_top
+      // registers the clear on its way), and a tile finishing in that clock is not in flight.
       if (state_q == ST_CLEAR || start_q) begin
         tif_q <= '0;
-      end else begin
+      end else if (state_q == ST_RUN || state_q == ST_DRAIN) begin
         tif_q <= tif_q + TIF_W'(desc_fire_i) - TIF_W'(n_done);
       end
       // Memory errors and dropped responses: counted, the first address kept, until the next
@@ -330,14 +331,12 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       if (accept) begin
         mem_err_cnt_q  <= '0;
         b_unexp_q      <= 1'b0;
-        rsp_drop_cnt_q <= '0;
-      end else begin
+        end else begin
         if (bresp_err_i) begin
           if (mem_err_cnt_q == '0) mem_err_addr_q <= bresp_addr_i;
           if (mem_err_cnt_q != '1) mem_err_cnt_q <= mem_err_cnt_q + 1'b1;
         end
         if (b_unexp_i) b_unexp_q <= 1'b1;
-        if (rsp_drop_i && rsp_drop_cnt_q != '1) rsp_drop_cnt_q <= rsp_drop_cnt_q + 1'b1;
       end
     end
   end
@@ -352,7 +351,16 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   assign mem_err_cnt_o  = mem_err_cnt_q;
   assign mem_err_addr_o = mem_err_addr_q;
   assign b_unexp_o      = b_unexp_q;
-  assign rsp_drop_cnt_o = rsp_drop_cnt_q;
+  // Several engines and the mux may drop a response in the same clock: the count takes their
+  // sum (a segmented saturating counter, its carry registered; it reads true a clock later).
+  msr_sat_counter #(.WIDTH(16), .INC_W(5), .SEG_W(8)) u_rsp_drop_cnt (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .clear_i (accept),
+    .en_i    (1'b1),
+    .inc_i   (rsp_drop_n_i),
+    .count_o (rsp_drop_cnt_o)
+  );
   assign start_o        = start_q;
   assign run_o          = (state_q == ST_RUN);
   assign drain_o        = (state_q == ST_DRAIN) || (state_q == ST_CLEAR);

@@ -144,6 +144,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   logic  [15:0] mem_err_cnt, rsp_drop_cnt;
   logic  rmux_busy, bad_eid;
   logic  [NUM_ENGINES-1:0] eng_rsp_drop;
+  logic  [4:0]             rsp_drop_n;   // responses dropped this clock: engines and the mux
   logic  [NUM_ENGINES-1:0] eng_desc_valid, eng_desc_ready, eng_busy, wr_tile_done;
 
   msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES)) u_ctrl (
@@ -176,7 +177,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .bresp_err_i    (bresp_err),
     .bresp_addr_i   (bresp_addr),
     .b_unexp_i      (b_unexpected),
-    .rsp_drop_i     ((eng_rsp_drop != '0) || bad_eid),
+    .rsp_drop_n_i   (rsp_drop_n),
     .progress_i     (progress)
   );
 
@@ -196,8 +197,31 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
                  (hwif_out.STATUS.DONE.value || hwif_out.STATUS.CFG_ERR.value ||
                   hwif_out.STATUS.WDOG.value);
 
+  always_comb begin
+    rsp_drop_n = 5'(bad_eid);
+    for (int unsigned i = 0; i < NUM_ENGINES; i++) rsp_drop_n += 5'(eng_rsp_drop[i]);
+  end
+
+  // ---- Clear distribution ------------------------------------------------------------------------
+  // The soft reset's clear reaches every flip-flop of the design: one register per engine and
+  // one for the rest, so that no path runs from the controller's state across the die into
+  // some forty thousand loads. Every unit clears on the same clock, one after ST_CLEAR (the
+  // next frame's START is two clocks further at the earliest: ST_SAMPLE, ST_CHECK).
+  logic                   clear_q;
+  logic [NUM_ENGINES-1:0] eng_clear_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      clear_q     <= 1'b0;
+      eng_clear_q <= '0;
+    end else begin
+      clear_q     <= clear;
+      eng_clear_q <= {NUM_ENGINES{clear}};
+    end
+  end
+
   // ---- Tile generation -------------------------------------------------------------------------
   tile_desc_t desc;
+  logic [NUM_ENGINES-1:0] desc_sp_ready;
 
   msr_tile_gen #(.NUM_ENGINES(NUM_ENGINES)) u_tile_gen (
     .clk_i        (clk_i),
@@ -212,7 +236,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .thr_i        (cfg.thr),
     .fov_gain_i   (cfg.fov_gain),
     .desc_valid_o (eng_desc_valid),
-    .desc_ready_i (eng_desc_ready & {NUM_ENGINES{run}}),
+    .desc_ready_i (desc_sp_ready & {NUM_ENGINES{run}}),
     .desc_o       (desc),
     .busy_o       (tg_busy),
     .done_o       (tg_done)
@@ -233,16 +257,35 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   logic   [NUM_ENGINES-1:0] eng_inflight_any;
 
   for (genvar i = 0; i < NUM_ENGINES; i++) begin : g_engine
+    // A register slice per engine on the tile hand-off: the generator picks among the engines'
+    // ready bits, and each engine starts a context on its valid (a load of some hundred
+    // flip-flops); without the slice that was one combinational path across the die, from one
+    // engine through the generator into another. A tile in the slice is already counted in
+    // flight (cfg_ctrl counts the generator's hand-off).
+    logic       sp_desc_valid;
+    tile_desc_t sp_desc;
+    msr_spill_reg #(.WIDTH($bits(tile_desc_t))) u_desc_slice (
+      .clk_i   (clk_i),
+      .rst_ni  (rst_ni),
+      .clear_i (eng_clear_q[i]),
+      .valid_i (eng_desc_valid[i]),
+      .ready_o (desc_sp_ready[i]),
+      .data_i  (desc),
+      .valid_o (sp_desc_valid),
+      .ready_i (eng_desc_ready[i]),
+      .data_o  (sp_desc)
+    );
+
     msr_tile_engine #(
       .NUM_CTX         (NUM_CTX),
       .MAX_OUTSTANDING (MAX_OUTSTANDING)
     ) u_engine (
       .clk_i        (clk_i),
       .rst_ni       (rst_ni),
-      .clear_i      (clear),
-      .desc_valid_i (eng_desc_valid[i]),
+      .clear_i      (eng_clear_q[i]),
+      .desc_valid_i (sp_desc_valid),
       .desc_ready_o (eng_desc_ready[i]),
-      .desc_i       (desc),
+      .desc_i       (sp_desc),
       .req_valid_o  (eng_req_valid[i]),
       .req_ready_i  (eng_req_ready[i]),
       .req_x_o      (eng_req_x[i]),
@@ -271,7 +314,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   msr_render_mux #(.NUM_ENGINES(NUM_ENGINES), .ETAG_W(ETAG_W)) u_render_mux (
     .clk_i           (clk_i),
     .rst_ni          (rst_ni),
-    .clear_i         (clear),
+    .clear_i         (clear_q),
     // Requests are not held during a soft reset: an engine counts a request it offers as in
     // flight, so a held request would never come home and the drain would not end. The
     // engines finish the tiles they hold (no new tile is handed out, their pixels are
@@ -317,7 +360,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   ) u_fb_writer (
     .clk_i          (clk_i),
     .rst_ni         (rst_ni),
-    .clear_i        (clear),
+    .clear_i        (clear_q),
     .width_i        (cfg.width),
     .tile_i         (cfg.tile),
     .fb_base_i      (cfg.fb_base),
@@ -376,7 +419,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   msr_perf_counters #(.NUM_ENGINES(NUM_ENGINES)) u_perf (
     .clk_i     (clk_i),
     .rst_ni    (rst_ni),
-    .clear_i   (start || clear),
+    .clear_i   (start || clear_q),
     .en_i      (run),
     .pix_hs_i  (wr_pix_valid & wr_pix_ready),
     .pix_src_i (eng_pix_src),
