@@ -81,6 +81,9 @@ class RtlFrame:
     @property
     def build(self) -> dict:
         """The harness build's parameters: num_engines, max_outstanding, num_ctx, axi_beat_bytes."""
+        if "build" not in self.stats:   # a binary from before the harness wrote its build
+            raise RunFailed("the harness's stats carry no build parameters: the binary predates "
+                            "sim/harness.cpp; rebuild it (make bench-hw-build, or make sim)")
         return self.stats["build"]
 
     def w_beats(self, tile: int) -> int:
