@@ -56,15 +56,14 @@ def plot_scene_fronts(records, mode, path, title):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from .report import finish_scene_grid, scene_grid, scene_panel
     groups = [("patent (L3, T16/T32)", PATENT, "tab:blue", "o"), ("ours (dilate / lindilate)", OURS, "tab:red", "*"),
               ("DACS", ("dacs",), "tab:green", "s"), ("VRS-like 8x8", ("vrs_T8",), "tab:purple", "D"),
               ("VRS-like 16x16", ("vrs_T16",), "violet", "d"), ("checkerboard", ("checkerboard",), "tab:brown", "^")]
     scenes = sorted({r["scene"] for r in records if r["mode"] == mode and "psnr_conv" in r})
     if not scenes:
         return
-    ncol = min(4, len(scenes))
-    nrow = -(-len(scenes) // ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(max(6.4, 3.2 * ncol), 2.6 * nrow + 0.9), squeeze=False)
+    fig, axes = scene_grid(plt, len(scenes))
     for ax, sc in zip(axes.ravel(), scenes):
         rs = [r for r in records if r["mode"] == mode and r["scene"] == sc and "psnr_conv" in r]
         for lab, fams, col, mk in groups:
@@ -76,22 +75,9 @@ def plot_scene_fronts(records, mode, path, title):
         if full:
             ax.plot([100], [capped(full[0]["psnr_conv"])], marker="x", color="k", ls="", ms=5,
                     label="full render (every pixel)")
-        ax.axhline(40, color="k", lw=0.4, ls=":")
+        scene_panel(ax, sc, 102, 50)
         ax.axhline(35, color="k", lw=0.3, ls=":")
-        ax.set_title(sc, fontsize=8)
-        ax.set_xlim(0, 102)
-        ax.set_ylim(20, 50)
-        ax.tick_params(labelsize=6)
-    for ax in axes.ravel()[len(scenes):]:
-        ax.axis("off")
-    fig.supxlabel("traced pixels (%)", fontsize=8)
-    fig.supylabel("PSNR against the converged reference (dB)", fontsize=8)
-    h, lab = axes[0, 0].get_legend_handles_labels()
-    fig.legend(h, lab, fontsize=6, loc="lower center", ncol=4, frameon=False)
-    fig.suptitle(title, fontsize=9)
-    fig.tight_layout(rect=(0, 0.12 if nrow == 1 else 0.08, 1, 1))
-    fig.savefig(path, dpi=70)
-    plt.close(fig)
+    finish_scene_grid(plt, fig, axes, len(scenes), "PSNR against the converged reference (dB)", title, path)
 
 
 # --- the docs section (docs/results.md leads with it) -------------------------------------------

@@ -262,6 +262,39 @@ FAMILY_STYLE = {
 }
 
 
+def scene_grid(plt, nscenes):
+    """The figure of a per-scene plot (plot_curves, conv_report.plot_scene_fronts): one small
+    panel a scene, four a row. Returns (fig, axes), axes 2-D."""
+    ncol = min(4, nscenes)
+    nrow = -(-nscenes // ncol)
+    return plt.subplots(nrow, ncol, figsize=(max(6.4, 3.2 * ncol), 2.6 * nrow + 0.9), squeeze=False)
+
+
+def scene_panel(ax, scene, xmax, ymax):
+    """One scene's panel of a scene grid: its name over it, traced pixels 0..xmax %, PSNR
+    20..ymax dB, a dotted line at 40 dB."""
+    ax.axhline(40, color="k", lw=0.4, ls=":")
+    ax.set_title(scene, fontsize=8)
+    ax.set_xlim(0, xmax)
+    ax.set_ylim(20, ymax)
+    ax.tick_params(labelsize=6)
+
+
+def finish_scene_grid(plt, fig, axes, nscenes, ylabel, title, path):
+    """Blank the panels past the last scene, label the axes (traced pixels against `ylabel`),
+    one legend under the grid (the first panel's lines), the title; write `path`, close."""
+    for ax in axes.ravel()[nscenes:]:
+        ax.axis("off")
+    fig.supxlabel("traced pixels (%)", fontsize=8)
+    fig.supylabel(ylabel, fontsize=8)
+    h, lab = axes[0, 0].get_legend_handles_labels()
+    fig.legend(h, lab, fontsize=6, loc="lower center", ncol=4, frameon=False)
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout(rect=(0, 0.12 if axes.shape[0] == 1 else 0.08, 1, 1))
+    fig.savefig(path, dpi=70)
+    plt.close(fig)
+
+
 def plot_curves(records, mode, path, title):
     import matplotlib
     matplotlib.use("Agg")
@@ -269,9 +302,7 @@ def plot_curves(records, mode, path, title):
     scenes = sorted({r["scene"] for r in records if r["mode"] == mode})
     if not scenes:
         return
-    ncol = min(4, len(scenes))
-    nrow = -(-len(scenes) // ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(max(6.4, 3.2 * ncol), 2.6 * nrow + 0.9), squeeze=False)
+    fig, axes = scene_grid(plt, len(scenes))
     for ax, sc in zip(axes.ravel(), scenes):
         for fam, (lab, mk, col) in FAMILY_STYLE.items():
             pts = sorted((r["traced_fraction"], capped(r["psnr"])) for r in records
@@ -279,22 +310,9 @@ def plot_curves(records, mode, path, title):
             if pts:
                 ax.plot([100 * f for f, _ in pts], [p for _, p in pts], marker=mk, color=col, lw=0.8,
                         ms=4, label=lab)
-        ax.axhline(40, color="k", lw=0.4, ls=":")
+        scene_panel(ax, sc, 60, 60)
         ax.axvline(15, color="k", lw=0.4, ls=":")
-        ax.set_title(sc, fontsize=8)
-        ax.set_xlim(0, 60)
-        ax.set_ylim(20, 60)
-        ax.tick_params(labelsize=6)
-    for ax in axes.ravel()[len(scenes):]:
-        ax.axis("off")
-    fig.supxlabel("traced pixels (%)", fontsize=8)
-    fig.supylabel("PSNR (dB)", fontsize=8)
-    h, lab = axes[0, 0].get_legend_handles_labels()
-    fig.legend(h, lab, fontsize=6, loc="lower center", ncol=4, frameon=False)
-    fig.suptitle(title, fontsize=9)
-    fig.tight_layout(rect=(0, 0.12 if nrow == 1 else 0.08, 1, 1))
-    fig.savefig(path, dpi=70)
-    plt.close(fig)
+    finish_scene_grid(plt, fig, axes, len(scenes), "PSNR (dB)", title, path)
 
 
 def plot_set(set_curves, mode, path, title):
