@@ -6,6 +6,9 @@ there is what the next rising edge will act on, so a handshake "valid && ready" 
 ReadOnly is a transfer at that rising edge."""
 from __future__ import annotations
 
+import os
+import random
+
 import cocotb
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
@@ -19,6 +22,13 @@ def pack_rgb(c) -> int:
 def unpack_rgb(v: int) -> tuple[int, int, int]:
     v = int(v)
     return ((v >> 16) & 0xFF, (v >> 8) & 0xFF, v & 0xFF)
+
+
+def seeded_rng(dut, default: int) -> random.Random:
+    """The bench's random stream: SEED from the environment replaces the default seed; logged
+    so a failure can be replayed (msr_runner prints the rerun command)."""
+    dut._log.info("SEED %s", os.environ.get("SEED", "unset"))
+    return random.Random(int(os.environ["SEED"]) if os.environ.get("SEED") else default)
 
 
 async def start_clock_and_reset(dut, idle_inputs: dict, cycles: int = 3) -> None:
@@ -43,3 +53,26 @@ async def next_cycle() -> None:
 
 async def settle() -> None:
     await ReadOnly()
+
+
+async def stream(dut, rng: random.Random, n: int, drive, check, p_valid: float, p_ready: float) -> None:
+    """n items through a valid/ready pipeline (valid_i/ready_o in, valid_o/ready_i out), from
+    the write window of a cycle: each cycle item `sent` is offered with probability p_valid
+    (drive(sent) writes its inputs; an item not taken is offered again) and the output is
+    taken with probability p_ready (check(got) reads the got-th result). Returns once n
+    results were checked."""
+    sent = got = 0
+    while got < n:
+        if sent < n and rng.random() < p_valid:
+            dut.valid_i.value = 1
+            drive(sent)
+        else:
+            dut.valid_i.value = 0
+        dut.ready_i.value = int(rng.random() < p_ready)
+        await settle()
+        if dut.valid_i.value and dut.ready_o.value:
+            sent += 1
+        if dut.valid_o.value and dut.ready_i.value:
+            check(got)
+            got += 1
+        await next_cycle()

@@ -3,8 +3,6 @@
 all 64 extreme colour pairs (channels 0/255), and random colours; random valid/ready."""
 from __future__ import annotations
 
-import os
-import random
 import sys
 from pathlib import Path
 
@@ -12,7 +10,7 @@ import cocotb
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
 from msr_runner import run_cocotb  # noqa: E402
-from msr_tb import next_cycle, pack_rgb, settle, start_clock_and_reset  # noqa: E402
+from msr_tb import pack_rgb, seeded_rng, start_clock_and_reset, stream  # noqa: E402
 
 from msr_model import spec  # noqa: E402
 
@@ -74,9 +72,7 @@ def vectors(rng):
 
 @cocotb.test()
 async def decide_vs_golden(dut):
-    # SEED (environment) replaces the default stream; printed so a failure can be replayed
-    rng = random.Random(int(os.environ["SEED"]) if os.environ.get("SEED") else 1234)
-    dut._log.info("SEED %s", os.environ.get("SEED", "unset"))
+    rng = seeded_rng(dut, 1234)
     await start_clock_and_reset(dut, {"clear_i": 0, "valid_i": 0, "ready_i": 0, "a_i": 0, "b_i": 0,
                                       "metric_i": 0, "thr_i": 0, "gap_i": 1, "off_i": 0, "nshift_i": 0,
                                       "user_i": 0})
@@ -85,33 +81,24 @@ async def decide_vs_golden(dut):
     for i, (a, b, metric, thr, gap, nshift) in enumerate(vec):
         d = spec.color_diff(a, b, metric)
         expect.append((int(spec.interpolate_ok(d, thr, gap, 1 << nshift)), d, i & 0xFFFF))
-    sent = got = 0
-    while got < len(vec):
-        if sent < len(vec) and rng.random() < 0.9:
-            a, b, metric, thr, gap, nshift = vec[sent]
-            dut.valid_i.value = 1
-            dut.a_i.value = pack_rgb(a)
-            dut.b_i.value = pack_rgb(b)
-            dut.metric_i.value = int(metric == "sum")
-            dut.thr_i.value = thr
-            dut.gap_i.value = gap
-            dut.off_i.value = gap // 2
-            dut.nshift_i.value = nshift
-            dut.user_i.value = sent & 0xFFFF
-        else:
-            dut.valid_i.value = 0
-        dut.ready_i.value = int(rng.random() < 0.8)
-        await settle()
-        if dut.valid_i.value and dut.ready_o.value:
-            sent += 1
-        if dut.valid_o.value and dut.ready_i.value:
-            res = (int(dut.interp_o.value), int(dut.diff_o.value), int(dut.user_o.value))
-            assert res == expect[got], f"vector {got} {vec[got]}: got {res}, want {expect[got]}"
-            got += 1
-        await next_cycle()
-        # valid_i must not drop before it was taken: re-drive the same vector next cycle
-        # (the loop above does so because `sent` only moves on a transfer).
-    dut._log.info("%d decisions checked", got)
+
+    def drive(i):
+        a, b, metric, thr, gap, nshift = vec[i]
+        dut.a_i.value = pack_rgb(a)
+        dut.b_i.value = pack_rgb(b)
+        dut.metric_i.value = int(metric == "sum")
+        dut.thr_i.value = thr
+        dut.gap_i.value = gap
+        dut.off_i.value = gap // 2
+        dut.nshift_i.value = nshift
+        dut.user_i.value = i & 0xFFFF
+
+    def check(i):
+        res = (int(dut.interp_o.value), int(dut.diff_o.value), int(dut.user_o.value))
+        assert res == expect[i], f"vector {i} {vec[i]}: got {res}, want {expect[i]}"
+
+    await stream(dut, rng, len(vec), drive, check, p_valid=0.9, p_ready=0.8)
+    dut._log.info("%d decisions checked", len(vec))
 
 
 def test_decide():

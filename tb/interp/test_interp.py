@@ -9,8 +9,6 @@
    1 <= o < g on the channel extremes and random values; random valid/ready."""
 from __future__ import annotations
 
-import os
-import random
 import re
 import sys
 from pathlib import Path
@@ -20,7 +18,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
 from msr_runner import ROOT, run_cocotb  # noqa: E402
-from msr_tb import next_cycle, pack_rgb, settle, start_clock_and_reset, unpack_rgb  # noqa: E402
+from msr_tb import pack_rgb, seeded_rng, start_clock_and_reset, stream, unpack_rgb  # noqa: E402
 
 from msr_model import spec  # noqa: E402
 
@@ -69,9 +67,7 @@ def all_vectors(rng):
 
 @cocotb.test()
 async def interp_vs_golden(dut):
-    # SEED (environment) replaces the default stream; printed so a failure can be replayed
-    rng = random.Random(int(os.environ["SEED"]) if os.environ.get("SEED") else 99)
-    dut._log.info("SEED %s", os.environ.get("SEED", "unset"))
+    rng = seeded_rng(dut, 99)
     await start_clock_and_reset(dut, {"clear_i": 0, "valid_i": 0, "ready_i": 0, "a_i": 0, "b_i": 0,
                                       "gap_i": 2, "off_i": 1, "user_i": 0, "metric_i": 0,
                                       "thr_i": 0, "nshift_i": 0})
@@ -79,31 +75,23 @@ async def interp_vs_golden(dut):
     a_all = np.array([v[0] for v in vec]); b_all = np.array([v[1] for v in vec])
     g_all = np.array([v[2] for v in vec]); o_all = np.array([v[3] for v in vec])
     want = spec.interpolate(a_all, b_all, np.zeros_like(g_all), g_all, o_all)
-    sent = got = 0
-    n = len(vec)
-    while got < n:
-        if sent < n and rng.random() < 0.97:
-            a, b, g, o = vec[sent]
-            dut.valid_i.value = 1
-            dut.a_i.value = pack_rgb(a)
-            dut.b_i.value = pack_rgb(b)
-            dut.gap_i.value = g
-            dut.off_i.value = o
-            dut.user_i.value = sent & 0xFFFF
-        else:
-            dut.valid_i.value = 0
-        dut.ready_i.value = int(rng.random() < 0.95)
-        await settle()
-        if dut.valid_i.value and dut.ready_o.value:
-            sent += 1
-        if dut.valid_o.value and dut.ready_i.value:
-            res = unpack_rgb(dut.rgb_o.value)
-            exp = tuple(int(c) for c in want[got])
-            assert int(dut.user_o.value) == got & 0xFFFF, "results out of order"
-            assert res == exp, f"vector {got} {vec[got]}: got {res}, want {exp}"
-            got += 1
-        await next_cycle()
-    dut._log.info("%d interpolations (x3 channels) checked", got)
+
+    def drive(i):
+        a, b, g, o = vec[i]
+        dut.a_i.value = pack_rgb(a)
+        dut.b_i.value = pack_rgb(b)
+        dut.gap_i.value = g
+        dut.off_i.value = o
+        dut.user_i.value = i & 0xFFFF
+
+    def check(i):
+        res = unpack_rgb(dut.rgb_o.value)
+        exp = tuple(int(c) for c in want[i])
+        assert int(dut.user_o.value) == i & 0xFFFF, "results out of order"
+        assert res == exp, f"vector {i} {vec[i]}: got {res}, want {exp}"
+
+    await stream(dut, rng, len(vec), drive, check, p_valid=0.97, p_ready=0.95)
+    dut._log.info("%d interpolations (x3 channels) checked", len(vec))
 
 
 def test_interp():

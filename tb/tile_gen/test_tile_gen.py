@@ -2,8 +2,6 @@
 and foveated thresholds (spec section 1), dispatched only to ready engines."""
 from __future__ import annotations
 
-import os
-import random
 import sys
 from pathlib import Path
 
@@ -16,6 +14,7 @@ import cocotb  # noqa: E402
 from cocotb.clock import Clock  # noqa: E402
 from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly, Timer  # noqa: E402
 from common.msr_funcov import partial, record  # noqa: E402
+from common.msr_tb import seeded_rng  # noqa: E402
 
 TILE_ENC = {8: 0, 16: 1, 32: 2}
 
@@ -78,9 +77,7 @@ async def run_frame(dut, n_eng, rng, W, H, T, L, metric, thr, gain, ready_prob):
 @cocotb.test()
 async def test_frames(dut):
     n_eng = int(dut.NUM_ENGINES.value)
-    # SEED (environment) replaces the default stream; printed so a failure can be replayed
-    rng = random.Random(int(os.environ["SEED"]) if os.environ.get("SEED") else 1234 + n_eng)
-    dut._log.info("SEED %s", os.environ.get("SEED", "unset"))
+    rng = seeded_rng(dut, 1234 + n_eng)
     # Reset (and every input) before the first clock edge: with a random initial state
     # (MSR_RAND_RESET=1, +verilator+rand+reset+2) an edge before it would see random state.
     dut.rst_ni.value = 0
