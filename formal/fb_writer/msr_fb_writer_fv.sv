@@ -102,12 +102,12 @@ module msr_fb_writer_fv import msr_pkg::*; (
       y_q <= row_end ? y_q + 1'b1 : y_q;
     end
   end
-  logic pv_wait_q;
-  logic [28:0] pv_pl_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin pv_wait_q <= 1'b0; pv_pl_q <= '0; end
-    else begin pv_wait_q <= pix_valid_i && !pix_ready; pv_pl_q <= {pix_rgb_i, pix_src_i}; end
-  end
+  // The pixel stream's handshake rule (valid held with its pixel until taken), assumed below.
+  logic pix_viol;
+  msr_chk_stable #(.W(29)) u_pix_stable (
+    .clk_i, .rst_ni, .valid_i(pix_valid_i), .ready_i(pix_ready),
+    .payload_i({pix_rgb_i, pix_src_i}), .viol_o(pix_viol)
+  );
 
   always_comb begin
     if (init_q) assume (!rst_ni);
@@ -128,7 +128,7 @@ module msr_fb_writer_fv import msr_pkg::*; (
     assume ((next_ty_i & (tsz - 1)) == '0 && next_th_i != '0 && next_th_i <= tsz);
     assume (7'(next_ty_i) + 7'(next_th_i) <= 7'd63);
     // valid held with its pixel until taken
-    if (pv_wait_q) assume (pix_valid_i && {pix_rgb_i, pix_src_i} == pv_pl_q);
+    assume (!pix_viol);
     // the slave: B held until taken, none without a completed burst (checker rules 2 and 7)
     assume (!viol[2] && !viol[7]);
   end

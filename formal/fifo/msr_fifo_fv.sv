@@ -32,34 +32,16 @@ module msr_fifo_fv #(
   wire push = valid_i && ready_o;
   wire pop  = valid_o && ready_i;
 
-  // Reference count, one bit wider than the FIFO's so a wrap would show.
+  // Reference count of the words held and one tracked word: its value and how many words are
+  // ahead of it (formal/common/msr_fv_queue_ref.sv).
   logic [PTR_W+1:0] ref_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni)      ref_q <= '0;
-    else if (flush_i) ref_q <= '0;
-    else              ref_q <= ref_q + push - pop;
-  end
-
-  // Tracked word: its value and how many words are ahead of it.
   logic             trk_q;
   logic [WIDTH-1:0] trk_data_q;
   logic [PTR_W:0]   trk_pos_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      trk_q <= 1'b0; trk_data_q <= '0; trk_pos_q <= '0;
-    end else if (flush_i) begin
-      trk_q <= 1'b0;
-    end else if (!trk_q) begin
-      if (push && track_i) begin
-        trk_q      <= 1'b1;
-        trk_data_q <= data_i;
-        trk_pos_q  <= (PTR_W+1)'(ref_q) - (PTR_W+1)'(pop);
-      end
-    end else if (pop) begin
-      if (trk_pos_q == '0) trk_q <= 1'b0;      // the tracked word left
-      else trk_pos_q <= trk_pos_q - 1'b1;
-    end
-  end
+  msr_fv_queue_ref #(.WIDTH(WIDTH), .DEPTH(DEPTH)) u_ref (
+    .clk_i, .rst_ni, .clear_i(flush_i), .push_i(push), .pop_i(pop), .track_i, .data_i,
+    .ref_o(ref_q), .trk_o(trk_q), .trk_data_o(trk_data_q), .trk_pos_o(trk_pos_q)
+  );
 
   // The contract.
   a_count:      assert property (@(posedge clk_i) disable iff (!rst_ni) count_o == ref_q);

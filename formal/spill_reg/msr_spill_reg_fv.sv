@@ -28,32 +28,16 @@ module msr_spill_reg_fv #(
   wire push = valid_i && ready_o;
   wire pop  = valid_o && ready_i;
 
-  logic [2:0] ref_q;                 // words held, by the handshakes
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni)      ref_q <= '0;
-    else if (clear_i) ref_q <= '0;
-    else              ref_q <= ref_q + push - pop;
-  end
-
-  logic             trk_q;           // a tracked word is inside
+  // Words held, by the handshakes, and one tracked word: its value and the words ahead of it
+  // (formal/common/msr_fv_queue_ref.sv; the spill register is an in-order queue of two).
+  logic [2:0]       ref_q;
+  logic             trk_q;
   logic [WIDTH-1:0] trk_data_q;
-  logic [1:0]       trk_pos_q;       // words ahead of it
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      trk_q <= 1'b0; trk_data_q <= '0; trk_pos_q <= '0;
-    end else if (clear_i) begin
-      trk_q <= 1'b0;
-    end else if (!trk_q) begin
-      if (push && track_i) begin
-        trk_q      <= 1'b1;
-        trk_data_q <= data_i;
-        trk_pos_q  <= 2'(ref_q) - 2'(pop);
-      end
-    end else if (pop) begin
-      if (trk_pos_q == '0) trk_q <= 1'b0;
-      else trk_pos_q <= trk_pos_q - 1'b1;
-    end
-  end
+  logic [1:0]       trk_pos_q;
+  msr_fv_queue_ref #(.WIDTH(WIDTH), .DEPTH(2)) u_ref (
+    .clk_i, .rst_ni, .clear_i, .push_i(push), .pop_i(pop), .track_i, .data_i,
+    .ref_o(ref_q), .trk_o(trk_q), .trk_data_o(trk_data_q), .trk_pos_o(trk_pos_q)
+  );
 
   // Output held while stalled (the inline a_out_hold of msr_spill_reg.sv, restated): the
   // word offered last cycle and not taken is offered again, unchanged, unless cleared.

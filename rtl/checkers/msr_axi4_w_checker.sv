@@ -16,16 +16,10 @@
 // the same file runs in Verilator (--assert) and in yosys's slang front end (make formal).
 // viol_o shows each check's violation in the current cycle (for negative tests and waves),
 // bit i = the i-th check above.
-// Assertions are off in reset and at time 0 (as the MSR_ASSERT macros of rtl/prim/msr_assert.svh:
-// with a random initial state the simulator may see a clock edge before any bench drives
-// rst_ni). Formal (FORMAL, yosys's slang front end) keeps the plain reset condition.
-`ifndef MSR_CHK_OFF
-`ifdef FORMAL
-`define MSR_CHK_OFF (!rst_ni)
-`else
-`define MSR_CHK_OFF (!rst_ni || $time == 0)
-`endif
-`endif
+// Assertions are off in reset and at time 0, plain reset under FORMAL (`MSR_CHK_OFF of
+// rtl/prim/msr_assert.svh, the rule of its MSR_ASSERT macros). The handshake rules (valid held,
+// payload stable) come from msr_chk_stable.sv, one instance a channel.
+`include "msr_assert.svh"
 // Verification IP, not design: no coverage points (make coverage reports the design's lines).
 /* verilator coverage_off */
 module msr_axi4_w_checker #(
@@ -70,28 +64,21 @@ module msr_axi4_w_checker #(
   wire aw_hs = awvalid && awready;
   wire w_hs  = wvalid && wready;
   wire b_hs  = bvalid && bready;
-  wire [AW_W-1:0] aw_pl = {awid, awaddr, awlen, awsize, awburst, awlock, awcache, awprot};
-  wire [WB_W-1:0] w_pl  = {wdata, wstrb, wlast};
-  wire [ID_W+1:0] b_pl  = {bid, bresp};
+  logic [8:0] viol;
 
-  // Valid held / payload stable: what was offered and not taken last cycle.
-  logic aw_wait_q, w_wait_q, b_wait_q;
-  logic [AW_W-1:0] aw_pl_q;
-  logic [WB_W-1:0] w_pl_q;
-  logic [ID_W+1:0] b_pl_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      aw_wait_q <= 1'b0; w_wait_q <= 1'b0; b_wait_q <= 1'b0;
-      aw_pl_q <= '0; w_pl_q <= '0; b_pl_q <= '0;
-    end else begin
-      aw_wait_q <= awvalid && !awready;
-      w_wait_q  <= wvalid && !wready;
-      b_wait_q  <= bvalid && !bready;
-      aw_pl_q   <= aw_pl;
-      w_pl_q    <= w_pl;
-      b_pl_q    <= b_pl;
-    end
-  end
+  // Valid held / payload stable (rules 0-2).
+  msr_chk_stable #(.W(AW_W)) u_aw_stable (
+    .clk_i, .rst_ni, .valid_i(awvalid), .ready_i(awready),
+    .payload_i({awid, awaddr, awlen, awsize, awburst, awlock, awcache, awprot}), .viol_o(viol[0])
+  );
+  msr_chk_stable #(.W(WB_W)) u_w_stable (
+    .clk_i, .rst_ni, .valid_i(wvalid), .ready_i(wready), .payload_i({wdata, wstrb, wlast}),
+    .viol_o(viol[1])
+  );
+  msr_chk_stable #(.W(ID_W + 2)) u_b_stable (
+    .clk_i, .rst_ni, .valid_i(bvalid), .ready_i(bready), .payload_i({bid, bresp}),
+    .viol_o(viol[2])
+  );
 
   // Bursts whose AW is accepted and whose last W beat is not yet: their AWLEN, in order.
   logic [7:0]       len_q [MAX_OUT];
@@ -132,10 +119,6 @@ module msr_axi4_w_checker #(
   assign aw_bytes = 14'({1'b0, awlen} + 9'd1) << awsize;
   assign aw_end   = 14'(awaddr[11:0]) + aw_bytes;
 
-  logic [8:0] viol;
-  assign viol[0] = aw_wait_q && !(awvalid && aw_pl == aw_pl_q);
-  assign viol[1] = w_wait_q && !(wvalid && w_pl == w_pl_q);
-  assign viol[2] = b_wait_q && !(bvalid && b_pl == b_pl_q);
   assign viol[3] = w_hs && head_valid && (wlast != (wbeat_q == {1'b0, head_len}));
   assign viol[4] = w_hs && !head_valid;
   assign viol[5] = awvalid && awburst == 2'b01 && aw_end > 14'd4096;

@@ -11,16 +11,10 @@
 //   a_capacity   the checker's own limit: at most MAX_OUT requests per channel unanswered
 // Plain boolean properties over a few registers: the same file runs in Verilator (--assert) and
 // in yosys's slang front end (make formal). viol_o: bit i = the i-th check above, this cycle.
-// Assertions are off in reset and at time 0 (as the MSR_ASSERT macros of rtl/prim/msr_assert.svh:
-// with a random initial state the simulator may see a clock edge before any bench drives
-// rst_ni). Formal (FORMAL, yosys's slang front end) keeps the plain reset condition.
-`ifndef MSR_CHK_OFF
-`ifdef FORMAL
-`define MSR_CHK_OFF (!rst_ni)
-`else
-`define MSR_CHK_OFF (!rst_ni || $time == 0)
-`endif
-`endif
+// Assertions are off in reset and at time 0, plain reset under FORMAL (`MSR_CHK_OFF of
+// rtl/prim/msr_assert.svh, the rule of its MSR_ASSERT macros). The handshake rules (valid held,
+// payload stable) come from msr_chk_stable.sv, one instance a channel.
+`include "msr_assert.svh"
 // Verification IP, not design: no coverage points (make coverage reports the design's lines).
 /* verilator coverage_off */
 module msr_axil_checker #(
@@ -60,29 +54,34 @@ module msr_axil_checker #(
   wire b_hs  = bvalid && bready;
   wire ar_hs = arvalid && arready;
   wire r_hs  = rvalid && rready;
-  wire [ADDR_W+2:0]          aw_pl = {awaddr, awprot};
-  wire [DATA_W+DATA_W/8-1:0] w_pl  = {wdata, wstrb};
-  wire [ADDR_W+2:0]          ar_pl = {araddr, arprot};
-  wire [DATA_W+1:0]          r_pl  = {rdata, rresp};
+  logic [7:0] viol;
 
-  logic aw_wait_q, w_wait_q, b_wait_q, ar_wait_q, r_wait_q;
-  logic [ADDR_W+2:0]          aw_pl_q, ar_pl_q;
-  logic [DATA_W+DATA_W/8-1:0] w_pl_q;
-  logic [1:0]                 b_pl_q;
-  logic [DATA_W+1:0]          r_pl_q;
+  // Valid held / payload stable (rules 0-4).
+  msr_chk_stable #(.W(ADDR_W + 3)) u_aw_stable (
+    .clk_i, .rst_ni, .valid_i(awvalid), .ready_i(awready), .payload_i({awaddr, awprot}),
+    .viol_o(viol[0])
+  );
+  msr_chk_stable #(.W(DATA_W + DATA_W / 8)) u_w_stable (
+    .clk_i, .rst_ni, .valid_i(wvalid), .ready_i(wready), .payload_i({wdata, wstrb}),
+    .viol_o(viol[1])
+  );
+  msr_chk_stable #(.W(2)) u_b_stable (
+    .clk_i, .rst_ni, .valid_i(bvalid), .ready_i(bready), .payload_i(bresp), .viol_o(viol[2])
+  );
+  msr_chk_stable #(.W(ADDR_W + 3)) u_ar_stable (
+    .clk_i, .rst_ni, .valid_i(arvalid), .ready_i(arready), .payload_i({araddr, arprot}),
+    .viol_o(viol[3])
+  );
+  msr_chk_stable #(.W(DATA_W + 2)) u_r_stable (
+    .clk_i, .rst_ni, .valid_i(rvalid), .ready_i(rready), .payload_i({rdata, rresp}),
+    .viol_o(viol[4])
+  );
+
   cnt_t aw_out_q, w_out_q, ar_out_q;   // accepted, not yet answered
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      {aw_wait_q, w_wait_q, b_wait_q, ar_wait_q, r_wait_q} <= '0;
-      aw_pl_q <= '0; w_pl_q <= '0; b_pl_q <= '0; ar_pl_q <= '0; r_pl_q <= '0;
       aw_out_q <= '0; w_out_q <= '0; ar_out_q <= '0;
     end else begin
-      aw_wait_q <= awvalid && !awready;
-      w_wait_q  <= wvalid && !wready;
-      b_wait_q  <= bvalid && !bready;
-      ar_wait_q <= arvalid && !arready;
-      r_wait_q  <= rvalid && !rready;
-      aw_pl_q <= aw_pl; w_pl_q <= w_pl; b_pl_q <= bresp; ar_pl_q <= ar_pl; r_pl_q <= r_pl;
       // saturating: a_capacity reports the overflow, a_*_orphan the underflow
       if (aw_hs && !b_hs && aw_out_q != CNT_MAX) aw_out_q <= aw_out_q + 1'b1;
       else if (!aw_hs && b_hs && aw_out_q != '0) aw_out_q <= aw_out_q - 1'b1;
@@ -93,12 +92,6 @@ module msr_axil_checker #(
     end
   end
 
-  logic [7:0] viol;
-  assign viol[0] = aw_wait_q && !(awvalid && aw_pl == aw_pl_q);
-  assign viol[1] = w_wait_q && !(wvalid && w_pl == w_pl_q);
-  assign viol[2] = b_wait_q && !(bvalid && bresp == b_pl_q);
-  assign viol[3] = ar_wait_q && !(arvalid && ar_pl == ar_pl_q);
-  assign viol[4] = r_wait_q && !(rvalid && r_pl == r_pl_q);
   assign viol[5] = bvalid && (aw_out_q == '0 || w_out_q == '0);
   assign viol[6] = rvalid && ar_out_q == '0;
   assign viol[7] = (aw_hs && !b_hs && aw_out_q == CNT_MAX) || (w_hs && !b_hs && w_out_q == CNT_MAX)

@@ -5,6 +5,8 @@
 //   `MSR_ASSERT(name, prop, clk, rst)  the same with another clock / disable condition
 //   `MSR_ASSUME(...)                   the same as an assumption (formal environments)
 //   `MSR_COVER(name, prop)             cover property (coverage and formal non-vacuity)
+//   `MSR_CHK_OFF                       the disable condition of the protocol checkers' own
+//                                      assertions (rtl/checkers), which stay on under FORMAL
 //
 // Nothing is checked at time 0: with a random initial state (+verilator+rand+reset+2) the
 // simulator may see a first clock edge while rst_ni, random too, is still high, before any
@@ -22,11 +24,18 @@
 
 `ifdef FORMAL
 
+// The protocol checkers write `disable iff (`MSR_CHK_OFF)` by hand (their rules are plain
+// boolean properties, which the formal front end takes): the same rule as the macros below,
+// nothing checked in reset nor at time 0, but under FORMAL the plain reset condition.
+`define MSR_CHK_OFF (!rst_ni)
+
 `define MSR_ASSERT(__name, __prop, __clk = clk_i, __rst = !rst_ni)
 `define MSR_ASSUME(__name, __prop, __clk = clk_i, __rst = !rst_ni)
 `define MSR_COVER(__name, __prop, __clk = clk_i, __rst = !rst_ni)
 
 `else
+
+`define MSR_CHK_OFF (!rst_ni || $time == 0)
 
 `define MSR_ASSERT(__name, __prop, __clk = clk_i, __rst = !rst_ni) \
 `ifndef SYNTHESIS \
