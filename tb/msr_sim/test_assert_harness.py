@@ -12,15 +12,13 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-HARNESS = ROOT / "build" / "sim" / "assert" / "Vmsr_sim_top"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
+from msr_sim_run import build_harness, run_sim  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def harness():
-    # make test builds it before pytest starts (TEST_DEPS); this only checks it is up to date.
-    subprocess.run(["make", "-s", "sim-assert-build"], cwd=ROOT, check=True)
-    return HARNESS
+    return build_harness("sim-assert-build")
 
 
 def test_assertions_compiled_in(harness):
@@ -34,10 +32,8 @@ def test_assertions_compiled_in(harness):
 
 
 def test_frame_with_assertions(harness, tmp_path):
-    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "run_sim.py"), "--harness", str(harness),
-                        "--out", str(tmp_path), "--width", "160", "--height", "120", "--tile", "8",
-                        "--levels", "2", "--thr", "8,16", "--rnd-latency", "2", "--rnd-jitter", "40"],
-                       cwd=ROOT, capture_output=True, text=True, timeout=900)
+    r = run_sim(harness, tmp_path, "--width", "160", "--height", "120", "--tile", "8", "--levels", "2",
+                "--thr", "8,16", "--rnd-latency", "2", "--rnd-jitter", "40", timeout=900)
     log = r.stdout + r.stderr
     assert "%Error" not in log, log[-3000:]
     assert r.returncode == 0, log[-3000:]

@@ -11,20 +11,15 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-HARNESS = ROOT / "build" / "sim" / "fast" / "Vmsr_sim_top"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
+from msr_sim_run import build_harness, run_sim  # noqa: E402
+
 MODEL = Path("/usr/share/assimp/models/3DS/fels.3ds")   # Debian assimp-testmodels
 
 
 @pytest.fixture(scope="module")
 def harness():
-    subprocess.run(["make", "-s", "sim-build"], cwd=ROOT, check=True)
-    return HARNESS
-
-
-def run_sim(harness, out, *args):
-    return subprocess.run([sys.executable, str(ROOT / "scripts" / "run_sim.py"), "--harness", str(harness),
-                           "--out", str(out), *args], cwd=ROOT, capture_output=True, text=True)
+    return build_harness("sim-build")
 
 
 def check_outputs(out):

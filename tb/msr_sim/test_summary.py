@@ -3,7 +3,6 @@ against the run's own contract files (frame.png, reference.png, source_map.png);
 summary names it and the output carries no progress bars (stderr is not a terminal here)."""
 from __future__ import annotations
 
-import subprocess
 import sys
 from pathlib import Path
 
@@ -14,21 +13,18 @@ from PIL import Image
 from msr_model.overview import layout, legend_swatches
 from msr_model.palette import SOURCE_COLOURS, source_rgb
 
-ROOT = Path(__file__).resolve().parents[2]
-HARNESS = ROOT / "build" / "sim" / "fast" / "Vmsr_sim_top"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
+from msr_sim_run import build_harness, run_sim  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def harness():
-    subprocess.run(["make", "-s", "sim-build"], cwd=ROOT, check=True)
-    return HARNESS
+    return build_harness("sim-build")
 
 
 def test_make_sim_writes_summary(harness, tmp_path):
     W, H = 96, 56
-    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "run_sim.py"), "--harness", str(harness),
-                        "--out", str(tmp_path), "--width", str(W), "--height", str(H), "--levels", "3"],
-                       cwd=ROOT, capture_output=True, text=True)
+    r = run_sim(harness, tmp_path, "--width", str(W), "--height", str(H), "--levels", "3")
     assert r.returncode == 0, r.stderr
     summary = tmp_path / "summary.png"
     assert f"summary picture           : {summary}" in r.stdout

@@ -1,0 +1,28 @@
+"""Shared helpers of the tests of the Verilator full-frame harness (tb/msr_sim): build a
+harness through make, run scripts/run_sim.py on it."""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+# The make target of each harness and what it builds (mk/sim.mk).
+HARNESSES = {
+    "sim-build": ROOT / "build" / "sim" / "fast" / "Vmsr_sim_top",           # make sim
+    "sim-assert-build": ROOT / "build" / "sim" / "assert" / "Vmsr_sim_top",  # --assert, checkers bound
+}
+
+
+def build_harness(target: str) -> Path:
+    """`make -s <target>` and the harness it builds. make test builds the harnesses before
+    pytest starts (TEST_DEPS), so there this only checks they are up to date."""
+    subprocess.run(["make", "-s", target], cwd=ROOT, check=True)
+    return HARNESSES[target]
+
+
+def run_sim(harness: Path, out: Path, *args: str, **kwargs) -> subprocess.CompletedProcess:
+    """scripts/run_sim.py on `harness`, writing into `out`, with `args`; stdout and stderr
+    captured as text (kwargs go to subprocess.run, e.g. timeout)."""
+    return subprocess.run([sys.executable, str(ROOT / "scripts" / "run_sim.py"), "--harness", str(harness),
+                           "--out", str(out), *args], cwd=ROOT, capture_output=True, text=True, **kwargs)
