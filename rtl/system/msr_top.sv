@@ -346,11 +346,46 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   assign rnd_idle = (eng_inflight_any == '0);
 
   // ---- Pixel path: every engine has its own writer input (no arbitration) -----------------
-  // Soft reset: finished pixels are dropped.
-  logic [NUM_ENGINES-1:0] wr_pix_valid, wr_pix_ready;
+  // A register slice per engine: the engines sit across the die from the writer, whose input
+  // decodes a pixel's lane and buffer address straight from x and y; the slice keeps that wire
+  // out of every path. Soft reset: finished pixels are dropped behind the slice.
+  typedef struct packed {
+    coord_t x;
+    coord_t y;
+    rgb_t   rgb;
+    src_t   src;
+    logic   last;
+  } pix_word_t;
 
-  assign wr_pix_valid  = drain ? '0 : eng_pix_valid;
-  assign eng_pix_ready = drain ? '1 : wr_pix_ready;
+  logic      [NUM_ENGINES-1:0] sl_pix_valid, sl_pix_ready, wr_pix_valid, wr_pix_ready;
+  pix_word_t [NUM_ENGINES-1:0] sl_pix;
+  coord_t    [NUM_ENGINES-1:0] wr_pix_x, wr_pix_y;
+  rgb_t      [NUM_ENGINES-1:0] wr_pix_rgb;
+  src_t      [NUM_ENGINES-1:0] wr_pix_src;
+  logic      [NUM_ENGINES-1:0] wr_pix_last;
+
+  for (genvar i = 0; i < NUM_ENGINES; i++) begin : g_pix_slice
+    msr_spill_reg #(.WIDTH($bits(pix_word_t))) u_pix_slice (
+      .clk_i   (clk_i),
+      .rst_ni  (rst_ni),
+      .clear_i (eng_clear_q[i]),
+      .valid_i (eng_pix_valid[i]),
+      .ready_o (eng_pix_ready[i]),
+      .data_i  (pix_word_t'{x: eng_pix_x[i], y: eng_pix_y[i], rgb: eng_pix_rgb[i],
+                            src: eng_pix_src[i], last: eng_pix_last[i]}),
+      .valid_o (sl_pix_valid[i]),
+      .ready_i (sl_pix_ready[i]),
+      .data_o  (sl_pix[i])
+    );
+    assign wr_pix_x[i]    = sl_pix[i].x;
+    assign wr_pix_y[i]    = sl_pix[i].y;
+    assign wr_pix_rgb[i]  = sl_pix[i].rgb;
+    assign wr_pix_src[i]  = sl_pix[i].src;
+    assign wr_pix_last[i] = sl_pix[i].last;
+  end
+
+  assign wr_pix_valid = drain ? '0 : sl_pix_valid;
+  assign sl_pix_ready = drain ? '1 : wr_pix_ready;
 
   // ---- Frame-buffer writer ----------------------------------------------------------------------
   msr_fb_writer #(
@@ -370,11 +405,11 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .src_stride_i   (cfg.src_stride),
     .pix_valid_i    (wr_pix_valid),
     .pix_ready_o    (wr_pix_ready),
-    .pix_x_i        (eng_pix_x),
-    .pix_y_i        (eng_pix_y),
-    .pix_rgb_i      (eng_pix_rgb),
-    .pix_src_i      (eng_pix_src),
-    .pix_last_i     (eng_pix_last),
+    .pix_x_i        (wr_pix_x),
+    .pix_y_i        (wr_pix_y),
+    .pix_rgb_i      (wr_pix_rgb),
+    .pix_src_i      (wr_pix_src),
+    .pix_last_i     (wr_pix_last),
     .m_axi_awid     (m_axi_awid),
     .m_axi_awaddr   (m_axi_awaddr),
     .m_axi_awlen    (m_axi_awlen),
@@ -404,12 +439,18 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   // ---- Watchdog progress -------------------------------------------------------------------------
   // Render requests and finished pixels, the write channels, and B responses the writer expected
   // (a spurious B is not progress). Responses count only while running: during a drain they
-  // cannot keep the wait open (msr_cfg_ctrl).
-  assign progress = (rnd_req_valid_o && rnd_req_ready_i) ||
-                    (run && rnd_rsp_valid_i && rnd_rsp_ready_o) ||
-                    ((eng_pix_valid & eng_pix_ready) != '0) ||
-                    (m_axi_awvalid && m_axi_awready) || (m_axi_wvalid && m_axi_wready) ||
-                    (m_axi_bvalid && m_axi_bready && !b_unexpected);
+  // cannot keep the wait open (msr_cfg_ctrl). Registered: the handshakes come from every
+  // engine and both ports, and a watchdog one clock late loses nothing.
+  logic progress_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) progress_q <= 1'b0;
+    else         progress_q <= (rnd_req_valid_o && rnd_req_ready_i) ||
+                               (run && rnd_rsp_valid_i && rnd_rsp_ready_o) ||
+                               ((eng_pix_valid & eng_pix_ready) != '0) ||
+                               (m_axi_awvalid && m_axi_awready) || (m_axi_wvalid && m_axi_wready) ||
+                               (m_axi_bvalid && m_axi_bready && !b_unexpected);
+  end
+  assign progress = progress_q;
 
   // ---- Performance counters -------------------------------------------------------------------------
   logic [31:0]      perf_cycles, perf_rstall, perf_mstall;
@@ -422,9 +463,9 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .clear_i   (start || clear_q),
     .en_i      (run),
     .pix_hs_i  (wr_pix_valid & wr_pix_ready),
-    .pix_src_i (eng_pix_src),
+    .pix_src_i (wr_pix_src),
     .rstall_i  (rnd_req_valid_o && !rnd_req_ready_i),
-    .mstall_i  ((eng_pix_valid & ~wr_pix_ready) != '0),
+    .mstall_i  ((wr_pix_valid & ~wr_pix_ready) != '0),
     .cycles_o  (perf_cycles),
     .traced_o  (perf_traced),
     .interp_o  (perf_interp),
@@ -447,8 +488,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   assign dbg_desc_x0_o   = desc.x0;
   assign dbg_desc_y0_o   = desc.y0;
   assign dbg_tile_done_o = wr_tile_done;
-  assign dbg_pix_x_o     = eng_pix_x;
-  assign dbg_pix_y_o     = eng_pix_y;
+  assign dbg_pix_x_o     = wr_pix_x;
+  assign dbg_pix_y_o     = wr_pix_y;
 
   logic unused_top;
   assign unused_top = ^{tg_busy, eng_busy, rmux_busy};
