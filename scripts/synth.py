@@ -231,8 +231,50 @@ def ecp5_stitch(glue: dict, engine: dict, tag: str) -> dict:
               f"read_json {engine['netlist'].relative_to(ROOT)}\n"
               f"hierarchy -top {glue['top']}\nflatten\nopt_clean\n"
               f"write_json {net.relative_to(ROOT)}\n", tag)
+    floorplan = ecp5_floorplan(net)
     return {"netlist": net, "top": glue["top"], "params": glue["params"], "blackbox": None,
+            "floorplan": floorplan,
             "seconds": round(glue["seconds"] + engine["seconds"] + time.time() - t0, 1)}
+
+
+# Floorplan of the flat top on the LFE5U-85F: the tile buffers' block RAMs of each engine are
+# locked into one quarter of the die (engine e: rows of pair e // 2, side e % 2), a context's
+# block RAMs side by side. Unconstrained, the placer scatters each engine's 32 block RAMs
+# over the whole width of the die (they are 62 % of the device's), and with them the
+# contexts that read them: wires from the die's corners into the engine's arbiter and read
+# mux. The device's DP16KD sites: four rows, each 13 groups of four (EBR0..3 at x, x+2, x+4,
+# x+6), group columns below; the engines take the outer groups, the glue keeps the middle.
+ECP5_EBR_ROWS = (22, 46, 70, 82)
+ECP5_EBR_LEFT = (4, 13, 22, 31, 40, 49, 58)
+ECP5_EBR_RIGHT = (114, 105, 96, 87, 78, 69)
+TILE_RAM = re.compile(r"g_engine\[(\d+)\]\.u_engine\.g_ctx\[(\d+)\]\.")
+
+
+def ecp5_floorplan(net: Path) -> dict:
+    """Lock the tile buffers' DP16KDs of the flat top's netlist (BEL attributes, which nextpnr
+    places first); returns what was locked, or why nothing was (a layout that does not fit)."""
+    d = json.loads(net.read_text())
+    top = next(m for m, v in d["modules"].items() if v["attributes"].get("top"))
+    cells = d["modules"][top]["cells"]
+    groups: dict[tuple[int, int], list[str]] = {}
+    for name, cell in cells.items():
+        m = TILE_RAM.match(name) if cell["type"] == "DP16KD" else None
+        if m:
+            groups.setdefault((int(m.group(1)), int(m.group(2))), []).append(name)
+    engines = sorted({e for e, _ in groups})
+    n_ctx = max((c for _, c in groups), default=-1) + 1
+    per_row = (n_ctx + 1) // 2
+    if (not groups or len(engines) > 4 or max(len(v) for v in groups.values()) > 4
+            or per_row > len(ECP5_EBR_RIGHT)):
+        return {"locked": 0, "why": "layout does not fit the floorplan (at most 4 engines, "
+                f"{2 * len(ECP5_EBR_RIGHT)} contexts of at most 4 block RAMs)"}
+    for (e, c), names in groups.items():
+        row = ECP5_EBR_ROWS[2 * (e // 2) + c // per_row]
+        col = (ECP5_EBR_LEFT if e % 2 == 0 else ECP5_EBR_RIGHT)[c % per_row]
+        for i, name in enumerate(sorted(names)):
+            cells[name]["attributes"]["BEL"] = f"X{col + 2 * i}/Y{row}/EBR{i}"
+    net.write_text(json.dumps(d))
+    return {"locked": sum(len(v) for v in groups.values()), "engines": len(engines), "contexts": n_ctx}
 
 
 def ecp5_place(netlist: dict, tag: str) -> dict:
@@ -261,6 +303,7 @@ def ecp5_place(netlist: dict, tag: str) -> dict:
             "flip_flops": used.get("TRELLIS_FF", 0), "block_rams": used.get("DP16KD", 0),
             "dsp_mult18": used.get("MULT18X18D", 0), "fmax_mhz": round(fmax, 2) if fmax else None,
             "target_mhz": ECP5_TARGET_MHZ, "synth_seconds": netlist["seconds"],
+            **({"floorplan": netlist["floorplan"]} if "floorplan" in netlist else {}),
             "seconds": round(netlist["seconds"] + time.time() - t0, 1)}
 
 

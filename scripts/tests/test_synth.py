@@ -1,5 +1,6 @@
 """The synthesis report's bookkeeping (no Yosys run): parameters read from the RTL, the
 bottom-up roll-up of the top, memory bits from an RTLIL dump."""
+import json
 import sys
 from pathlib import Path
 
@@ -61,3 +62,52 @@ def test_top_is_placed_flat_with_its_defaults():
     files = synth.read_filelist()
     units = synth.modules_in(files)
     assert set(synth.ECP5_UNITS) <= set(units)
+
+
+def _netlist(tmp_path, engines, ctxs, rams=4):
+    cells = {f"g_engine[{e}].u_engine.g_ctx[{c}].u_ctx.u_tile_sram.mem_q.{i // 2}.{i % 2}":
+             {"type": "DP16KD", "attributes": {}} for e in range(engines) for c in range(ctxs)
+             for i in range(rams)}
+    cells["u_fb_writer.lut"] = {"type": "TRELLIS_COMB", "attributes": {}}
+    net = tmp_path / "top.json"
+    net.write_text(json.dumps({"modules": {"msr_top": {"attributes": {"top": "00000001"}, "cells": cells},
+                                           "LUT4": {"attributes": {}, "cells": {}}}}))
+    return net
+
+
+def _bels(net):
+    cells = json.loads(net.read_text())["modules"]["msr_top"]["cells"]
+    return {n: c["attributes"].get("BEL") for n, c in cells.items()}
+
+
+def test_floorplan_puts_each_engine_in_its_quarter(tmp_path):
+    net = _netlist(tmp_path, 4, 8)
+    assert synth.ecp5_floorplan(net) == {"locked": 128, "engines": 4, "contexts": 8}
+    bels = _bels(net)
+    assert bels["u_fb_writer.lut"] is None
+    sites = [b for b in bels.values() if b]
+    assert len(set(sites)) == 128                                  # every site used once
+    xy = {}
+    for name, bel in bels.items():
+        if bel:
+            x, y, ebr = bel.split("/")
+            e = int(name[len("g_engine["):].split("]")[0])
+            xy.setdefault(e, []).append((int(x[1:]), int(y[1:])))
+            base = max(b for b in synth.ECP5_EBR_LEFT + synth.ECP5_EBR_RIGHT if b <= int(x[1:]))
+            assert int(ebr[3:]) == (int(x[1:]) - base) // 2           # EBRi at group + 2i
+    for e, pts in xy.items():                                      # left / right, top / bottom
+        xs, ys = {p[0] for p in pts}, {p[1] for p in pts}
+        assert (max(xs) < 64) == (e % 2 == 0) and (min(xs) > 64) == (e % 2 == 1)
+        assert ys == ({22, 46} if e < 2 else {70, 82})
+    # one context's four block RAMs side by side in one row
+    ctx = sorted(bels[f"g_engine[1].u_engine.g_ctx[3].u_ctx.u_tile_sram.mem_q.{i // 2}.{i % 2}"]
+                 for i in range(4))
+    assert [b.split("/")[1] for b in ctx] == ["Y22"] * 4
+
+
+def test_floorplan_leaves_a_layout_that_does_not_fit_unconstrained(tmp_path):
+    for engines, ctxs, rams in ((5, 2, 4), (2, 14, 4), (2, 2, 5)):
+        net = _netlist(tmp_path, engines, ctxs, rams)
+        r = synth.ecp5_floorplan(net)
+        assert r["locked"] == 0 and "does not fit" in r["why"]
+        assert not any(_bels(net).values())
