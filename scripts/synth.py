@@ -400,7 +400,12 @@ The top's netlist is mapped bottom-up and placed flat: `synth_ecp5` maps the eng
 (with the top's parameters) and the glue with empty engine instances; the engine's netlist
 fills every instance and the whole is flattened, so the placer and the timing analysis see
 one flat design with every engine in place (only optimisation across an engine's ports is
-given up; none is expected, its ports are registers or go straight to them).
+given up; none is expected, its ports are registers or go straight to them). One floorplan
+constraint, as a team would give it for a design with replicated blocks: each engine's
+tile-buffer block RAMs are locked into one quarter of the die, a context's side by side
+(`ecp5_floorplan` in scripts/synth.py; everything else is placed freely). Unconstrained, the
+placer spreads every engine's 32 block RAMs over the die's whole width, and the contexts with
+them (post-placement estimate 53.6 MHz against 63.8 MHz floorplanned, same netlist).
 Assumptions: out of context (I/O not placed, ports are free), a single clock, speed grade
 {ECP5_SPEED}, one seed, no retiming. Fmax is nextpnr's post-route estimate: a planning figure,
 not a signed-off timing. `{TOP}` is the default top ({params_text(top)}) placed flat with
