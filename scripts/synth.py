@@ -412,7 +412,7 @@ not a signed-off timing. `{TOP}` is the default top ({params_text(top)}) placed 
 every engine; the glue row places the same top with `{ENGINE}` as a black box (everything
 outside the engines); the engine is placed with the top's parameters; every system unit on
 its own with its defaults. Pixels per second per LUT4 = Fmax x pixels per clock / LUT4, with
-{ppc} pixels per clock ({ppc_source}). nextpnr's critical path report (the end of
+{ppc:.3f} pixels per clock ({ppc_source}). nextpnr's critical path report (the end of
 `build/synth/*_ecp5_pnr.log`) names each path; see docs/handoff.md, "Timing expectations".
 
 {chr(10).join(fpga)}
