@@ -78,6 +78,15 @@ package msr_pkg;
     thr_t [MAX_LEVELS-1:0]   thr;         // foveated thresholds, thr[k-1] for level k
   } tile_desc_t;
 
+  // ---- A finished pixel, as an engine emits it to the frame-buffer writer -----------------
+  typedef struct packed {
+    coord_t x;                            // global frame coordinates
+    coord_t y;
+    rgb_t   rgb;
+    src_t   src;                          // source code (algorithm.md section 4)
+    logic   last;                         // last pixel of its tile
+  } pix_word_t;
+
   // ---- Level processing controller: one position of one pass -------------------------------
   typedef enum logic [1:0] {
     DIR_INIT = 2'd0,     // initial sample: traced, no neighbours

@@ -39,14 +39,6 @@ module msr_tile_stream
     $fatal(1, "msr_tile_stream: FIFO_DEPTH %0d must be a power of two >= 2", FIFO_DEPTH);
   end
 
-  typedef struct packed {
-    coord_t x;
-    coord_t y;
-    rgb_t   rgb;
-    src_t   src;
-    logic   last;
-  } entry_t;
-
   logic    active_q;
   coord_t  x0_q, y0_q;
   lcoord_t wm1_q, hm1_q;
@@ -58,7 +50,7 @@ module msr_tile_stream
   lcoord_t [1:0] pend_x_q, pend_y_q;
   logic    [1:0] pend_last_q;
 
-  entry_t [FIFO_DEPTH-1:0] fifo_q;
+  pix_word_t [FIFO_DEPTH-1:0] fifo_q;
   logic [PTR_W-1:0] wptr_q, rptr_q;
   logic [CNT_W-1:0] cnt_q;
 

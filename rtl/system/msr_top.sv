@@ -349,14 +349,6 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   // A register slice per engine: the engines sit across the die from the writer, whose input
   // decodes a pixel's lane and buffer address straight from x and y; the slice keeps that wire
   // out of every path. Soft reset: finished pixels are dropped behind the slice.
-  typedef struct packed {
-    coord_t x;
-    coord_t y;
-    rgb_t   rgb;
-    src_t   src;
-    logic   last;
-  } pix_word_t;
-
   logic      [NUM_ENGINES-1:0] sl_pix_valid, sl_pix_ready, wr_pix_valid, wr_pix_ready;
   pix_word_t [NUM_ENGINES-1:0] sl_pix;
   coord_t    [NUM_ENGINES-1:0] wr_pix_x, wr_pix_y;
