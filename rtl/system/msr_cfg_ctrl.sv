@@ -326,12 +326,12 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       end else if (state_q == ST_RUN || state_q == ST_DRAIN) begin
         tif_q <= tif_q + TIF_W'(desc_fire_i) - TIF_W'(n_done);
       end
-      // Memory errors and dropped responses: counted, the first address kept, until the next
-      // accepted START (so they survive a soft reset).
+      // Memory errors: counted, the first address kept, until the next accepted START (so they
+      // survive a soft reset; dropped responses likewise, in u_rsp_drop_cnt below).
       if (accept) begin
         mem_err_cnt_q  <= '0;
         b_unexp_q      <= 1'b0;
-        end else begin
+      end else begin
         if (bresp_err_i) begin
           if (mem_err_cnt_q == '0) mem_err_addr_q <= bresp_addr_i;
           if (mem_err_cnt_q != '1) mem_err_cnt_q <= mem_err_cnt_q + 1'b1;
