@@ -110,14 +110,27 @@ module msr_tile_engine
   rgb_t       [NUM_CTX-1:0] ctx_wrgb;
 
   // ---- Tile start: the lowest free context, chosen a clock ahead --------------------------------
-  // The choice is registered: the lowest context that is free and not starting this cycle. So
-  // a descriptor's handshake and the start of a context (whose controller loads on it) are a
-  // LUT from flip-flops. A context freed this cycle is seen next cycle.
-  logic [CTX_W-1:0] alloc, alloc_q;
-  logic             none_avail, any_free_q, tags_init;
+  // The choice is registered: the lowest context that is free and neither starting nor being
+  // handed a descriptor this cycle. The hand-off itself is registered too: a handshake loads
+  // desc_q and one bit of start_q, and the context starts from those flip-flops a clock later.
+  // So the descriptor handshake (which crosses the die from the generator) ends in a few
+  // registers, and the eight level controllers load from registers beside the contexts.
+  // desc_ready_o is a function of flip-flops only; the soft reset is kept out of it (it is one
+  // net to every flip-flop of the engine): a descriptor taken during a clear is dropped by the
+  // clear of start_q, as everything else in flight is.
+  logic [CTX_W-1:0]   alloc, alloc_q;
+  logic               none_avail, any_free_q, tags_init, desc_hs;
+  logic [NUM_CTX-1:0] hs_onehot, start_q;
+  tile_desc_t         desc_q;
+
+  assign desc_ready_o = any_free_q && !tags_init;
+  assign desc_hs      = desc_valid_i && desc_ready_o;
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_start
+    assign hs_onehot[c] = desc_hs && (alloc_q == ctx_t'(c));
+  end
 
   msr_lzc #(.WIDTH(NUM_CTX), .CNT_W(CTX_W)) u_alloc (
-    .in_i    (ctx_free & ~ctx_start),
+    .in_i    (ctx_free & ~start_q & ~hs_onehot),
     .cnt_o   (alloc),
     .empty_o (none_avail)
   );
@@ -126,17 +139,23 @@ module msr_tile_engine
     if (!rst_ni) begin
       alloc_q    <= '0;
       any_free_q <= 1'b0;
+      start_q    <= '0;
+    end else if (clear_i) begin
+      alloc_q    <= alloc;
+      any_free_q <= 1'b0;
+      start_q    <= '0;
     end else begin
       alloc_q    <= alloc;
       any_free_q <= !none_avail;
+      start_q    <= hs_onehot;
     end
   end
 
-  assign desc_ready_o = any_free_q && !clear_i && !tags_init;
-
-  for (genvar c = 0; c < NUM_CTX; c++) begin : g_start
-    assign ctx_start[c] = desc_valid_i && desc_ready_o && (alloc_q == ctx_t'(c));
+  always_ff @(posedge clk_i) begin
+    if (desc_hs) desc_q <= desc_i;
   end
+
+  assign ctx_start = start_q;
 
   // ---- Issue ----------------------------------------------------------------------------------
   logic             arb_valid, can_issue, issue;
@@ -654,7 +673,7 @@ module msr_tile_engine
       .rst_ni        (rst_ni),
       .clear_i       (clear_i),
       .start_i       (ctx_start[c]),
-      .desc_i        (desc_i),
+      .desc_i        (desc_q),
       .free_o        (ctx_free[c]),
       .desc_o        (ctx_desc[c]),
       .cand_o        (ctx_cand[c]),
@@ -683,7 +702,7 @@ module msr_tile_engine
     );
   end
 
-  assign busy_o = !(&ctx_free) || tags_init;
+  assign busy_o = !(&ctx_free) || (|start_q) || tags_init;
 
   // ---- Checks -------------------------------------------------------------------------------------
   /* verilator lint_off SYNCASYNCNET */

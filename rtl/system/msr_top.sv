@@ -189,10 +189,6 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   assign hwif_in.STATUS.CFG_ERR.hwclr = done_clr;
   assign hwif_in.STATUS.WDOG.hwset = wdog_set;
   assign hwif_in.STATUS.WDOG.hwclr = done_clr;
-  assign hwif_in.MEM_ERR.COUNT.next = mem_err_cnt;
-  assign hwif_in.MEM_ERR.UNEXPECTED_B.next = b_unexp_flag;
-  assign hwif_in.MEM_ERR_ADDR.ADDR.next = mem_err_addr;
-  assign hwif_in.RSP_DROP.COUNT.next = rsp_drop_cnt;
   assign irq_o = hwif_out.CTRL.IRQ_EN.value &&
                  (hwif_out.STATUS.DONE.value || hwif_out.STATUS.CFG_ERR.value ||
                   hwif_out.STATUS.WDOG.value);
@@ -465,15 +461,55 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .mstall_o  (perf_mstall)
   );
 
-  assign hwif_in.PERF_CYCLES.COUNT.next       = perf_cycles;
-  assign hwif_in.PERF_RENDER_STALL.COUNT.next = perf_rstall;
-  assign hwif_in.PERF_MEM_STALL.COUNT.next    = perf_mstall;
+  // ---- Counter readback ---------------------------------------------------------------------------
+  // The counters are registered once more beside the register block: its read multiplexer then
+  // selects among flip-flops placed next to it, not among counters spread over the die (the
+  // address decode's fan-out to them and back set the glue's clock). A read returns a count one
+  // clock old; the status bits (BUSY, DONE, ...) are not delayed, so a frame's counts are final
+  // by the time DONE reads 1.
+  logic [31:0]      perf_cycles_q, perf_rstall_q, perf_mstall_q, mem_err_addr_q;
+  logic [3:0][31:0] perf_traced_q;
+  logic [2:0][31:0] perf_interp_q;
+  logic [15:0]      mem_err_cnt_q, rsp_drop_cnt_q;
+  logic             b_unexp_flag_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      perf_cycles_q  <= '0;
+      perf_rstall_q  <= '0;
+      perf_mstall_q  <= '0;
+      perf_traced_q  <= '0;
+      perf_interp_q  <= '0;
+      mem_err_cnt_q  <= '0;
+      mem_err_addr_q <= '0;
+      rsp_drop_cnt_q <= '0;
+      b_unexp_flag_q <= 1'b0;
+    end else begin
+      perf_cycles_q  <= perf_cycles;
+      perf_rstall_q  <= perf_rstall;
+      perf_mstall_q  <= perf_mstall;
+      perf_traced_q  <= perf_traced;
+      perf_interp_q  <= perf_interp;
+      mem_err_cnt_q  <= mem_err_cnt;
+      mem_err_addr_q <= mem_err_addr;
+      rsp_drop_cnt_q <= rsp_drop_cnt;
+      b_unexp_flag_q <= b_unexp_flag;
+    end
+  end
+
+  assign hwif_in.PERF_CYCLES.COUNT.next       = perf_cycles_q;
+  assign hwif_in.PERF_RENDER_STALL.COUNT.next = perf_rstall_q;
+  assign hwif_in.PERF_MEM_STALL.COUNT.next    = perf_mstall_q;
   for (genvar k = 0; k < 4; k++) begin : g_perf_traced
-    assign hwif_in.PERF_TRACED[k].COUNT.next = perf_traced[k];
+    assign hwif_in.PERF_TRACED[k].COUNT.next = perf_traced_q[k];
   end
   for (genvar k = 0; k < 3; k++) begin : g_perf_interp
-    assign hwif_in.PERF_INTERP[k].COUNT.next = perf_interp[k];
+    assign hwif_in.PERF_INTERP[k].COUNT.next = perf_interp_q[k];
   end
+  assign hwif_in.MEM_ERR.COUNT.next        = mem_err_cnt_q;
+  assign hwif_in.MEM_ERR.UNEXPECTED_B.next = b_unexp_flag_q;
+  assign hwif_in.MEM_ERR_ADDR.ADDR.next    = mem_err_addr_q;
+  assign hwif_in.RSP_DROP.COUNT.next       = rsp_drop_cnt_q;
 
   // ---- Debug ports -----------------------------------------------------------------------------------
   assign dbg_desc_fire_o = |eng_desc_valid;
