@@ -319,7 +319,7 @@ class SerialExecutor:
 
     name = "serial"
 
-    def submit(self, fn, *args):
+    def submit(self, fn, *args, priority: int = 0):
         return _Deferred(fn, args)
 
     def scatter(self, value):
@@ -362,8 +362,10 @@ class DaskExecutor:
             self.client = Client(self.cluster)
             self.name = f"dask LocalCluster, {n} workers"
 
-    def submit(self, fn, *args):
-        return self.client.submit(fn, *args, pure=False)
+    def submit(self, fn, *args, priority: int = 0):
+        # priority: a pair's key metrics (submitted once its settings are in) run before the
+        # settings of later pairs, so each pair's records are complete and cached early
+        return self.client.submit(fn, *args, pure=False, priority=priority)
 
     def scatter(self, value):
         return self.client.scatter(value, broadcast=False)
@@ -492,45 +494,55 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     futs = [executor.submit(task_record, shared[(scene, mode)], scene_id(scene), mode, s, cfg.all_metrics,
                             *gb(scene, s), *cv(scene, mode))
             for scene, mode, _ in pending for s in sweep]
-    with bar(len(futs), "eval: settings") as b:
-        flat = executor.results(futs, b)
-    for i, (scene, mode, _) in enumerate(pending):
-        records[(scene, mode)] = flat[i * len(sweep):(i + 1) * len(sweep)]
 
-    # Key settings: the cheapest of each key family reaching the targets on each scene.
-    jobs = []
-    for scene, mode, _ in pending:
+    def key_jobs(scene, mode):
+        """Key settings: the cheapest of each key family reaching the targets on this scene and
+        mode; their SSIM/FLIP (and against the converged reference) as tasks."""
+        jobs = []
         recs = records[(scene, mode)]
+
+        def add(r, done_key):
+            if done_key not in r and not any(r is j[0] for j in jobs):
+                want_flip = cfg.quick or r["family"] in FLIP_FAMILIES_FULL
+                st = find_setting(sweep, r)
+                jobs.append((r, executor.submit(task_key_metrics, shared[(scene, mode)], st, want_flip,
+                                                *gb(scene, st), *cv(scene, mode), priority=1)))
         for fam in KEY_FAMILIES:
             for t in (TARGETS_DB if cfg.quick else (40.0,)):
                 r = pick_near(recs, scene_id(scene), mode, fam, t)
-                if r is None:
-                    continue
-                r["key_setting"] = True
-                if "ssim" not in r and not any(r is j[0] for j in jobs):
-                    want_flip = cfg.quick or fam in FLIP_FAMILIES_FULL
-                    st = find_setting(sweep, r)
-                    jobs.append((r, executor.submit(task_key_metrics, shared[(scene, mode)], st, want_flip,
-                                                    *gb(scene, st), *cv(scene, mode))))
+                if r is not None:
+                    r["key_setting"] = True
+                    add(r, "ssim")
         if (scene, mode) in convs:      # ... and against the converged reference (the full render too)
             for fam in (*KEY_FAMILIES, "full"):
                 for t in (TARGETS_DB if cfg.quick else (40.0,)):
                     r = REF.pick_near_conv(recs, scene_id(scene), mode, fam, t)
-                    if r is None:
-                        continue
-                    r["key_setting_conv"] = True
-                    if "ssim_conv" not in r and not any(r is j[0] for j in jobs):
-                        want_flip = cfg.quick or fam in FLIP_FAMILIES_FULL
-                        st = find_setting(sweep, r)
-                        jobs.append((r, executor.submit(task_key_metrics, shared[(scene, mode)], st, want_flip,
-                                                        *gb(scene, st), *cv(scene, mode))))
-    with bar(len(jobs), "eval: key metrics") as b:
-        for (r, _), extra in zip(jobs, executor.results([f for _, f in jobs], b)):
+                    if r is not None:
+                        r["key_setting_conv"] = True
+                        add(r, "ssim_conv")
+        return jobs
+
+    def finish(scene, mode, rfile, jobs):
+        for (r, _), extra in zip(jobs, executor.results([f for _, f in jobs])):
             r.update(extra)
-    for scene, mode, rfile in pending:
         rfile.write_text(json.dumps(records[(scene, mode)]))
         log(f"  {scene_id(scene)}/{mode}: {len(sweep)} settings, full render "
             f"{infos[(scene, mode)]['full_render_s']:.2f} s")
+
+    # Pair by pair, in submission order: its settings, then its key metrics; a pair's records
+    # are written to the cache as soon as they are complete (a long run that is stopped keeps
+    # every finished pair), while the later pairs' tasks keep the workers busy.
+    n = len(sweep)
+    last = None
+    with bar(len(futs), "eval: settings") as b:
+        for i, (scene, mode, rfile) in enumerate(pending):
+            records[(scene, mode)] = executor.results(futs[i * n:(i + 1) * n], b)
+            jobs = key_jobs(scene, mode)
+            if last is not None:
+                finish(*last)
+            last = (scene, mode, rfile, jobs)
+    if last is not None:
+        finish(*last)
     if pending:
         log(f"  sweep of {len(futs)} settings on {executor.name}: {time.perf_counter() - t0:.1f} s")
     return [r for pair in pairs for r in records[pair]], refs, infos
