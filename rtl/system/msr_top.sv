@@ -146,6 +146,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   logic  [NUM_ENGINES-1:0] eng_rsp_drop;
   logic  [4:0]             rsp_drop_n;   // responses dropped this clock: engines and the mux
   logic  [NUM_ENGINES-1:0] eng_desc_valid, eng_desc_ready, eng_busy, wr_tile_done;
+  logic  [NUM_ENGINES-1:0] wr_tile_done_q;  // wr_tile_done, registered (below)
 
   msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES)) u_ctrl (
     .clk_i          (clk_i),
@@ -170,7 +171,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .drain_o        (drain),
     .clear_o        (clear),
     .desc_fire_i    (|eng_desc_valid),
-    .tile_done_i    (wr_tile_done),
+    .tile_done_i    (wr_tile_done_q),
     .tg_done_i      (tg_done),
     .rnd_idle_i     (rnd_idle),
     .wr_idle_i      (wr_idle),
@@ -213,6 +214,16 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       clear_q     <= clear;
       eng_clear_q <= {NUM_ENGINES{clear}};
     end
+  end
+
+  // The writer's tile-done flags are registered on their way to the controller's tiles-in-flight
+  // count (the writer's row state through that adder was the glue's longest path). The count
+  // then falls a clock later: DONE comes a clock later, never earlier. A tile finishing in the
+  // units' clear clock is dropped here, as the controller would not count it.
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni)      wr_tile_done_q <= '0;
+    else if (clear_q) wr_tile_done_q <= '0;
+    else              wr_tile_done_q <= wr_tile_done;
   end
 
   // ---- Tile generation -------------------------------------------------------------------------
