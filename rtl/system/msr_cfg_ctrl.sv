@@ -55,7 +55,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   output logic                   run_o,          // a frame runs: tiles may be handed out
   output logic                   drain_o,        // soft reset: hold requests, drop pixels
   output logic                   clear_o,        // pulse: synchronous clear of every unit
-  input  logic                   desc_fire_i,    // a tile went to an engine
+  input  logic                   desc_fire_i,    // a tile went to an engine (may come a clock late)
   input  logic [NUM_ENGINES-1:0] tile_done_i,    // the last pixel of a tile reached the writer
   input  logic                   tg_done_i,      // the tile generator handed out every tile
   input  logic                   rnd_idle_i,     // no render request in flight in any engine
@@ -299,8 +299,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       start_q      <= accept && state_d == ST_RUN;
       refused_q    <= (state_q == ST_CHECK) && (step_q == STEP_END[4:0]) && !accept &&
                       state_d == ST_IDLE;
-      frame_done_q <= (state_q == ST_RUN) && !start_q && tg_done_i && tif_q == '0 && wr_idle_i &&
-                      !frame_done_q;
+      frame_done_q <= (state_q == ST_RUN) && !start_q && tg_done_i && tif_q == '0 && !desc_fire_i &&
+                      wr_idle_i && !frame_done_q;
       step_q       <= (state_q == ST_CHECK) ? step_q + 1'b1 : '0;
       if (state_q == ST_IDLE && start_i) raw_q <= raw_i;
       if (state_q == ST_CHECK && step_q == STEP_CMP[4:0]) chk_q <= chk_all;

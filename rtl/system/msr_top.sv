@@ -147,6 +147,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   logic  [4:0]             rsp_drop_n;   // responses dropped this clock: engines and the mux
   logic  [NUM_ENGINES-1:0] eng_desc_valid, eng_desc_ready, eng_busy, wr_tile_done;
   logic  [NUM_ENGINES-1:0] wr_tile_done_q;  // wr_tile_done, registered (below)
+  logic                    desc_fire_q;     // a tile went to an engine, registered (below)
 
   msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES)) u_ctrl (
     .clk_i          (clk_i),
@@ -170,7 +171,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .run_o          (run),
     .drain_o        (drain),
     .clear_o        (clear),
-    .desc_fire_i    (|eng_desc_valid),
+    .desc_fire_i    (desc_fire_q),
     .tile_done_i    (wr_tile_done_q),
     .tg_done_i      (tg_done),
     .rnd_idle_i     (rnd_idle),
@@ -216,14 +217,24 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     end
   end
 
-  // The writer's tile-done flags are registered on their way to the controller's tiles-in-flight
-  // count (the writer's row state through that adder was the glue's longest path). The count
-  // then falls a clock later: DONE comes a clock later, never earlier. A tile finishing in the
-  // units' clear clock is dropped here, as the controller would not count it.
+  // The events of the controller's tiles-in-flight count are registered on their way to it: a
+  // tile handed to an engine (the generator's dispatch, which reads the controller's own RUN)
+  // and a tile's last pixel taken by the writer (its row state). Each path through that adder
+  // set the clock (glue 10.0 ns, flat top 11.95 ns). The count moves a clock later; the
+  // controller also holds DONE while a dispatch is on its way, so DONE comes a clock later,
+  // never earlier. Events in the units' clear clock are dropped, as the controller would not
+  // count them.
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni)      wr_tile_done_q <= '0;
-    else if (clear_q) wr_tile_done_q <= '0;
-    else              wr_tile_done_q <= wr_tile_done;
+    if (!rst_ni) begin
+      wr_tile_done_q <= '0;
+      desc_fire_q    <= 1'b0;
+    end else if (clear_q) begin
+      wr_tile_done_q <= '0;
+      desc_fire_q    <= 1'b0;
+    end else begin
+      wr_tile_done_q <= wr_tile_done;
+      desc_fire_q    <= |eng_desc_valid;
+    end
   end
 
   // ---- Tile generation -------------------------------------------------------------------------
