@@ -38,7 +38,7 @@ from tqdm import tqdm
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tb" / "common"))
-from msr_runner import rtl_sources  # noqa: E402  (the one reader of rtl/msr.f)
+from msr_runner import rtl_digest, rtl_sources  # noqa: E402  (the one reader of rtl/msr.f)
 FILELIST = ROOT / "rtl" / "msr.f"
 OUT = ROOT / "build" / "synth"
 DOC = ROOT / "docs" / "synthesis.md"
@@ -67,12 +67,20 @@ DEFAULT_PIXELS_PER_CLOCK = 3.8
 
 
 def pixels_per_clock() -> tuple[float, str]:
-    """Pixels per clock of the default top and where the figure comes from."""
+    """Pixels per clock of the default top and where the figure comes from. A bench report taken
+    on other RTL (its `rtl_digest` differs from the RTL's now) is still used, but said to be
+    stale, here and on stderr: rerun `make bench` for a figure of this RTL."""
     try:
-        goal = json.loads(BENCH_REPORT.read_text())["goals"]["pixels_per_clock_4_engines_latency_256"]
+        rep = json.loads(BENCH_REPORT.read_text())
+        goal = rep["goals"]["pixels_per_clock_4_engines_latency_256"]
         if goal.get("measured"):
-            where = BENCH_REPORT.relative_to(ROOT) if BENCH_REPORT.is_relative_to(ROOT) else BENCH_REPORT
-            return float(goal["measured"]), str(where)
+            where = str(BENCH_REPORT.relative_to(ROOT) if BENCH_REPORT.is_relative_to(ROOT) else BENCH_REPORT)
+            measured_on, now = rep.get("rtl_digest"), rtl_digest()
+            if measured_on != now:
+                where += (f", measured on other RTL (digest {measured_on}, now {now}): stale, rerun make bench"
+                          if measured_on else ", no RTL digest recorded: may be stale, rerun make bench")
+                print(f"synth: pixels per clock from {where}", file=sys.stderr)
+            return float(goal["measured"]), where
     except (OSError, ValueError, KeyError, TypeError):
         pass
     return DEFAULT_PIXELS_PER_CLOCK, "constant (no out/bench/report.json)"

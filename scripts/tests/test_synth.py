@@ -52,8 +52,39 @@ def test_pixel_rate_per_lut4(tmp_path, monkeypatch):
     (tmp_path / "report.json").write_text(
         '{"goals": {"pixels_per_clock_4_engines_latency_256": {"measured": 3.7}}}')
     row = synth.add_pixel_rate({"fmax_mhz": 130.0, "luts": 65_000})
-    assert row["pixels_per_clock"] == 3.7 and row["pixels_per_clock_source"].endswith("report.json")
+    assert row["pixels_per_clock"] == 3.7 and "may be stale" in row["pixels_per_clock_source"]
     assert row["pixels_per_second_per_lut4"] == round(130e6 * 3.7 / 65_000, 1)
+
+
+def test_pixel_rate_says_when_the_bench_is_stale(tmp_path, monkeypatch):
+    """The bench report names the RTL it measured; a figure of other RTL is flagged, not hidden."""
+    monkeypatch.setattr(synth, "BENCH_REPORT", tmp_path / "report.json")
+    now = synth.rtl_digest()
+    assert len(now) == 12 and now == synth.rtl_digest()          # deterministic
+    for digest, stale in ((now, False), ("0123456789ab", True)):
+        (tmp_path / "report.json").write_text(json.dumps(
+            {"rtl_digest": digest, "goals": {"pixels_per_clock_4_engines_latency_256": {"measured": 3.75}}}))
+        ppc, where = synth.pixels_per_clock()
+        assert ppc == 3.75 and where.endswith("report.json") != stale
+        assert ("stale" in where) == stale and (digest in where) == stale
+
+
+def test_rtl_digest_follows_the_rtl(tmp_path, monkeypatch):
+    """Any byte of a listed source or of an included header changes the digest."""
+    (tmp_path / "rtl").mkdir()
+    src, hdr = tmp_path / "rtl" / "a.sv", tmp_path / "rtl" / "h.svh"
+    src.write_text("module a; endmodule\n")
+    hdr.write_text("`define X 1\n")
+    flist = tmp_path / "rtl" / "msr.f"
+    flist.write_text(f"+incdir+{tmp_path / 'rtl'}\n{src}\n")
+    import msr_runner
+    monkeypatch.setattr(msr_runner, "ROOT", tmp_path)
+    d0 = msr_runner.rtl_digest(flist)
+    hdr.write_text("`define X 2\n")
+    d1 = msr_runner.rtl_digest(flist)
+    src.write_text("module a; logic b; endmodule\n")
+    d2 = msr_runner.rtl_digest(flist)
+    assert len({d0, d1, d2}) == 3 and d2 == msr_runner.rtl_digest(flist)
 
 
 def test_top_is_placed_flat_with_its_defaults():

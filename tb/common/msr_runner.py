@@ -43,6 +43,18 @@ def rtl_incdirs(file_list: Path = FILE_LIST) -> list[Path]:
             for d in e[len("+incdir+"):].split("+") if d]
 
 
+def rtl_digest(file_list: Path = FILE_LIST) -> str:
+    """A short content hash of the RTL that rtl/msr.f names (its sources and the headers of its
+    include folders). A measured figure records it (make bench), so a later reader (make synth's
+    pixels per clock) can tell whether the figure was taken on the RTL it is combined with."""
+    import hashlib
+    h = hashlib.sha256()
+    files = rtl_sources(file_list) + sorted(p for d in rtl_incdirs(file_list) for p in d.glob("*.svh"))
+    for p in files:
+        h.update(str(p.relative_to(ROOT)).encode() + b"\0" + p.read_bytes() + b"\0")
+    return h.hexdigest()[:12]
+
+
 def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict | None = None,
                tag: str = "", sources: list[Path] | None = None, extra_env: dict | None = None,
                testcase: str | None = None) -> None:
