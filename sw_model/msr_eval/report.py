@@ -50,8 +50,9 @@ repository's `sw_model` installed, `pip install -e sw_model`, and the renderer l
 same path or `MSR_RENDER_LIB`). The records are the same, bit for bit, as a serial run's
 (`scripts/tests/test_eval.py` compares a two-worker LocalCluster with the serial sweep); only
 the wall-time fields differ. References and records are cached per scene and mode under
-`out/eval/cache/` (keyed by the renderer library and the code), so an interrupted run
-resumes. The speed-up table is measured afterwards in the main process, alone. Code:
+`out/eval/cache/` (keyed by the renderer library and the code); a scene and mode's records
+are written as soon as its settings and key metrics are in (the key metrics run ahead of later
+pairs' settings), so an interrupted run keeps every finished pair and resumes from there. The speed-up table is measured afterwards in the main process, alone. Code:
 `scripts/eval.py` (command line), `msr_eval.metrics`, `msr_eval.sweep`, `msr_eval.report`.
 """
 
