@@ -10,7 +10,7 @@
 //          while the read data pass the block RAM and the register beside it
 //   AB   : the issued context's read data, registered
 //   msr_decision_pipe (6 stages): decide and interpolate; never stalls: a position is issued
-//          only with a slot of the 8-entry output buffer reserved (credits)
+//          only with a slot of the 16-entry output buffer reserved (credits)
 //   out  : interpolate -> write {16+k, C} into the context's buffer;
 //          trace -> tag (msr_tag_pool) -> render request {x0+x, y0+y, tag} (spill register)
 //   rsp  : spill register -> R1 (tag looked up, checked in flight) -> write {k, rgb} into
