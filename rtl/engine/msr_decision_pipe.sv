@@ -7,7 +7,7 @@
 // Six register stages, each under 30 levels of generic logic, so the unit closes timing far
 // above the engine's clock on an FPGA and fits a short cycle on an ASIC:
 //   S0  inputs registered; g - o
-//   S1  per-channel |A - B|, thr * g, (g - o) * A and o * B
+//   S1  per-channel |A - B|, thr * g, (g - o) * A and o * B (4-bit factors: adds, no multiplier)
 //   S2  max and sum of the differences, numerator (g - o) * A + o * B + floor(g / 2)
 //   S3  d << log2(n_k) against thr * g; numerator times the four 4-bit pieces of RECIP[g]
 //   S4  pieces summed in pairs: p0 + p1 << 4, p2 + p3 << 4
@@ -46,6 +46,8 @@ module msr_decision_pipe
   localparam int unsigned NUM_W  = 11;             // numerator <= 8 * 255 + 4 = 2044
   localparam int unsigned LHS_W  = DIFF_W + 3;     // d << 3
   localparam int unsigned SHIFT  = 14;
+  localparam int unsigned PIECE_W = 4;
+  localparam int unsigned PART_W  = NUM_W + PIECE_W;  // 15: an 11-bit value times 4 bits
 
   // ceil(2^SHIFT / g); entries 0 and 1 are never used (g >= 2 wherever C is used).
   function automatic logic [15:0] recip(gap_t g);
@@ -63,6 +65,19 @@ module msr_decision_pipe
 
   function automatic chan_t absdiff(chan_t x, chan_t y);
     return (x > y) ? x - y : y - x;
+  endfunction
+
+  // m * x for a 4-bit m, as two levels of adds of shifted copies of x. Every product in this
+  // pipeline has a 4-bit factor, and written this way it stays in the logic next to its
+  // registers: an FPGA multiplier block sits in a fixed row, and the wires to and from it
+  // were 8 of the 12.7 ns of the placed top's worst path (docs/handoff.md section 6).
+  function automatic logic [PART_W-1:0] mul4(logic [PIECE_W-1:0] m, logic [NUM_W-1:0] x);
+    logic [PART_W-1:0] t0, t1, t2, t3;
+    t0 = m[0] ? PART_W'(x)       : '0;
+    t1 = m[1] ? PART_W'(x) << 1  : '0;
+    t2 = m[2] ? PART_W'(x) << 2  : '0;
+    t3 = m[3] ? PART_W'(x) << 3  : '0;
+    return (t0 + t1) + (t2 + t3);
   endfunction
 
   logic advance;
@@ -108,13 +123,13 @@ module msr_decision_pipe
       s1_abs_q[2] <= absdiff(s0_a_q.r, s0_b_q.r);
       s1_abs_q[1] <= absdiff(s0_a_q.g, s0_b_q.g);
       s1_abs_q[0] <= absdiff(s0_a_q.b, s0_b_q.b);
-      s1_pa_q[2]  <= PROD_W'(s0_gmo_q) * PROD_W'(s0_a_q.r);
-      s1_pa_q[1]  <= PROD_W'(s0_gmo_q) * PROD_W'(s0_a_q.g);
-      s1_pa_q[0]  <= PROD_W'(s0_gmo_q) * PROD_W'(s0_a_q.b);
-      s1_pb_q[2]  <= PROD_W'(s0_off_q) * PROD_W'(s0_b_q.r);
-      s1_pb_q[1]  <= PROD_W'(s0_off_q) * PROD_W'(s0_b_q.g);
-      s1_pb_q[0]  <= PROD_W'(s0_off_q) * PROD_W'(s0_b_q.b);
-      s1_rhs_q    <= PROD_W'(s0_thr_q) * PROD_W'(s0_gap_q);
+      s1_pa_q[2]  <= PROD_W'(mul4(s0_gmo_q, NUM_W'(s0_a_q.r)));
+      s1_pa_q[1]  <= PROD_W'(mul4(s0_gmo_q, NUM_W'(s0_a_q.g)));
+      s1_pa_q[0]  <= PROD_W'(mul4(s0_gmo_q, NUM_W'(s0_a_q.b)));
+      s1_pb_q[2]  <= PROD_W'(mul4(s0_off_q, NUM_W'(s0_b_q.r)));
+      s1_pb_q[1]  <= PROD_W'(mul4(s0_off_q, NUM_W'(s0_b_q.g)));
+      s1_pb_q[0]  <= PROD_W'(mul4(s0_off_q, NUM_W'(s0_b_q.b)));
+      s1_rhs_q    <= PROD_W'(mul4(s0_gap_q, NUM_W'(s0_thr_q)));
       s1_metric_q <= s0_metric_q;
       s1_nshift_q <= s0_nshift_q;
       s1_gap_q    <= s0_gap_q;
@@ -155,9 +170,7 @@ module msr_decision_pipe
   // ---- S3: the numerator times four 4-bit pieces of RECIP[g] -----------------------------------
   // No stage holds more than an 11 x 4 product or a 15-bit sum: both are under 30 levels of
   // generic logic (an 11 x 7 product is 34), which is what an ASIC clock of several hundred
-  // MHz asks for; the FPGA maps the products to LUTs or multiplier blocks as it likes.
-  localparam int unsigned PIECE_W = 4;
-  localparam int unsigned PART_W  = NUM_W + PIECE_W;          // 15: num * 4-bit piece
+  // MHz asks for; mul4 keeps the products out of the FPGA's multiplier blocks.
   localparam int unsigned PAIR_W  = PART_W + PIECE_W;         // 19: p0 + p1 << 4
   localparam int unsigned OUT_MSB = SHIFT + 8;                 // bits 14..21 hold C
   logic                        s3_valid_q;
@@ -172,8 +185,7 @@ module msr_decision_pipe
       s3_d_q      <= s2_d_q;
       for (int unsigned c = 0; c < 3; c++) begin
         for (int unsigned k = 0; k < 4; k++) begin
-          s3_part_q[c][k] <= PART_W'(s2_num_q[c]) *
-                             PART_W'(s2_recip_q[PIECE_W*k +: PIECE_W]);
+          s3_part_q[c][k] <= mul4(s2_recip_q[PIECE_W*k +: PIECE_W], s2_num_q[c]);
         end
       end
       s3_user_q   <= s2_user_q;

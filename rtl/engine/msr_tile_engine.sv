@@ -348,15 +348,20 @@ module msr_tile_engine
   // ~12 clocks; 16 (the next power of two) keeps one grant per clock.
   localparam int unsigned OUT_DEPTH = 16;
 
+  // trace is formed before the output buffer, so the tag allocation below starts at a register.
   typedef struct packed {
-    logic  interp;
+    logic  trace;
     rgb_t  rgb;
     side_t side;
   } result_t;
 
-  logic    pv_valid, pv_interp, out_valid, out_interp, out_ready, ob_ready;
+  logic    pv_valid, pv_interp, out_valid, out_ready, ob_ready;
   logic    ob_valid, os_ready;
-  side_t   pv_side, out_side;
+  side_t   pv_side;
+  // out_side.init is folded into out_result.trace before the buffer; the rest is used.
+  /* verilator lint_off UNUSEDSIGNAL */
+  side_t   out_side;
+  /* verilator lint_on UNUSEDSIGNAL */
   rgb_t    pv_rgb, out_rgb;
   result_t pv_result, ob_result, out_result;
   logic [$clog2(OUT_DEPTH):0] credit_q, ob_count;
@@ -390,7 +395,7 @@ module msr_tile_engine
     .user_o   (pv_side)
   );
 
-  assign pv_result = '{interp: pv_interp, rgb: pv_rgb, side: pv_side};
+  assign pv_result = '{trace: pv_side.init || !pv_interp, rgb: pv_rgb, side: pv_side};
 
   msr_fifo #(
     .WIDTH ($bits(result_t)),
@@ -423,7 +428,6 @@ module msr_tile_engine
     .data_o  (out_result)
   );
 
-  assign out_interp = out_result.interp;
   assign out_rgb    = out_result.rgb;
   assign out_side   = out_result.side;
 
@@ -460,7 +464,7 @@ module msr_tile_engine
 
   assign req_in = '{x: out_side.gx, y: out_side.gy, tag: free_tag};
 
-  assign out_trace = out_side.init || !out_interp;
+  assign out_trace = out_result.trace;
   assign out_write = out_valid && !out_trace;
   assign out_ready = !out_trace || (tag_avail && req_in_ready);
   assign alloc_tag = out_valid && out_trace && tag_avail && req_in_ready;

@@ -28,6 +28,11 @@ module msr_tile_sram #(
     $fatal(1, "msr_tile_sram: DEPTH %0d does not fit ADDR_W %0d", DEPTH, ADDR_W);
   end
 
+  // no_rw_check: a read of the word written in the same cycle is don't-care (see above), so a
+  // synthesis tool maps the ports straight onto the block RAM. Without it Yosys emulates a
+  // defined collision result: ~100 flip-flops and a multiplexer behind the RAM's output per
+  // buffer, in the path the block RAM's slow clock-to-output already dominates.
+  (* no_rw_check *)
   logic [DATA_W-1:0] mem_q [DEPTH];
 
   always_ff @(posedge clk_i) begin

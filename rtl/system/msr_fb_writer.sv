@@ -426,8 +426,8 @@ module msr_fb_writer import msr_pkg::*; #(
   endfunction
 
   // Row address of plane p (0 pixels, 1 codes):
-  //   S0 the arbiter's pick; S1 the picked row; S1.5 / S2 six addends (four stride multiples,
-  //   base, x0 term) compressed to a carry-save pair in three 3:2 levels; S3, S4, S5 the carry-propagate add in segments [11:0], [21:12], [31:22]
+  //   S0 the arbiter's pick; S1 the picked row; S1m the four stride multiples; S1.5 / S2 six
+  //   addends (the multiples, base, x0 term) compressed to a carry-save pair in three 3:2 levels; S3, S4, S5 the carry-propagate add in segments [11:0], [21:12], [31:22]
   //   with the carry registered between them; beside S4 / S5 the plane's burst shape from the
   //   low 12 bits (first-beat offset, beats, the 4 KiB split), with no add wider than 12 bits.
   typedef struct packed {
@@ -441,10 +441,12 @@ module msr_fb_writer import msr_pkg::*; #(
   logic   s0_v_q;                               // S0: the arbiter's pick, registered
   in_t    s0_in_q;
   buf_t   s0_buf_q;
-  logic   s1_v_q, s15_v_q, s2_v_q, s3_v_q, s4_v_q, s5_v_q;
-  in_t    s15_in_q;
-  buf_t   s15_buf_q;
-  lcoord_t s15_l_q;
+  logic   s1_v_q, s1m_v_q, s15_v_q, s2_v_q, s3_v_q, s4_v_q, s5_v_q;
+  in_t    s1m_in_q, s15_in_q;
+  buf_t   s1m_buf_q, s15_buf_q;
+  lcoord_t s1m_l_q, s15_l_q;
+  coord_t s1m_x0_q;
+  logic   [1:0][3:0][31:0] s1m_m_q, s1m_m_d;     // per plane: the four stride multiples
   cs_t    [1:0][1:0] s15_cs_q, s15_cs_d;         // per plane: two carry-save pairs
   logic   s5_take;
   in_t    s1_in_q, s2_in_q, s3_in_q, s4_in_q, s5_in_q;
@@ -489,7 +491,7 @@ module msr_fb_writer import msr_pkg::*; #(
 
   // Rows between the arbiter and the end of the S5 queue, at most S5_D: a row is taken only
   // while that count is below S5_D (a compare of a register), so the queue always has room.
-  localparam int unsigned S5_D = 8;   // >= the 6 stages S0..S4 + 1 for a row per clock
+  localparam int unsigned S5_D = 8;   // >= the 7 stages S0..S4 + 1 for a row per clock
   logic [$clog2(S5_D):0] s5_credit_q;
   assign arb_ready = (s5_credit_q != ($clog2(S5_D) + 1)'(S5_D));
 
@@ -507,6 +509,7 @@ module msr_fb_writer import msr_pkg::*; #(
     if (!rst_ni) begin
       s0_v_q <= 1'b0;
       s1_v_q <= 1'b0;
+      s1m_v_q <= 1'b0;
       s15_v_q <= 1'b0;
       s2_v_q <= 1'b0;
       s3_v_q <= 1'b0;
@@ -514,6 +517,7 @@ module msr_fb_writer import msr_pkg::*; #(
     end else if (clear_i) begin
       s0_v_q <= 1'b0;
       s1_v_q <= 1'b0;
+      s1m_v_q <= 1'b0;
       s15_v_q <= 1'b0;
       s2_v_q <= 1'b0;
       s3_v_q <= 1'b0;
@@ -521,7 +525,8 @@ module msr_fb_writer import msr_pkg::*; #(
     end else begin
       s0_v_q  <= arb_take;
       s1_v_q  <= s0_v_q;
-      s15_v_q <= s1_v_q;
+      s1m_v_q <= s1_v_q;
+      s15_v_q <= s1m_v_q;
       s2_v_q  <= s15_v_q;
       s3_v_q  <= s2_v_q;
       s4_v_q  <= s3_v_q;
@@ -537,9 +542,14 @@ module msr_fb_writer import msr_pkg::*; #(
     s1_y_q    <= meta_y_q[s0_in_q][s0_buf_q];
     s1_x0_q   <= meta_x0_q[s0_in_q][s0_buf_q];
     s1_l_q    <= meta_l_q[s0_in_q][s0_buf_q];
-    s15_in_q  <= s1_in_q;
-    s15_buf_q <= s1_buf_q;
-    s15_l_q   <= s1_l_q;
+    s1m_in_q  <= s1_in_q;
+    s1m_buf_q <= s1_buf_q;
+    s1m_l_q   <= s1_l_q;
+    s1m_x0_q  <= s1_x0_q;
+    s1m_m_q   <= s1m_m_d;
+    s15_in_q  <= s1m_in_q;
+    s15_buf_q <= s1m_buf_q;
+    s15_l_q   <= s1m_l_q;
     s15_cs_q  <= s15_cs_d;
     s2_in_q   <= s15_in_q;
     s2_buf_q  <= s15_buf_q;
@@ -573,12 +583,19 @@ module msr_fb_writer import msr_pkg::*; #(
       logic [MA_W-1:0] mb;
       // S2: six addends to a carry-save pair
       st   = (p != 0) ? src_stride_i : fb_stride_i;
-      m0   = mult8(s1_y_q[2:0], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]);
-      m1   = mult8(s1_y_q[5:3], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 3;
-      m2   = mult8(s1_y_q[8:6], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 6;
-      m3   = mult8(s1_y_q[11:9], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 9;
+      // S1m: the stride multiples, registered: each y bit selects in 64 multiplexers, and
+      // that fan-out alone was most of the glue's worst placed path (10.4 ns) when the
+      // carry-save level sat behind it in the same clock.
+      s1m_m_d[p][0] = mult8(s1_y_q[2:0], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]);
+      s1m_m_d[p][1] = mult8(s1_y_q[5:3], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 3;
+      s1m_m_d[p][2] = mult8(s1_y_q[8:6], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 6;
+      s1m_m_d[p][3] = mult8(s1_y_q[11:9], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 9;
+      m0   = s1m_m_q[p][0];
+      m1   = s1m_m_q[p][1];
+      m2   = s1m_m_q[p][2];
+      m3   = s1m_m_q[p][3];
       base = (p != 0) ? src_base_i : fb_base_i;
-      xt   = (p != 0) ? {20'b0, s1_x0_q} : {18'b0, s1_x0_q, 2'b0};
+      xt   = (p != 0) ? {20'b0, s1m_x0_q} : {18'b0, s1m_x0_q, 2'b0};
       s15_cs_d[p][0] = csa(m0, m1, m2);
       s15_cs_d[p][1] = csa(m3, base, xt);
       c1   = s15_cs_q[p][0];
@@ -914,7 +931,7 @@ module msr_fb_writer import msr_pkg::*; #(
   assign m_axi_wlast  = wlast_q;
 
   assign idle_o = (full_q == '0) && (wr_v_q == '0) && (wr2_busy == '0) &&
-                  !s0_v_q && !s1_v_q && !s15_v_q && !s2_v_q && !s3_v_q && !s4_v_q &&
+                  !s0_v_q && !s1_v_q && !s1m_v_q && !s15_v_q && !s2_v_q && !s3_v_q && !s4_v_q &&
                   !s5_v_q &&
                   (blv_q == '0) && !aw_sp_valid && !wq_valid && !w1_v_q && !wv_q &&
                   (budget_q == '0);
