@@ -7,38 +7,25 @@
 // the slave is free within AXI4 (B only for a completed burst, held until taken); the engine is
 // a legal one: whole tiles, row-major, T-aligned origins inside the frame, the last flag on a
 // tile's last pixel, valid held until taken, codes below 32.
+`include "../checkers/msr_chk_axi.svh"
+
 module msr_fb_writer_fv import msr_pkg::*; (
   input logic        clk_i,
   input logic        rst_ni,
   input logic [5:0]  width_i,       // frame width 1..63 (small: a short proof)
   input tile_size_e  tile_i,
-  input logic [31:0] fb_base_i,
-  input logic [31:0] fb_stride_i,
+  input logic [31:0] fb_base_i, fb_stride_i, src_base_i, src_stride_i,
   input logic        src_en_i,
-  input logic [31:0] src_base_i,
-  input logic [31:0] src_stride_i,
   input logic        pix_valid_i,
   input rgb_t        pix_rgb_i,
   input logic [4:0]  pix_src_i,
-  input logic [5:0]  next_tx_i,     // the next tile's origin (T-aligned, inside the frame)
-  input logic [5:0]  next_ty_i,
-  input logic [5:0]  next_th_i,     // and its height, 1..T
-  input logic        awready_i,
-  input logic        wready_i,
-  input logic        bvalid_i,
-  input logic [1:0]  bresp_i
+  // the next tile's origin (T-aligned, inside the frame) and its height, 1..T
+  input logic [5:0]  next_tx_i, next_ty_i, next_th_i,
+  // the write port: the slave's signals free (BID tied to 0 below), the master's watched
+  `MSR_AXI4_W_PORTS(output, input, 32, 32, 4)
 );
   localparam int unsigned DW = 32;
-  logic        pix_ready;
-  logic [3:0]  awid;
-  logic [31:0] awaddr;
-  logic [7:0]  awlen;
-  logic [2:0]  awsize, awprot;
-  logic [1:0]  awburst;
-  logic        awlock, awvalid, wlast, wvalid, bready, idle, bresp_err, b_unexp;
-  logic [3:0]  awcache;
-  logic [DW-1:0]   wdata;
-  logic [DW/8-1:0] wstrb;
+  logic        pix_ready, idle, bresp_err, b_unexp;
   logic [0:0]  tile_done;
   logic [31:0] bresp_addr;
   coord_t      pix_x, pix_y;
@@ -50,24 +37,17 @@ module msr_fb_writer_fv import msr_pkg::*; (
     .src_stride_i,
     .pix_valid_i (pix_valid_i), .pix_ready_o (pix_ready), .pix_x_i (pix_x), .pix_y_i (pix_y),
     .pix_rgb_i (pix_rgb_i), .pix_src_i (src_t'(pix_src_i)), .pix_last_i (pix_last),
-    .m_axi_awid (awid), .m_axi_awaddr (awaddr), .m_axi_awlen (awlen), .m_axi_awsize (awsize),
-    .m_axi_awburst (awburst), .m_axi_awlock (awlock), .m_axi_awcache (awcache),
-    .m_axi_awprot (awprot), .m_axi_awvalid (awvalid), .m_axi_awready (awready_i),
-    .m_axi_wdata (wdata), .m_axi_wstrb (wstrb), .m_axi_wlast (wlast), .m_axi_wvalid (wvalid),
-    .m_axi_wready (wready_i), .m_axi_bid ('0), .m_axi_bresp (bresp_i), .m_axi_bvalid (bvalid_i),
-    .m_axi_bready (bready), .idle_o (idle), .tile_done_o (tile_done), .bresp_err_o (bresp_err),
+    `MSR_AXI4_W_CONN(m_axi_, ), .idle_o (idle), .tile_done_o (tile_done), .bresp_err_o (bresp_err),
     .bresp_addr_o (bresp_addr), .b_unexpected_o (b_unexp)
   );
 
   logic [8:0] viol;
   msr_axi4_w_checker #(.ADDR_W(32), .DATA_W(DW), .ID_W(4), .MAX_OUT(4)) u_chk (
-    .clk_i, .rst_ni, .awid, .awaddr, .awlen, .awsize, .awburst, .awlock, .awcache, .awprot,
-    .awvalid, .awready (awready_i), .wdata, .wstrb, .wlast, .wvalid, .wready (wready_i),
-    .bid ('0), .bresp (bresp_i), .bvalid (bvalid_i), .bready, .viol_o (viol)
+    .clk_i, .rst_ni, `MSR_AXI4_W_CONN(, ), .viol_o (viol)
   );
 
-  logic init_q = 1'b1;
-  always_ff @(posedge clk_i) init_q <= 1'b0;
+  logic init_q;
+  msr_fv_init #(.ONCE(1'b1)) u_init (.clk_i, .rst_ni, .init_o(init_q));
 
   // Configuration: legal (as msr_cfg_ctrl accepts it) and constant.
   logic [5:0] tsz;
@@ -110,12 +90,9 @@ module msr_fb_writer_fv import msr_pkg::*; (
   );
 
   always_comb begin
-    if (init_q) assume (!rst_ni);
-    else begin
-      assume (rst_ni);
+    if (!init_q)
       assume (fb_base_i == cfg_q[0] && fb_stride_i == cfg_q[1] && src_base_i == cfg_q[2]
               && src_stride_i == cfg_q[3] && width_i == w_q && tile_i == t_q && src_en_i == s_q);
-    end
     assume (tile_i != 2'd3 && width_i != '0);
     assume (fb_base_i[1:0] == '0 && fb_stride_i[1:0] == '0 && src_base_i[1:0] == '0
             && src_stride_i[1:0] == '0);
@@ -129,12 +106,13 @@ module msr_fb_writer_fv import msr_pkg::*; (
     assume (7'(next_ty_i) + 7'(next_th_i) <= 7'd63);
     // valid held with its pixel until taken
     assume (!pix_viol);
-    // the slave: B held until taken, none without a completed burst (checker rules 2 and 7)
-    assume (!viol[2] && !viol[7]);
+    // the slave: B held until taken, none without a completed burst (checker rules 2 and 7);
+    // one ID (the writer ignores BID)
+    assume (!viol[2] && !viol[7] && bid == '0);
   end
 
-  wire aw_hs = awvalid && awready_i;
-  wire w_hs  = wvalid && wready_i;
+  wire aw_hs = awvalid && awready;
+  wire w_hs  = wvalid && wready;
 
   // Non-vacuity: a tile taken, a burst accepted on AW (at step 11: the first W beats come
   // after the bounds that make formal can afford; tb/fb_writer covers whole bursts).

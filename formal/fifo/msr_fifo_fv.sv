@@ -6,13 +6,10 @@ module msr_fifo_fv #(
   parameter int unsigned WIDTH = 4,
   parameter int unsigned DEPTH = 4
 ) (
-  input logic             clk_i,
-  input logic             rst_ni,
-  input logic             flush_i,
-  input logic             valid_i,
+  input logic             clk_i, rst_ni, flush_i,
+  input logic             valid_i, ready_i,    // the producer's valid, the consumer's ready
   input logic [WIDTH-1:0] data_i,
-  input logic             ready_i,
-  input logic             track_i    // the solver picks the tracked word with this
+  input logic             track_i              // the solver picks the tracked word with this
 );
   localparam int unsigned PTR_W = $clog2(DEPTH);
 
@@ -25,9 +22,7 @@ module msr_fifo_fv #(
   );
 
   // Reset in the first cycle; afterwards reset may come at any time.
-  logic init_q = 1'b1;
-  always_ff @(posedge clk_i) init_q <= 1'b0;
-  always_comb if (init_q) assume (!rst_ni);
+  msr_fv_init u_init (.clk_i, .rst_ni, .init_o());
 
   wire push = valid_i && ready_o;
   wire pop  = valid_o && ready_i;

@@ -9,52 +9,30 @@
 // With LIVE set, the master always takes responses, and every request is answered within
 // four cycles.
 `include "msr_regs_map.svh"
+`include "../checkers/msr_chk_axi.svh"
 
 module msr_regs_fv #(
   parameter bit LIVE = 1'b0
 ) (
   input logic        clk_i,
   input logic        rst_ni,
-  input logic        awvalid,
-  input logic [6:0]  awaddr,
-  input logic [2:0]  awprot,
-  input logic        wvalid,
-  input logic [31:0] wdata,
-  input logic [3:0]  wstrb,
-  input logic        bready,
-  input logic        arvalid,
-  input logic [6:0]  araddr,
-  input logic [2:0]  arprot,
-  input logic        rready
+  `MSR_AXIL_PORTS(input, output, 7, 32)   // the master's signals free, the slave's watched
 );
-  logic        awready, wready, bvalid, arready, rvalid;
-  logic [1:0]  bresp, rresp;
-  logic [31:0] rdata;
   msr_regs_pkg::msr_regs__in_t  hwif_in;    // undriven: free every cycle
   msr_regs_pkg::msr_regs__out_t hwif_out;
 
   msr_regs dut (
     .clk (clk_i), .arst_n (rst_ni),
-    .s_axil_awready (awready), .s_axil_awvalid (awvalid), .s_axil_awaddr (awaddr),
-    .s_axil_awprot (awprot), .s_axil_wready (wready), .s_axil_wvalid (wvalid),
-    .s_axil_wdata (wdata), .s_axil_wstrb (wstrb), .s_axil_bready (bready),
-    .s_axil_bvalid (bvalid), .s_axil_bresp (bresp), .s_axil_arready (arready),
-    .s_axil_arvalid (arvalid), .s_axil_araddr (araddr), .s_axil_arprot (arprot),
-    .s_axil_rready (rready), .s_axil_rvalid (rvalid), .s_axil_rdata (rdata),
-    .s_axil_rresp (rresp), .hwif_in (hwif_in), .hwif_out (hwif_out)
+    `MSR_AXIL_CONN(s_axil_, ), .hwif_in (hwif_in), .hwif_out (hwif_out)
   );
 
   logic [7:0] viol;
   msr_axil_checker #(.ADDR_W(7), .DATA_W(32), .MAX_OUT(7)) u_chk (
-    .clk_i, .rst_ni, .awaddr, .awprot, .awvalid, .awready, .wdata, .wstrb, .wvalid, .wready,
-    .bresp, .bvalid, .bready, .araddr, .arprot, .arvalid, .arready, .rdata, .rresp, .rvalid,
-    .rready, .viol_o(viol)
+    .clk_i, .rst_ni, `MSR_AXIL_CONN(, ), .viol_o(viol)
   );
 
-  logic init_q = 1'b1;
-  always_ff @(posedge clk_i) init_q <= 1'b0;
+  msr_fv_init u_init (.clk_i, .rst_ni, .init_o());
   always_comb begin
-    if (init_q) assume (!rst_ni);
     // the master keeps AW, W and AR valid and stable until taken
     if (rst_ni) assume (!viol[0] && !viol[1] && !viol[3]);
     if (LIVE && rst_ni) assume (bready && rready);

@@ -24,9 +24,8 @@ module msr_rr_arb_fv #(
     .clk_i, .rst_ni, .clear_i, .req_i, .gnt_o, .idx_o, .valid_o, .ready_i
   );
 
-  logic init_q = 1'b1;
-  always_ff @(posedge clk_i) init_q <= 1'b0;
-  always_comb if (init_q) assume (!rst_ni);
+  logic init_q;
+  msr_fv_init u_init (.clk_i, .rst_ni, .init_o(init_q));
   // K is fixed for the whole run.
   logic [IDX_W-1:0] k_q;
   always_ff @(posedge clk_i) k_q <= k_i;
@@ -68,16 +67,14 @@ module msr_rr_arb_fv #(
   a_fair_dist: assert property (@(posedge clk_i) disable iff (!rst_ni) wait_q + k_dist <= N - 1);
 
   if (LOCK) begin : g_lock
-    logic           offered_q;
-    logic [N-1:0]   offered_gnt_q;
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        offered_q <= 1'b0; offered_gnt_q <= '0;
-      end else begin
-        offered_q     <= valid_o && !ready_i && !clear_i;
-        offered_gnt_q <= gnt_o;
-      end
-    end
+    // The grant offered and not taken last cycle (a clear counts as taken), registered by
+    // the handshake rule of the protocol checkers (rtl/checkers/msr_chk_stable.sv).
+    msr_chk_stable #(.W(N)) u_offered (
+      .clk_i, .rst_ni, .valid_i(valid_o), .ready_i(ready_i || clear_i), .payload_i(gnt_o),
+      .viol_o()
+    );
+    wire         offered_q     = u_offered.wait_q;
+    wire [N-1:0] offered_gnt_q = u_offered.payload_q;
     a_lock_hold: assert property (@(posedge clk_i) disable iff (!rst_ni)
                                   !(offered_q && (req_i & offered_gnt_q) != '0) || gnt_o == offered_gnt_q);
     a_lock_state: assert property (@(posedge clk_i) disable iff (!rst_ni)

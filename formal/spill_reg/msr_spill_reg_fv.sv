@@ -6,13 +6,10 @@
 module msr_spill_reg_fv #(
   parameter int unsigned WIDTH = 4
 ) (
-  input logic             clk_i,
-  input logic             rst_ni,
-  input logic             clear_i,
-  input logic             valid_i,
+  input logic             clk_i, rst_ni, clear_i,
+  input logic             valid_i, ready_i,    // the producer's valid, the consumer's ready
   input logic [WIDTH-1:0] data_i,
-  input logic             ready_i,
-  input logic             track_i
+  input logic             track_i              // the solver picks the tracked word with this
 );
   logic             ready_o, valid_o;
   logic [WIDTH-1:0] data_o;
@@ -21,9 +18,7 @@ module msr_spill_reg_fv #(
     .clk_i, .rst_ni, .clear_i, .valid_i, .ready_o, .data_i, .valid_o, .ready_i, .data_o
   );
 
-  logic init_q = 1'b1;
-  always_ff @(posedge clk_i) init_q <= 1'b0;
-  always_comb if (init_q) assume (!rst_ni);
+  msr_fv_init u_init (.clk_i, .rst_ni, .init_o());
 
   wire push = valid_i && ready_o;
   wire pop  = valid_o && ready_i;
@@ -40,17 +35,15 @@ module msr_spill_reg_fv #(
   );
 
   // Output held while stalled (the inline a_out_hold of msr_spill_reg.sv, restated): the
-  // word offered last cycle and not taken is offered again, unchanged, unless cleared.
-  logic             stall_q;
-  logic [WIDTH-1:0] stall_data_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      stall_q <= 1'b0; stall_data_q <= '0;
-    end else begin
-      stall_q      <= valid_o && !ready_i && !clear_i;
-      stall_data_q <= data_o;
-    end
-  end
+  // word offered last cycle and not taken is offered again, unchanged, unless cleared (the
+  // handshake rule of the protocol checkers, rtl/checkers/msr_chk_stable.sv; a clear counts
+  // as taking the word).
+  logic hold_viol;
+  msr_chk_stable #(.W(WIDTH)) u_hold (
+    .clk_i, .rst_ni, .valid_i(valid_o), .ready_i(ready_i || clear_i), .payload_i(data_o),
+    .viol_o(hold_viol)
+  );
+  wire stall_q = u_hold.wait_q;   // offered and not taken last cycle
 
   a_count:     assert property (@(posedge clk_i) disable iff (!rst_ni) ref_q <= 2);
   a_valid:     assert property (@(posedge clk_i) disable iff (!rst_ni) valid_o == (ref_q != 0));
@@ -58,8 +51,7 @@ module msr_spill_reg_fv #(
   a_trk_order: assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !(trk_q && trk_pos_q == 0) || (valid_o && data_o == trk_data_q));
   a_trk_inside: assert property (@(posedge clk_i) disable iff (!rst_ni) !trk_q || trk_pos_q < ref_q);
-  a_out_hold:  assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
-                                !stall_q || (valid_o && data_o == stall_data_q));
+  a_out_hold:  assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i) !hold_viol);
 
   // Induction strengtheners on the two entries.
   a_entries: assert property (@(posedge clk_i) disable iff (!rst_ni)

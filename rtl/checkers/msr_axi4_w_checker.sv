@@ -20,6 +20,7 @@
 // rtl/prim/msr_assert.svh, the rule of its MSR_ASSERT macros). The handshake rules (valid held,
 // payload stable) come from msr_chk_stable.sv, one instance a channel.
 `include "msr_assert.svh"
+`include "../checkers/msr_chk_axi.svh"
 // Verification IP, not design: no coverage points (make coverage reports the design's lines).
 /* verilator coverage_off */
 module msr_axi4_w_checker #(
@@ -28,28 +29,10 @@ module msr_axi4_w_checker #(
   parameter int unsigned ID_W    = 4,
   parameter int unsigned MAX_OUT = 16    // bursts the checker can track (power of two)
 ) (
-  input logic                clk_i,
-  input logic                rst_ni,
-  input logic [ID_W-1:0]     awid,
-  input logic [ADDR_W-1:0]   awaddr,
-  input logic [7:0]          awlen,
-  input logic [2:0]          awsize,
-  input logic [1:0]          awburst,
-  input logic                awlock,
-  input logic [3:0]          awcache,
-  input logic [2:0]          awprot,
-  input logic                awvalid,
-  input logic                awready,
-  input logic [DATA_W-1:0]   wdata,
-  input logic [DATA_W/8-1:0] wstrb,
-  input logic                wlast,
-  input logic                wvalid,
-  input logic                wready,
-  input logic [ID_W-1:0]     bid,
-  input logic [1:0]          bresp,
-  input logic                bvalid,
-  input logic                bready,
-  output logic [8:0]         viol_o
+  input logic       clk_i,
+  input logic       rst_ni,
+  `MSR_AXI4_W_PORTS(input, input, ADDR_W, DATA_W, ID_W),   // AW, W, B: passive
+  output logic [8:0] viol_o
 );
   localparam int unsigned PTR_W  = (MAX_OUT > 1) ? $clog2(MAX_OUT) : 1;
   localparam int unsigned SIZE_MAX = $clog2(DATA_W / 8);

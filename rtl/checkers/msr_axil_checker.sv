@@ -15,6 +15,7 @@
 // rtl/prim/msr_assert.svh, the rule of its MSR_ASSERT macros). The handshake rules (valid held,
 // payload stable) come from msr_chk_stable.sv, one instance a channel.
 `include "msr_assert.svh"
+`include "../checkers/msr_chk_axi.svh"
 // Verification IP, not design: no coverage points (make coverage reports the design's lines).
 /* verilator coverage_off */
 module msr_axil_checker #(
@@ -22,28 +23,10 @@ module msr_axil_checker #(
   parameter int unsigned DATA_W  = 32,
   parameter int unsigned MAX_OUT = 15    // requests per channel the checker can count
 ) (
-  input logic                clk_i,
-  input logic                rst_ni,
-  input logic [ADDR_W-1:0]   awaddr,
-  input logic [2:0]          awprot,
-  input logic                awvalid,
-  input logic                awready,
-  input logic [DATA_W-1:0]   wdata,
-  input logic [DATA_W/8-1:0] wstrb,
-  input logic                wvalid,
-  input logic                wready,
-  input logic [1:0]          bresp,
-  input logic                bvalid,
-  input logic                bready,
-  input logic [ADDR_W-1:0]   araddr,
-  input logic [2:0]          arprot,
-  input logic                arvalid,
-  input logic                arready,
-  input logic [DATA_W-1:0]   rdata,
-  input logic [1:0]          rresp,
-  input logic                rvalid,
-  input logic                rready,
-  output logic [7:0]         viol_o
+  input logic       clk_i,
+  input logic       rst_ni,
+  `MSR_AXIL_PORTS(input, input, ADDR_W, DATA_W),   // every AXI4-Lite signal, passive
+  output logic [7:0] viol_o
 );
   localparam int unsigned CNT_W = $clog2(MAX_OUT + 1);
   typedef logic [CNT_W-1:0] cnt_t;

@@ -19,13 +19,8 @@ module msr_chk_stable #(
   logic         wait_q;
   logic [W-1:0] payload_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      wait_q    <= 1'b0;
-      payload_q <= '0;
-    end else begin
-      wait_q    <= valid_i && !ready_i;
-      payload_q <= payload_i;
-    end
+    if (!rst_ni) {wait_q, payload_q} <= '0;
+    else         {wait_q, payload_q} <= {valid_i && !ready_i, payload_i};
   end
   assign viol_o = wait_q && !(valid_i && payload_i == payload_q);
 endmodule : msr_chk_stable

@@ -1,5 +1,6 @@
 #include "scenes.h"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <functional>
@@ -49,30 +50,29 @@ void cornell_shell(Scene &s) {
 
 void cornell_blocks(Scene &s) {
     int white = s.add_material(Material::diffuse(kCornellWhite));
-    auto block = [&](const float (*v)[3], int nquads) {
+    // A block of height h over its footprint c[0..3] ((x, z) corners): the top quad, then one
+    // side quad per footprint edge, from corner j to the corner before it (bottom, top, top,
+    // bottom), for j in the order of `sides` (the quads' order of the published box data).
+    auto block = [&](const float (&c)[4][2], float h, const std::array<int, 4> &sides) {
         Mesh m;
         m.material = white;
-        for (int q = 0; q < nquads; ++q) {
+        auto vertex = [&](int k, float y) { m.pos.push_back({c[k][0], y, c[k][1]}); };
+        auto quad = [&](int k0, float y0, int k1, float y1, int k2, float y2, int k3, float y3) {
             uint32_t b = uint32_t(m.pos.size());
-            for (int k = 0; k < 4; ++k) m.pos.push_back({v[4 * q + k][0], v[4 * q + k][1], v[4 * q + k][2]});
+            vertex(k0, y0);
+            vertex(k1, y1);
+            vertex(k2, y2);
+            vertex(k3, y3);
             m.idx.insert(m.idx.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
-        }
+        };
+        quad(0, h, 1, h, 2, h, 3, h);
+        for (int j : sides) quad(j, 0.f, j, h, (j + 3) % 4, h, (j + 3) % 4, 0.f);
         s.add_mesh(std::move(m));
     };
-    static const float short_block[20][3] = {
-        {130, 165, 65}, {82, 165, 225}, {240, 165, 272}, {290, 165, 114},
-        {290, 0, 114}, {290, 165, 114}, {240, 165, 272}, {240, 0, 272},
-        {130, 0, 65}, {130, 165, 65}, {290, 165, 114}, {290, 0, 114},
-        {82, 0, 225}, {82, 165, 225}, {130, 165, 65}, {130, 0, 65},
-        {240, 0, 272}, {240, 165, 272}, {82, 165, 225}, {82, 0, 225}};
-    static const float tall_block[20][3] = {
-        {423, 330, 247}, {265, 330, 296}, {314, 330, 456}, {472, 330, 406},
-        {423, 0, 247}, {423, 330, 247}, {472, 330, 406}, {472, 0, 406},
-        {472, 0, 406}, {472, 330, 406}, {314, 330, 456}, {314, 0, 456},
-        {314, 0, 456}, {314, 330, 456}, {265, 330, 296}, {265, 0, 296},
-        {265, 0, 296}, {265, 330, 296}, {423, 330, 247}, {423, 0, 247}};
-    block(short_block, 5);
-    block(tall_block, 5);
+    static const float short_block[4][2] = {{130, 65}, {82, 225}, {240, 272}, {290, 114}};
+    static const float tall_block[4][2] = {{423, 247}, {265, 296}, {314, 456}, {472, 406}};
+    block(short_block, 165.f, {3, 0, 1, 2});
+    block(tall_block, 330.f, {0, 3, 2, 1});
 }
 
 std::unique_ptr<Scene> cornell(std::string &) {

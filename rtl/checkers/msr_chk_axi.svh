@@ -1,0 +1,57 @@
+// AXI signal groups of the protocol checkers (rtl/checkers), written once: the checkers' port
+// lists, their binds (rtl/checkers/msr_checker_binds.sv) and the formal harnesses that drive
+// or watch them (formal/checkers, formal/regs, formal/fb_writer) all expand these macros, so a
+// channel's signals, widths and names are listed in one place.
+//
+// Include it as `include "../checkers/msr_chk_axi.svh"`: the flows find it through their
+// rtl/prim include folder (+incdir+rtl/prim of rtl/msr.f; the .sby files copy rtl/prim and
+// rtl/checkers headers to prim/ and checkers/ and read with -I prim).
+//
+// Names are the AXI names in lower case without a prefix (awaddr, wvalid, ...), as the
+// checkers' ports are named.
+//   `MSR_AXIL_PORTS(M, S, ADDR_W, DATA_W)          AXI4-Lite AW, W, B, AR, R
+//   `MSR_AXI4_W_PORTS(M, S, ADDR_W, DATA_W, ID_W)  AXI4 AW, W, B
+// declare the ports of a port list (no trailing comma): M is the direction of what the master
+// drives, S of what the slave drives (input, input for a passive checker; input, output for a
+// harness that plays the master of a slave under test; output, input for one that watches a
+// master under test).
+//   `MSR_AXIL_CONN(P, X)  `MSR_AXI4_W_CONN(P, X)
+// connect an instance's ports PORT<name> to the signals SIG<name> (either prefix may be empty:
+// `MSR_AXIL_CONN(, s_axil_) binds a checker to a slave's s_axil_* ports).
+`ifndef MSR_CHK_AXI_SVH
+`define MSR_CHK_AXI_SVH
+
+`define MSR_AXIL_PORTS(M, S, ADDR_W, DATA_W) \
+  M logic [ADDR_W-1:0] awaddr, araddr, M logic [2:0] awprot, arprot, \
+  M logic [DATA_W-1:0] wdata, M logic [DATA_W/8-1:0] wstrb, \
+  M logic awvalid, wvalid, bready, arvalid, rready, \
+  S logic [DATA_W-1:0] rdata, S logic [1:0] bresp, rresp, \
+  S logic awready, wready, bvalid, arready, rvalid
+
+// One signal, and one channel's VALID/READY pair (CH: aw, w, b, ar, r).
+`define MSR_AXI_SIG(P, X, N) .P``N(X``N)
+`define MSR_AXI_VR(P, X, CH) .P``CH``valid(X``CH``valid), .P``CH``ready(X``CH``ready)
+
+`define MSR_AXIL_CONN(P, X) \
+  `MSR_AXI_VR(P, X, aw), `MSR_AXI_VR(P, X, w), `MSR_AXI_VR(P, X, b), \
+  `MSR_AXI_VR(P, X, ar), `MSR_AXI_VR(P, X, r), `MSR_AXI_SIG(P, X, awaddr), \
+  `MSR_AXI_SIG(P, X, awprot), `MSR_AXI_SIG(P, X, wdata), `MSR_AXI_SIG(P, X, wstrb), \
+  `MSR_AXI_SIG(P, X, bresp), `MSR_AXI_SIG(P, X, araddr), `MSR_AXI_SIG(P, X, arprot), \
+  `MSR_AXI_SIG(P, X, rdata), `MSR_AXI_SIG(P, X, rresp)
+
+`define MSR_AXI4_W_PORTS(M, S, ADDR_W, DATA_W, ID_W) \
+  M logic [ID_W-1:0] awid, M logic [ADDR_W-1:0] awaddr, M logic [7:0] awlen, \
+  M logic [2:0] awsize, awprot, M logic [1:0] awburst, M logic [3:0] awcache, \
+  M logic [DATA_W-1:0] wdata, M logic [DATA_W/8-1:0] wstrb, \
+  M logic awlock, awvalid, wlast, wvalid, bready, \
+  S logic [ID_W-1:0] bid, S logic [1:0] bresp, S logic awready, wready, bvalid
+
+`define MSR_AXI4_W_CONN(P, X) \
+  `MSR_AXI_VR(P, X, aw), `MSR_AXI_VR(P, X, w), `MSR_AXI_VR(P, X, b), \
+  `MSR_AXI_SIG(P, X, awid), `MSR_AXI_SIG(P, X, awaddr), `MSR_AXI_SIG(P, X, awlen), \
+  `MSR_AXI_SIG(P, X, awsize), `MSR_AXI_SIG(P, X, awburst), `MSR_AXI_SIG(P, X, awlock), \
+  `MSR_AXI_SIG(P, X, awcache), `MSR_AXI_SIG(P, X, awprot), `MSR_AXI_SIG(P, X, wdata), \
+  `MSR_AXI_SIG(P, X, wstrb), `MSR_AXI_SIG(P, X, wlast), `MSR_AXI_SIG(P, X, bid), \
+  `MSR_AXI_SIG(P, X, bresp)
+
+`endif  // MSR_CHK_AXI_SVH
