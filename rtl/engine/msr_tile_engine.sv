@@ -11,7 +11,7 @@
 //   AB   : the issued context's read data, registered
 //   msr_decision_pipe (6 stages): decide and interpolate; never stalls: a position is issued
 //          only with a slot of the 16-entry output buffer reserved (credits)
-//   out  : interpolate -> write {16+k, C} into the context's buffer;
+//   out  : interpolate -> write {16+k, C} into the context's buffer (a registered port);
 //          trace -> tag (msr_tag_pool) -> render request {x0+x, y0+y, tag} (spill register)
 //   rsp  : spill register -> R1 (tag looked up, checked in flight) -> write {k, rgb} into
 //          the tag's context, unless the pipeline writes that context in the same cycle
@@ -582,15 +582,33 @@ module msr_tile_engine
 
   assign inflight_o = tags_inflight;
 
-  // ---- Writes: each context's one port -------------------------------------------------------
+  // ---- Writes: each context's one port, registered -----------------------------------------
+  // The write reaches its context a clock after the output or R2 decided it: the contexts sit
+  // across the engine's area, and the decision -> context path (its pending count's adder
+  // behind) was the placed top's worst path at 10.9 ns. Nothing waits on a write but the
+  // context itself (its pending count and pass barrier see the write when it lands), so the
+  // register only delays a barrier by one clock. A clear drops a write on its way.
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_write
     logic pipe_we, rsp_we;
-    assign pipe_we      = out_write && (out_side.ctx == ctx_t'(c));
-    assign rsp_we       = r2_write && (r2_entry_q.ctx == ctx_t'(c));
-    assign ctx_we[c]    = pipe_we || rsp_we;
-    assign ctx_waddr[c] = pipe_we ? {out_side.y, out_side.x} : r2_entry_q.addr;
-    assign ctx_wsrc[c]  = pipe_we ? src_interp(out_side.level) : src_traced(r2_entry_q.level);
-    assign ctx_wrgb[c]  = pipe_we ? out_rgb : r2_q.rgb;
+    assign pipe_we = out_write && (out_side.ctx == ctx_t'(c));
+    assign rsp_we  = r2_write && (r2_entry_q.ctx == ctx_t'(c));
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        ctx_we[c] <= 1'b0;
+      end else if (clear_i) begin
+        ctx_we[c] <= 1'b0;
+      end else begin
+        ctx_we[c] <= pipe_we || rsp_we;
+      end
+    end
+
+    // Data without an enable: it is used only with ctx_we.
+    always_ff @(posedge clk_i) begin
+      ctx_waddr[c] <= pipe_we ? {out_side.y, out_side.x} : r2_entry_q.addr;
+      ctx_wsrc[c]  <= pipe_we ? src_interp(out_side.level) : src_traced(r2_entry_q.level);
+      ctx_wrgb[c]  <= pipe_we ? out_rgb : r2_q.rgb;
+    end
   end
 
   // ---- Output streamer ----------------------------------------------------------------------
