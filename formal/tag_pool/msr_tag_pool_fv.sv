@@ -21,14 +21,14 @@ module msr_tag_pool_fv #(
   localparam int unsigned TAG_W = $clog2(N);
   typedef logic [TAG_W:0] cnt_t;
 
-  logic               avail_o, query_inflight_o, init_o;
+  logic               avail_o, query_inflight_o, init_o, out_q_o;
   logic [TAG_W-1:0]   tag_o;
   logic [ENTRY_W-1:0] query_entry_o;
   logic [TAG_W:0]     inflight_o;
 
   msr_tag_pool #(.N(N), .ENTRY_W(ENTRY_W)) dut (
     .clk_i, .rst_ni, .clear_i, .avail_o, .tag_o, .alloc_i, .entry_i, .query_tag_i,
-    .query_entry_o, .query_inflight_o, .release_tag_i, .release_i, .inflight_o, .init_o
+    .query_entry_o, .query_inflight_o, .release_tag_i, .release_i, .inflight_o, .out_q_o, .init_o
   );
 
   logic init_q = 1'b1;
@@ -69,6 +69,8 @@ module msr_tag_pool_fv #(
   a_no_double:  assert property (@(posedge clk_i) disable iff (!rst_ni) !avail_o || !ref_q[tag_o]);
   a_query:      assert property (@(posedge clk_i) disable iff (!rst_ni) query_inflight_o == ref_q[query_tag_i]);
   a_inflight:   assert property (@(posedge clk_i) disable iff (!rst_ni) inflight_o == ref_cnt);
+  // The registered "a tag may be out" flag never says none while the reference has one.
+  a_out_q:      assert property (@(posedge clk_i) disable iff (!rst_ni) out_q_o || ref_q == '0);
   a_conserved:  assert property (@(posedge clk_i) disable iff (!rst_ni)
                                  init_o || 32'(dut.fifo_count) + 32'(ref_cnt) == N);
   a_entry:      assert property (@(posedge clk_i) disable iff (!rst_ni)

@@ -30,6 +30,7 @@ module msr_tag_pool #(
   input  logic               release_i,     // ... free it
   // status
   output logic [TAG_W:0]     inflight_o,  // tags handed out and not yet answered
+  output logic               out_q_o,     // registered: some tag may be out (0: none is)
   output logic               init_o       // the free list is being filled
 );
 
@@ -40,6 +41,7 @@ module msr_tag_pool #(
   logic               init_q;
   logic [TAG_W:0]     init_cnt_q;
   logic [N-1:0]       inflight_q;
+  logic               out_q;
   logic [ENTRY_W-1:0] table_q [N];
   logic               fifo_valid, fifo_ready;
   logic [TAG_W:0]     fifo_count;
@@ -68,17 +70,24 @@ module msr_tag_pool #(
   // (formal/tag_pool checks it against a reference count).
   assign inflight_o       = init_q ? '0 : (TAG_W+1)'(N) - fifo_count;
   assign init_o           = init_q;
+  // A register the controller's drain check can read across the die: set while a tag is in
+  // flight or was taken last clock, so a clear out_q_o proves no tag is out now (a tag only
+  // leaves the list by alloc_i; a_out_covers checks it).
+  assign out_q_o          = out_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       init_q         <= 1'b1;
       init_cnt_q     <= '0;
       inflight_q     <= '0;
+      out_q          <= 1'b0;
     end else if (clear_i) begin
       init_q         <= 1'b1;
       init_cnt_q     <= '0;
       inflight_q     <= '0;
+      out_q          <= 1'b0;
     end else begin
+      out_q          <= (inflight_q != '0) || alloc_i;
       if (init_q) begin
         init_cnt_q <= init_cnt_q + 1'b1;
         if (32'(init_cnt_q) == N - 1) init_q <= 1'b0;
@@ -98,6 +107,7 @@ module msr_tag_pool #(
   `MSR_ASSERT(a_release_inflight, release_i |-> inflight_q[release_tag_i] && !init_q)
   `MSR_ASSERT(a_no_overflow, (init_q || release_i) |-> fifo_ready)
   `MSR_ASSERT(a_conserved, !init_q |-> $countones(inflight_q) == 32'(inflight_o))
+  `MSR_ASSERT(a_out_covers, !out_q |-> inflight_q == '0)
   `MSR_COVER(c_all_inflight, inflight_o == (TAG_W+1)'(N))
   /* verilator lint_on SYNCASYNCNET */
 

@@ -28,7 +28,8 @@
 // Render responses are checked: one whose tag is not in flight (stale, duplicate, invented)
 // is dropped and counted (rsp_drop_o pulses); nothing is written and no tag is freed twice.
 // inflight_o counts tags handed out and not yet answered (a request waiting for req_ready_i
-// counts as in flight).
+// counts as in flight); tags_out_o is a register that is clear only when none is (the top's
+// drain check reads it across the die).
 `include "msr_assert.svh"
 
 module msr_tile_engine
@@ -66,7 +67,8 @@ module msr_tile_engine
   output logic             pix_last_o,     // last pixel of the tile
   output logic             busy_o,         // tile accepted and not yet fully emitted, or tags being reset
   output logic             rsp_drop_o,     // pulse: a response whose tag was not in flight was dropped
-  output logic [$clog2(MAX_OUTSTANDING):0] inflight_o  // render requests in flight (for the top's soft reset / perf)
+  output logic [$clog2(MAX_OUTSTANDING):0] inflight_o, // render requests in flight (tests, waves)
+  output logic             tags_out_o      // registered: a request may be in flight (0: none is)
   // verilog_lint: waive-stop line-length
 );
 
@@ -577,6 +579,7 @@ module msr_tile_engine
     .release_tag_i    (r2_q.tag),
     .release_i        (r2_write),
     .inflight_o       (tags_inflight),
+    .out_q_o          (tags_out_o),
     .init_o           (tags_init)
   );
 

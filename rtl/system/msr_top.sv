@@ -73,7 +73,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   input  logic [1:0]        m_axi_bresp,
   input  logic              m_axi_bvalid,
   output logic              m_axi_bready,
-  // Interrupt: (STATUS.DONE or STATUS.CFG_ERR) while CTRL.IRQ_EN.
+  // Interrupt: (STATUS.DONE, CFG_ERR or WDOG) while CTRL.IRQ_EN; registered, a clock after them.
   output logic              irq_o,
   // Debug (simulation and bring-up; no function): tile hand-out and tile completion.
   output logic              dbg_desc_fire_o,    // a tile goes to an engine this clock
@@ -191,9 +191,17 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   assign hwif_in.STATUS.CFG_ERR.hwclr = done_clr;
   assign hwif_in.STATUS.WDOG.hwset = wdog_set;
   assign hwif_in.STATUS.WDOG.hwclr = done_clr;
-  assign irq_o = hwif_out.CTRL.IRQ_EN.value &&
-                 (hwif_out.STATUS.DONE.value || hwif_out.STATUS.CFG_ERR.value ||
-                  hwif_out.STATUS.WDOG.value);
+  // The interrupt leaves from a flip-flop of its own, a clock after STATUS: the pin is far
+  // from the register block, and without it the STATUS bits were pulled towards the pin and
+  // the register block's write decode into them set the glue's clock.
+  logic irq_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) irq_q <= 1'b0;
+    else         irq_q <= hwif_out.CTRL.IRQ_EN.value &&
+                          (hwif_out.STATUS.DONE.value || hwif_out.STATUS.CFG_ERR.value ||
+                           hwif_out.STATUS.WDOG.value);
+  end
+  assign irq_o = irq_q;
 
   always_comb begin
     rsp_drop_n = 5'(bad_eid);
@@ -271,8 +279,10 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   coord_t [NUM_ENGINES-1:0] eng_pix_x, eng_pix_y;
   rgb_t   [NUM_ENGINES-1:0] eng_pix_rgb;
   src_t   [NUM_ENGINES-1:0] eng_pix_src;
-  logic   [NUM_ENGINES-1:0][ETAG_W:0] eng_inflight;
-  logic   [NUM_ENGINES-1:0] eng_inflight_any;
+  logic   [NUM_ENGINES-1:0] eng_tags_out;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic   [NUM_ENGINES-1:0][ETAG_W:0] eng_inflight;   // for waves; the drain reads eng_tags_out
+  /* verilator lint_on UNUSEDSIGNAL */
 
   for (genvar i = 0; i < NUM_ENGINES; i++) begin : g_engine
     // A register slice per engine on the tile hand-off: the generator picks among the engines'
@@ -322,9 +332,9 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .pix_last_o   (eng_pix_last[i]),
       .busy_o       (eng_busy[i]),
       .rsp_drop_o   (eng_rsp_drop[i]),
-      .inflight_o   (eng_inflight[i])
+      .inflight_o   (eng_inflight[i]),
+      .tags_out_o   (eng_tags_out[i])
     );
-    assign eng_inflight_any[i] = (eng_inflight[i] != '0);
   end
 
   // ---- Render mux ---------------------------------------------------------------------------------
@@ -360,8 +370,10 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .bad_eid_o       (bad_eid)
   );
 
-  // Every engine's tags are home (queued and offered requests count as in flight).
-  assign rnd_idle = (eng_inflight_any == '0);
+  // Every engine's tags are home (queued and offered requests count as in flight). Each
+  // engine's flag is a register (a clock late in clearing, never early), so the drain check
+  // starts at flip-flops and not at the tag pools' counters across the die.
+  assign rnd_idle = (eng_tags_out == '0);
 
   // ---- Pixel path: every engine has its own writer input (no arbitration) -----------------
   // A register slice per engine: the engines sit across the die from the writer, whose input
