@@ -3,6 +3,8 @@
 +incdir+rtl/prim
 rtl/msr_pkg.sv
 rtl/prim/msr_lzc.sv
+rtl/prim/msr_clr_reg.sv
+rtl/prim/msr_seg_add.sv
 rtl/prim/msr_rr_arb.sv
 rtl/prim/msr_fifo.sv
 rtl/prim/msr_spill_reg.sv

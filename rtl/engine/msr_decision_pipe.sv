@@ -234,30 +234,15 @@ module msr_decision_pipe
   end
 
   // ---- Valid bits ------------------------------------------------------------------------------
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      s0_valid_q <= 1'b0;
-      s1_valid_q <= 1'b0;
-      s2_valid_q <= 1'b0;
-      s3_valid_q <= 1'b0;
-      s4_valid_q <= 1'b0;
-      valid_o    <= 1'b0;
-    end else if (clear_i) begin
-      s0_valid_q <= 1'b0;
-      s1_valid_q <= 1'b0;
-      s2_valid_q <= 1'b0;
-      s3_valid_q <= 1'b0;
-      s4_valid_q <= 1'b0;
-      valid_o    <= 1'b0;
-    end else if (advance) begin
-      s0_valid_q <= valid_i;
-      s1_valid_q <= s0_valid_q;
-      s2_valid_q <= s1_valid_q;
-      s3_valid_q <= s2_valid_q;
-      s4_valid_q <= s3_valid_q;
-      valid_o    <= s4_valid_q;
-    end
-  end
+  // One shift register: every stage's valid bit moves on when the pipeline advances.
+  msr_clr_reg #(.WIDTH(6)) u_valid (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (advance),
+    .d_i     ({s4_valid_q, s3_valid_q, s2_valid_q, s1_valid_q, s0_valid_q, valid_i}),
+    .q_o     ({valid_o, s4_valid_q, s3_valid_q, s2_valid_q, s1_valid_q, s0_valid_q})
+  );
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_out_hold, valid_o && !ready_i |=> valid_o &&

@@ -459,11 +459,6 @@ module msr_level_ctrl
   end
 
   logic       out_first_q;
-  lcoord_t    out_x_q, out_y_q, out_ax_q, out_ay_q, out_bx_q, out_by_q;
-  gap_t       out_gap_q, out_off_q;
-  level_t     out_level_q;
-  logic [1:0] out_nshift_q;
-  dir_e       out_dir_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -518,32 +513,21 @@ module msr_level_ctrl
       ry_q     <= 3'(lcoord_t'(h_i - 1'b1) & ((lcoord_t'(1) << levels_i) - 1'b1));
     end
     if (advance) begin
-      out_x_q      <= cand_x;
-      out_y_q      <= cand_y;
-      out_ax_q     <= (dir_q == DIR_V) ? lw_q.cur : cand_a;
-      out_ay_q     <= (dir_q == DIR_V) ? cand_a : lw_q.cur;
-      out_bx_q     <= (dir_q == DIR_V) ? lw_q.cur : cand_b;
-      out_by_q     <= (dir_q == DIR_V) ? cand_b : lw_q.cur;
-      out_gap_q    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_gap : '0;
-      out_off_q    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_off : '0;
-      out_level_q  <= (ws_q == WS_WALK) ? k_q : '0;
-      out_nshift_q <= 2'(levels_q - k_q + 1'b1);
-      out_dir_q    <= (ws_q == WS_WALK) ? dir_q : DIR_INIT;
+      step_x_o      <= cand_x;
+      step_y_o      <= cand_y;
+      step_ax_o     <= (dir_q == DIR_V) ? lw_q.cur : cand_a;
+      step_ay_o     <= (dir_q == DIR_V) ? cand_a : lw_q.cur;
+      step_bx_o     <= (dir_q == DIR_V) ? lw_q.cur : cand_b;
+      step_by_o     <= (dir_q == DIR_V) ? cand_b : lw_q.cur;
+      step_gap_o    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_gap : '0;
+      step_off_o    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_off : '0;
+      step_level_o  <= (ws_q == WS_WALK) ? k_q : '0;
+      step_nshift_o <= 2'(levels_q - k_q + 1'b1);
+      step_dir_o    <= (ws_q == WS_WALK) ? dir_q : DIR_INIT;
     end
   end
 
   assign step_valid_o  = out_valid_q;
-  assign step_x_o      = out_x_q;
-  assign step_y_o      = out_y_q;
-  assign step_ax_o     = out_ax_q;
-  assign step_ay_o     = out_ay_q;
-  assign step_bx_o     = out_bx_q;
-  assign step_by_o     = out_by_q;
-  assign step_gap_o    = out_gap_q;
-  assign step_off_o    = out_off_q;
-  assign step_level_o  = out_level_q;
-  assign step_nshift_o = out_nshift_q;
-  assign step_dir_o    = out_dir_q;
   assign step_first_o  = out_first_q;
   assign start_ready_o = (ws_q == WS_IDLE);
   assign busy_o        = (ws_q != WS_IDLE) || out_valid_q;

@@ -157,18 +157,15 @@ module msr_tile_ctx
                                                                           : tail_q.first;
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      head_valid_q <= 1'b0;
-      tail_valid_q <= 1'b0;
-    end else if (clear_i) begin
-      head_valid_q <= 1'b0;
-      tail_valid_q <= 1'b0;
-    end else begin
-      head_valid_q <= head_valid_d;
-      tail_valid_q <= tail_valid_d;
-    end
-  end
+  // The queue's valid bits (the entries below are plain data registers).
+  msr_clr_reg #(.WIDTH(2)) u_q_valid (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     ({head_valid_d, tail_valid_d}),
+    .q_o     ({head_valid_q, tail_valid_q})
+  );
 
   // Entries have no reset: each is written with its valid bit.
   always_ff @(posedge clk_i) begin
@@ -196,18 +193,15 @@ module msr_tile_ctx
   assign pend_zero_d = (issue_i != we_i) ? (we_i && pend_one) : pend_zero_q;
   assign cand_o      = issue_i ? cand_tail_q : cand_head_q;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      cand_tail_q <= 1'b0;
-      cand_head_q <= 1'b0;
-    end else if (clear_i) begin
-      cand_tail_q <= 1'b0;
-      cand_head_q <= 1'b0;
-    end else begin
-      cand_tail_q <= tail_valid_d && !tail_first_d;
-      cand_head_q <= head_valid_d && (!head_first_d || pend_zero_d);
-    end
-  end
+  msr_clr_reg #(.WIDTH(2)) u_cand (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     ({tail_valid_d && !tail_first_d, head_valid_d && (!head_first_d || pend_zero_d)}),
+    .q_o     ({cand_tail_q, cand_head_q})
+  );
+
   assign step_first_o  = head_q.first;
   assign step_init_o   = (head_q.dir == DIR_INIT);
   assign step_x_o      = head_q.x;

@@ -33,7 +33,6 @@ module msr_tile_stream
 );
 
   localparam int unsigned CNT_W = $clog2(FIFO_DEPTH + 1);
-  localparam int unsigned PTR_W = $clog2(FIFO_DEPTH);
 
   if (FIFO_DEPTH < 2 || (FIFO_DEPTH & (FIFO_DEPTH - 1)) != 0) begin : g_check_depth
     $fatal(1, "msr_tile_stream: FIFO_DEPTH %0d must be a power of two >= 2", FIFO_DEPTH);
@@ -50,9 +49,13 @@ module msr_tile_stream
   lcoord_t [1:0] pend_x_q, pend_y_q;
   logic    [1:0] pend_last_q;
 
-  pix_word_t [FIFO_DEPTH-1:0] fifo_q;
-  logic [PTR_W-1:0] wptr_q, rptr_q;
-  logic [CNT_W-1:0] cnt_q;
+  // Skid FIFO: a push always finds room (issue counts the reads in flight), so its ready is
+  // not needed.
+  pix_word_t        push_word, pop_word;
+  logic [CNT_W-1:0] cnt;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic             fifo_ready;
+  /* verilator lint_on UNUSEDSIGNAL */
 
   logic push, pop, issue, last_rd;
 
@@ -60,18 +63,17 @@ module msr_tile_stream
   assign last_rd  = (rx_q == wm1_q) && (ry_q == hm1_q);
   // room for the reads in flight plus this one, without looking at this cycle's pop
   assign issue    = active_q && !rd_done_q &&
-                    (32'(cnt_q) + 32'(rd_pend_q[0]) + 32'(rd_pend_q[1]) < FIFO_DEPTH);
+                    (32'(cnt) + 32'(rd_pend_q[0]) + 32'(rd_pend_q[1]) < FIFO_DEPTH);
   assign push     = rd_pend_q[1];
   assign pop      = pix_valid_o && pix_ready_i;
   assign re_o     = issue;
   assign raddr_o  = {ry_q, rx_q};
 
-  assign pix_valid_o = (cnt_q != '0);
-  assign pix_x_o     = fifo_q[rptr_q].x;
-  assign pix_y_o     = fifo_q[rptr_q].y;
-  assign pix_rgb_o   = fifo_q[rptr_q].rgb;
-  assign pix_src_o   = fifo_q[rptr_q].src;
-  assign pix_last_o  = fifo_q[rptr_q].last;
+  assign pix_x_o     = pop_word.x;
+  assign pix_y_o     = pop_word.y;
+  assign pix_rgb_o   = pop_word.rgb;
+  assign pix_src_o   = pop_word.src;
+  assign pix_last_o  = pop_word.last;
   assign done_o      = pop && pix_last_o;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -79,9 +81,6 @@ module msr_tile_stream
       active_q    <= 1'b0;
       rd_done_q   <= 1'b0;
       rd_pend_q   <= '0;
-      wptr_q      <= '0;
-      rptr_q      <= '0;
-      cnt_q       <= '0;
       x0_q        <= '0;
       y0_q        <= '0;
       wm1_q       <= '0;
@@ -95,9 +94,6 @@ module msr_tile_stream
       active_q  <= 1'b0;
       rd_done_q <= 1'b0;
       rd_pend_q <= '0;
-      wptr_q    <= '0;
-      rptr_q    <= '0;
-      cnt_q     <= '0;
     end else begin
       if (start_valid_i && start_ready_o) begin
         active_q  <= 1'b1;
@@ -123,19 +119,25 @@ module msr_tile_stream
           rx_q <= rx_q + 1'b1;
         end
       end
-      if (push) wptr_q <= wptr_q + 1'b1;
-      if (pop) rptr_q <= rptr_q + 1'b1;
-      cnt_q <= cnt_q + CNT_W'(push) - CNT_W'(pop);
       if (done_o) active_q <= 1'b0;
     end
   end
 
-  always_ff @(posedge clk_i) begin
-    if (push) begin
-      fifo_q[wptr_q] <= '{x: x0_q + coord_t'(pend_x_q[1]), y: y0_q + coord_t'(pend_y_q[1]),
-                          rgb: rdata_rgb_i, src: rdata_src_i, last: pend_last_q[1]};
-    end
-  end
+  assign push_word = '{x: x0_q + coord_t'(pend_x_q[1]), y: y0_q + coord_t'(pend_y_q[1]),
+                      rgb: rdata_rgb_i, src: rdata_src_i, last: pend_last_q[1]};
+
+  msr_fifo #(.WIDTH($bits(pix_word_t)), .DEPTH(FIFO_DEPTH)) u_fifo (
+    .clk_i,
+    .rst_ni,
+    .flush_i (clear_i),
+    .valid_i (push),
+    .ready_o (fifo_ready),
+    .data_i  (push_word),
+    .valid_o (pix_valid_o),
+    .ready_i (pix_ready_i),
+    .data_o  (pop_word),
+    .count_o (cnt)
+  );
 
 `ifndef SYNTHESIS
   // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.
@@ -145,10 +147,10 @@ module msr_tile_stream
         $stable({pix_x_o, pix_y_o, pix_rgb_o, pix_src_o, pix_last_o}))
     else $error("msr_tile_stream: pixel changed while stalled");
   a_no_overflow : assert property (@(posedge clk_i) disable iff (!rst_ni || $time == 0)
-      push |-> 32'(cnt_q) < FIFO_DEPTH || pop)
+      push |-> 32'(cnt) < FIFO_DEPTH)
     else $error("msr_tile_stream: FIFO overflow");
   a_no_wrap : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i || $time == 0)
-      32'(cnt_q) + 32'(rd_pend_q[0]) + 32'(rd_pend_q[1]) <= FIFO_DEPTH)
+      32'(cnt) + 32'(rd_pend_q[0]) + 32'(rd_pend_q[1]) <= FIFO_DEPTH)
     else $error("msr_tile_stream: reads in flight beyond the FIFO");
   /* verilator lint_on SYNCASYNCNET */
 `endif

@@ -167,17 +167,22 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     end
   end
 
+  // The accumulators: segment 0 takes no carry, the top segment's carry out is dropped.
+  for (genvar p = 0; p < 2; p++) begin : g_acc
+    logic [NSEG-1:0] co;
+    msr_seg_add #(.WIDTH(ACC_W), .SEG_W(8)) u_add (
+      .a_i (acc_q[p]),
+      .b_i (addend[p]),
+      .c_i (cy_q[p] & ~NSEG'(1)),
+      .s_o (acc_d[p]),
+      .c_o (co)
+    );
+    assign cy_d[p] = NSEG'({co, 1'b0});
+  end
+
   always_comb begin
-    cy_d = '0;
     for (int unsigned p = 0; p < 2; p++) begin
       logic [7:0] a, b;
-      for (int unsigned k = 0; k < NSEG; k++) begin
-        logic [8:0] sum;
-        sum = {1'b0, acc_q[p][8*k +: 8]} + {1'b0, addend[p][8*k +: 8]} +
-              9'((k == 0) ? 1'b0 : cy_q[p][k]);
-        acc_d[p][8*k +: 8] = sum[7:0];
-        if (k + 1 < NSEG) cy_d[p][k+1] = sum[8];
-      end
       a       = 8'(ACC_W'((p != 0) ? raw_q.src_base : raw_q.fb_base) >> (8 * cmp_seg));
       b       = 8'(acc_q[1-p] >> (8 * cmp_seg));
       lt_d[p] = (a < b) || (a == b && lt_q[p]);

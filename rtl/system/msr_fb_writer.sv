@@ -46,7 +46,7 @@ module msr_fb_writer import msr_pkg::*; #(
   input  logic              rst_ni,          // asynchronous reset, active low
   input  logic              clear_i,         // synchronous clear (only when idle_o or abandoned)
   // Frame configuration, stable during a frame.
-  input  dim_t              width_i,         // W
+  input  dim_t              width_i,         // W (stable a clock before a pixel comes)
   input  tile_size_e        tile_i,          // T
   input  logic [31:0]       fb_base_i,       // frame-buffer byte address of pixel (0, 0)
   input  logic [31:0]       fb_stride_i,     // frame-buffer bytes per row
@@ -136,18 +136,12 @@ module msr_fb_writer import msr_pkg::*; #(
     end
     return r;
   endfunction
-  // First beat of buffer b in the pixel / code memory (b * PB, b * SB for b = 0..2).
-  function automatic logic [$clog2(PDEPTH)-1:0] pbuf_base(logic [1:0] b);
+  // First beat of buffer b (0..2) in a memory of n beats per buffer: b * n, for the pixel
+  // memory (n = PB) and the code memory (n = SB); n is a constant, so this is a 3-way mux.
+  function automatic maddr_t buf_base(logic [1:0] b, int unsigned n);
     unique case (b)
-      2'd1:    return ($clog2(PDEPTH))'(PB);
-      2'd2:    return ($clog2(PDEPTH))'(2 * PB);
-      default: return '0;
-    endcase
-  endfunction
-  function automatic logic [$clog2(PDEPTH)-1:0] sbuf_base(logic [1:0] b);
-    unique case (b)
-      2'd1:    return ($clog2(PDEPTH))'(SB);
-      2'd2:    return ($clog2(PDEPTH))'(2 * SB);
+      2'd1:    return maddr_t'(n);
+      2'd2:    return maddr_t'(2 * n);
       default: return '0;
     endcase
   endfunction
@@ -174,7 +168,7 @@ module msr_fb_writer import msr_pkg::*; #(
   coord_t [NUM_IN-1:0][NBUF-1:0] meta_y_q, meta_x0_q;
   lcoord_t [NUM_IN-1:0][NBUF-1:0] meta_l_q;   // pixels of the row - 1
 
-  logic [NUM_IN-1:0] pix_hs, row_end, row_ready;
+  logic [NUM_IN-1:0] pix_hs, row_end, row_ready, row_ready_q;
   logic [NUM_IN-1:0][LCOORD_W-1:0] lpos;
 
   // Write stage: the pixel taken last clock goes into the memories.
@@ -203,9 +197,15 @@ module msr_fb_writer import msr_pkg::*; #(
   logic [NUM_IN-1:0][WPB-1:0][4*CODE_W-1:0] srd;
   logic [NUM_IN-1:0] wr2_busy;       // a memory write is pending in stage 2
 
+  // The frame's last column, registered: the row-end test is an equality on the incoming x,
+  // with no adder between the input slice and the buffer flags (width_i is the frame's
+  // configuration: it settles long before the frame's first pixel, a_width_stable).
+  dim_t last_x_q;
+  always_ff @(posedge clk_i) last_x_q <= width_i - 1'b1;
+
   for (genvar i = 0; i < NUM_IN; i++) begin : g_in
     assign lpos[i]        = pix_x_i[i][LCOORD_W-1:0] & tmask;
-    assign row_end[i]     = (lpos[i] == tmask) || (dim_t'(pix_x_i[i]) + 1'b1 == width_i);
+    assign row_end[i]     = (lpos[i] == tmask) || (dim_t'(pix_x_i[i]) == last_x_q);
     assign pix_ready_o[i] = !full_q[i][col_q[i]];
     assign pix_hs[i]      = pix_valid_i[i] && pix_ready_o[i];
     assign tile_done_o[i] = pix_hs[i] && pix_last_i[i];
@@ -218,14 +218,21 @@ module msr_fb_writer import msr_pkg::*; #(
         col_q[i]    <= '0;
         pick_q[i]   <= '0;
         wr_v_q[i]   <= 1'b0;
+        row_ready_q[i] <= 1'b0;
       end else if (clear_i) begin
         full_q[i]   <= '0;
         picked_q[i] <= '0;
         col_q[i]    <= '0;
         pick_q[i]   <= '0;
         wr_v_q[i]   <= 1'b0;
+        row_ready_q[i] <= 1'b0;
       end else begin
         wr_v_q[i] <= pix_hs[i];
+        // The arbiter sees a registered "row ready": a ready row stays ready until it is taken
+        // (its flags change only by the take), so last clock's flag minus this clock's take is
+        // never ready early; a new row shows a clock later. That cut the buffer-flag muxes off
+        // the arbiter's carry chain and the pick that follows it.
+        row_ready_q[i] <= row_ready[i] && !(arb_take && arb_gnt[i]);
         if (pix_hs[i] && row_end[i]) begin
           full_q[i][col_q[i]] <= 1'b1;
           col_q[i]            <= buf_next(col_q[i]);
@@ -275,6 +282,7 @@ module msr_fb_writer import msr_pkg::*; #(
     logic                sword_we;
     logic [4*CODE_W-1:0] sword;
     logic [WPB-1:0]      pwe_q, swe_q;      // stage 2: lane write enables
+    logic [WPB-1:0]      pwe_d, swe_d;
     maddr_t              paddr_q;
     logic [SA_W-1:0]     saddr_q;
     rgb_t                prgb_q;
@@ -290,8 +298,8 @@ module msr_fb_writer import msr_pkg::*; #(
       slot  = wr_l_q[i][1:0];
       pbeat = pw >> LANE_SH;
       sbeat = sw >> LANE_SH;
-      paddr = pbuf_base(wr_buf_q[i]) + maddr_t'(pbeat);
-      saddr = SA_W'(sbuf_base(wr_buf_q[i])) + SA_W'(sbeat);
+      paddr = buf_base(wr_buf_q[i], PB) + maddr_t'(pbeat);
+      saddr = SA_W'(buf_base(wr_buf_q[i], SB)) + SA_W'(sbeat);
       sword_we = wr_v_q[i] && (slot == 2'd3 || wr_end_q[i]);
       sword = {wr_code_q[i], asm_q[i][2], asm_q[i][1], asm_q[i][0]};
       for (int unsigned s = 0; s < 3; s++) begin
@@ -299,20 +307,18 @@ module msr_fb_writer import msr_pkg::*; #(
       end
     end
 
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        pwe_q <= '0;
-        swe_q <= '0;
-      end else if (clear_i) begin
-        pwe_q <= '0;
-        swe_q <= '0;
-      end else begin
-        for (int unsigned j = 0; j < WPB; j++) begin
-          pwe_q[j] <= wr_v_q[i] && (32'(pw) % WPB == j);
-          swe_q[j] <= sword_we && (32'(sw) % WPB == j);
-        end
-      end
+    for (genvar j = 0; j < WPB; j++) begin : g_we
+      assign pwe_d[j] = wr_v_q[i] && (32'(pw) % WPB == j);
+      assign swe_d[j] = sword_we && (32'(sw) % WPB == j);
     end
+    msr_clr_reg #(.WIDTH(2 * WPB)) u_we (
+      .clk_i,
+      .rst_ni,
+      .clear_i,
+      .en_i    (1'b1),
+      .d_i     ({pwe_d, swe_d}),
+      .q_o     ({pwe_q, swe_q})
+    );
 
     always_ff @(posedge clk_i) begin
       if (wr_v_q[i] && slot != 2'd3) asm_q[i][slot] <= wr_code_q[i];
@@ -340,7 +346,7 @@ module msr_fb_writer import msr_pkg::*; #(
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
     .clear_i (clear_i),
-    .req_i   (row_ready),
+    .req_i   (row_ready_q),
     .gnt_o   (arb_gnt),
     .idx_o   (arb_idx),
     .valid_o (arb_valid),
@@ -376,17 +382,16 @@ module msr_fb_writer import msr_pkg::*; #(
 
   logic [NMUL-1:0][31:0] mul_d;
   logic [NMUL-1:0][4:0]  mul_c_d;
-  always_comb begin
-    mul_c_d = '0;
-    for (int unsigned v = 0; v < NMUL; v++) begin
-      for (int unsigned k = 0; k < 4; k++) begin
-        logic [8:0] sum;
-        sum = {1'b0, mul_a[v][8*k +: 8]} + {1'b0, mul_b[v][8*k +: 8]} +
-              9'((k == 0) ? mul_ci[v] : mul_c_q[v][k]);
-        mul_d[v][8*k +: 8] = sum[7:0];
-        mul_c_d[v][k+1]    = sum[8];
-      end
-    end
+  for (genvar v = 0; v < NMUL; v++) begin : g_mul
+    logic [3:0] co;
+    msr_seg_add #(.WIDTH(32), .SEG_W(8)) u_add (
+      .a_i (mul_a[v]),
+      .b_i (mul_b[v]),
+      .c_i ({mul_c_q[v][3:1], mul_ci[v]}),
+      .s_o (mul_d[v]),
+      .c_o (co)
+    );
+    assign mul_c_d[v] = {co, 1'b0};
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -495,43 +500,24 @@ module msr_fb_writer import msr_pkg::*; #(
   logic [$clog2(S5_D):0] s5_credit_q;
   assign arb_ready = (s5_credit_q != ($clog2(S5_D) + 1)'(S5_D));
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      s5_credit_q <= '0;
-    end else if (clear_i) begin
-      s5_credit_q <= '0;
-    end else begin
-      s5_credit_q <= s5_credit_q + ($clog2(S5_D) + 1)'(arb_take) - ($clog2(S5_D) + 1)'(s5_take);
-    end
-  end
+  msr_clr_reg #(.WIDTH($clog2(S5_D) + 1)) u_s5_credit (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     (s5_credit_q + ($clog2(S5_D) + 1)'(arb_take) - ($clog2(S5_D) + 1)'(s5_take)),
+    .q_o     (s5_credit_q)
+  );
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      s0_v_q <= 1'b0;
-      s1_v_q <= 1'b0;
-      s1m_v_q <= 1'b0;
-      s15_v_q <= 1'b0;
-      s2_v_q <= 1'b0;
-      s3_v_q <= 1'b0;
-      s4_v_q <= 1'b0;
-    end else if (clear_i) begin
-      s0_v_q <= 1'b0;
-      s1_v_q <= 1'b0;
-      s1m_v_q <= 1'b0;
-      s15_v_q <= 1'b0;
-      s2_v_q <= 1'b0;
-      s3_v_q <= 1'b0;
-      s4_v_q <= 1'b0;
-    end else begin
-      s0_v_q  <= arb_take;
-      s1_v_q  <= s0_v_q;
-      s1m_v_q <= s1_v_q;
-      s15_v_q <= s1m_v_q;
-      s2_v_q  <= s15_v_q;
-      s3_v_q  <= s2_v_q;
-      s4_v_q  <= s3_v_q;
-    end
-  end
+  // The stages' valid bits, one shift register.
+  msr_clr_reg #(.WIDTH(7)) u_stage_v (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     ({s3_v_q, s2_v_q, s15_v_q, s1m_v_q, s1_v_q, s0_v_q, arb_take}),
+    .q_o     ({s4_v_q, s3_v_q, s2_v_q, s15_v_q, s1m_v_q, s1_v_q, s0_v_q})
+  );
 
   // No enables: each stage's valid bit says whether its registers hold a row.
   always_ff @(posedge clk_i) begin
@@ -574,7 +560,7 @@ module msr_fb_writer import msr_pkg::*; #(
   // The stages' arithmetic, per plane.
   always_comb begin
     for (int unsigned p = 0; p < 2; p++) begin
-      logic [31:0] st, m0, m1, m2, m3, base, xt;
+      logic [31:0] st, base, xt;
       cs_t         c1, c2, c3;
       logic [12:0] lo_sum;
       logic [10:0] mid_sum;
@@ -586,18 +572,15 @@ module msr_fb_writer import msr_pkg::*; #(
       // S1m: the stride multiples, registered: each y bit selects in 64 multiplexers, and
       // that fan-out alone was most of the glue's worst placed path (10.4 ns) when the
       // carry-save level sat behind it in the same clock.
-      s1m_m_d[p][0] = mult8(s1_y_q[2:0], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]);
-      s1m_m_d[p][1] = mult8(s1_y_q[5:3], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 3;
-      s1m_m_d[p][2] = mult8(s1_y_q[8:6], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 6;
-      s1m_m_d[p][3] = mult8(s1_y_q[11:9], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2]) << 9;
-      m0   = s1m_m_q[p][0];
-      m1   = s1m_m_q[p][1];
-      m2   = s1m_m_q[p][2];
-      m3   = s1m_m_q[p][3];
+      // Radix-8 digit k of y selects its multiple, shifted to its weight 8^k.
+      for (int unsigned k = 0; k < 4; k++) begin
+        s1m_m_d[p][k] = mult8(s1_y_q[3*k +: 3], st, mul_q[3*p], mul_q[3*p+1], mul_q[3*p+2])
+                        << (3 * k);
+      end
       base = (p != 0) ? src_base_i : fb_base_i;
       xt   = (p != 0) ? {20'b0, s1m_x0_q} : {18'b0, s1m_x0_q, 2'b0};
-      s15_cs_d[p][0] = csa(m0, m1, m2);
-      s15_cs_d[p][1] = csa(m3, base, xt);
+      s15_cs_d[p][0] = csa(s1m_m_q[p][0], s1m_m_q[p][1], s1m_m_q[p][2]);
+      s15_cs_d[p][1] = csa(s1m_m_q[p][3], base, xt);
       c1   = s15_cs_q[p][0];
       c2   = s15_cs_q[p][1];
       c3   = csa(c1.s, c1.c, c2.s);
@@ -616,7 +599,7 @@ module msr_fb_writer import msr_pkg::*; #(
       // S5: bits [31:22]; the burst shape
       hi_sum     = s4_cs_q[p].s[31:22] + s4_cs_q[p].c[31:22] + 10'(s4_cy_q[p]);
       to4k_m1[p] = ~s4_lo_q[p][11:BB_W];
-      mb         = (p != 0) ? sbuf_base(s4_buf_q) : pbuf_base(s4_buf_q);
+      mb         = buf_base(s4_buf_q, (p != 0) ? SB : PB);
       s5_a_d[p]          = {hi_sum, s4_mid_q[p], s4_lo_q[p]};
       s5_shape_d[p].two  = s4_pe_q[p][12];
       s5_shape_d[p].len0 = s4_pe_q[p][12] ? 8'(to4k_m1[p]) : 8'(s4_em1_q[p] >> BB_W);
@@ -690,7 +673,7 @@ module msr_fb_writer import msr_pkg::*; #(
       logic [31:0] al;
       al = s5_a_q[p] & ~(STRB_W - 1);
       b0[p] = '{addr: al, len: s5_shape_q[p].len0, in: s5_in_q, bufi: s5_buf_q, src: p[0],
-                mbase: (p != 0) ? sbuf_base(s5_buf_q) : pbuf_base(s5_buf_q), lo: s5_shape_q[p].lo,
+                mbase: buf_base(s5_buf_q, (p != 0) ? SB : PB), lo: s5_shape_q[p].lo,
                 hi: s5_shape_q[p].two ? BB_W'(STRB_W - 1) : s5_shape_q[p].hi, row_last: 1'b0};
       b1[p] = '{addr: {al[31:12] + 1'b1, 12'h000}, len: s5_shape_q[p].len1, in: s5_in_q,
                 bufi: s5_buf_q, src: p[0], mbase: s5_mb1_q[p], lo: '0, hi: s5_shape_q[p].hi,
@@ -729,15 +712,14 @@ module msr_fb_writer import msr_pkg::*; #(
     end
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      blv_q <= '0;
-    end else if (clear_i) begin
-      blv_q <= '0;
-    end else begin
-      blv_q <= blv_d;
-    end
-  end
+  msr_clr_reg #(.WIDTH(4)) u_blv (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     (blv_d),
+    .q_o     (blv_q)
+  );
   always_ff @(posedge clk_i) begin
     bl_q <= bl_d;
   end
@@ -784,21 +766,16 @@ module msr_fb_writer import msr_pkg::*; #(
   assign b_unexpected_o = b_hs && !b_expected;
   assign budget_d       = budget_q + OUT_W'(aw_push) - OUT_W'(b_hs && b_expected);
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      budget_q <= '0;
-      onbus_q  <= '0;
-      out_ok_q <= 1'b1;
-    end else if (clear_i) begin
-      budget_q <= '0;
-      onbus_q  <= '0;
-      out_ok_q <= 1'b1;
-    end else begin
-      budget_q <= budget_d;
-      onbus_q  <= onbus_q + OUT_W'(aw_hs) - OUT_W'(b_hs && b_expected);
-      out_ok_q <= (budget_d != OUT_W'(MAX_OUT));
-    end
-  end
+  // out_ok_q is 1 after reset and clear: the budget is then empty.
+  msr_clr_reg #(.WIDTH(2 * OUT_W + 1), .RESET({(2 * OUT_W)'(0), 1'b1})) u_budget (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     ({budget_d, onbus_q + OUT_W'(aw_hs) - OUT_W'(b_hs && b_expected),
+               budget_d != OUT_W'(MAX_OUT)}),
+    .q_o     ({budget_q, onbus_q, out_ok_q})
+  );
 
   msr_fifo #(.WIDTH(32), .DEPTH(AQ_D)) u_addr_fifo (
     .clk_i   (clk_i),
@@ -852,15 +829,14 @@ module msr_fb_writer import msr_pkg::*; #(
   assign wlast_d = (wcnt_q == wq_data.len);
   assign wq_pop  = w_issue && wlast_d;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      row_free_q <= 1'b0;
-    end else if (clear_i) begin
-      row_free_q <= 1'b0;
-    end else begin
-      row_free_q <= w2_load && w1_last_q && w1_row_last_q;
-    end
-  end
+  msr_clr_reg #(.WIDTH(1)) u_row_free (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     (w2_load && w1_last_q && w1_row_last_q),
+    .q_o     (row_free_q)
+  );
   always_ff @(posedge clk_i) begin
     row_free_in_q  <= w1_in_q;
     row_free_buf_q <= w1_buf_q;
@@ -882,23 +858,24 @@ module msr_fb_writer import msr_pkg::*; #(
     end
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      w1_v_q <= 1'b0;
-      wv_q   <= 1'b0;
-      wcnt_q <= '0;
-    end else if (clear_i) begin
-      w1_v_q <= 1'b0;
-      wv_q   <= 1'b0;
-      wcnt_q <= '0;
-    end else begin
-      if (w_issue)      w1_v_q <= 1'b1;
-      else if (w2_load) w1_v_q <= 1'b0;
-      if (w2_load)           wv_q <= 1'b1;
-      else if (m_axi_wready) wv_q <= 1'b0;
-      if (w_issue) wcnt_q <= wlast_d ? '0 : wcnt_q + 1'b1;
-    end
-  end
+  // W1 fills on an issue and empties into W2; W2 fills from W1 and empties on WREADY.
+  msr_clr_reg #(.WIDTH(2)) u_w_v (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     ({w_issue || (w1_v_q && !w2_load), w2_load || (wv_q && !m_axi_wready)}),
+    .q_o     ({w1_v_q, wv_q})
+  );
+  // The beat of the burst at the queue's head.
+  msr_clr_reg #(.WIDTH(8)) u_wcnt (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (w_issue),
+    .d_i     (wlast_d ? '0 : wcnt_q + 1'b1),
+    .q_o     (wcnt_q)
+  );
   // The beat's buffer address goes only to the copy of the input it reads (the others keep
   // theirs: their read data is not selected), so each copy drives a quarter of the memories.
   for (genvar i = 0; i < NUM_IN; i++) begin : g_raddr
@@ -959,6 +936,8 @@ module msr_fb_writer import msr_pkg::*; #(
   `MSR_ASSERT(a_onbus_in_budget, onbus_q <= budget_q)
   `MSR_ASSERT(a_s5_credit, s5_credit_q <= ($clog2(S5_D) + 1)'(S5_D))
   `MSR_ASSERT(a_code_fits, code_big == '0)
+  `MSR_ASSERT(a_row_ready_late, (row_ready_q & ~row_ready) == '0)
+  `MSR_ASSERT(a_width_stable, pix_valid_i != '0 |-> $stable(width_i))
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_fb_writer

@@ -28,39 +28,27 @@ module msr_perf_counters import msr_pkg::*; #(
   logic [2:0][N_W-1:0] n_interp_d, n_interp_q;
   logic                en_q, rstall_q, mstall_q;
 
-  // Pixels taken this clock, per kind: codes 0..3 traced at level k, 17..19 interpolated.
+  // Pixels taken this clock, per kind: codes 0..3 traced at level k, 17..19 interpolated;
+  // none outside a frame.
   always_comb begin
     n_traced_d = '0;
     n_interp_d = '0;
     for (int unsigned i = 0; i < NUM_ENGINES; i++) begin
-      if (pix_hs_i[i]) begin
+      if (en_i && pix_hs_i[i]) begin
         if (pix_src_i[i][4]) n_interp_d[pix_src_i[i][1:0] - 2'd1] += 1'b1;
         else                 n_traced_d[pix_src_i[i][1:0]] += 1'b1;
       end
     end
   end
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      n_traced_q <= '0;
-      n_interp_q <= '0;
-      en_q       <= 1'b0;
-      rstall_q   <= 1'b0;
-      mstall_q   <= 1'b0;
-    end else if (clear_i) begin
-      n_traced_q <= '0;
-      n_interp_q <= '0;
-      en_q       <= 1'b0;
-      rstall_q   <= 1'b0;
-      mstall_q   <= 1'b0;
-    end else begin
-      n_traced_q <= en_i ? n_traced_d : '0;
-      n_interp_q <= en_i ? n_interp_d : '0;
-      en_q       <= en_i;
-      rstall_q   <= en_i && rstall_i;
-      mstall_q   <= en_i && mstall_i;
-    end
-  end
+  msr_clr_reg #(.WIDTH(7 * N_W + 3)) u_events (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     ({n_traced_d, n_interp_d, en_i, en_i && rstall_i, en_i && mstall_i}),
+    .q_o     ({n_traced_q, n_interp_q, en_q, rstall_q, mstall_q})
+  );
 
   msr_sat_counter #(.WIDTH(32), .INC_W(1)) u_cycles (
     .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (en_q), .inc_i (1'b1),

@@ -31,39 +31,37 @@ module msr_sat_counter #(
 
   logic [NSEG-1:0][SEG_W-1:0] seg_d;
   logic [NSEG-1:0]            cin_d;
+  logic [NSEG-1:0]            cout;
   logic                       ovf;       // the top segment overflows this clock
-  always_comb begin
-    cin_d = '0;
-    ovf   = 1'b0;
-    for (int unsigned k = 0; k < NSEG; k++) begin
-      logic [SEG_W:0] sum;
-      if (k == 0) sum = {1'b0, seg_q[0]} + (SEG_W+1)'(en_i ? inc_i : '0);
-      else        sum = {1'b0, seg_q[k]} + (SEG_W+1)'(cin_q[k]);
-      seg_d[k] = sum[SEG_W-1:0];
-      if (k + 1 < NSEG) cin_d[k+1] = sum[SEG_W];
-      else              ovf        = sum[SEG_W];
-    end
-  end
+  // Segment 0 takes the increment (no carry), segment k > 0 its pending carry.
+  msr_seg_add #(.WIDTH(WIDTH), .SEG_W(SEG_W)) u_add (
+    .a_i (seg_q),
+    .b_i (WIDTH'(en_i ? inc_i : '0)),
+    .c_i (cin_q & ~NSEG'(1)),
+    .s_o (seg_d),
+    .c_o (cout)
+  );
+  assign cin_d = NSEG'({cout, 1'b0});
+  assign ovf   = cout[NSEG-1];
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      seg_q <= '0;
-      cin_q <= '0;
-      sat_q <= 1'b0;
-    end else if (clear_i) begin
-      seg_q <= '0;
-      cin_q <= '0;
-      sat_q <= 1'b0;
-    end else begin
-      seg_q <= seg_d;
-      cin_q <= cin_d;
-      if (ovf) sat_q <= 1'b1;
-    end
-  end
+  msr_clr_reg #(.WIDTH(NSEG * SEG_W + NSEG)) u_seg (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     ({seg_d, cin_d}),
+    .q_o     ({seg_q, cin_q})
+  );
+  // Sticky: once the top segment overflows, the count reads all ones until a clear.
+  msr_clr_reg #(.WIDTH(1)) u_sat (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (ovf),
+    .d_i     (1'b1),
+    .q_o     (sat_q)
+  );
 
   assign count_o = sat_q ? '1 : seg_q;
-
-  logic unused_cin;
-  assign unused_cin = cin_q[0];   // segment 0 takes the increment, not a carry
 
 endmodule : msr_sat_counter

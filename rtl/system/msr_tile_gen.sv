@@ -47,9 +47,14 @@ module msr_tile_gen import msr_pkg::*; #(
   // ---- Frame set-up (latched at start) ----------------------------------------------------
   logic [2:0]        lg_q, lg_d;                    // log2 T
   logic [TIDX_W:0]   ntx_q, nty_q;                  // tile counts, 1..512
-  logic              run_q;                         // the walker has tiles left
-  logic              done_q;                        // every tile handed out
-  logic [TIDX_W-1:0] tx_q, ty_q;                    // the walker's next tile
+  // Control state: the walker (row-major over the tile grid) and the stages' flags.
+  typedef struct packed {
+    logic              run;                         // the walker has tiles left
+    logic              done;                        // every tile handed out
+    logic [TIDX_W-1:0] tx, ty;                      // the walker's next tile
+    logic [4:0]        v, last;                     // stage k valid / holds the frame's last tile
+  } ctl_t;
+  ctl_t              ctl_q, ctl_d;
 
   always_comb begin
     unique case (tile_i)
@@ -112,7 +117,6 @@ module msr_tile_gen import msr_pkg::*; #(
 
   logic              en;                            // every stage moves
   logic              taken;                         // the output descriptor goes this clock
-  logic [4:0]        v_q, last_q;                   // stage k valid / holds the frame's last tile
   coord_t [3:0]      x0_q, y0_q;                    // origin through S1..S4
   dim_t              s1_rw_q, s1_rh_q;              // frame extent right of / below the origin
   logic [R2_W-1:0]   s1_r2x_q, s1_r2y_q;
@@ -133,63 +137,66 @@ module msr_tile_gen import msr_pkg::*; #(
   logic [HI_W-1:0]   prod_hi;
   thr_t              fov_d;
 
-  assign en        = !v_q[4] || taken;
-  assign walk_last = ({1'b0, tx_q} + 1'b1 == ntx_q) && ({1'b0, ty_q} + 1'b1 == nty_q);
+  assign en        = !ctl_q.v[4] || taken;
+  assign walk_last = ({1'b0, ctl_q.tx} + 1'b1 == ntx_q) && ({1'b0, ctl_q.ty} + 1'b1 == nty_q);
 
+  // The frame's tile grid, latched at START (a clear leaves it: only a START reads it).
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      lg_q   <= 3'd4;
-      ntx_q  <= '0;
-      nty_q  <= '0;
-      run_q  <= 1'b0;
-      done_q <= 1'b0;
-      tx_q   <= '0;
-      ty_q   <= '0;
-      v_q    <= '0;
-      last_q <= '0;
-    end else if (clear_i) begin
-      run_q  <= 1'b0;
-      done_q <= 1'b0;
-      tx_q   <= '0;
-      ty_q   <= '0;
-      v_q    <= '0;
-      last_q <= '0;
-    end else if (start_i) begin
-      lg_q   <= lg_d;
-      ntx_q  <= tile_count(width_i, lg_d);
-      nty_q  <= tile_count(height_i, lg_d);
-      run_q  <= 1'b1;
-      done_q <= 1'b0;
-      tx_q   <= '0;
-      ty_q   <= '0;
+      lg_q  <= 3'd4;
+      ntx_q <= '0;
+      nty_q <= '0;
+    end else if (start_i && !clear_i) begin
+      lg_q  <= lg_d;
+      ntx_q <= tile_count(width_i, lg_d);
+      nty_q <= tile_count(height_i, lg_d);
+    end
+  end
+
+  always_comb begin
+    ctl_d = ctl_q;
+    if (start_i) begin
+      ctl_d.run  = 1'b1;
+      ctl_d.done = 1'b0;
+      ctl_d.tx   = '0;
+      ctl_d.ty   = '0;
     end else begin
-      if (taken && last_q[4]) done_q <= 1'b1;
+      if (taken && ctl_q.last[4]) ctl_d.done = 1'b1;
       if (en) begin
-        v_q    <= {v_q[3:0], run_q};
-        last_q <= {last_q[3:0], run_q && walk_last};
-        if (run_q) begin
-          if (walk_last) run_q <= 1'b0;
-          if ({1'b0, tx_q} + 1'b1 == ntx_q) begin
-            tx_q <= '0;
-            ty_q <= ty_q + 1'b1;
+        ctl_d.v    = {ctl_q.v[3:0], ctl_q.run};
+        ctl_d.last = {ctl_q.last[3:0], ctl_q.run && walk_last};
+        if (ctl_q.run) begin
+          if (walk_last) ctl_d.run = 1'b0;
+          if ({1'b0, ctl_q.tx} + 1'b1 == ntx_q) begin
+            ctl_d.tx = '0;
+            ctl_d.ty = ctl_q.ty + 1'b1;
           end else begin
-            tx_q <= tx_q + 1'b1;
+            ctl_d.tx = ctl_q.tx + 1'b1;
           end
         end
       end
     end
   end
 
+  msr_clr_reg #(.WIDTH($bits(ctl_t))) u_ctl (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     (ctl_d),
+    .q_o     (ctl_q)
+  );
+
   // Data registers: read only under their valid flags.
   always_ff @(posedge clk_i) begin
     if (en) begin
       // S1
-      x0_q[0]  <= coord_t'(tx_q) << lg_q;
-      y0_q[0]  <= coord_t'(ty_q) << lg_q;
-      s1_rw_q  <= width_i - (dim_t'(tx_q) << lg_q);
-      s1_rh_q  <= height_i - (dim_t'(ty_q) << lg_q);
-      s1_r2x_q <= half_dist(tx_q, ntx_q);
-      s1_r2y_q <= half_dist(ty_q, nty_q);
+      x0_q[0]  <= coord_t'(ctl_q.tx) << lg_q;
+      y0_q[0]  <= coord_t'(ctl_q.ty) << lg_q;
+      s1_rw_q  <= width_i - (dim_t'(ctl_q.tx) << lg_q);
+      s1_rh_q  <= height_i - (dim_t'(ctl_q.ty) << lg_q);
+      s1_r2x_q <= half_dist(ctl_q.tx, ntx_q);
+      s1_r2y_q <= half_dist(ctl_q.ty, nty_q);
       // S2
       x0_q[1]  <= x0_q[0];
       y0_q[1]  <= y0_q[0];
@@ -243,11 +250,11 @@ module msr_tile_gen import msr_pkg::*; #(
   // ---- Dispatch: the lowest-numbered ready engine takes the offered tile --------------------
   logic [NUM_ENGINES-1:0] pick;
   assign pick         = desc_ready_i & (~desc_ready_i + 1'b1);
-  assign desc_valid_o = v_q[4] ? pick : '0;
+  assign desc_valid_o = ctl_q.v[4] ? pick : '0;
   assign taken        = |desc_valid_o;
   assign desc_o       = desc_q;
-  assign busy_o       = run_q || (v_q != '0);
-  assign done_o       = done_q;
+  assign busy_o       = ctl_q.run || (ctl_q.v != '0);
+  assign done_o       = ctl_q.done;
 
   /* verilator lint_off SYNCASYNCNET */
   // At most one engine is offered a tile, and only one that is ready.

@@ -183,7 +183,9 @@ def test_fb_writer(n_in, width, max_out, seed):
     checkers = [ROOT / e for e in rtl_entries(RTL / "checkers" / "checkers.f")]
     run_cocotb("msr_fb_writer", "test_fb_writer", HERE,
                {"MAX_OUT": max_out, "NUM_IN": n_in, "AXI_DATA_W": width}, f"i{n_in}_w{width}_o{max_out}",
-               sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_fifo.sv", RTL / "prim/msr_rr_arb.sv",
-                        RTL / "prim/msr_spill_reg.sv", RTL / "system/msr_fb_writer.sv", *checkers,
+               sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_clr_reg.sv",
+                        RTL / "prim/msr_seg_add.sv", RTL / "prim/msr_fifo.sv",
+                        RTL / "prim/msr_rr_arb.sv", RTL / "prim/msr_spill_reg.sv",
+                        RTL / "system/msr_fb_writer.sv", *checkers,
                         RTL / "checkers" / "msr_checker_binds.sv"],
                extra_env={"SEED": str(seed), "NUM_IN": str(n_in), "AXI_DATA_W": str(width)})

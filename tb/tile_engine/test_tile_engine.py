@@ -355,9 +355,9 @@ def test_bad_parameters_rejected(params):
 
     from msr_runner import ROOT, rtl_sources
     srcs = [str(s) for s in rtl_sources() if s.name in
-            ("msr_pkg.sv", "msr_lzc.sv", "msr_rr_arb.sv", "msr_fifo.sv", "msr_spill_reg.sv",
-             "msr_tile_sram.sv", "msr_decision_pipe.sv", "msr_level_ctrl.sv", "msr_tile_stream.sv",
-             "msr_tag_pool.sv", "msr_tile_ctx.sv", "msr_tile_engine.sv")]
+            ("msr_pkg.sv", "msr_lzc.sv", "msr_clr_reg.sv", "msr_rr_arb.sv", "msr_fifo.sv",
+             "msr_spill_reg.sv", "msr_tile_sram.sv", "msr_decision_pipe.sv", "msr_level_ctrl.sv",
+             "msr_tile_stream.sv", "msr_tag_pool.sv", "msr_tile_ctx.sv", "msr_tile_engine.sv")]
     cmd = ["verilator", "--lint-only", "-Irtl/prim", "--top-module", "msr_tile_engine"]
     cmd += [f"-G{k}={v}" for k, v in params.items()]
     p = subprocess.run(cmd + srcs, cwd=ROOT, capture_output=True, text=True)

@@ -121,4 +121,5 @@ async def test_frames(dut):
 def test_tile_gen(engines):
     from common.msr_runner import RTL, run_cocotb
     run_cocotb("msr_tile_gen", "test_tile_gen", HERE, {"NUM_ENGINES": engines}, f"e{engines}",
-               sources=[RTL / "msr_pkg.sv", RTL / "system/msr_tile_gen.sv"])
+               sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_clr_reg.sv",
+                        RTL / "system/msr_tile_gen.sv"])
