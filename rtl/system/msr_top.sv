@@ -285,20 +285,32 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   /* verilator lint_on UNUSEDSIGNAL */
 
   for (genvar i = 0; i < NUM_ENGINES; i++) begin : g_engine
-    // A register slice per engine on the tile hand-off: the generator picks among the engines'
-    // ready bits, and each engine starts a context on its valid (a load of some hundred
-    // flip-flops); without the slice that was one combinational path across the die, from one
-    // engine through the generator into another. A tile in the slice is already counted in
-    // flight (cfg_ctrl counts the generator's hand-off).
-    logic       sp_desc_valid;
-    tile_desc_t sp_desc;
-    msr_spill_reg #(.WIDTH($bits(tile_desc_t))) u_desc_slice (
+    // Two register slices per engine on the tile hand-off, one at each end of the wire: the
+    // generator picks among the engines' ready bits, and each engine starts a context on its
+    // valid (a load of some hundred flip-flops); without a slice that was one combinational
+    // path across the die, from one engine through the generator into another, and with one
+    // the wire still shared a clock with one end's logic. A tile in the slices is already
+    // counted in flight (cfg_ctrl counts the generator's hand-off).
+    logic       gs_desc_valid, gs_desc_ready, sp_desc_valid;
+    tile_desc_t gs_desc, sp_desc;
+    msr_spill_reg #(.WIDTH($bits(tile_desc_t))) u_desc_slice_gen (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
-      .clear_i (eng_clear_q[i]),
+      .clear_i (clear_q),
       .valid_i (eng_desc_valid[i]),
       .ready_o (desc_sp_ready[i]),
       .data_i  (desc),
+      .valid_o (gs_desc_valid),
+      .ready_i (gs_desc_ready),
+      .data_o  (gs_desc)
+    );
+    msr_spill_reg #(.WIDTH($bits(tile_desc_t))) u_desc_slice_eng (
+      .clk_i   (clk_i),
+      .rst_ni  (rst_ni),
+      .clear_i (eng_clear_q[i]),
+      .valid_i (gs_desc_valid),
+      .ready_o (gs_desc_ready),
+      .data_i  (gs_desc),
       .valid_o (sp_desc_valid),
       .ready_i (eng_desc_ready[i]),
       .data_o  (sp_desc)
@@ -376,18 +388,22 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   assign rnd_idle = (eng_tags_out == '0);
 
   // ---- Pixel path: every engine has its own writer input (no arbitration) -----------------
-  // A register slice per engine: the engines sit across the die from the writer, whose input
-  // decodes a pixel's lane and buffer address straight from x and y; the slice keeps that wire
-  // out of every path. Soft reset: finished pixels are dropped behind the slice.
+  // Two register slices per engine, one at each end of the wire: the engines sit across the
+  // die from the writer, whose input decodes a pixel's row end, lane and buffer address
+  // straight from x and y into its buffer flags. With one slice the placer put it by its
+  // engine, and the wire plus that decode set the flat top's clock (11.1 ns); the second slice
+  // (cleared with the writer) gives the wire a clock of its own. Soft reset: finished pixels
+  // are dropped behind the slices.
+  logic      [NUM_ENGINES-1:0] ep_pix_valid, ep_pix_ready;
   logic      [NUM_ENGINES-1:0] sl_pix_valid, sl_pix_ready, wr_pix_valid, wr_pix_ready;
-  pix_word_t [NUM_ENGINES-1:0] sl_pix;
+  pix_word_t [NUM_ENGINES-1:0] ep_pix, sl_pix;
   coord_t    [NUM_ENGINES-1:0] wr_pix_x, wr_pix_y;
   rgb_t      [NUM_ENGINES-1:0] wr_pix_rgb;
   src_t      [NUM_ENGINES-1:0] wr_pix_src;
   logic      [NUM_ENGINES-1:0] wr_pix_last;
 
   for (genvar i = 0; i < NUM_ENGINES; i++) begin : g_pix_slice
-    msr_spill_reg #(.WIDTH($bits(pix_word_t))) u_pix_slice (
+    msr_spill_reg #(.WIDTH($bits(pix_word_t))) u_pix_slice_eng (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
       .clear_i (eng_clear_q[i]),
@@ -395,6 +411,17 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .ready_o (eng_pix_ready[i]),
       .data_i  (pix_word_t'{x: eng_pix_x[i], y: eng_pix_y[i], rgb: eng_pix_rgb[i],
                             src: eng_pix_src[i], last: eng_pix_last[i]}),
+      .valid_o (ep_pix_valid[i]),
+      .ready_i (ep_pix_ready[i]),
+      .data_o  (ep_pix[i])
+    );
+    msr_spill_reg #(.WIDTH($bits(pix_word_t))) u_pix_slice_wr (
+      .clk_i   (clk_i),
+      .rst_ni  (rst_ni),
+      .clear_i (clear_q),
+      .valid_i (ep_pix_valid[i]),
+      .ready_o (ep_pix_ready[i]),
+      .data_i  (ep_pix[i]),
       .valid_o (sl_pix_valid[i]),
       .ready_i (sl_pix_ready[i]),
       .data_o  (sl_pix[i])
