@@ -71,10 +71,13 @@ module msr_tile_ctx
   logic [PEND_W-1:0] pend_q, pend_d;
 
   // ---- Level processing controller and its position queue ------------------------------------
-  // The controller fills a two-entry queue; the engine's arbiter takes positions from the
-  // queue's head. So the walk state (a few hundred flip-flops) advances on a registered
-  // "queue has room", not on the arbiter's grant, which reaches only the queue's registers;
-  // two entries keep one position per clock for a context that wins every cycle.
+  // The controller fills a spill register, the spill register a two-entry queue; the
+  // engine's arbiter takes positions from the queue's head. So the walk state (a few hundred
+  // flip-flops spread over the context) advances on the spill register's "has room", a
+  // flip-flop of this context, and the engine's grant (issue_i, a register beside the
+  // arbiter) reaches only the queue's and the spill register's control. Two queue entries
+  // keep one position per clock for a context that wins every cycle; the spill register
+  // passes one per clock as well.
   //
   // The queue is a head register and a tail register (not a FIFO with pointers): the head's
   // fields, hence the candidate bit and the tile buffer's read addresses, come straight from
@@ -94,8 +97,8 @@ module msr_tile_ctx
     logic       first;
   } step_t;
 
-  logic    step_valid, ctrl_busy, q_room, q_push;
-  step_t   step;
+  logic    ctrl_valid, ctrl_room, step_valid, ctrl_busy, q_room, q_push;
+  step_t   ctrl_step, step;
   logic    head_valid_q, tail_valid_q;
   step_t   head_q, tail_q;
   // The controller is idle whenever the context is free; its own start handshake is not needed.
@@ -112,21 +115,35 @@ module msr_tile_ctx
     .w_i           (desc_i.w),
     .h_i           (desc_i.h),
     .levels_i      (desc_i.levels),
-    .step_valid_o  (step_valid),
-    .step_ready_i  (q_room),
-    .step_x_o      (step.x),
-    .step_y_o      (step.y),
-    .step_ax_o     (step.ax),
-    .step_ay_o     (step.ay),
-    .step_bx_o     (step.bx),
-    .step_by_o     (step.by),
-    .step_gap_o    (step.gap),
-    .step_off_o    (step.off),
-    .step_level_o  (step.level),
-    .step_nshift_o (step.nshift),
-    .step_dir_o    (step.dir),
-    .step_first_o  (step.first),
+    .step_valid_o  (ctrl_valid),
+    .step_ready_i  (ctrl_room),
+    .step_x_o      (ctrl_step.x),
+    .step_y_o      (ctrl_step.y),
+    .step_ax_o     (ctrl_step.ax),
+    .step_ay_o     (ctrl_step.ay),
+    .step_bx_o     (ctrl_step.bx),
+    .step_by_o     (ctrl_step.by),
+    .step_gap_o    (ctrl_step.gap),
+    .step_off_o    (ctrl_step.off),
+    .step_level_o  (ctrl_step.level),
+    .step_nshift_o (ctrl_step.nshift),
+    .step_dir_o    (ctrl_step.dir),
+    .step_first_o  (ctrl_step.first),
     .busy_o        (ctrl_busy)
+  );
+
+  // ctrl_room is the spill register's "second entry empty", a flip-flop: the controller's
+  // advance (the clock enable of its walk state) no longer waits for the engine's grant.
+  msr_spill_reg #(.WIDTH($bits(step_t))) u_step_slice (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .valid_i (ctrl_valid),
+    .ready_o (ctrl_room),
+    .data_i  (ctrl_step),
+    .valid_o (step_valid),
+    .ready_i (q_room),
+    .data_o  (step)
   );
 
   // The engine's grant is registered: issue_i is a flip-flop, and the position granted the
@@ -217,7 +234,9 @@ module msr_tile_ctx
     pend_d  = pend_q + PEND_W'(issue_i) - PEND_W'(we_i);
     unique case (state_q)
       CTX_FREE:    if (start_i) state_d = CTX_COMPUTE;
-      CTX_COMPUTE: if (!ctrl_busy && !head_valid_q && pend_zero_q) state_d = CTX_FULL;
+      CTX_COMPUTE: if (!ctrl_busy && !step_valid && !head_valid_q && pend_zero_q) begin
+        state_d = CTX_FULL;
+      end
       CTX_FULL:    if (str_done_i) state_d = CTX_FREE;
       default:     state_d = CTX_FREE;
     endcase
