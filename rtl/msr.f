@@ -9,6 +9,7 @@ rtl/prim/msr_rr_arb.sv
 rtl/prim/msr_fifo.sv
 rtl/prim/msr_spill_reg.sv
 rtl/prim/msr_tile_sram.sv
+rtl/engine/msr_base_decision.sv
 rtl/engine/msr_decision_pipe.sv
 rtl/engine/msr_level_ctrl.sv
 rtl/engine/msr_tile_stream.sv

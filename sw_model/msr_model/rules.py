@@ -30,21 +30,29 @@ def patent(v: PassView) -> np.ndarray:
     return v.below_threshold(v.diff())
 
 
+def second_difference_test(outer_a, ok_a, A, B, outer_b, ok_b, thr, gap, nominal: int, metric: str):
+    """Q of docs/rules.md on sample values (what the RTL's msr_base_decision computes): with
+    e_A' = d(A' - 2A + B) and e_B' = d(A - 2B + B') (per channel, then the metric), c2 = the
+    larger over the outer samples that exist, Q = (one exists) and c2 * n_k < thr * g.
+    Colours: (..., 3) arrays; ok_a / ok_b: where A' / B' exist; broadcast together."""
+    A, B = np.asarray(A, np.int32), np.asarray(B, np.int32)
+    ok_a, ok_b = np.asarray(ok_a, bool), np.asarray(ok_b, bool)
+    c2 = np.zeros(np.broadcast_shapes(ok_a.shape, ok_b.shape, A.shape[:-1]), np.int32)
+    for outer, near, far, ok in ((outer_a, A, B, ok_a), (outer_b, B, A, ok_b)):
+        c = spec.color_diff(np.asarray(outer, np.int32) - 2 * near + far, 0, metric)
+        c2 = np.where(ok, np.maximum(c2, c), c2)
+    return (ok_a | ok_b) & np.asarray(spec.interpolate_ok(c2, thr, gap, nominal))
+
+
 def second_difference_ok(v: PassView) -> np.ndarray:
     """A', A, B, B' on a straight line within the threshold: with A' at a - g and B' at b + g,
     c2 = max over the outer samples that exist of d(A' - 2A + B) resp. d(A - 2B + B') (per
     channel, then the spec's metric), and c2 * n_k < thr_k' * g. False where neither outer
     sample can be read (outside the tile, or not final before the pass)."""
     g = v.gap
-    A, B = v.A.astype(np.int32), v.B.astype(np.int32)
-    c2 = np.zeros(v.shape, np.int32)
-    any_outer = np.zeros(v.shape, bool)
-    for pos, near, far in ((v.a - g, A, B), (v.b + g, B, A)):
-        P, ok = v.read(pos)
-        c = spec.color_diff(P.astype(np.int32) - 2 * near + far, 0, v.metric)
-        c2 = np.where(ok, np.maximum(c2, c), c2)
-        any_outer |= ok
-    return any_outer & v.below_threshold(c2)
+    (outer_a, ok_a), (outer_b, ok_b) = v.read(v.a - g), v.read(v.b + g)
+    return np.broadcast_to(second_difference_test(outer_a, ok_a, v.A, v.B, outer_b, ok_b,
+                                                  v.thr, g, v.nominal, v.metric), v.shape)
 
 
 def dilate(v: PassView, ok: np.ndarray) -> np.ndarray:
