@@ -27,11 +27,16 @@ module msr_fifo #(
 
   logic [WIDTH-1:0] mem_q [DEPTH];
   logic [PTR_W-1:0] wptr_q, rptr_q;
-  logic [PTR_W:0]   count_q;
+  logic [PTR_W:0]   count_q, count_d;
   logic             push, pop;
+  // "not empty" and "not full" as flip-flops, registered from the next count: the handshake
+  // flags leave the FIFO without the compare of the count behind them (a FIFO's flags are
+  // what the logic on both sides waits for, often across the die).
+  logic             nonempty_q, notfull_q;
 
-  assign ready_o = (count_q != DEPTH[PTR_W:0]);
-  assign valid_o = (count_q != '0);
+  assign count_d = count_q + {{PTR_W{1'b0}}, push} - {{PTR_W{1'b0}}, pop};
+  assign ready_o = notfull_q;
+  assign valid_o = nonempty_q;
   assign data_o  = mem_q[rptr_q];
   assign push    = valid_i && ready_o;
   assign pop     = valid_o && ready_i;
@@ -39,17 +44,23 @@ module msr_fifo #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      wptr_q  <= '0;
-      rptr_q  <= '0;
-      count_q <= '0;
+      wptr_q     <= '0;
+      rptr_q     <= '0;
+      count_q    <= '0;
+      nonempty_q <= 1'b0;
+      notfull_q  <= 1'b1;
     end else if (flush_i) begin
-      wptr_q  <= '0;
-      rptr_q  <= '0;
-      count_q <= '0;
+      wptr_q     <= '0;
+      rptr_q     <= '0;
+      count_q    <= '0;
+      nonempty_q <= 1'b0;
+      notfull_q  <= 1'b1;
     end else begin
       if (push) wptr_q <= wptr_q + 1'b1;
       if (pop)  rptr_q <= rptr_q + 1'b1;
-      count_q <= count_q + {{PTR_W{1'b0}}, push} - {{PTR_W{1'b0}}, pop};
+      count_q    <= count_d;
+      nonempty_q <= (count_d != '0);
+      notfull_q  <= (count_d != DEPTH[PTR_W:0]);
     end
   end
 
@@ -60,6 +71,7 @@ module msr_fifo #(
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_count_range, count_q <= DEPTH[PTR_W:0])
+  `MSR_ASSERT(a_flags, nonempty_q == (count_q != '0) && notfull_q == (count_q != DEPTH[PTR_W:0]))
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_fifo
