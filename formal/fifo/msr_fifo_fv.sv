@@ -4,7 +4,8 @@
 // (track_i on its push) leaves the FIFO intact, after exactly the words pushed before it.
 module msr_fifo_fv #(
   parameter int unsigned WIDTH = 4,
-  parameter int unsigned DEPTH = 4
+  parameter int unsigned DEPTH = 4,
+  parameter bit          OUT_REG = 1'b0
 ) (
   input logic             clk_i, rst_ni, flush_i,
   input logic             valid_i, ready_i,    // the producer's valid, the consumer's ready
@@ -17,7 +18,7 @@ module msr_fifo_fv #(
   logic [WIDTH-1:0] data_o;
   logic [PTR_W:0]   count_o;
 
-  msr_fifo #(.WIDTH(WIDTH), .DEPTH(DEPTH)) dut (
+  msr_fifo #(.WIDTH(WIDTH), .DEPTH(DEPTH), .OUT_REG(OUT_REG)) dut (
     .clk_i, .rst_ni, .flush_i, .valid_i, .ready_o, .data_i, .valid_o, .ready_i, .data_o, .count_o
   );
 
@@ -56,6 +57,15 @@ module msr_fifo_fv #(
                                PTR_W'(dut.wptr_q - dut.rptr_q) == ref_q[PTR_W-1:0]);
   a_trk_slot: assert property (@(posedge clk_i) disable iff (!rst_ni)
                                !trk_q || dut.mem_q[trk_slot] == trk_data_q);
+
+  // With the output register: it holds the head, and its helpers agree with the count.
+  if (OUT_REG) begin : g_out_reg_inv
+    a_head_reg: assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                 !dut.nonempty_q || dut.g_out_reg.head_q == dut.mem_q[dut.rptr_q]);
+    a_many_reg: assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                 dut.g_out_reg.many_q == (ref_q > 1) &&
+                                 dut.g_out_reg.rnext_q == PTR_W'(dut.rptr_q + 1));
+  end
 
   // Non-vacuity: full, emptied again, the tracked word out after others, push and pop at once
   // when full is refused (ready_o low), a flush with words inside.

@@ -110,6 +110,14 @@ module msr_tag_pool_fv #(
   a_fifo_ptrs: assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 PTR_W'(dut.u_free_list.wptr_q - dut.u_free_list.rptr_q)
                                 == PTR_W'(dut.fifo_count) && dut.fifo_count <= cnt_t'(N));
+  // The free list's flag and head registers agree with its count and array.
+  a_fifo_regs: assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                dut.u_free_list.nonempty_q == (dut.fifo_count != '0)
+                                && dut.u_free_list.notfull_q == (dut.fifo_count != cnt_t'(N))
+                                && dut.u_free_list.g_out_reg.many_q == (dut.fifo_count > cnt_t'(1))
+                                && dut.u_free_list.g_out_reg.rnext_q == PTR_W'(dut.u_free_list.rptr_q + 1)
+                                && (!dut.u_free_list.nonempty_q || dut.u_free_list.g_out_reg.head_q
+                                    == dut.u_free_list.mem_q[dut.u_free_list.rptr_q]));
   a_bitmap:    assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 dut.inflight_q == ref_q);
 

@@ -48,7 +48,8 @@ module msr_tag_pool #(
 
   msr_fifo #(
     .WIDTH (TAG_W),
-    .DEPTH (N)
+    .DEPTH (N),
+    .OUT_REG (1'b1)   // tag_o from a flip-flop: it addresses the tag table's write
   ) u_free_list (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),

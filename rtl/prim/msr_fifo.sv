@@ -2,11 +2,15 @@
 // fall-through, one push and one pop per cycle (a push into a full FIFO waits for ready_o even
 // when a pop happens in the same cycle, so ready_o is a register compare), synchronous flush.
 // Storage is a plain array without reset so a hand-off can map it to a register file or SRAM.
+// OUT_REG = 1 keeps the oldest entry in a register of its own (data_o from a flip-flop, not
+// from the array's read multiplexer): on a pop it loads the next entry, read at a registered
+// address, or the word pushed in the same clock when that is the only one left.
 `include "msr_assert.svh"
 
 module msr_fifo #(
   parameter int unsigned WIDTH = 8,    // bits per entry
-  parameter int unsigned DEPTH = 4     // entries, a power of two >= 2
+  parameter int unsigned DEPTH = 4,    // entries, a power of two >= 2
+  parameter bit          OUT_REG = 1'b0 // data_o from a register (see above)
 ) (
   input  logic             clk_i,      // clock
   input  logic             rst_ni,     // asynchronous reset, active low
@@ -37,7 +41,6 @@ module msr_fifo #(
   assign count_d = count_q + {{PTR_W{1'b0}}, push} - {{PTR_W{1'b0}}, pop};
   assign ready_o = notfull_q;
   assign valid_o = nonempty_q;
-  assign data_o  = mem_q[rptr_q];
   assign push    = valid_i && ready_o;
   assign pop     = valid_o && ready_i;
   assign count_o = count_q;
@@ -67,6 +70,43 @@ module msr_fifo #(
   // The array has no reset (memory); it is written only on a push.
   always_ff @(posedge clk_i) begin
     if (push) mem_q[wptr_q] <= data_i;
+  end
+
+  if (OUT_REG) begin : g_out_reg
+    // many_q: two entries or more, so the entry after the head is in the array.
+    logic             many_q;
+    logic [PTR_W-1:0] rnext_q;     // rptr_q + 1
+    logic [WIDTH-1:0] head_q;
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        many_q  <= 1'b0;
+        rnext_q <= PTR_W'(1);
+      end else if (flush_i) begin
+        many_q  <= 1'b0;
+        rnext_q <= PTR_W'(1);
+      end else begin
+        many_q  <= (count_d > (PTR_W+1)'(1));
+        if (pop) rnext_q <= rnext_q + 1'b1;
+      end
+    end
+
+    always_ff @(posedge clk_i) begin
+      if (pop && many_q) begin
+        head_q <= mem_q[rnext_q];
+      end else if (push && (pop || !nonempty_q)) begin
+        head_q <= data_i;
+      end
+    end
+
+    assign data_o = head_q;
+
+    /* verilator lint_off SYNCASYNCNET */
+    `MSR_ASSERT(a_head, nonempty_q |-> head_q == mem_q[rptr_q])
+    `MSR_ASSERT(a_many, many_q == (count_q > (PTR_W+1)'(1)) && rnext_q == rptr_q + 1'b1)
+    /* verilator lint_on SYNCASYNCNET */
+  end else begin : g_out_mux
+    assign data_o = mem_q[rptr_q];
   end
 
   /* verilator lint_off SYNCASYNCNET */
