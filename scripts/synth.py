@@ -420,7 +420,9 @@ tile-buffer block RAMs are locked into one quarter of the die, a context's side 
 placer spreads every engine's 32 block RAMs over the die's whole width, and the contexts with
 them (post-placement estimate 53.6 MHz against 63.8 MHz floorplanned, same netlist).
 Assumptions: out of context (I/O not placed, ports are free), a single clock, speed grade
-{ECP5_SPEED}, one seed, no retiming. Fmax is nextpnr's post-route estimate: a planning figure,
+{ECP5_SPEED}, one seed, no retiming; the placer's timing weight is {ECP5_PLACER_ARGS[-1]} (nextpnr's default 10). With
+one seed the placed top's Fmax moves by several per cent between seeds and settings on the same
+netlist (docs/handoff.md, section 6, lists the runs). Fmax is nextpnr's post-route estimate: a planning figure,
 not a signed-off timing. `{TOP}` is the default top ({params_text(top)}) placed flat with
 every engine; the glue row places the same top with `{ENGINE}` as a black box (everything
 outside the engines); the engine is placed with the top's parameters; every system unit on
