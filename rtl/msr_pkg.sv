@@ -96,6 +96,24 @@ package msr_pkg;
 
   localparam int unsigned TADDR_W = 2 * LCOORD_W;            // tile buffer address {y, x}
 
+  // ---- Decision arithmetic shared by the decision units ------------------------------------
+  // |x - y| of one colour channel.
+  function automatic chan_t chan_absdiff(chan_t x, chan_t y);
+    return (x > y) ? x - y : y - x;
+  endfunction
+
+  // thr * g (the right-hand side of every threshold test, <= 2040) as adds of shifted copies:
+  // it stays in the logic beside its registers, out of the FPGA's multiplier blocks, whose
+  // fixed rows cost the placed top most of a clock in wire (docs/handoff.md section 6).
+  function automatic logic [THR_W+GAP_W-1:0] thr_times_gap(thr_t thr, gap_t g);
+    logic [THR_W+GAP_W-1:0] t0, t1, t2, t3;
+    t0 = g[0] ? (THR_W+GAP_W)'(thr)      : '0;
+    t1 = g[1] ? (THR_W+GAP_W)'(thr) << 1 : '0;
+    t2 = g[2] ? (THR_W+GAP_W)'(thr) << 2 : '0;
+    t3 = g[3] ? (THR_W+GAP_W)'(thr) << 3 : '0;
+    return (t0 + t1) + (t2 + t3);
+  endfunction
+
   /* verilator lint_on UNUSEDPARAM */
 
 endpackage : msr_pkg

@@ -40,10 +40,6 @@ module msr_base_decision
   localparam int unsigned PROD_W = THR_W + GAP_W;    // thr * g <= 2040
   localparam int unsigned LHS_W  = E_W + 3;          // e << log2(n_k)
 
-  function automatic chan_t absdiff(chan_t x, chan_t y);
-    return (x > y) ? x - y : y - x;
-  endfunction
-
   // outer - 2 * near + far, one channel, as a signed value
   function automatic logic signed [SD_W-1:0] second_diff(chan_t outer, chan_t near, chan_t far);
     return $signed({2'b00, outer}) - $signed({1'b0, near, 1'b0}) + $signed({2'b00, far});
@@ -51,17 +47,6 @@ module msr_base_decision
 
   function automatic logic [SD_W-2:0] magnitude(logic signed [SD_W-1:0] v);
     return (SD_W-1)'(v[SD_W-1] ? -v : v);
-  endfunction
-
-  // thr * g as adds of shifted copies: kept in the logic beside its registers, out of the
-  // FPGA's multiplier blocks (as msr_decision_pipe's mul4)
-  function automatic logic [PROD_W-1:0] times_gap(thr_t thr, gap_t g);
-    logic [PROD_W-1:0] t0, t1, t2, t3;
-    t0 = g[0] ? PROD_W'(thr)      : '0;
-    t1 = g[1] ? PROD_W'(thr) << 1 : '0;
-    t2 = g[2] ? PROD_W'(thr) << 2 : '0;
-    t3 = g[3] ? PROD_W'(thr) << 3 : '0;
-    return (t0 + t1) + (t2 + t3);
   endfunction
 
   // max or sum of three channel values (widths up to E_W)
@@ -75,6 +60,12 @@ module msr_base_decision
   endfunction
 
   // ---- S1 -------------------------------------------------------------------------------------
+  chan_t [2:0] oa_ch, a_ch, b_ch, ob_ch;       // the samples' channels as arrays: [2] = R
+  assign oa_ch = outer_a_i;
+  assign a_ch  = a_i;
+  assign b_ch  = b_i;
+  assign ob_ch = outer_b_i;
+
   chan_t [2:0]                   s1_abs_q;
   logic  signed [2:0][SD_W-1:0]  s1_sda_q, s1_sdb_q;   // A' - 2A + B, A - 2B + B'
   logic  [PROD_W-1:0]            s1_rhs_q;
@@ -84,16 +75,12 @@ module msr_base_decision
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
-      s1_abs_q[2]  <= absdiff(a_i.r, b_i.r);
-      s1_abs_q[1]  <= absdiff(a_i.g, b_i.g);
-      s1_abs_q[0]  <= absdiff(a_i.b, b_i.b);
-      s1_sda_q[2]  <= second_diff(outer_a_i.r, a_i.r, b_i.r);
-      s1_sda_q[1]  <= second_diff(outer_a_i.g, a_i.g, b_i.g);
-      s1_sda_q[0]  <= second_diff(outer_a_i.b, a_i.b, b_i.b);
-      s1_sdb_q[2]  <= second_diff(outer_b_i.r, b_i.r, a_i.r);
-      s1_sdb_q[1]  <= second_diff(outer_b_i.g, b_i.g, a_i.g);
-      s1_sdb_q[0]  <= second_diff(outer_b_i.b, b_i.b, a_i.b);
-      s1_rhs_q     <= times_gap(thr_i, gap_i);
+      for (int unsigned c = 0; c < 3; c++) begin   // channel 2 = R, 1 = G, 0 = B
+        s1_abs_q[c] <= chan_absdiff(a_ch[c], b_ch[c]);
+        s1_sda_q[c] <= second_diff(oa_ch[c], a_ch[c], b_ch[c]);
+        s1_sdb_q[c] <= second_diff(ob_ch[c], b_ch[c], a_ch[c]);
+      end
+      s1_rhs_q     <= thr_times_gap(thr_i, gap_i);
       s1_oka_q     <= outer_a_ok_i;
       s1_okb_q     <= outer_b_ok_i;
       s1_metric_q  <= metric_i;

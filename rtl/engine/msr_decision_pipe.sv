@@ -63,10 +63,6 @@ module msr_decision_pipe
     endcase
   endfunction
 
-  function automatic chan_t absdiff(chan_t x, chan_t y);
-    return (x > y) ? x - y : y - x;
-  endfunction
-
   // m * x for a 4-bit m, as two levels of adds of shifted copies of x. Every product in this
   // pipeline has a 4-bit factor, and written this way it stays in the logic next to its
   // registers: an FPGA multiplier block sits in a fixed row, and the wires to and from it
@@ -120,16 +116,16 @@ module msr_decision_pipe
 
   always_ff @(posedge clk_i) begin
     if (advance && s0_valid_q) begin
-      s1_abs_q[2] <= absdiff(s0_a_q.r, s0_b_q.r);
-      s1_abs_q[1] <= absdiff(s0_a_q.g, s0_b_q.g);
-      s1_abs_q[0] <= absdiff(s0_a_q.b, s0_b_q.b);
+      s1_abs_q[2] <= chan_absdiff(s0_a_q.r, s0_b_q.r);
+      s1_abs_q[1] <= chan_absdiff(s0_a_q.g, s0_b_q.g);
+      s1_abs_q[0] <= chan_absdiff(s0_a_q.b, s0_b_q.b);
       s1_pa_q[2]  <= PROD_W'(mul4(s0_gmo_q, NUM_W'(s0_a_q.r)));
       s1_pa_q[1]  <= PROD_W'(mul4(s0_gmo_q, NUM_W'(s0_a_q.g)));
       s1_pa_q[0]  <= PROD_W'(mul4(s0_gmo_q, NUM_W'(s0_a_q.b)));
       s1_pb_q[2]  <= PROD_W'(mul4(s0_off_q, NUM_W'(s0_b_q.r)));
       s1_pb_q[1]  <= PROD_W'(mul4(s0_off_q, NUM_W'(s0_b_q.g)));
       s1_pb_q[0]  <= PROD_W'(mul4(s0_off_q, NUM_W'(s0_b_q.b)));
-      s1_rhs_q    <= PROD_W'(mul4(s0_gap_q, NUM_W'(s0_thr_q)));
+      s1_rhs_q    <= thr_times_gap(s0_thr_q, s0_gap_q);
       s1_metric_q <= s0_metric_q;
       s1_nshift_q <= s0_nshift_q;
       s1_gap_q    <= s0_gap_q;
