@@ -9,7 +9,7 @@ REGS_GEN  := rtl/regs/msr_regs.sv rtl/regs/msr_regs_pkg.sv sim/msr_regs.h tb/msr
 
 define regs_generate # $(1) = output root (repo root or a scratch folder)
 	mkdir -p $(1)/rtl/regs $(1)/sim $(1)/tb $(1)/docs
-	$(ENV) peakrdl regblock $(REGS_RDL) -o $(1)/rtl/regs --cpuif axi4-lite-flat --default-reset arst_n \
+	$(ENV) peakrdl regblock $(REGS_RDL) -o $(1)/rtl/regs --cpuif passthrough --default-reset arst_n \
 	    --rt-read-fanin --rt-read-response \
 	    --err-if-bad-addr
 	$(ENV) peakrdl c-header $(REGS_RDL) -o $(1)/sim/msr_regs.h

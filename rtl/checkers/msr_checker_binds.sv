@@ -14,6 +14,6 @@ bind msr_fb_writer msr_axi4_w_checker #(
 ) u_axi4_w_chk (
   .clk_i, .rst_ni(rst_ni && !clear_i), `MSR_AXI4_W_CONN(, m_axi_), .viol_o()
 );
-bind msr_regs msr_axil_checker #(.ADDR_W(7), .DATA_W(32), .MAX_OUT(15)) u_axil_chk (
-  .clk_i(clk), .rst_ni(arst_n), `MSR_AXIL_CONN(, s_axil_), .viol_o()
+bind msr_axil_cpuif msr_axil_checker #(.ADDR_W(ADDR_W), .DATA_W(DATA_W), .MAX_OUT(15)) u_axil_chk (
+  .clk_i, .rst_ni, `MSR_AXIL_CONN(, s_axil_), .viol_o()
 );

@@ -268,6 +268,12 @@ module msr_level_ctrl
   list_t      lines_q, poss_q;       // the pass's lists (set-up 1)
   walk_t      pstart_q;              // walk state at the start of a line (set-up 2)
   walk_t      lw_q, lw_d, pw_q, pw_d;  // line walk, position walk
+  // Compares of the walk state kept as flags beside it, set with it from the value it gets:
+  // the next-candidate decision (line end, edge row) then starts from flip-flops, not from
+  // compares of lw_q / pw_q (that was the engine's worst path, lw_q -> line end -> lw_next).
+  logic       pw_left0_q, pw_left0_d;  // pw_q.left == 0
+  logic       pw_left1_q, pw_left1_d;  // pw_q.left == 1
+  logic       lw_edge_q, lw_edge_d;    // lw_q.cur == 0 || lw_q.left == 0
 
   // Set-up 1: the lists of the pass (dir_q, k_q).
   lcoord_t s_full, nk, nk_half;
@@ -351,9 +357,9 @@ module msr_level_ctrl
   assign advance  = !out_valid_q || step_ready_i;
   assign pw_next  = walk_step(pw_q, poss_q.p, poss_q.st);
   assign lw_next  = walk_step(lw_q, lines_q.p, lines_q.st);
-  assign edge_row = (dir_q == DIR_INIT) && (lw_q.cur == '0 || lw_q.left == '0);
+  assign edge_row = (dir_q == DIR_INIT) && lw_edge_q;
   // an edge row leaves out its last position (a corner): it ends one early
-  assign line_end = !pw_q.ok || (pw_q.left == '0) || (edge_row && pw_q.left == 1);
+  assign line_end = !pw_q.ok || pw_left0_q || (edge_row && pw_left1_q);
 
   always_comb begin
     ws_d     = ws_q;
@@ -364,6 +370,9 @@ module msr_level_ctrl
     skip_d   = skip_q;
     lw_d     = lw_q;
     pw_d     = pw_q;
+    pw_left0_d = pw_left0_q;
+    pw_left1_d = pw_left1_q;
+    lw_edge_d  = lw_edge_q;
     if (advance) begin
       unique case (ws_q)
         WS_CORNER: begin
@@ -379,6 +388,10 @@ module msr_level_ctrl
         WS_SETUP2: begin
           lw_d    = walk_start(lines_q);
           pw_d    = walk_start(poss_q);
+          // left = total - 1 (the first entry is cur)
+          pw_left0_d = (poss_q.total == (LCOORD_W+1)'(1));
+          pw_left1_d = (poss_q.total == (LCOORD_W+1)'(2));
+          lw_edge_d  = (lines_q.total == (LCOORD_W+1)'(1)) || (walk_start(lines_q).cur == '0);
           // row 0 of the initial grid is an edge row: its x = 0 is a corner
           skip_d  = (dir_q == DIR_INIT);
           first_d = (dir_q != DIR_INIT);
@@ -389,9 +402,16 @@ module msr_level_ctrl
           skip_d = 1'b0;
           if (!line_end) begin
             pw_d = pw_next;                              // next position of the line
+            pw_left0_d = pw_left1_q;
+            pw_left1_d = (pw_q.left == (LCOORD_W+1)'(2));
           end else if ((pw_q.ok || dir_q == DIR_INIT) && lw_q.left != '0) begin
             lw_d   = lw_next;                            // first position of the next line
             pw_d   = pstart_q;
+            pw_left0_d = (pstart_q.left == '0);
+            pw_left1_d = (pstart_q.left == (LCOORD_W+1)'(1));
+            // a step never comes back to 0 (the next regular line or a border line beyond p:
+            // a_edge_flag checks it)
+            lw_edge_d  = (lw_q.left == (LCOORD_W+1)'(1));
             skip_d = (dir_q == DIR_INIT) && (lw_q.left == 1);   // the last row is an edge row
           end else begin                                 // end of the pass (or an empty pass)
             pw_d.ok = 1'b0;
@@ -469,6 +489,8 @@ module msr_level_ctrl
       first_q     <= 1'b0;
       skip_q      <= 1'b0;
       pw_q        <= '0;
+      pw_left0_q  <= 1'b1;
+      pw_left1_q  <= 1'b0;
       out_valid_q <= 1'b0;
       out_first_q <= 1'b0;
     end else if (clear_i) begin
@@ -484,6 +506,8 @@ module msr_level_ctrl
       first_q  <= first_d;
       skip_q   <= skip_d;
       pw_q     <= pw_d;
+      pw_left0_q <= pw_left0_d;
+      pw_left1_q <= pw_left1_d;
       if (advance) begin
         out_valid_q <= cand_valid;
         out_first_q <= cand_valid && first_q;
@@ -493,7 +517,8 @@ module msr_level_ctrl
 
   // Data registers: gated by the state and valid bits above, no reset needed.
   always_ff @(posedge clk_i) begin
-    lw_q <= lw_d;
+    lw_q      <= lw_d;
+    lw_edge_q <= lw_edge_d;
     if (ws_q == WS_SETUP0) begin
       pl_q    <= sel_lines;
       pp_q    <= sel_poss;
@@ -541,6 +566,10 @@ module msr_level_ctrl
                step_dir_o, step_first_o}), clk_i, !rst_ni || clear_i)
   `MSR_ASSERT(a_gap, step_valid_o && step_dir_o != DIR_INIT |->
       step_gap_o inside {[2 : 8]} && step_off_o == (step_gap_o >> 1))
+  // The flags beside the walk state equal the compares they stand for, while they are used.
+  `MSR_ASSERT(a_walk_flags, ws_q == WS_WALK |->
+      pw_left0_q == (pw_q.left == '0) && pw_left1_q == (pw_q.left == (LCOORD_W+1)'(1)) &&
+      lw_edge_q == (lw_q.cur == '0 || lw_q.left == '0))
   `MSR_COVER(c_border_gap3, step_valid_o && step_gap_o == 4'd3)
   `MSR_COVER(c_level3, step_valid_o && step_level_o == 2'd3)
   /* verilator lint_on SYNCASYNCNET */
