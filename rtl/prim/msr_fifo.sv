@@ -39,6 +39,19 @@ module msr_fifo #(
   logic             nonempty_q, notfull_q;
 
   assign count_d = count_q + {{PTR_W{1'b0}}, push} - {{PTR_W{1'b0}}, pop};
+
+  // The flags' next values are count_d compares, written without count_d: the compares of
+  // count_q are ready early, and the late push / pop (which the logic around the FIFO decides)
+  // pass through one gate instead of the count adder and a compare behind it. Same values
+  // (a_flags; formal/fifo proves them).
+  logic cnt_is1, cnt_ge2, cnt_lt_dm1, cnt_is_dm1;
+  logic nonempty_d, notfull_d;
+  assign cnt_is1    = (count_q == (PTR_W+1)'(1));
+  assign cnt_ge2    = (count_q >= (PTR_W+1)'(2));
+  assign cnt_lt_dm1 = (count_q < (PTR_W+1)'(DEPTH - 1));
+  assign cnt_is_dm1 = (count_q == (PTR_W+1)'(DEPTH - 1));
+  assign nonempty_d = push || cnt_ge2 || (cnt_is1 && !pop);
+  assign notfull_d  = pop || cnt_lt_dm1 || (cnt_is_dm1 && !push);
   assign ready_o = notfull_q;
   assign valid_o = nonempty_q;
   assign push    = valid_i && ready_o;
@@ -62,8 +75,8 @@ module msr_fifo #(
       if (push) wptr_q <= wptr_q + 1'b1;
       if (pop)  rptr_q <= rptr_q + 1'b1;
       count_q    <= count_d;
-      nonempty_q <= (count_d != '0);
-      notfull_q  <= (count_d != DEPTH[PTR_W:0]);
+      nonempty_q <= nonempty_d;
+      notfull_q  <= notfull_d;
     end
   end
 
@@ -77,6 +90,9 @@ module msr_fifo #(
     logic             many_q;
     logic [PTR_W-1:0] rnext_q;     // rptr_q + 1
     logic [WIDTH-1:0] head_q;
+    logic             many_d;    // count_d > 1, as the flags above
+    assign many_d = (count_q >= (PTR_W+1)'(3)) || (count_q == (PTR_W+1)'(2) && (push || !pop)) ||
+                    (cnt_is1 && push && !pop);
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
@@ -86,7 +102,7 @@ module msr_fifo #(
         many_q  <= 1'b0;
         rnext_q <= PTR_W'(1);
       end else begin
-        many_q  <= (count_d > (PTR_W+1)'(1));
+        many_q  <= many_d;
         if (pop) rnext_q <= rnext_q + 1'b1;
       end
     end
