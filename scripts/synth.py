@@ -62,7 +62,7 @@ ECP5_PLACER_ARGS = ("--placer-heap-timingweight", "50")
 # The ECP5 row of the top is the default msr_top (no parameter overridden), placed flat.
 ECP5_TOP_PARAMS: dict = {}
 # Units that get an ECP5 row of their own (besides the engine and the top).
-ECP5_UNITS = ("msr_regs", "msr_cfg_ctrl", "msr_tile_gen", "msr_render_mux", "msr_fb_writer",
+ECP5_UNITS = ("msr_axil_cpuif", "msr_regs", "msr_cfg_ctrl", "msr_tile_gen", "msr_render_mux", "msr_fb_writer",
               "msr_perf_counters")
 # Pixels per clock of the default top (4 engines) for the pixel rate per LUT4: taken from
 # `make bench` (out/bench/report.json, 4 engines at render latency 256) when it exists, else
