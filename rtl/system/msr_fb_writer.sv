@@ -741,6 +741,7 @@ module msr_fb_writer import msr_pkg::*; #(
   // whose address went out on the bus (onbus_q). One ID: B comes in order, and the addresses
   // of the bursts on the bus wait in order for theirs.
   logic [OUT_W-1:0] budget_q, budget_d, onbus_q;
+  logic             b_pop, onbus_nz_q, onbus_nz_d, out_ok_d;
   logic             b_expected, aq_valid, aq_ready;
   logic [31:0]      aq_addr;
   logic [$clog2(AQ_D):0] aq_count;
@@ -760,21 +761,31 @@ module msr_fb_writer import msr_pkg::*; #(
 
   assign m_axi_bready   = 1'b1;
   assign b_hs           = m_axi_bvalid && m_axi_bready;
-  assign b_expected     = (onbus_q != '0);
+  assign b_expected     = onbus_nz_q;
   assign bresp_err_o    = b_hs && b_expected && m_axi_bresp[1];
   assign bresp_addr_o   = aq_addr;
   assign b_unexpected_o = b_hs && !b_expected;
-  assign budget_d       = budget_q + OUT_W'(aw_push) - OUT_W'(b_hs && b_expected);
+  assign budget_d       = budget_q + OUT_W'(aw_push) - OUT_W'(b_pop);
+
+  // The two flags' next values without the counts' adders behind them (the placed top's path
+  // at fef40d6: onbus_q -> "a B is expected" -> budget adder -> budget compare): compares of
+  // the count registers, and the late AW push / B pop through one gate. aw_push needs out_ok_q,
+  // so a full budget only shrinks. a_budget_flags checks both against the compares.
+  assign b_pop      = b_hs && b_expected;
+  // (compared at 32 bits: with MAX_OUT 1 the counts are one bit wide)
+  assign onbus_nz_d = aw_hs || (32'(onbus_q) >= 2) || (32'(onbus_q) == 1 && !b_pop);
+  assign out_ok_d   = (32'(budget_q) < MAX_OUT - 1) ||
+                      (32'(budget_q) == MAX_OUT - 1 && !(aw_push && !b_pop)) ||
+                      (32'(budget_q) == MAX_OUT && b_pop);
 
   // out_ok_q is 1 after reset and clear: the budget is then empty.
-  msr_clr_reg #(.WIDTH(2 * OUT_W + 1), .RESET({(2 * OUT_W)'(0), 1'b1})) u_budget (
+  msr_clr_reg #(.WIDTH(2 * OUT_W + 2), .RESET({(2 * OUT_W)'(0), 2'b10})) u_budget (
     .clk_i,
     .rst_ni,
     .clear_i,
     .en_i    (1'b1),
-    .d_i     ({budget_d, onbus_q + OUT_W'(aw_hs) - OUT_W'(b_hs && b_expected),
-               budget_d != OUT_W'(MAX_OUT)}),
-    .q_o     ({budget_q, onbus_q, out_ok_q})
+    .d_i     ({budget_d, onbus_q + OUT_W'(aw_hs) - OUT_W'(b_pop), out_ok_d, onbus_nz_d}),
+    .q_o     ({budget_q, onbus_q, out_ok_q, onbus_nz_q})
   );
 
   msr_fifo #(.WIDTH(32), .DEPTH(AQ_D)) u_addr_fifo (
@@ -785,7 +796,7 @@ module msr_fb_writer import msr_pkg::*; #(
     .ready_o (aq_ready),
     .data_i  (m_axi_awaddr),
     .valid_o (aq_valid),
-    .ready_i (b_hs && b_expected),
+    .ready_i (b_pop),
     .data_o  (aq_addr),
     .count_o (aq_count)
   );
@@ -934,6 +945,8 @@ module msr_fb_writer import msr_pkg::*; #(
   `MSR_ASSERT(a_addr_fifo_room, aw_hs |-> aq_ready)
   `MSR_ASSERT(a_s5_room, s4_v_q |-> s5_room)
   `MSR_ASSERT(a_onbus_in_budget, onbus_q <= budget_q)
+  `MSR_ASSERT(a_budget_flags, out_ok_q == (budget_q != OUT_W'(MAX_OUT)) &&
+              onbus_nz_q == (onbus_q != '0))
   `MSR_ASSERT(a_s5_credit, s5_credit_q <= ($clog2(S5_D) + 1)'(S5_D))
   `MSR_ASSERT(a_code_fits, code_big == '0)
   `MSR_ASSERT(a_row_ready_late, (row_ready_q & ~row_ready) == '0)
