@@ -67,6 +67,10 @@ extern "C" {
 #define MSR_REGS__CONFIG__METRIC_bp 12
 #define MSR_REGS__CONFIG__METRIC_bw 1
 #define MSR_REGS__CONFIG__METRIC_reset 0x0
+#define MSR_REGS__CONFIG__RULE_bm 0x30000
+#define MSR_REGS__CONFIG__RULE_bp 16
+#define MSR_REGS__CONFIG__RULE_bw 2
+#define MSR_REGS__CONFIG__RULE_reset 0x0
 
 // reg - msr_regs::THRESH
 #define MSR_REGS__THRESH__THR1_bm 0xff

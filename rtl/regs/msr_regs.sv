@@ -219,6 +219,10 @@ module msr_regs (
                 logic next;
                 logic load_next;
             } METRIC;
+            struct {
+                logic [1:0] next;
+                logic load_next;
+            } RULE;
         } CONFIG;
         struct {
             struct {
@@ -320,6 +324,9 @@ module msr_regs (
             struct {
                 logic value;
             } METRIC;
+            struct {
+                logic [1:0] value;
+            } RULE;
         } CONFIG;
         struct {
             struct {
@@ -647,6 +654,29 @@ module msr_regs (
         end
     end
     assign hwif_out.CONFIG.METRIC.value = field_storage.CONFIG.METRIC.value;
+    // Field: msr_regs.CONFIG.RULE
+    always_comb begin
+        automatic logic [1:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.CONFIG.RULE.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.CONFIG && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.CONFIG.RULE.value & ~decoded_wr_biten[17:16]) | (decoded_wr_data[17:16] & decoded_wr_biten[17:16]);
+            load_next_c = '1;
+        end
+        field_combo.CONFIG.RULE.next = next_c;
+        field_combo.CONFIG.RULE.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.CONFIG.RULE.value <= 2'h0;
+        end else begin
+            if(field_combo.CONFIG.RULE.load_next) begin
+                field_storage.CONFIG.RULE.value <= field_combo.CONFIG.RULE.next;
+            end
+        end
+    end
+    assign hwif_out.CONFIG.RULE.value = field_storage.CONFIG.RULE.value;
     // Field: msr_regs.THRESH.THR1
     always_comb begin
         automatic logic [7:0] next_c;
@@ -925,6 +955,7 @@ module msr_regs (
             readback_data_var[ad_hi(7'hc)][5:0] = field_storage.CONFIG.TILE.value;
             readback_data_var[ad_hi(7'hc)][9:8] = field_storage.CONFIG.LEVELS.value;
             readback_data_var[ad_hi(7'hc)][12] = field_storage.CONFIG.METRIC.value;
+            readback_data_var[ad_hi(7'hc)][17:16] = field_storage.CONFIG.RULE.value;
         end
         if(ad_low(rd_mux_addr) == ad_low(7'h10)) begin
             readback_data_var[ad_hi(7'h10)][7:0] = field_storage.THRESH.THR1.value;

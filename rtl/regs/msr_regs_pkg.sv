@@ -181,9 +181,14 @@ package msr_regs_pkg;
     } msr_regs__CONFIG__METRIC__out_t;
 
     typedef struct {
+        logic [1:0] value;
+    } msr_regs__CONFIG__RULE__out_t;
+
+    typedef struct {
         msr_regs__CONFIG__TILE__out_t TILE;
         msr_regs__CONFIG__LEVELS__out_t LEVELS;
         msr_regs__CONFIG__METRIC__out_t METRIC;
+        msr_regs__CONFIG__RULE__out_t RULE;
     } msr_regs__CONFIG__out_t;
 
     typedef struct {
