@@ -52,6 +52,13 @@ package msr_pkg;
     METRIC_SUM = 1'b1    // |dR| + |dG| + |dB|
   } metric_e;
 
+  // Decision rule (docs/rules.md): the patent's test, or `lindilate` (second differences on
+  // A', A, B, B', dilated across the lines of the pass).
+  typedef enum logic {
+    RULE_PATENT    = 1'b0,
+    RULE_LINDILATE = 1'b1
+  } rule_e;
+
   typedef logic [1:0] level_t;            // L = 1..3, level index k = 0..3
 
   // ---- Source codes (spec section 4) ------------------------------------------------------
@@ -68,7 +75,9 @@ package msr_pkg;
   endfunction
 
   // ---- Tile descriptor: everything one engine needs for one tile ---------------------------
+  // `rule` is the most significant field, so a descriptor packed without it is a patent one.
   typedef struct packed {
+    rule_e                   rule;        // decision rule of the frame
     coord_t                  x0;          // tile origin in the frame
     coord_t                  y0;
     ldim_t                   w;           // tile extent, 1..T
