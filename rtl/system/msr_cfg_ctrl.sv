@@ -5,8 +5,8 @@
 // base + (H-1)*stride + row bytes, as a shift-and-add over 12 clocks into a 48-bit
 // accumulator in 8-bit segments (a carry goes one segment per clock; 6 more clocks settle
 // it), so a plane that wraps past 4 GiB is seen; then whether the two ranges [base, end)
-// overlap, compared segment by segment from the least significant one. The first failing
-// check in the order of the error codes wins: the configuration is latched and the frame
+// overlap, compared segment by segment from the least significant one; the rule encoding
+// (CONFIG.RULE 2 or 3, code 13). The first failing check in the order of the error codes wins: the configuration is latched and the frame
 // starts, or the error is reported (STATUS.ERROR, STATUS.CFG_ERR and the interrupt) and the
 // accelerator stays idle (no render request, no memory write). A frame ends when the tile
 // generator has handed out every tile, every tile's last pixel has reached the writer and the
@@ -89,6 +89,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   cfg_t             cfg_q;
   err_e             err_q, err_d;
   logic [NCHK-1:0]  chk_q;             // check k failed (error code order)
+  logic             rule_chk_q;        // CONFIG.RULE is 2 or 3 (code 13, after the overlap)
   logic [4:0]       step_q;
   logic             frame_done_q;
   logic [TIF_W-1:0] tif_q;             // tiles handed out and not yet fully written
@@ -203,11 +204,12 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   end
 
   // The first failing check, in the order of the codes (code k + 1 for flag k).
-  function automatic err_e first_err(logic [NCHK-1:0] chk, logic overlap);
+  function automatic err_e first_err(logic [NCHK-1:0] chk, logic overlap, logic rule_bad);
     for (int unsigned k = 0; k < NCHK; k++) begin
       if (chk[k]) return err_e'(k + 1);
     end
     if (overlap) return ERR_OVERLAP;
+    if (rule_bad) return ERR_RULE;
     return ERR_NONE;
   endfunction
 
@@ -219,7 +221,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   // ---- Control ----------------------------------------------------------------------------------
   logic overlap;
   assign overlap = raw_q.src_en && lt_q[0] && lt_q[1];
-  assign accept  = (state_q == ST_CHECK) && (step_q == STEP_END[4:0]) && (chk_q == '0) && !overlap;
+  assign accept  = (state_q == ST_CHECK) && (step_q == STEP_END[4:0]) && (chk_q == '0) &&
+                   !overlap && !rule_chk_q;
 
   always_comb begin
     state_d = state_q;
@@ -229,7 +232,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       ST_SAMPLE: state_d = ST_CHECK;
       ST_CHECK: begin
         if (step_q == STEP_END[4:0]) begin
-          err_d   = first_err(chk_q, overlap);
+          err_d   = first_err(chk_q, overlap, rule_chk_q);
           state_d = accept ? ST_RUN : ST_IDLE;
         end
       end
@@ -290,6 +293,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       raw_q          <= '0;
       cfg_q          <= '0;
       chk_q          <= '0;
+      rule_chk_q     <= 1'b0;
       step_q         <= '0;
       start_q        <= 1'b0;
       refused_q      <= 1'b0;
@@ -308,7 +312,10 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
                       wr_idle_i && !frame_done_q;
       step_q       <= (state_q == ST_CHECK) ? step_q + 1'b1 : '0;
       if (state_q == ST_IDLE && start_i) raw_q <= raw_i;
-      if (state_q == ST_CHECK && step_q == STEP_CMP[4:0]) chk_q <= chk_all;
+      if (state_q == ST_CHECK && step_q == STEP_CMP[4:0]) begin
+        chk_q      <= chk_all;
+        rule_chk_q <= raw_q.rule[1];
+      end
       if (accept) begin
         cfg_q.width      <= raw_q.width;
         cfg_q.height     <= raw_q.height;
@@ -316,6 +323,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
                             (raw_q.tile == 6'd32) ? TILE_32 : TILE_16;
         cfg_q.levels     <= raw_q.levels;
         cfg_q.metric     <= raw_q.metric;
+        cfg_q.rule       <= rule_e'(raw_q.rule[0]);
         cfg_q.thr        <= raw_q.thr;
         cfg_q.fov_gain   <= raw_q.fov_gain;
         cfg_q.fb_base    <= raw_q.fb_base;
@@ -377,6 +385,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   `MSR_ASSERT(a_tif_no_overflow, tif_q != '1)
   `MSR_COVER(c_refused, refused_q)
   `MSR_COVER(c_overlap_refused, refused_q && err_q == ERR_OVERLAP)
+  `MSR_COVER(c_rule_refused, refused_q && err_q == ERR_RULE)
   `MSR_COVER(c_drain_with_mem_err, state_q == ST_CLEAR && err_q == ERR_AXI_WRITE)
   `MSR_ASSERT(a_wd_lo_ones, wd_lo_ones_q == (wd_q[15:0] == 16'hFFFF))
   `MSR_COVER(c_wdog_run, wd_fire && state_q == ST_RUN)

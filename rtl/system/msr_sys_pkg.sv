@@ -9,6 +9,7 @@ package msr_sys_pkg;
     logic [5:0]            tile;       // tile edge in pixels as written (8, 16 or 32)
     level_t                levels;
     metric_e               metric;
+    logic [1:0]            rule;       // decision rule as written (0 patent, 1 lindilate)
     thr_t [MAX_LEVELS-1:0] thr;
     logic [7:0]            fov_gain;
     logic [31:0]           fb_base;
@@ -25,6 +26,7 @@ package msr_sys_pkg;
     tile_size_e            tile;
     level_t                levels;
     metric_e               metric;
+    rule_e                 rule;
     thr_t [MAX_LEVELS-1:0] thr;
     logic [7:0]            fov_gain;
     logic [31:0]           fb_base;
@@ -48,7 +50,8 @@ package msr_sys_pkg;
     ERR_FB_WRAP    = 4'd9,
     ERR_SRC_WRAP   = 4'd10,
     ERR_OVERLAP    = 4'd11,
-    ERR_WATCHDOG   = 4'd12   // no progress for WATCHDOG cycles: frame or drain ended by force
+    ERR_WATCHDOG   = 4'd12,  // no progress for WATCHDOG cycles: frame or drain ended by force
+    ERR_RULE       = 4'd13   // CONFIG.RULE not 0 (patent) or 1 (lindilate)
   } err_e;
 
 endpackage : msr_sys_pkg

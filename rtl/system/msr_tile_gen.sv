@@ -27,6 +27,7 @@ module msr_tile_gen import msr_pkg::*; #(
   input  tile_size_e             tile_i,        // T
   input  level_t                 levels_i,      // L, 1..3
   input  metric_e                metric_i,      // colour difference metric
+  input  rule_e                  rule_i,        // decision rule
   input  thr_t [MAX_LEVELS-1:0]  thr_i,         // base thresholds, thr_i[k-1] for level k
   input  logic [7:0]             fov_gain_i,    // foveation gain, 0 = uniform
   // Descriptor to the engines: valid goes to exactly one engine that is ready.
@@ -240,6 +241,7 @@ module msr_tile_gen import msr_pkg::*; #(
     desc_d.h      = h_q[2];
     desc_d.levels = levels_i;
     desc_d.metric = metric_i;
+    desc_d.rule   = rule_i;
     for (int k = 0; k < MAX_LEVELS; k++) begin
       logic [THR_W:0] t;
       t = (THR_W+1)'(thr_i[k]) + (THR_W+1)'(s4_fov_q);

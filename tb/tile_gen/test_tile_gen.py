@@ -1,5 +1,6 @@
 """tile_gen: every tile of random frames, in row-major order, with the golden model's extent
-and foveated thresholds (spec section 1), dispatched only to ready engines."""
+and foveated thresholds (spec section 1) and the frame's decision rule, dispatched only to
+ready engines."""
 from __future__ import annotations
 
 import sys
@@ -20,25 +21,27 @@ TILE_ENC = {8: 0, 16: 1, 32: 2}
 
 
 def unpack_desc(v: int) -> dict:
-    """tile_desc_t (rtl/msr_pkg.sv), packed MSB first: x0 y0 w h levels metric thr[2] thr[1] thr[0]."""
+    """tile_desc_t (rtl/msr_pkg.sv), packed MSB first: rule x0 y0 w h levels metric thr[2] thr[1]
+    thr[0] (64 bits)."""
+    assert v >> 64 == 0, f"descriptor wider than 64 bits: {v:#x}"
     return {"thr": tuple((v >> (8 * k)) & 0xFF for k in range(3)), "metric": (v >> 24) & 1,
             "levels": (v >> 25) & 3, "h": (v >> 27) & 0x3F, "w": (v >> 33) & 0x3F,
-            "y0": (v >> 39) & 0xFFF, "x0": (v >> 51) & 0xFFF}
+            "y0": (v >> 39) & 0xFFF, "x0": (v >> 51) & 0xFFF, "rule": (v >> 63) & 1}
 
 
-def expected_tiles(W, H, T, L, metric, thr, gain):
+def expected_tiles(W, H, T, L, metric, thr, gain, rule):
     from msr_model import spec
     from msr_model.tile_model import frame_tiles
 
     ntx, nty = spec.tile_counts(W, H, T)
     out = []
     for tx, ty, x0, y0, w, h in frame_tiles(W, H, T):
-        out.append({"x0": x0, "y0": y0, "w": w, "h": h, "levels": L, "metric": metric,
+        out.append({"x0": x0, "y0": y0, "w": w, "h": h, "levels": L, "metric": metric, "rule": rule,
                     "thr": tuple(spec.foveated_threshold(t, tx, ty, ntx, nty, gain) for t in thr)})
     return out
 
 
-async def run_frame(dut, n_eng, rng, W, H, T, L, metric, thr, gain, ready_prob):
+async def run_frame(dut, n_eng, rng, W, H, T, L, metric, thr, gain, ready_prob, rule):
     dut.width_i.value = W
     dut.height_i.value = H
     dut.tile_i.value = TILE_ENC[T]
@@ -46,6 +49,7 @@ async def run_frame(dut, n_eng, rng, W, H, T, L, metric, thr, gain, ready_prob):
     dut.metric_i.value = metric
     dut.thr_i.value = thr[0] | (thr[1] << 8) | (thr[2] << 16)
     dut.fov_gain_i.value = gain
+    dut.rule_i.value = rule   # 0 patent, 1 lindilate (rule_e)
     dut.start_i.value = 1
     await RisingEdge(dut.clk_i)
     dut.start_i.value = 0
@@ -65,10 +69,10 @@ async def run_frame(dut, n_eng, rng, W, H, T, L, metric, thr, gain, ready_prob):
         await RisingEdge(dut.clk_i)
     else:
         raise AssertionError("frame never done")
-    want = expected_tiles(W, H, T, L, metric, thr, gain)
+    want = expected_tiles(W, H, T, L, metric, thr, gain, rule)
     assert len(got) == len(want), f"{len(got)} tiles, want {len(want)}"
     for i, (g, w) in enumerate(zip(got, want)):
-        assert g == w, f"tile {i} ({W}x{H} T{T} gain {gain}): got {g}, want {w}"
+        assert g == w, f"tile {i} ({W}x{H} T{T} gain {gain} rule {rule}): got {g}, want {w}"
     record("msr_tile_gen", engines=n_eng, tile=T, fov="on" if gain else "off", partial=partial(W, H, T))
     await RisingEdge(dut.clk_i)
     dut.desc_ready_i.value = 0
@@ -89,14 +93,16 @@ async def test_frames(dut):
     await ClockCycles(dut.clk_i, 2)
     dut.rst_ni.value = 1
     await RisingEdge(dut.clk_i)
-    cases = [(1, 1, 8, 1, 0, (0, 0, 0), 0, 1.0),            # a single pixel
-             (4096, 9, 8, 3, 1, (250, 3, 100), 255, 0.7),   # 512 x 2 tiles: widest r2, saturation
-             (33, 4096, 32, 2, 0, (8, 16, 32), 200, 0.5),   # tall, last tile 1 pixel wide
-             (100, 60, 16, 2, 0, (8, 16, 32), 17, 0.3)]
+    # The last field is the rule: the descriptors carry it (their MSB), patent then lindilate
+    # back to back so a stale rule would show.
+    cases = [(1, 1, 8, 1, 0, (0, 0, 0), 0, 1.0, 1),            # a single pixel
+             (4096, 9, 8, 3, 1, (250, 3, 100), 255, 0.7, 0),   # 512 x 2 tiles: widest r2, saturation
+             (33, 4096, 32, 2, 0, (8, 16, 32), 200, 0.5, 1),   # tall, last tile 1 pixel wide
+             (100, 60, 16, 2, 0, (8, 16, 32), 17, 0.3, 0)]
     for _ in range(6):
         cases.append((rng.randint(1, 200), rng.randint(1, 120), rng.choice((8, 16, 32)), rng.randint(1, 3),
                       rng.randint(0, 1), tuple(rng.randint(0, 255) for _ in range(3)), rng.randint(0, 255),
-                      rng.choice((0.2, 0.6, 1.0))))
+                      rng.choice((0.2, 0.6, 1.0)), rng.randint(0, 1)))
     for c in cases:
         await run_frame(dut, n_eng, rng, *c)
     # A clear in the middle of a frame forgets it; the next frame is complete.
@@ -114,7 +120,7 @@ async def test_frames(dut):
     await ReadOnly()
     assert int(dut.busy_o.value) == 0 and int(dut.done_o.value) == 0
     await RisingEdge(dut.clk_i)
-    await run_frame(dut, n_eng, rng, 40, 24, 8, 2, 0, (8, 16, 32), 40, 0.5)
+    await run_frame(dut, n_eng, rng, 40, 24, 8, 2, 0, (8, 16, 32), 40, 0.5, 1)
 
 
 @pytest.mark.parametrize("engines", [1, 3, 4])
