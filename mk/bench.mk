@@ -12,6 +12,8 @@ BENCH_HW_CPP  := sim/harness.cpp sim/msr_dpi.cpp
 BENCH_HW_CFGS ?= e1_mo16 e1_mo64 e2_mo64 e4_mo64
 BENCH_HW_BINS  = $(foreach c,$(BENCH_HW_CFGS),build/bench/hw_$(c)/Vmsr_sim_top)
 BENCH_HW_ARGS ?=
+# MSR_BENCH_RULE=lindilate (the environment, or --rule in BENCH_HW_ARGS): the decision rule of every
+# point, CONFIG.RULE and the golden model's; default patent. report.json's setup records it.
 
 build/bench/hw_%/Vmsr_sim_top: $(BENCH_HW_RTL) $(BENCH_HW_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f \
         mk/sim.mk build/renderer/libmsr_render.so

@@ -10,8 +10,9 @@ SIM_SCENE_LABEL = $(if $(findstring /,$(SCENE))$(findstring .,$(SCENE)),$(basena
 SIM_OUT      = $(if $(OUT),$(OUT),out/sim/$(SIM_SCENE_LABEL))
 SIM_THREADS  ?= 1
 WAVE_TILE    ?=
-# RULE= the decision rule (default patent); run_sim.py refuses, with exit status 2, a rule the
-# RTL does not implement yet. The script's last line says passed / error (bad input) / failed.
+# RULE= the decision rule (default patent; lindilate), written to CONFIG.RULE (harness --rule) and
+# given to the golden model; run_sim.py refuses any other name with exit status 2. The script's last
+# line says passed / error (bad input) / failed.
 RULE         ?=
 WAVE_CYCLES  ?=
 

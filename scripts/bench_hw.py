@@ -3,12 +3,14 @@
     python scripts/bench_hw.py [--configs "e1_mo16 e1_mo64 e2_mo64 e4_mo64"] [--scene cornell]
         [--width 640 --height 480] [--latencies 0,64,256] [--tiles 8,16,32] [--levels 1,2,3]
         [--tl-engines 4] [--tl-latencies 0,256] [--out out/bench] [--no-tile-sweep]
+        [--rule patent|lindilate]   (default: $MSR_BENCH_RULE, else patent)
 
 Each point runs one frame through the Verilator harness (sim/harness.cpp) built per
 (NUM_ENGINES, MAX_OUTSTANDING) into build/bench/hw_e<N>_mo<M>/ by mk/bench.mk; the rendering
 unit is Embree over DPI-C (render_dpi.sv) answering every request exactly `latency` cycles
 after it was taken (+rnd_latency, no jitter). Every RTL frame and source map is compared with
-the golden model (same scene, same renderer), so each point also says whether it is bit exact.
+the golden model (same scene, same renderer, same decision rule: CONFIG.RULE and the golden
+model's `rule`), so each point also says whether it is bit exact.
 
 Reported per point: cycles from START to DONE (PERF_CYCLES), pixels per clock = W*H / cycles,
 traced fraction (perf counters), render-port and memory stall counters, and three lower bounds
@@ -21,13 +23,14 @@ and out/bench/pixels_per_clock.png. Bad arguments: one line on stderr, exit stat
 from __future__ import annotations
 
 import json
+import os
 import sys
 import time
 from pathlib import Path
 
 from msr_model import Params, spec
 from msr_model.clitools import EXIT_BAD_INPUT, Parser, RunFailed, UsageError, int_list, run_main
-from msr_harness import GoldenFrames, HarnessRun, compare
+from msr_harness import RTL_RULES, GoldenFrames, HarnessRun, compare
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tb" / "common"))
@@ -69,7 +72,11 @@ def parse(argv):
     ap.add_argument("--engine-json", default=str(ROOT / "out" / "bench" / "engine.json"))
     ap.add_argument("--no-plot", action="store_true")
     ap.add_argument("--no-progress", action="store_true")
+    ap.add_argument("--rule", default=os.environ.get("MSR_BENCH_RULE") or "patent",
+                    help=f"decision rule, one of {', '.join(RTL_RULES)} (default: $MSR_BENCH_RULE, else patent)")
     a = ap.parse_args(argv)
+    if a.rule not in RTL_RULES:
+        raise UsageError(f"rule {a.rule!r} (--rule or MSR_BENCH_RULE) is not one of the RTL's: {', '.join(RTL_RULES)}")
     a.cfgs = [parse_cfg(c) for c in a.configs.split()]
     if not a.cfgs:
         raise UsageError("no harness configs given")
@@ -94,10 +101,10 @@ def params_for(tile: int, levels: int) -> Params:
 
 
 def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, tile: int, levels: int,
-              latency: int, golden: GoldenFrames | None) -> dict:
+              latency: int, golden: GoldenFrames | None, rule: str = "patent") -> dict:
     """One frame through the harness; returns the measured point."""
     p = params_for(tile, levels)
-    rtl = HarnessRun(harness, scene, w, h, p, latency=latency, jitter=0, quiet=True).run()
+    rtl = HarnessRun(harness, scene, w, h, p, rule=rule, latency=latency, jitter=0, quiet=True).run()
     st = rtl.stats
     built = (rtl.build["num_engines"], rtl.build["max_outstanding"])
     if built != (engines, mo):
@@ -131,7 +138,7 @@ def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, 
         "sim_seconds": st["sim_seconds"], "wall_seconds": rtl.wall_seconds,
     }
     if golden is not None:
-        v = compare(rtl, golden.frame(p))
+        v = compare(rtl, golden.frame(p, rule))
         pt["bit_exact"] = v["bit_exact"]
         pt["mismatched_pixels"] = v["mismatched_pixels"] + v["mismatched_codes"]
     return pt
@@ -203,7 +210,7 @@ def plot(report: dict, path: Path) -> None:
                f"{pts[0]['axi_beat_bits']}-bit AXI)")
     s = report["setup"]
     ax.set_title(f"msr_top, {s['scene']} {s['width']}x{s['height']}, T={s['tile']} L={s['levels']} "
-                 f"thr {','.join(map(str, s['thr']))}", fontsize=10)
+                 f"thr {','.join(map(str, s['thr']))}{rule_note(s)}", fontsize=10)
     ax.set_xlabel("render latency (cycles)")
     ax.set_ylabel("pixels per clock")
     ax.set_ylim(bottom=0)
@@ -236,7 +243,7 @@ def run(a) -> int:
                file=sys.stderr)  # None: a bar only on a terminal
     for kind, e, mo, t, l, lat in bar:
         bar.set_postfix_str(f"E={e} MO={mo} T={t} L={l} lat={lat}")
-        pt = run_point(harness_path(build, e, mo), e, mo, a.scene, a.width, a.height, t, l, lat, golden)
+        pt = run_point(harness_path(build, e, mo), e, mo, a.scene, a.width, a.height, t, l, lat, golden, a.rule)
         pt["bottleneck"] = bottleneck(pt)
         (main_pts if kind == "main" else tl_pts).append(pt)
     bar.close()
@@ -250,6 +257,7 @@ def run(a) -> int:
         "setup": {"scene": a.scene, "renderer": "Embree over DPI-C (render_dpi.sv), quality fast",
                   "width": a.width, "height": a.height, "tile": a.tile, "levels": a.levels_main,
                   "thr": list(spec.default_thresholds(a.levels_main)), "metric": "max", "fov_gain": 0,
+                  "rule": a.rule,
                   "render_jitter": 0, "source_map": "enabled (SRC_CTRL.ENABLE, as make sim)",
                   "memory": "AXI slave always ready (--mem-pause 0)",
                   "pixels_per_clock": "W*H / PERF_CYCLES (START to DONE)",
@@ -288,10 +296,16 @@ def run(a) -> int:
     return 0 if report["bit_exact"] else 1
 
 
+def rule_note(setup: dict) -> str:
+    """', rule lindilate' for a rule other than the default (the default output stays as it was)."""
+    rule = setup.get("rule", "patent")
+    return "" if rule == "patent" else f", rule {rule}"
+
+
 def print_tables(r: dict) -> None:
     s = r["setup"]
     print(f"\nPixels per clock, {s['scene']} {s['width']}x{s['height']}, T={s['tile']} L={s['levels']} "
-          f"thr {','.join(map(str, s['thr']))} (traced fraction, cycles):")
+          f"thr {','.join(map(str, s['thr']))}{rule_note(s)} (traced fraction, cycles):")
     print("| engines | MAX_OUTSTANDING | latency | cycles | pixels / clock | traced | render stall | "
           "memory stall | bound | bit exact |")
     print("|---|---|---|---|---|---|---|---|---|---|")

@@ -26,8 +26,8 @@ from msr_model import ImageRenderer, Params, select, spec
 from msr_model.clitools import RunFailed
 
 ROOT = Path(__file__).resolve().parents[1]
-# Rules the RTL implements (CTRL has no rule field yet); the golden model knows more.
-RTL_RULES = ("patent",)
+# Rules the RTL implements, by their CONFIG.RULE value (the index); the golden model knows more.
+RTL_RULES = ("patent", "lindilate")
 
 
 def read_pnm(path: Path) -> np.ndarray:
@@ -108,6 +108,7 @@ class HarnessRun:
     width: int
     height: int
     params: Params
+    rule: str = "patent"                                # one of RTL_RULES: written to CONFIG.RULE
     quality: str = "fast"
     camera: str | None = None
     latency: int = 4
@@ -120,10 +121,12 @@ class HarnessRun:
 
     def command(self, workdir: Path) -> list[str]:
         p = self.params
+        if self.rule not in RTL_RULES:
+            raise spec.SpecError(f"rule {self.rule!r}: the RTL implements {', '.join(RTL_RULES)}")
         thr3 = list(p.thr) + [0] * (3 - p.levels)      # explicit: the harness has no defaults of its own
         cmd = [str(self.harness), "--width", str(self.width), "--height", str(self.height),
                "--tile", str(p.tile), "--levels", str(p.levels), "--thr", ",".join(map(str, thr3)),
-               "--metric", p.metric, "--fov-gain", str(p.fov_gain),
+               "--metric", p.metric, "--fov-gain", str(p.fov_gain), "--rule", self.rule,
                "--frame", str(workdir / "rtl_frame.ppm"), "--source", str(workdir / "rtl_source.pgm"),
                "--stats", str(workdir / "rtl_stats.json"),
                f"+scene={self.scene}", f"+width={self.width}", f"+height={self.height}",

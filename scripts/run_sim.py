@@ -12,7 +12,7 @@ msr_model.overview) and prints a one-screen summary.
 
 Exit status and last line (msr_model.clitools): 0 and "make sim: passed: ..." when the RTL
 is bit exact with the golden model; 2 and "make sim: error: ..." on bad input (arguments,
-a model file that cannot be read, a rule the RTL does not implement), nothing run; 1 and
+a model file that cannot be read, a rule that is not one of the RTL's), nothing run; 1 and
 "make sim: failed: ..." when the simulation fails or is not bit exact.
 """
 from __future__ import annotations
@@ -73,7 +73,7 @@ def rule_of(a) -> str:
     if rule not in RULES:
         raise UsageError(f"RULE {rule!r} is not a decision rule: one of {', '.join(RULES)}")
     if rule not in RTL_RULES:
-        raise UsageError(f"RULE={rule}: the RTL does not implement this rule yet (it implements "
+        raise UsageError(f"RULE={rule}: the RTL does not implement this rule (CONFIG.RULE has "
                          f"{', '.join(RTL_RULES)}); the golden model has it: python -m msr_model select --rule {rule}")
     return rule
 
@@ -106,7 +106,7 @@ def run(a) -> int:
         extra += (["--wave-cycles", a.wave_cycles] if a.wave_cycles
                   else ["--wave-tile", a.wave_tile or f"{ntx // 2},{nty // 2}"])
     # The RTL runs in its own process while this one renders the reference and the golden frame.
-    sim = HarnessRun(harness, a.scene, W, H, params, quality=a.quality, camera=a.camera or None,
+    sim = HarnessRun(harness, a.scene, W, H, params, rule=rule, quality=a.quality, camera=a.camera or None,
                      latency=a.rnd_latency, jitter=a.rnd_jitter, extra=extra).start()
     try:
         golden_frames = GoldenFrames(a.scene, W, H, renderer=renderer)
@@ -127,6 +127,10 @@ def run(a) -> int:
         last.write_text(f"{out.resolve()}\n")
 
     frame, source = rtl.frame, rtl.source
+    # The rule the harness wrote to CONFIG.RULE (its stats file), against the one compared with.
+    written = rtl.stats.get("params", {}).get("rule")
+    if written is not None and written != RTL_RULES.index(rule):
+        raise RunFailed(f"the harness wrote CONFIG.RULE = {written}, not {RTL_RULES.index(rule)} ({rule})")
     verdict = compare(rtl, golden)
     from skimage.metrics import peak_signal_noise_ratio, structural_similarity
     psnr = (float(peak_signal_noise_ratio(reference, frame, data_range=255))

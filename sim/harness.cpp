@@ -2,9 +2,10 @@
 // as a driver and a memory system would, for one frame.
 //
 //   Vmsr_sim_top --width W --height H [--tile T] [--levels L] [--thr a,b,c] [--metric max|sum]
-//       [--fov-gain G] [--frame OUT.ppm] [--source OUT.pgm] [--stats OUT.json]
+//       [--fov-gain G] [--rule patent|lindilate|N] [--frame OUT.ppm] [--source OUT.pgm] [--stats OUT.json]
 //       [--timeout CYCLES] [--mem-pause PERCENT] [--seed N] [--quiet]
 //       [--fb-base ADDR]   (override FB_BASE; memory stays where it is: error-path tests)
+//       (--rule N: CONFIG.RULE written as is, 0..3; 2 and 3 are refused by the hardware, ERROR 13)
 //       [--waves FILE.fst --wave-tile TX,TY | --wave-cycles FROM,TO]   (waves build only)
 //       +scene=NAME|FILE +width=W +height=H [+rnd_latency=N] [+rnd_jitter=J]   (render_dpi)
 //       [+camera=EX,EY,EZ,TX,TY,TZ,FOV]   (the view, read by msr_dpi.cpp)
@@ -45,6 +46,7 @@ constexpr int kExitOk = 0, kExitFail = 1, kExitUsage = 2;
 
 struct Options {
   int width = 320, height = 240, tile = 16, levels = 2, metric = 0, fov_gain = 0;
+  int rule = 0;  // CONFIG.RULE: 0 patent, 1 lindilate (docs/rules.md)
   int thr[3] = {8, 16, 32};
   std::string frame_out, source_out, stats_out, waves;
   uint64_t timeout = 0;  // 0: derived from the frame size
@@ -95,6 +97,12 @@ Options parse(int argc, char **argv) {
       std::string m = next("--metric");
       if (m != "max" && m != "sum") usage("--metric must be max or sum");
       o.metric = (m == "sum");
+    } else if (a == "--rule") {
+      std::string r = next("--rule");
+      if (r == "patent") o.rule = 0;
+      else if (r == "lindilate") o.rule = 1;
+      else if (r.size() == 1 && r[0] >= '0' && r[0] <= '3') o.rule = r[0] - '0';
+      else usage("--rule must be patent, lindilate or a CONFIG.RULE value 0..3, got '" + r + "'");
     } else if (a == "--thr") {
       std::string s = next("--thr");
       int k = 0;
@@ -483,7 +491,8 @@ int main(int argc, char **argv) {
                       (uint32_t(o.height) << MSR_REGS__FRAME_SIZE__HEIGHT_bp));
     sim.write_reg(REG(CONFIG), (uint32_t(o.tile) << MSR_REGS__CONFIG__TILE_bp) |
                             (uint32_t(o.levels) << MSR_REGS__CONFIG__LEVELS_bp) |
-                            (uint32_t(o.metric) << MSR_REGS__CONFIG__METRIC_bp));
+                            (uint32_t(o.metric) << MSR_REGS__CONFIG__METRIC_bp) |
+                            (uint32_t(o.rule) << MSR_REGS__CONFIG__RULE_bp));
     sim.write_reg(REG(THRESH), (uint32_t(o.thr[0]) << MSR_REGS__THRESH__THR1_bp) |
                             (uint32_t(o.thr[1]) << MSR_REGS__THRESH__THR2_bp) |
                             (uint32_t(o.thr[2]) << MSR_REGS__THRESH__THR3_bp));
@@ -565,14 +574,14 @@ int main(int argc, char **argv) {
                      "\"axi_beat_bytes\": %u},\n"
                      " \"layout\": {\"fb_base\": %lld, \"fb_stride\": %u, \"src_base\": %u, \"src_stride\": %u},\n"
                      " \"params\": {\"width\": %d, \"height\": %d, \"tile\": %d, \"levels\": %d, "
-                     "\"thr\": [%d, %d, %d], \"metric\": \"%s\", \"fov_gain\": %d}}\n",
+                     "\"thr\": [%d, %d, %d], \"metric\": \"%s\", \"fov_gain\": %d, \"rule\": %d}}\n",
                      perf_cycles, (unsigned long long)cycles_run, secs, cycles_run / secs, status, err,
                      traced[0], traced[1], traced[2], traced[3], interp[0], interp[1], interp[2], rstall,
                      mstall, unsigned(Root::msr_sim_top__DOT__NUM_ENGINES),
                      unsigned(Root::msr_sim_top__DOT__MAX_OUTSTANDING), unsigned(Root::msr_sim_top__DOT__NUM_CTX),
                      kBeatBytes, o.fb_base >= 0 ? o.fb_base : (long long)sim.fb_base(), sim.fb_stride(),
                      sim.src_base(), sim.src_stride(), o.width, o.height, o.tile, o.levels, o.thr[0], o.thr[1],
-                     o.thr[2], o.metric ? "sum" : "max", o.fov_gain);
+                     o.thr[2], o.metric ? "sum" : "max", o.fov_gain, o.rule);
         std::fclose(f);
       }
     }

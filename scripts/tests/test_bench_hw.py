@@ -38,7 +38,7 @@ def test_tiny_sweep_report(tmp_path):
     assert rc == 0
     r = json.loads((tmp_path / "report.json").read_text())
     assert (tmp_path / "pixels_per_clock.png").stat().st_size > 1000
-    assert r["bit_exact"] is True
+    assert r["bit_exact"] is True and r["setup"]["rule"] == "patent"
     pts = r["engines_x_latency"]
     assert [(p["num_engines"], p["render_latency"]) for p in pts] == [(1, 0), (1, 40)]
     for p in pts + r["cycles_per_tile"]:
@@ -104,13 +104,31 @@ def test_stats_carry_the_build_and_the_layout(tmp_path):
     # frame buffer at 0x1000, stride 4 * 20; codes on the next 4 KiB page, stride 20
     assert st["layout"] == {"fb_base": 0x1000, "fb_stride": 80, "src_base": 0x2000, "src_stride": 20}
     assert st["params"] == {"width": 20, "height": 12, "tile": 8, "levels": 2, "thr": [8, 16, 0],
-                            "metric": "max", "fov_gain": 0}
+                            "metric": "max", "fov_gain": 0, "rule": 0}
     assert rtl.layout == MemoryLayout(20, 12, 0x1000, 80, 0x2000, 20)
+    # The rule is written to CONFIG.RULE, and the stats say so.
+    rtl = HarnessRun(HARNESS, "cornell", 20, 12, p, rule="lindilate", latency=0, jitter=0, quiet=True).run()
+    assert rtl.stats["params"]["rule"] == 1
 
 
 def test_bad_config_is_a_usage_error(capsys):
     assert bench_hw.main(["--configs", "four_engines"]) == bench_hw.EXIT_BAD_INPUT
     assert "e<engines>_mo<outstanding>" in capsys.readouterr().err
+
+
+def test_bad_rule_is_a_usage_error(monkeypatch, capsys):
+    assert bench_hw.main(["--rule", "magic"]) == bench_hw.EXIT_BAD_INPUT
+    assert "magic" in capsys.readouterr().err
+    monkeypatch.setenv("MSR_BENCH_RULE", "magic")
+    assert bench_hw.main([]) == bench_hw.EXIT_BAD_INPUT
+    assert "MSR_BENCH_RULE" in capsys.readouterr().err
+
+
+def test_rule_from_the_environment(monkeypatch):
+    assert bench_hw.parse([]).rule == "patent"
+    monkeypatch.setenv("MSR_BENCH_RULE", "lindilate")
+    assert bench_hw.parse([]).rule == "lindilate"
+    assert bench_hw.parse(["--rule", "patent"]).rule == "patent"
 
 
 def test_missing_harness_is_a_usage_error(tmp_path, capsys):

@@ -19,6 +19,9 @@ def opt(name):
     return a[a.index(name) + 1]
 w, h = int(opt("--width")), int(opt("--height"))
 assert opt("--thr").count(",") == 2, "thresholds are always passed, three of them"
+rule = ("patent", "lindilate").index(opt("--rule"))   # always passed, a name the harness knows
+if "{mode}" == "rule0":
+    rule = 0                                          # a harness that ignores --rule
 if "{mode}" == "crash":
     print("harness: error: STATUS.ERROR = 8", file=sys.stderr)
     sys.exit(1)
@@ -29,7 +32,7 @@ st = dict(cycles=w * h, sim_cycles_total=w * h, sim_seconds=0.1, sim_cycles_per_
           traced_level3=0, interpolated_level1=0, interpolated_level2=0, interpolated_level3=0,
           build=dict(num_engines=3, max_outstanding=16, num_ctx=8, axi_beat_bytes=32),
           layout=dict(fb_base=4096, fb_stride=4 * w, src_base=8192, src_stride=w),
-          params=dict(width=w, height=h))
+          params=dict(width=w, height=h, rule=rule))
 open(opt("--stats"), "w").write(json.dumps(st))
 '''
 
@@ -52,8 +55,8 @@ def last_line(r):
 
 
 @pytest.mark.parametrize("args, word", [
-    (["--rule", "lindilate"], "does not implement"),
     (["--rule", "magic"], "not a decision rule"),
+    (["--rule", "1"], "not a decision rule"),
     (["--levels", "2", "--thr", "8"], "THR"),
     (["--width", "0"], "WIDTH"),
     (["--tile", "x"], "TILE"),
@@ -90,3 +93,24 @@ def test_not_bit_exact_is_exit_1_and_says_failed(tmp_path):
     assert rep["params"]["thr"] == [8, 16]
     # the engine count is the harness build's (its stats file), not a constant of the script
     assert rep["num_engines"] == 3
+
+
+def test_rule_reaches_the_harness_and_the_report(tmp_path):
+    """RULE=lindilate: the harness gets --rule lindilate (the fake refuses anything else but the
+    two names), report.json says lindilate; compared with the lindilate golden frame (the fake's
+    zeros are not bit exact, so exit 1)."""
+    out = tmp_path / "o"
+    r = run_sim(fake_harness(tmp_path, "zeros"), "--width", "24", "--height", "16", "--rule", "lindilate",
+                "--out", str(out))
+    assert r.returncode == 1 and last_line(r).startswith("make sim: failed: not bit exact"), r.stderr
+    rep = json.loads((out / "report.json").read_text())
+    assert rep["rule"] == "lindilate" and rep["bit_exact"] is False
+
+
+def test_rule_not_written_is_a_failure(tmp_path):
+    """A harness whose stats say it wrote another CONFIG.RULE than asked: exit 1, and no verdict."""
+    out = tmp_path / "o"
+    r = run_sim(fake_harness(tmp_path, "rule0"), "--width", "24", "--height", "16", "--rule", "lindilate",
+                "--out", str(out))
+    assert r.returncode == 1 and "CONFIG.RULE = 0" in last_line(r), r.stderr
+    assert not (out / "report.json").exists()
