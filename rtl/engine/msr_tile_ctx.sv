@@ -39,10 +39,23 @@ module msr_tile_ctx
   output level_t             step_level_o,
   output logic [1:0]         step_nshift_o,
   output logic               step_init_o,   // initial-grid position: traced, no reads
+  output dir_e               step_dir_o,
+  // for the lindilate rule (msr_level_ctrl's outer-sample outputs)
+  output logic               step_oka_o,    // A' exists
+  output logic               step_okb_o,    // B' exists
+  output logic               step_aalt_o,   // A' is rd_o2_o, not rd_pa_o
+  output logic [3:0]         step_idx_o,
+  output logic               step_fline_o,
+  output lcoord_t            step_lprev_o,
   input  logic               issue_i,       // the head leaves this cycle (granted the cycle before)
   // decision reads: the neighbours of the position issued two cycles before
   output rgb_t               rd_a_o,
   output rgb_t               rd_b_o,
+  output rgb_t               rd_o2_o,       // the third port: B' (or A' where aalt)
+  output rgb_t               rd_pa_o,       // the A of this context's previous issue: A'
+  // a render request for a pixel of this context that was already written (lindilate's
+  // dilation traces an interpolated pixel of the line before): one more pending write
+  input  logic               retro_i,
   // the one write port: an interpolated value or a render response, one per cycle
   input  logic               we_i,
   input  logic [TADDR_W-1:0] waddr_i,
@@ -95,6 +108,14 @@ module msr_tile_ctx
     logic [1:0] nshift;
     dir_e       dir;
     logic       first;
+    logic       oka;
+    logic       okb;
+    logic       aalt;
+    lcoord_t    o2x;
+    lcoord_t    o2y;
+    logic [3:0] idx;
+    logic       fline;
+    lcoord_t    lprev;
   } step_t;
 
   logic    ctrl_valid, ctrl_room, step_valid, ctrl_busy, q_room, q_push;
@@ -129,6 +150,14 @@ module msr_tile_ctx
     .step_nshift_o (ctrl_step.nshift),
     .step_dir_o    (ctrl_step.dir),
     .step_first_o  (ctrl_step.first),
+    .step_oka_o    (ctrl_step.oka),
+    .step_okb_o    (ctrl_step.okb),
+    .step_aalt_o   (ctrl_step.aalt),
+    .step_o2x_o    (ctrl_step.o2x),
+    .step_o2y_o    (ctrl_step.o2y),
+    .step_idx_o    (ctrl_step.idx),
+    .step_fline_o  (ctrl_step.fline),
+    .step_lprev_o  (ctrl_step.lprev),
     .busy_o        (ctrl_busy)
   );
 
@@ -205,9 +234,13 @@ module msr_tile_ctx
   // the first of a pass only when nothing issued is pending. Both alternatives are registered
   // from the next state (cand_tail_q, cand_head_q), so the candidate is one 3-input mux of
   // flip-flops: the arbiter's path (the engine's longest) starts right there.
-  logic pend_zero_q, pend_zero_d, pend_one, cand_tail_q, cand_head_q;
+  // A retro request (retro_i) adds one pending write like an issue; it comes only while the
+  // position that caused it is pending, so it never meets a zero count.
+  logic pend_zero_q, pend_zero_d, pend_one, cand_tail_q, cand_head_q, pend_up;
+  assign pend_up     = issue_i || retro_i;
   assign pend_one    = (pend_q == PEND_W'(1));
-  assign pend_zero_d = (issue_i != we_i) ? (we_i && pend_one) : pend_zero_q;
+  assign pend_zero_d = (issue_i && retro_i) ? 1'b0 :
+                       (pend_up != we_i)    ? (we_i && pend_one) : pend_zero_q;
   assign cand_o      = issue_i ? cand_tail_q : cand_head_q;
 
   msr_clr_reg #(.WIDTH(2)) u_cand (
@@ -227,11 +260,18 @@ module msr_tile_ctx
   assign step_off_o    = head_q.off;
   assign step_level_o  = head_q.level;
   assign step_nshift_o = head_q.nshift;
+  assign step_dir_o    = head_q.dir;
+  assign step_oka_o    = head_q.oka;
+  assign step_okb_o    = head_q.okb;
+  assign step_aalt_o   = head_q.aalt;
+  assign step_idx_o    = head_q.idx;
+  assign step_fline_o  = head_q.fline;
+  assign step_lprev_o  = head_q.lprev;
 
   // ---- State ----------------------------------------------------------------------------------
   always_comb begin
     state_d = state_q;
-    pend_d  = pend_q + PEND_W'(issue_i) - PEND_W'(we_i);
+    pend_d  = pend_q + PEND_W'(issue_i) + PEND_W'(retro_i) - PEND_W'(we_i);
     unique case (state_q)
       CTX_FREE:    if (start_i) state_d = CTX_COMPUTE;
       CTX_COMPUTE: if (!ctrl_busy && !step_valid && !head_valid_q && pend_zero_q) begin
@@ -298,6 +338,51 @@ module msr_tile_ctx
     .wdata_i  ({wsrc_i, wrgb_i})
   );
 
+  // Port 2 (lindilate): a colour-only copy written with the buffer, reading the head's
+  // third-port address (B', or A' where aalt) every clock like ports 0 and 1. A' is most
+  // often the A of the line's previous position, which is this context's previous issue:
+  // its port-1 data are kept (prev_a_q, taken when they arrive, two clocks after the issue),
+  // so one more port gives all four samples of a position every clock.
+  rgb_t rdata2, rdata2_q, prev_a_q;
+  // Port 1 of the copy is not used.
+  /* verilator lint_off UNUSEDSIGNAL */
+  rgb_t rdata2_unused;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  msr_tile_sram #(
+    .DEPTH  (MAX_TILE * MAX_TILE),
+    .DATA_W ($bits(rgb_t))
+  ) u_tile_sram_outer (
+    .clk_i    (clk_i),
+    .re0_i    (computing),
+    .raddr0_i ({head_q.o2y, head_q.o2x}),
+    .rdata0_o (rdata2),
+    .re1_i    (1'b0),
+    .raddr1_i ('0),
+    .rdata1_o (rdata2_unused),
+    .we_i     (we_i),
+    .waddr_i  (waddr_i),
+    .wdata_i  (wrgb_i)
+  );
+
+  logic [1:0] issue_d_q;     // issue_i one and two clocks ago
+  msr_clr_reg #(.WIDTH(2)) u_issue_d (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     ({issue_d_q[0], issue_i}),
+    .q_o     (issue_d_q)
+  );
+
+  always_ff @(posedge clk_i) begin
+    rdata2_q <= rdata2;
+    if (issue_d_q[1]) prev_a_q <= rgb_t'(rdata1_q[$bits(rgb_t)-1:0]);
+  end
+
+  assign rd_o2_o = rdata2_q;
+  assign rd_pa_o = prev_a_q;
+
   // The read data is registered once more, beside the memory, before anything selects between
   // contexts: a block RAM's clock-to-output (5.8 ns on an ECP5 DP16KD) leaves no room for the
   // 8:1 choice behind it. Read data reaches the engine two clocks after the address.
@@ -341,9 +426,12 @@ module msr_tile_ctx
   `MSR_ASSERT(a_start_free, start_i |-> free_o)
   `MSR_ASSERT(a_issue_head, issue_i |-> head_valid_q && state_q == CTX_COMPUTE &&
       (!head_q.first || pend_zero_q))
-  `MSR_ASSERT(a_pend_no_wrap, !(pend_q == '0 && we_i && !issue_i) &&
-      !(pend_q == '1 && issue_i && !we_i))
-  `MSR_ASSERT(a_write_once, we_i |-> state_q == CTX_COMPUTE && !written_q[waddr_i] &&
+  `MSR_ASSERT(a_pend_no_wrap, !(pend_q == '0 && we_i && !pend_up) &&
+      !(pend_q >= PEND_W'('1 - 1) && pend_up && !we_i))
+  `MSR_ASSERT(a_retro_pending, retro_i |-> !pend_zero_q && desc_q.rule == RULE_LINDILATE)
+  // lindilate's dilation may trace a pixel it interpolated (the render answer overwrites it)
+  `MSR_ASSERT(a_write_once, we_i |-> state_q == CTX_COMPUTE &&
+      (!written_q[waddr_i] || (desc_q.rule == RULE_LINDILATE && wsrc_i < SRC_INTERP_BASE)) &&
       32'(waddr_i[LCOORD_W-1:0]) < 32'(desc_q.w) &&
       32'(waddr_i[TADDR_W-1:LCOORD_W]) < 32'(desc_q.h))
   `MSR_ASSERT(a_all_written, state_q == CTX_COMPUTE && state_d == CTX_FULL |->

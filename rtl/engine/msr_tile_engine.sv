@@ -104,7 +104,11 @@ module msr_tile_engine
   level_t     [NUM_CTX-1:0] ctx_level;
   logic       [NUM_CTX-1:0][1:0] ctx_nshift;
   logic       [NUM_CTX-1:0] ctx_init;
-  rgb_t       [NUM_CTX-1:0] ctx_rd_a, ctx_rd_b, ctx_str_rgb;
+  dir_e       [NUM_CTX-1:0] ctx_dir;
+  logic       [NUM_CTX-1:0] ctx_oka, ctx_okb, ctx_aalt, ctx_fline, ctx_retro;
+  logic       [NUM_CTX-1:0][3:0] ctx_idx;
+  lcoord_t    [NUM_CTX-1:0] ctx_lprev;
+  rgb_t       [NUM_CTX-1:0] ctx_rd_a, ctx_rd_b, ctx_rd_o2, ctx_rd_pa, ctx_str_rgb;
   src_t       [NUM_CTX-1:0] ctx_str_src;
   logic       [NUM_CTX-1:0] ctx_we, ctx_str_own, ctx_str_done;
   logic       [NUM_CTX-1:0][TADDR_W-1:0] ctx_waddr;
@@ -217,7 +221,15 @@ module msr_tile_engine
   assign ctx_issue = gr_gnt_q;
 
   // The issued position, picked with the one-hot grant (an AND-OR, not an index multiplexer).
+  // init stays the last field (scripts/bench_engine.py reads it as bit 0).
   typedef struct packed {
+    dir_e       dir;
+    logic       oka;       // lindilate: the outer samples exist, A' from port 2
+    logic       okb;
+    logic       aalt;
+    logic [3:0] idx;       // index on the line, first line, previous line
+    logic       fline;
+    lcoord_t    lprev;
     lcoord_t    x;
     lcoord_t    y;
     gap_t       gap;
@@ -230,7 +242,9 @@ module msr_tile_engine
   pos_t iss_pos;
   pos_t [NUM_CTX-1:0] ctx_pos;
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_pos
-    assign ctx_pos[c] = '{x: ctx_x[c], y: ctx_y[c], gap: ctx_gap[c], off: ctx_off[c],
+    assign ctx_pos[c] = '{dir: ctx_dir[c], oka: ctx_oka[c], okb: ctx_okb[c], aalt: ctx_aalt[c],
+                          idx: ctx_idx[c], fline: ctx_fline[c], lprev: ctx_lprev[c],
+                          x: ctx_x[c], y: ctx_y[c], gap: ctx_gap[c], off: ctx_off[c],
                           level: ctx_level[c], nshift: ctx_nshift[c], init: ctx_init[c]};
   end
   always_comb begin
@@ -262,15 +276,23 @@ module msr_tile_engine
     is_pos_q <= iss_pos;
   end
 
-  // What travels with a decision to the output.
+  // What travels with a decision to the output. For lindilate (lin): the position's index
+  // on its line and the first-line flag address the dilation's line store; the pass
+  // direction, the previous line and its global coordinate (rt_g) address a retro trace.
   typedef struct packed {
-    ctx_t    ctx;
-    lcoord_t x;
-    lcoord_t y;
-    coord_t  gx;
-    coord_t  gy;
-    level_t  level;
-    logic    init;
+    ctx_t       ctx;
+    lcoord_t    x;
+    lcoord_t    y;
+    coord_t     gx;
+    coord_t     gy;
+    level_t     level;
+    logic       init;
+    logic       lin;
+    logic [3:0] idx;
+    logic       fline;
+    logic       vert;
+    lcoord_t    lprev;
+    coord_t     rt_g;
   } side_t;
 
   // ---- RD: the context's descriptor fields, registered (the read data is on its way) ---------
@@ -306,7 +328,12 @@ module msr_tile_engine
       rd_pos_q    <= is_pos_q;
       rd_side_q   <= '{ctx: is_ctx_q, x: is_pos_q.x, y: is_pos_q.y,
                        gx: is_desc.x0 + coord_t'(is_pos_q.x), gy: is_desc.y0 + coord_t'(is_pos_q.y),
-                       level: is_pos_q.level, init: is_pos_q.init};
+                       level: is_pos_q.level, init: is_pos_q.init,
+                       lin: is_desc.rule == RULE_LINDILATE && !is_pos_q.init,
+                       idx: is_pos_q.idx, fline: is_pos_q.fline,
+                       vert: is_pos_q.dir == DIR_V, lprev: is_pos_q.lprev,
+                       rt_g: ((is_pos_q.dir == DIR_V) ? is_desc.x0 : is_desc.y0)
+                             + coord_t'(is_pos_q.lprev)};
       rd_metric_q <= is_desc.metric;
       // threshold of the position's level; an initial-grid position gets 0 (always trace)
       rd_thr_q    <= is_pos_q.init ? '0 : is_desc.thr[is_pos_q.level - 1'b1];
@@ -315,7 +342,7 @@ module msr_tile_engine
 
   // ---- AB: the issued context's read data, registered -----------------------------------------
   logic       ab_valid_q;
-  rgb_t       ab_a_q, ab_b_q;
+  rgb_t       ab_a_q, ab_b_q, ab_oa_q, ab_ob_q;
   side_t      ab_side_q;
   metric_e    ab_metric_q;
   thr_t       ab_thr_q;
@@ -338,6 +365,9 @@ module msr_tile_engine
     if (rd_valid_q) begin
       ab_a_q      <= ctx_rd_a[rd_ctx_q];
       ab_b_q      <= ctx_rd_b[rd_ctx_q];
+      // A': port 2 where aalt, else the context's previous A; B': port 2
+      ab_oa_q     <= rd_pos_q.aalt ? ctx_rd_o2[rd_ctx_q] : ctx_rd_pa[rd_ctx_q];
+      ab_ob_q     <= ctx_rd_o2[rd_ctx_q];
       ab_pos_q    <= rd_pos_q;
       ab_side_q   <= rd_side_q;
       ab_metric_q <= rd_metric_q;
@@ -353,6 +383,7 @@ module msr_tile_engine
   // trace is formed before the output buffer, so the tag allocation below starts at a register.
   typedef struct packed {
     logic  trace;
+    logic  retro;      // lindilate: first a trace of the previous line's pixel (see below)
     rgb_t  rgb;
     side_t side;
   } result_t;
@@ -397,7 +428,63 @@ module msr_tile_engine
     .user_o   (pv_side)
   );
 
-  assign pv_result = '{trace: pv_side.init || !pv_interp, rgb: pv_rgb, side: pv_side};
+  // ---- lindilate: base decision D = P or Q beside the decision pipeline, and the dilation ----
+  // msr_base_decision takes the same AB registers plus A' and B' and answers four clocks
+  // later; two registers align D with the decision pipeline's six stages (neither stalls).
+  logic base_d, base_d1_q, base_d2_q;
+  // P and Q alone are for waveforms and the unit's own bench.
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic base_p, base_q;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  msr_base_decision u_base_decision (
+    .clk_i        (clk_i),
+    .en_i         (1'b1),
+    .outer_a_i    (ab_oa_q),
+    .outer_a_ok_i (ab_pos_q.oka),
+    .a_i          (ab_a_q),
+    .b_i          (ab_b_q),
+    .outer_b_i    (ab_ob_q),
+    .outer_b_ok_i (ab_pos_q.okb),
+    .metric_i     (ab_metric_q),
+    .thr_i        (ab_thr_q),
+    .gap_i        (ab_pos_q.gap),
+    .nshift_i     (ab_pos_q.nshift),
+    .base_o       (base_d),
+    .patent_o     (base_p),
+    .second_o     (base_q)
+  );
+
+  always_ff @(posedge clk_i) begin
+    base_d1_q <= base_d;
+    base_d2_q <= base_d1_q;
+  end
+
+  // Dilation (docs/rules.md step 4) in decision order. A position's D is known when it
+  // leaves the pipeline, the next line's only when the same position of the next line does.
+  // So the position is interpolated (for now) iff D(l-) and D(l); when D(l+) fails later, a
+  // retro trace of (l-, m) follows, and its render answer overwrites the interpolated pixel
+  // (same final pixel and code as the rule, one request per traced pixel). Per context and
+  // position index the line store keeps D of the last line and whether that line's pixel
+  // was interpolated. The passes of a context leave the pipeline in order, so no clearing:
+  // the first line of a pass reads nothing.
+  logic [NUM_CTX-1:0][14:0] dl_d_q, dl_t_q;    // D(l-), "(l-) was interpolated"
+  logic pv_dprev, pv_tprev, pv_lin_interp, pv_retro;
+
+  assign pv_dprev      = pv_side.fline || dl_d_q[pv_side.ctx][pv_side.idx];
+  assign pv_tprev      = !pv_side.fline && dl_t_q[pv_side.ctx][pv_side.idx];
+  assign pv_lin_interp = pv_dprev && base_d2_q;
+  assign pv_retro      = pv_side.lin && pv_tprev && !base_d2_q;
+
+  always_ff @(posedge clk_i) begin
+    if (pv_valid && pv_side.lin) begin
+      dl_d_q[pv_side.ctx][pv_side.idx] <= base_d2_q;
+      dl_t_q[pv_side.ctx][pv_side.idx] <= pv_lin_interp;
+    end
+  end
+
+  assign pv_result = '{trace: pv_side.init || !(pv_side.lin ? pv_lin_interp : pv_interp),
+                       retro: pv_retro, rgb: pv_rgb, side: pv_side};
 
   msr_fifo #(
     .WIDTH ($bits(result_t)),
@@ -460,16 +547,37 @@ module msr_tile_engine
     logic [TAG_W-1:0] tag;
   } req_t;
 
-  logic             out_trace, out_write, tag_avail, req_in_ready, alloc_tag;
+  logic             out_trace, out_write, tag_avail, req_in_ready, alloc_tag, req_in_valid;
+  logic             retro_phase, retro_sent_q;
   logic [TAG_W-1:0] free_tag;
   req_t             req_in, req_out;
+  coord_t           rt_gx, rt_gy;
 
-  assign req_in = '{x: out_side.gx, y: out_side.gy, tag: free_tag};
+  // A result with a retro trace takes two clocks: the retro request (the previous line's
+  // pixel at the same position), then the result's own write or request.
+  assign rt_gx       = out_side.vert ? out_side.rt_g : out_side.gx;
+  assign rt_gy       = out_side.vert ? out_side.gy : out_side.rt_g;
+  assign retro_phase = out_valid && out_result.retro && !retro_sent_q;
+  assign req_in      = retro_phase ? '{x: rt_gx, y: rt_gy, tag: free_tag}
+                                   : '{x: out_side.gx, y: out_side.gy, tag: free_tag};
 
-  assign out_trace = out_result.trace;
-  assign out_write = out_valid && !out_trace;
-  assign out_ready = !out_trace || (tag_avail && req_in_ready);
-  assign alloc_tag = out_valid && out_trace && tag_avail && req_in_ready;
+  assign out_trace    = out_result.trace;
+  assign out_write    = out_valid && !out_trace && !retro_phase;
+  assign out_ready    = !retro_phase && (!out_trace || (tag_avail && req_in_ready));
+  assign req_in_valid = out_valid && (out_trace || retro_phase) && tag_avail;
+  assign alloc_tag    = req_in_valid && req_in_ready;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      retro_sent_q <= 1'b0;
+    end else if (clear_i) begin
+      retro_sent_q <= 1'b0;
+    end else if (out_valid && out_ready) begin
+      retro_sent_q <= 1'b0;
+    end else if (retro_phase && alloc_tag) begin
+      retro_sent_q <= 1'b1;
+    end
+  end
 
   msr_spill_reg #(
     .WIDTH ($bits(req_t))
@@ -477,7 +585,7 @@ module msr_tile_engine
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
     .clear_i (clear_i),
-    .valid_i (out_valid && out_trace && tag_avail),
+    .valid_i (req_in_valid),
     .ready_o (req_in_ready),
     .data_i  (req_in),
     .valid_o (req_valid_o),
@@ -559,7 +667,10 @@ module msr_tile_engine
   logic [TAG_W:0] tags_inflight;
   tag_entry_t     alloc_entry;
 
-  assign alloc_entry = '{ctx: out_side.ctx, addr: {out_side.y, out_side.x}, level: out_side.level};
+  assign alloc_entry = '{ctx: out_side.ctx, level: out_side.level,
+                         addr: !retro_phase  ? {out_side.y, out_side.x} :
+                               out_side.vert ? {out_side.y, out_side.lprev}
+                                             : {out_side.lprev, out_side.x}};
 
   msr_tag_pool #(
     .N       (MAX_OUTSTANDING),
@@ -595,6 +706,17 @@ module msr_tile_engine
     logic pipe_we, rsp_we;
     assign pipe_we = out_write && (out_side.ctx == ctx_t'(c));
     assign rsp_we  = r2_write && (r2_entry_q.ctx == ctx_t'(c));
+
+    // a retro request is one more pending write of its context (registered like the write)
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        ctx_retro[c] <= 1'b0;
+      end else if (clear_i) begin
+        ctx_retro[c] <= 1'b0;
+      end else begin
+        ctx_retro[c] <= retro_phase && alloc_tag && (out_side.ctx == ctx_t'(c));
+      end
+    end
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
@@ -710,9 +832,19 @@ module msr_tile_engine
       .step_level_o  (ctx_level[c]),
       .step_nshift_o (ctx_nshift[c]),
       .step_init_o   (ctx_init[c]),
+      .step_dir_o    (ctx_dir[c]),
+      .step_oka_o    (ctx_oka[c]),
+      .step_okb_o    (ctx_okb[c]),
+      .step_aalt_o   (ctx_aalt[c]),
+      .step_idx_o    (ctx_idx[c]),
+      .step_fline_o  (ctx_fline[c]),
+      .step_lprev_o  (ctx_lprev[c]),
       .issue_i       (ctx_issue[c]),
       .rd_a_o        (ctx_rd_a[c]),
       .rd_b_o        (ctx_rd_b[c]),
+      .rd_o2_o       (ctx_rd_o2[c]),
+      .rd_pa_o       (ctx_rd_pa[c]),
+      .retro_i       (ctx_retro[c]),
       .we_i          (ctx_we[c]),
       .waddr_i       (ctx_waddr[c]),
       .wsrc_i        (ctx_wsrc[c]),
@@ -746,6 +878,8 @@ module msr_tile_engine
   `MSR_ASSERT(a_issue_onehot, $onehot0(ctx_issue))
   `MSR_ASSERT(a_out_buf_room, pv_valid |-> ob_ready)
   `MSR_ASSERT(a_credits, 32'(credit_q) + 32'(ob_count) <= OUT_DEPTH)
+  `MSR_ASSERT(a_retro_lin, out_valid && out_result.retro |-> out_side.lin && !out_side.fline)
+  `MSR_COVER(c_retro, retro_phase && alloc_tag)
   `MSR_COVER(c_rsp_dropped, rsp_drop_o)
   `MSR_COVER(c_all_ctx_busy, ctx_free == '0)
   /* verilator lint_on SYNCASYNCNET */

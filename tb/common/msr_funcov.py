@@ -29,6 +29,7 @@ AXES = {
         "h": ["1", "2-7", "8", "9-15", "16", "17-31", "32"],
         "profile": ["fast", "jitter", "long"],
         "max_out": [2, 16, 64],
+        "rule": ["patent", "lindilate"],
     },
     "msr_fb_writer": {
         "tile": [8, 16, 32],
@@ -56,6 +57,7 @@ CROSSES = {
     "msr_tile_engine": {
         "levels_metric_profile": ("levels", "metric", "profile"),
         "w_h": ("w", "h"),
+        "rule_levels_profile": ("rule", "levels", "profile"),
     },
     "msr_fb_writer": {"bus_inputs": ("bus", "inputs")},
     "msr_tile_gen": {"engines_tile": ("engines", "tile")},

@@ -1,13 +1,15 @@
 """tile_engine against the per-tile golden model tile_model.run_tile.
 
-Random tiles (smooth, noisy and blocky images, every L, both metrics, random thresholds,
-w and h 1..32) are pushed through the engine back to back; a Python rendering model answers
+Random tiles (smooth, noisy and blocky images, every L, both metrics, both decision rules,
+random thresholds, w and h 1..32) are pushed through the engine back to back; a Python rendering model answers
 each render request from the tile's image after a random latency, in random order, with
 random req_ready back-pressure, while the output stream stalls at random. Checked, bit for
 bit: the render requests (coordinates, and their order within each tile: tiles in flight at
-the same time interleave) and every output pixel (tiles leave whole, in any tile order; within
-a tile: order, coordinates, colour, source code, last flag). The spec's worked example is a separate test with values
-computed by hand. The RTL's own SVA (handshakes, tags, write-once) run all the time."""
+the same time interleave; with the lindilate rule the set of requests, each exactly once: a
+dilation that traces a pixel of the line before asks for it after the line it was decided
+on, docs/architecture.md) and every output pixel (tiles leave whole, in any tile order; within
+a tile: order, coordinates, colour, source code, last flag). The spec's worked example and
+docs/rules.md's (lindilate) are separate tests with values computed by hand. The RTL's own SVA (handshakes, tags, write-once) run all the time."""
 from __future__ import annotations
 
 import os
@@ -31,9 +33,12 @@ from msr_model.tile_model import run_tile  # noqa: E402
 COORD_W, LDIM_W = 12, 6
 
 
-def pack_desc(x0, y0, w, h, levels, metric, thr) -> int:
+RULES = ("patent", "lindilate")     # rule_e encodings
+
+
+def pack_desc(x0, y0, w, h, levels, metric, thr, rule="patent") -> int:
     thr = list(thr) + [0] * (3 - len(thr))
-    v = x0
+    v = (RULES.index(rule) << COORD_W) | x0
     for val, width in ((y0, COORD_W), (w, LDIM_W), (h, LDIM_W), (levels, 2),
                        (int(metric == "sum"), 1), (thr[2], 8), (thr[1], 8), (thr[0], 8)):
         v = (v << width) | val
@@ -84,14 +89,14 @@ def random_tile(rng: random.Random):
     x0 = (slot % 100) * 40 + rng.randrange(0, 40 - w + 1)
     y0 = (slot // 100 % 100) * 40 + rng.randrange(0, 40 - h + 1)
     return dict(x0=x0, y0=y0, w=w, h=h, levels=levels, metric=metric, thr=thr,
-                img=make_image(rng, w, h))
+                rule=rng.choice(RULES), img=make_image(rng, w, h))
 
 
 def golden(tile):
     img, x0, y0 = tile["img"], tile["x0"], tile["y0"]
     params = Params(tile=32, levels=tile["levels"], thr=tuple(tile["thr"]), metric=tile["metric"])
     return run_tile(lambda x, y: img[y - y0, x - x0], x0, y0, tile["w"], tile["h"], params,
-                    tuple(tile["thr"]))
+                    tuple(tile["thr"]), rule=tile.get("rule", "patent"))
 
 
 class Profile:
@@ -157,6 +162,11 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
         assert i < di, f"request ({x},{y}) for tile {i}, not accepted yet"
         k = req_next[i]
         assert k < len(exp_req[i]), f"tile {i}: extra render request ({x},{y})"
+        if tiles[i].get("rule") == "lindilate":
+            # every expected request exactly once, in any order: move it to position k
+            assert (x, y) in exp_req[i][k:], f"tile {i} (lindilate): request ({x},{y}) not expected or repeated"
+            j = exp_req[i].index((x, y), k)
+            exp_req[i][k], exp_req[i][j] = exp_req[i][j], exp_req[i][k]
         assert (x, y) == exp_req[i][k], f"tile {i} request {k}: got ({x},{y}), want {exp_req[i][k]}"
         req_next[i] += 1
         t = tiles[i]
@@ -169,7 +179,8 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
             t = tiles[di]
             desc_hold = True
             drv['desc_valid_i'] = 1
-            drv['desc_i'] = pack_desc(t["x0"], t["y0"], t["w"], t["h"], t["levels"], t["metric"], t["thr"])
+            drv['desc_i'] = pack_desc(t["x0"], t["y0"], t["w"], t["h"], t["levels"], t["metric"], t["thr"],
+                                      t.get("rule", "patent"))
         else:
             drv['desc_valid_i'] = 0
         req_ready = int(rng.random() < prof.req_ready)
@@ -287,7 +298,7 @@ async def random_tiles(dut):
                                  dup_prob=0.05 if name == "jitter" else 0.0)
         for t in tiles:                      # every tile above was checked bit for bit
             record("msr_tile_engine", levels=t["levels"], metric=t["metric"], w=size_class(t["w"]),
-                   h=size_class(t["h"]), profile=name, max_out=max_out)
+                   h=size_class(t["h"]), profile=name, max_out=max_out, rule=t["rule"])
         total += n
         await stale_responses(dut, rng, max_out)
         dut._log.info("profile %s: %d tiles in %d cycles", name, n, cycles)
@@ -327,6 +338,28 @@ async def worked_example(dut):
     await run_tiles(dut, [tile], PROFILES["jitter"], rng, int(os.environ["MAX_OUTSTANDING"]))
 
 
+@cocotb.test()
+async def worked_example_lindilate(dut):
+    """docs/rules.md's worked example (T=16, L=2, max, thr 8,16, rule lindilate): a red ramp
+    with a green edge in row 4 from x = 10 on. After the level-1 H pass the codes at x = 2, 6,
+    10, 13 of rows 0, 4, 8, 12, 15 are as written there (hand-derived); the whole tile is
+    checked against the golden model by run_tiles."""
+    await start_clock_and_reset(dut, IDLE)
+    yy, xx = np.mgrid[0:16, 0:16]
+    img = np.stack([10 * xx, np.full_like(xx, 50), np.full_like(xx, 50)], axis=-1)
+    img[4, 10:, 1] = 200
+    img = img.astype(np.uint8)
+    tile = dict(x0=64, y0=16, w=16, h=16, levels=2, metric="max", thr=[8, 16], rule="lindilate", img=img)
+    ref = golden(tile)
+    hand = {0: (17, 1, 1, 1), 4: (17, 1, 1, 1), 8: (17, 1, 1, 1), 12: (17, 17, 17, 1), 15: (17, 17, 17, 1)}
+    for y, codes in hand.items():
+        assert tuple(int(ref.codes[y, x]) for x in (2, 6, 10, 13)) == codes, f"golden model disagrees, row {y}"
+    assert tuple(ref.pixels[0, 2]) == (20, 50, 50)
+    assert int((ref.codes < 16).sum()) == 78, "docs/rules.md: lindilate traces 78 pixels of the tile"
+    rng = random.Random(6)
+    await run_tiles(dut, [tile], PROFILES["jitter"], rng, int(os.environ["MAX_OUTSTANDING"]))
+
+
 BUILDS = [
     # (MAX_OUTSTANDING, NUM_CTX, tiles per profile fast,jitter,long, seed)
     (16, 8, "900,450,60", 11),
@@ -356,7 +389,8 @@ def test_bad_parameters_rejected(params):
     from msr_runner import ROOT, rtl_sources
     srcs = [str(s) for s in rtl_sources() if s.name in
             ("msr_pkg.sv", "msr_lzc.sv", "msr_clr_reg.sv", "msr_rr_arb.sv", "msr_fifo.sv",
-             "msr_spill_reg.sv", "msr_tile_sram.sv", "msr_decision_pipe.sv", "msr_level_ctrl.sv",
+             "msr_spill_reg.sv", "msr_tile_sram.sv", "msr_decision_pipe.sv", "msr_base_decision.sv",
+             "msr_level_ctrl.sv",
              "msr_tile_stream.sv", "msr_tag_pool.sv", "msr_tile_ctx.sv", "msr_tile_engine.sv")]
     cmd = ["verilator", "--lint-only", "-Irtl/prim", "--top-module", "msr_tile_engine"]
     cmd += [f"-G{k}={v}" for k, v in params.items()]
