@@ -36,6 +36,8 @@ ERR_NONE, ERR_FRAME_SIZE, ERR_TILE, ERR_LEVELS = 0, 1, 2, 3
 ERR_FB_STRIDE, ERR_FB_BASE, ERR_SRC_STRIDE, ERR_SRC_BASE = 4, 5, 6, 7
 ERR_FB_WRAP, ERR_SRC_WRAP, ERR_OVERLAP = 9, 10, 11
 ERR_WATCHDOG = 12
+ERR_RULE = 13
+RULES = ("patent", "lindilate")   # CONFIG.RULE 0, 1 (2, 3 are refused with ERR_RULE)
 DRAIN_TIMEOUT = 16384      # msr_cfg_ctrl: a soft reset's wait without progress, WATCHDOG 0
 
 
@@ -160,13 +162,13 @@ class Env:
             ch.set_pause_generator(pause(rng, p))
 
     async def program(self, W, H, tile, levels, metric, thr, gain, fb_base=FB_BASE, fb_stride=None,
-                      src_en=1, src_base=SRC_BASE, src_stride=None):
+                      src_en=1, src_base=SRC_BASE, src_stride=None, rule=0):
         fb_stride = 4 * W if fb_stride is None else fb_stride
         src_stride = (W + 3) // 4 * 4 if src_stride is None else src_stride
         thr = list(thr) + [0] * (3 - len(thr))
         await self.wr(R.FRAME_SIZE, (W << R.FRAME_SIZE_WIDTH_LSB) | (H << R.FRAME_SIZE_HEIGHT_LSB))
         await self.wr(R.CONFIG, (tile << R.CONFIG_TILE_LSB) | (levels << R.CONFIG_LEVELS_LSB)
-                      | (metric << R.CONFIG_METRIC_LSB))
+                      | (metric << R.CONFIG_METRIC_LSB) | (rule << R.CONFIG_RULE_LSB))
         await self.wr(R.THRESH, (thr[0] << R.THRESH_THR1_LSB) | (thr[1] << R.THRESH_THR2_LSB)
                       | (thr[2] << R.THRESH_THR3_LSB))
         await self.wr(R.FOV_GAIN, gain)
@@ -185,7 +187,7 @@ class Env:
                 return st
         raise AssertionError("accelerator still busy")
 
-    async def start_frame(self, W, H, tile, levels, metric, thr, gain, src_en=1, fill=True):
+    async def start_frame(self, W, H, tile, levels, metric, thr, gain, src_en=1, fill=True, rule=0):
         """Program a frame of a new random image and START it (IRQ_EN); the memory is filled
         with FILL first unless fill=False. Returns what check_frame needs."""
         img = make_image(self.rng, W, H)
@@ -194,10 +196,11 @@ class Env:
         self.b_log, self.aw_log = [], []
         if fill:
             self.ram.write(0, bytes([FILL]) * MEM)
-        fb_stride, src_stride = await self.program(W, H, tile, levels, metric, thr, gain, src_en=src_en)
+        fb_stride, src_stride = await self.program(W, H, tile, levels, metric, thr, gain, src_en=src_en,
+                                                   rule=rule)
         await self.wr(R.CTRL, R.CTRL_START_MASK | R.CTRL_IRQ_EN_MASK)
         return dict(img=img, W=W, H=H, tile=tile, levels=levels, metric=metric, thr=list(thr), gain=gain,
-                    src_en=src_en, fb_stride=fb_stride, src_stride=src_stride)
+                    src_en=src_en, fb_stride=fb_stride, src_stride=src_stride, rule=rule)
 
     def check_memory(self, f, exact=True):
         """The frame's pixels and source codes bit-exact with the golden model (exact=False: a
@@ -208,7 +211,7 @@ class Env:
         W, H, thr = f["W"], f["H"], f["thr"]
         params = Params(tile=f["tile"], levels=f["levels"], thr=tuple(thr), metric=("max", "sum")[f["metric"]],
                         fov_gain=f["gain"])
-        gold = select(ImageRenderer(f["img"]), W, H, params)
+        gold = select(ImageRenderer(f["img"]), W, H, params, rule=RULES[f.get("rule", 0)])
         fb_stride, src_stride = f["fb_stride"], f["src_stride"]
         mem = self.ram.read(0, MEM)
         fb = np.frombuffer(mem[FB_BASE:FB_BASE + fb_stride * H], dtype="<u4").reshape(H, fb_stride // 4)[:, :W]
@@ -229,8 +232,8 @@ class Env:
         assert not len(outside), f"{len(outside)} bytes written outside the frame planes, first {int(outside[0][0]):#x}"
         return gold
 
-    async def frame(self, W, H, tile, levels, metric, thr, gain, src_en=1):
-        f = await self.start_frame(W, H, tile, levels, metric, thr, gain, src_en=src_en)
+    async def frame(self, W, H, tile, levels, metric, thr, gain, src_en=1, rule=0):
+        f = await self.start_frame(W, H, tile, levels, metric, thr, gain, src_en=src_en, rule=rule)
         st = await self.wait_idle()
         assert st & R.STATUS_DONE_MASK and (st & R.STATUS_ERROR_MASK) == 0, f"STATUS {st:#x}"
         assert int(self.dut.irq_o.value) == 1, "interrupt not raised at DONE"
@@ -252,8 +255,8 @@ class Env:
         assert (await self.rd(R.STATUS)) & R.STATUS_DONE_MASK == 0
         await RisingEdge(self.dut.clk_i)
         assert int(self.dut.irq_o.value) == 0
-        self.dut._log.info("frame %dx%d T%d L%d thr %s gain %d: bit-exact, %d traced, %d cycles",
-                           W, H, tile, levels, thr, gain, gold.stats["traced"], cycles)
+        self.dut._log.info("frame %dx%d T%d L%d thr %s gain %d rule %s: bit-exact, %d traced, %d cycles",
+                           W, H, tile, levels, thr, gain, RULES[rule], gold.stats["traced"], cycles)
         record("msr_top", tile=tile, levels=levels, metric=("max", "sum")[metric], fov="on" if gain else "off",
                partial=partial(W, H, tile), engines=engines, src="on" if src_en else "off",
                backpressure=backpressure(max(self.mem_pause, 1.0 - self.render.ready_p)))
@@ -325,11 +328,15 @@ async def test_bad_registers(dut):
         ("src plane wraps past 4 GiB", dict(src_base=0xFFFFFFF0), ERR_SRC_WRAP),
         ("planes overlap", dict(src_base=FB_BASE + 64), ERR_OVERLAP),
         ("src plane around the fb plane", dict(src_base=FB_BASE - 4, src_stride=1 << 16), ERR_OVERLAP),
+        ("rule 2", dict(rule=2), ERR_RULE), ("rule 3", dict(rule=3), ERR_RULE),
+        # the first failing check in the order of the codes: the rule's comes last
+        ("rule 3 and levels 0", dict(rule=3, levels=0), ERR_LEVELS),
+        ("rule 2 and planes overlap", dict(rule=2, src_base=FB_BASE + 64), ERR_OVERLAP),
     ]
     env.ram.write(0, bytes([FILL]) * MEM)
     for what, over, code in cases:
         cfg = dict(good)
-        regs = {k: over.pop(k) for k in list(over) if k in ("fb_base", "fb_stride", "src_base", "src_stride")}
+        regs = {k: over.pop(k) for k in list(over) if k in ("fb_base", "fb_stride", "src_base", "src_stride", "rule")}
         cfg.update(over)
         env.render.requests = []
         await env.program(cfg["W"], cfg["H"], cfg["tile"], cfg["levels"], cfg["metric"], cfg["thr"], cfg["gain"],
