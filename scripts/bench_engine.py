@@ -13,6 +13,8 @@ cycles per tile (between the last pixels of tile 8 and tile 32, so the ramp whil
 contexts fill is left out), the same with the ramp, cycles of a lone tile (descriptor to last
 pixel, the engine otherwise empty), traced fraction, and the decision rate inside the lone
 tile's H / V passes (issued positions / cycles from a pass's first to its last issue).
+The decision rule of every tile is MSR_BENCH_RULE (patent or lindilate; default patent),
+as for scripts/bench_hw.py.
 """
 from __future__ import annotations
 
@@ -30,6 +32,8 @@ OUTSTANDING = tuple(int(v) for v in os.environ.get("MSR_BENCH_OUTSTANDING", "16,
 NUM_CTX = int(os.environ.get("MSR_BENCH_NUM_CTX", "8"))
 THRS = tuple(tuple(int(v) for v in s.split(",")) for s in os.environ.get("MSR_BENCH_THR", "8,16 26,52 0,0").split())
 TILES = 32
+RULE = os.environ.get("MSR_BENCH_RULE", "patent")
+RULES = ("patent", "lindilate")                 # rule_e encodings
 OUT = ROOT / "out" / "bench" / "engine.json"
 
 
@@ -48,9 +52,9 @@ try:
 except ImportError:  # pragma: no cover
     cocotb = None
 
-def pack_desc(x0, y0, w, h, levels, metric, thr):
+def pack_desc(x0, y0, w, h, levels, metric, thr, rule="patent"):
     thr = list(thr) + [0] * (3 - len(thr))
-    v = x0
+    v = (RULES.index(rule) << 12) | x0
     for val, width in ((y0, 12), (w, 6), (h, 6), (levels, 2), (int(metric == "sum"), 1),
                        (thr[2], 8), (thr[1], 8), (thr[0], 8)):
         v = (v << width) | val
@@ -65,7 +69,7 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
     async def run_point(dut, latency, thr, img, n_tiles=TILES):
         """Returns (cycle of each tile's last pixel from the first descriptor, traced, pass
         stats of the issued positions)."""
-        descs = [pack_desc(16 * i, 0, 16, 16, 2, "max", thr) for i in range(n_tiles)]
+        descs = [pack_desc(16 * i, 0, 16, 16, 2, "max", thr, RULE) for i in range(n_tiles)]
         pending = []                       # (due cycle, tag, rgb) in request order
         cycle = 0
         start = None
@@ -147,7 +151,7 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
                 # contexts fill is left out), and the whole run.
                 done, traced, _ = await run_point(dut, lat, thr, img)
                 s = TILES // 4
-                results.append({"latency": lat, "thr": list(thr), "tiles": TILES,
+                results.append({"latency": lat, "thr": list(thr), "tiles": TILES, "rule": RULE,
                                 "cycles_per_tile": (done[-1] - done[s - 1]) / (TILES - s),
                                 "cycles_per_tile_with_ramp": done[-1] / TILES,
                                 "lone_tile_cycles": lone[0],
@@ -162,6 +166,9 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
 
 def main() -> int:
     from msr_runner import run_cocotb
+    if RULE not in RULES:
+        print(f"bench_engine: MSR_BENCH_RULE={RULE!r} is not one of {', '.join(RULES)}", file=sys.stderr)
+        return 2
     table = []
     for max_out in OUTSTANDING:
         part = ROOT / "build" / "bench" / f"engine_{max_out}.json"
@@ -175,7 +182,7 @@ def main() -> int:
             r["max_outstanding"] = max_out
             table.append(r)
     OUT.parent.mkdir(parents=True, exist_ok=True)
-    OUT.write_text(json.dumps({"setup": __doc__.split("Set-up per point:")[1].strip(),
+    OUT.write_text(json.dumps({"setup": __doc__.split("Set-up per point:")[1].strip(), "rule": RULE,
                                "results": table}, indent=1))
     print("| MAX_OUTSTANDING | thr | latency | cycles / 16x16 tile (steady) | with ramp | lone tile | pixels / clock "
           "| traced | decisions / clock in a pass |")
