@@ -278,7 +278,7 @@ module msr_tile_engine
 
   // What travels with a decision to the output. For lindilate (lin): the position's index
   // on its line and the first-line flag address the dilation's line store; the pass
-  // direction, the previous line and its global coordinate (rt_g) address a retro trace.
+  // direction and the distance to the previous line (1..8) address a retro trace.
   typedef struct packed {
     ctx_t       ctx;
     lcoord_t    x;
@@ -291,8 +291,7 @@ module msr_tile_engine
     logic [3:0] idx;
     logic       fline;
     logic       vert;
-    lcoord_t    lprev;
-    coord_t     rt_g;
+    logic [3:0] ldelta;
   } side_t;
 
   // ---- RD: the context's descriptor fields, registered (the read data is on its way) ---------
@@ -331,9 +330,9 @@ module msr_tile_engine
                        level: is_pos_q.level, init: is_pos_q.init,
                        lin: is_desc.rule == RULE_LINDILATE && !is_pos_q.init,
                        idx: is_pos_q.idx, fline: is_pos_q.fline,
-                       vert: is_pos_q.dir == DIR_V, lprev: is_pos_q.lprev,
-                       rt_g: ((is_pos_q.dir == DIR_V) ? is_desc.x0 : is_desc.y0)
-                             + coord_t'(is_pos_q.lprev)};
+                       vert: is_pos_q.dir == DIR_V,
+                       ldelta: 4'(((is_pos_q.dir == DIR_V) ? is_pos_q.x : is_pos_q.y)
+                                  - is_pos_q.lprev)};
       rd_metric_q <= is_desc.metric;
       // threshold of the position's level; an initial-grid position gets 0 (always trace)
       rd_thr_q    <= is_pos_q.init ? '0 : is_desc.thr[is_pos_q.level - 1'b1];
@@ -381,20 +380,29 @@ module msr_tile_engine
   localparam int unsigned OUT_DEPTH = 16;
 
   // trace is formed before the output buffer, so the tag allocation below starts at a register.
+  // What the output needs of the sideband (the dilation's fields stay before the buffer).
   typedef struct packed {
-    logic  trace;
-    logic  retro;      // lindilate: first a trace of the previous line's pixel (see below)
-    rgb_t  rgb;
-    side_t side;
+    ctx_t       ctx;
+    lcoord_t    x;
+    lcoord_t    y;
+    coord_t     gx;
+    coord_t     gy;
+    level_t     level;
+    logic       vert;
+    logic [3:0] ldelta;
+  } oside_t;
+
+  typedef struct packed {
+    logic   trace;
+    logic   retro;      // lindilate: first a trace of the previous line's pixel (see below)
+    rgb_t   rgb;
+    oside_t side;
   } result_t;
 
   logic    pv_valid, pv_interp, out_valid, out_ready, ob_ready;
   logic    ob_valid, os_ready;
   side_t   pv_side;
-  // out_side.init is folded into out_result.trace before the buffer; the rest is used.
-  /* verilator lint_off UNUSEDSIGNAL */
-  side_t   out_side;
-  /* verilator lint_on UNUSEDSIGNAL */
+  oside_t  out_side;
   rgb_t    pv_rgb, out_rgb;
   result_t pv_result, ob_result, out_result;
   logic [$clog2(OUT_DEPTH):0] credit_q, ob_count;
@@ -430,11 +438,12 @@ module msr_tile_engine
 
   // ---- lindilate: base decision D = P or Q beside the decision pipeline, and the dilation ----
   // msr_base_decision takes the same AB registers plus A' and B' and answers four clocks
-  // later; two registers align D with the decision pipeline's six stages (neither stalls).
-  logic base_d, base_d1_q, base_d2_q;
-  // P and Q alone are for waveforms and the unit's own bench.
+  // later; two registers align its Q with the decision pipeline's six stages (neither
+  // stalls). D = P or Q with the pipeline's own P: the unit's P and D outputs are left
+  // open, so synthesis drops their logic.
+  logic base_q, base_q1_q, base_q2_q, pv_base;
   /* verilator lint_off UNUSEDSIGNAL */
-  logic base_p, base_q;
+  logic base_p, base_d;
   /* verilator lint_on UNUSEDSIGNAL */
 
   msr_base_decision u_base_decision (
@@ -456,9 +465,10 @@ module msr_tile_engine
   );
 
   always_ff @(posedge clk_i) begin
-    base_d1_q <= base_d;
-    base_d2_q <= base_d1_q;
+    base_q1_q <= base_q;
+    base_q2_q <= base_q1_q;
   end
+  assign pv_base = pv_interp || base_q2_q;
 
   // Dilation (docs/rules.md step 4) in decision order. A position's D is known when it
   // leaves the pipeline, the next line's only when the same position of the next line does.
@@ -473,18 +483,21 @@ module msr_tile_engine
 
   assign pv_dprev      = pv_side.fline || dl_d_q[pv_side.ctx][pv_side.idx];
   assign pv_tprev      = !pv_side.fline && dl_t_q[pv_side.ctx][pv_side.idx];
-  assign pv_lin_interp = pv_dprev && base_d2_q;
-  assign pv_retro      = pv_side.lin && pv_tprev && !base_d2_q;
+  assign pv_lin_interp = pv_dprev && pv_base;
+  assign pv_retro      = pv_side.lin && pv_tprev && !pv_base;
 
   always_ff @(posedge clk_i) begin
     if (pv_valid && pv_side.lin) begin
-      dl_d_q[pv_side.ctx][pv_side.idx] <= base_d2_q;
+      dl_d_q[pv_side.ctx][pv_side.idx] <= pv_base;
       dl_t_q[pv_side.ctx][pv_side.idx] <= pv_lin_interp;
     end
   end
 
   assign pv_result = '{trace: pv_side.init || !(pv_side.lin ? pv_lin_interp : pv_interp),
-                       retro: pv_retro, rgb: pv_rgb, side: pv_side};
+                       retro: pv_retro, rgb: pv_rgb,
+                       side: '{ctx: pv_side.ctx, x: pv_side.x, y: pv_side.y, gx: pv_side.gx,
+                               gy: pv_side.gy, level: pv_side.level, vert: pv_side.vert,
+                               ldelta: pv_side.ldelta}};
 
   msr_fifo #(
     .WIDTH ($bits(result_t)),
@@ -551,12 +564,15 @@ module msr_tile_engine
   logic             retro_phase, retro_sent_q;
   logic [TAG_W-1:0] free_tag;
   req_t             req_in, req_out;
-  coord_t           rt_gx, rt_gy;
+  coord_t           rt_gx, rt_gy, rt_line_g;
+  lcoord_t          rt_line;
 
   // A result with a retro trace takes two clocks: the retro request (the previous line's
   // pixel at the same position), then the result's own write or request.
-  assign rt_gx       = out_side.vert ? out_side.rt_g : out_side.gx;
-  assign rt_gy       = out_side.vert ? out_side.gy : out_side.rt_g;
+  assign rt_line     = (out_side.vert ? out_side.x : out_side.y) - lcoord_t'(out_side.ldelta);
+  assign rt_line_g   = (out_side.vert ? out_side.gx : out_side.gy) - coord_t'(out_side.ldelta);
+  assign rt_gx       = out_side.vert ? rt_line_g : out_side.gx;
+  assign rt_gy       = out_side.vert ? out_side.gy : rt_line_g;
   assign retro_phase = out_valid && out_result.retro && !retro_sent_q;
   assign req_in      = retro_phase ? '{x: rt_gx, y: rt_gy, tag: free_tag}
                                    : '{x: out_side.gx, y: out_side.gy, tag: free_tag};
@@ -669,8 +685,8 @@ module msr_tile_engine
 
   assign alloc_entry = '{ctx: out_side.ctx, level: out_side.level,
                          addr: !retro_phase  ? {out_side.y, out_side.x} :
-                               out_side.vert ? {out_side.y, out_side.lprev}
-                                             : {out_side.lprev, out_side.x}};
+                               out_side.vert ? {out_side.y, rt_line}
+                                             : {rt_line, out_side.x}};
 
   msr_tag_pool #(
     .N       (MAX_OUTSTANDING),
@@ -878,7 +894,9 @@ module msr_tile_engine
   `MSR_ASSERT(a_issue_onehot, $onehot0(ctx_issue))
   `MSR_ASSERT(a_out_buf_room, pv_valid |-> ob_ready)
   `MSR_ASSERT(a_credits, 32'(credit_q) + 32'(ob_count) <= OUT_DEPTH)
-  `MSR_ASSERT(a_retro_lin, out_valid && out_result.retro |-> out_side.lin && !out_side.fline)
+  // the line before is 1..8 away (rows of G_y(k-1), columns of G_x(k))
+  `MSR_ASSERT(a_retro_delta, pv_valid && pv_side.lin && !pv_side.fline |->
+      pv_side.ldelta inside {[1 : 8]})
   `MSR_COVER(c_retro, retro_phase && alloc_tag)
   `MSR_COVER(c_rsp_dropped, rsp_drop_o)
   `MSR_COVER(c_all_ctx_busy, ctx_free == '0)
