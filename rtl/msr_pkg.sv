@@ -125,4 +125,31 @@ package msr_pkg;
 
   /* verilator lint_on UNUSEDPARAM */
 
+  // ---- Grid of an axis: border_set(r, k) = offsets of G(k) inside a border region of r + 1
+  // pixels (offsets from p, 0..7; msr_level_ctrl's tables, the engine's outer-sample flags).
+  // r and k are indices 0..7 and 0..3; their high bits are zero.
+  /* verilator lint_off UNUSEDSIGNAL */
+  function automatic logic [7:0] border_set(int unsigned r, int unsigned k);
+    logic [7:0] s, n;
+    s = '0;
+    s[0] = 1'b1;
+    s[r] = 1'b1;
+    for (int unsigned lv = 1; lv <= k; lv++) begin
+      n = s;
+      for (int unsigned a = 0; a < 8; a++) begin
+        if (s[a]) begin
+          for (int unsigned b = a + 1; b < 8; b++) begin
+            if (s[b]) begin
+              if (b - a >= 2) n[a + (b - a) / 2] = 1'b1;
+              break;
+            end
+          end
+        end
+      end
+      s = n;
+    end
+    return s;
+  endfunction
+  /* verilator lint_on UNUSEDSIGNAL */
+
 endpackage : msr_pkg

@@ -45,19 +45,13 @@ module msr_level_ctrl
   output logic [1:0] step_nshift_o, // log2(n_k), n_k = S >> (k-1)
   output dir_e    step_dir_o,
   output logic    step_first_o,   // first position of a pass (the engine's pass barrier)
-  // For the `lindilate` rule (docs/rules.md; H and V passes, else 0): the outer samples
-  // A' = a - g and B' = b + g on the position's line exist (inside the tile and in G(k-1));
-  // A' is the A of the line's previous position (the context keeps that colour), except
-  // where `aalt` says it is not: then the third read port reads A' (B' never exists there),
-  // else B'.
-  output logic    step_oka_o,     // A' exists
-  output logic    step_okb_o,     // B' exists
-  output logic    step_aalt_o,    // A' exists and is not the previous position's A
-  output lcoord_t step_o2x_o,     // the third port's read: A' if aalt, else B'
+  // For the `lindilate` rule (docs/rules.md; H and V passes): the third read port's address.
+  // It reads B' = b + g, or A' = a - g where B' is outside the tile. Where B' is inside, A'
+  // (if it exists) is the A of the line's previous position, which the context keeps;
+  // where A' is not that (four cases over every n and L), B' is outside (tb/level_ctrl).
+  output logic    step_o2a_o,     // the third port reads A' (B' = b + g is outside the tile)
+  output lcoord_t step_o2x_o,     // the third port's read: A' if o2a, else B'
   output lcoord_t step_o2y_o,
-  output logic [3:0] step_idx_o,  // index of the position on its line (0..14)
-  output logic    step_fline_o,   // the position's line is the first of the pass
-  output lcoord_t step_lprev_o,   // coordinate of the pass's line before it
   output logic    busy_o          // a tile is accepted and not all positions are out
 );
 
@@ -67,28 +61,7 @@ module msr_level_ctrl
   // The helpers below take whole values or structs and use a part of them.
   /* verilator lint_off UNUSEDSIGNAL */
 
-  // border_set(r, k): offsets of G(k) inside a border region of r + 1 pixels.
-  function automatic bmask_t border_set(int unsigned r, int unsigned k);
-    bmask_t s, n;
-    s = '0;
-    s[0] = 1'b1;
-    s[r] = 1'b1;
-    for (int unsigned lv = 1; lv <= k; lv++) begin
-      n = s;
-      for (int unsigned a = 0; a < 8; a++) begin
-        if (s[a]) begin
-          for (int unsigned b = a + 1; b < 8; b++) begin
-            if (s[b]) begin
-              if (b - a >= 2) n[a + (b - a) / 2] = 1'b1;
-              break;
-            end
-          end
-        end
-      end
-      s = n;
-    end
-    return s;
-  endfunction
+  // border_set(r, k): msr_pkg (the engine's outer-sample flags use it too).
 
   // border_gap(r, k, o): gap b - a of the new position o of level k (0 if o is not new).
   function automatic gap_t border_gap(int unsigned r, int unsigned k, int unsigned o);
@@ -172,16 +145,6 @@ module msr_level_ctrl
   endfunction
   localparam gq_row_t BGQ_NEW [8] = '{gq_new_row(0), gq_new_row(1), gq_new_row(2), gq_new_row(3),
                                       gq_new_row(4), gq_new_row(5), gq_new_row(6), gq_new_row(7)};
-
-  // G(k)'s border offsets as a mask (membership of an outer sample in G(k-1)).
-  typedef bmask_t [MAX_LEVELS:0] bm_row_t;
-  function automatic bm_row_t bm_row(int unsigned r);
-    bm_row_t t;
-    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_set(r, k);
-    return t;
-  endfunction
-  localparam bm_row_t BM_SET [8] = '{bm_row(0), bm_row(1), bm_row(2), bm_row(3),
-                                     bm_row(4), bm_row(5), bm_row(6), bm_row(7)};
 
   localparam bq_row_t BQ_SET [8] = '{bq_row(0, 0), bq_row(1, 0), bq_row(2, 0), bq_row(3, 0),
                                      bq_row(4, 0), bq_row(5, 0), bq_row(6, 0), bq_row(7, 0)};
@@ -297,16 +260,7 @@ module msr_level_ctrl
   logic       pw_left0_q, pw_left0_d;  // pw_q.left == 0
   logic       pw_left1_q, pw_left1_d;  // pw_q.left == 1
   logic       lw_edge_q, lw_edge_d;    // lw_q.cur == 0 || lw_q.left == 0
-  // The line walk's history for the outer samples: the position's index on its line, the
-  // A of the line's previous position, the first-line flag and the previous line.
-  logic [3:0] pidx_q, pidx_d;
-  lcoord_t    pa_q, pa_d;
-  logic       fline_q, fline_d;
-  lcoord_t    lprev_q, lprev_d;
-  // G(k-1) of the position axis, per pass: p, the regular step's mask, the border offsets
-  // and n - 1.
-  lcoord_t    gp_p_q, gp_mask_q, gp_nm1_q;
-  bmask_t     gp_bm_q;
+  lcoord_t    gp_nm1_q;               // n - 1 of the pass's position axis
 
   // Set-up 1: the lists of the pass (dir_q, k_q).
   lcoord_t s_full, nk, nk_half;
@@ -409,10 +363,6 @@ module msr_level_ctrl
     pw_left0_d = pw_left0_q;
     pw_left1_d = pw_left1_q;
     lw_edge_d  = lw_edge_q;
-    pidx_d     = pidx_q;
-    pa_d       = pa_q;
-    fline_d    = fline_q;
-    lprev_d    = lprev_q;
     if (advance) begin
       unique case (ws_q)
         WS_CORNER: begin
@@ -435,8 +385,6 @@ module msr_level_ctrl
           // row 0 of the initial grid is an edge row: its x = 0 is a corner
           skip_d  = (dir_q == DIR_INIT);
           first_d = (dir_q != DIR_INIT);
-          pidx_d  = '0;
-          fline_d = 1'b1;
           ws_d    = WS_WALK;
         end
         WS_WALK: begin
@@ -446,8 +394,6 @@ module msr_level_ctrl
             pw_d = pw_next;                              // next position of the line
             pw_left0_d = pw_left1_q;
             pw_left1_d = (pw_q.left == (LCOORD_W+1)'(2));
-            pidx_d = pidx_q + 1'b1;
-            pa_d   = cand_a;
           end else if ((pw_q.ok || dir_q == DIR_INIT) && lw_q.left != '0) begin
             lw_d   = lw_next;                            // first position of the next line
             pw_d   = pstart_q;
@@ -457,9 +403,6 @@ module msr_level_ctrl
             // a_edge_flag checks it)
             lw_edge_d  = (lw_q.left == (LCOORD_W+1)'(1));
             skip_d = (dir_q == DIR_INIT) && (lw_q.left == 1);   // the last row is an edge row
-            pidx_d  = '0;
-            fline_d = 1'b0;
-            lprev_d = lw_q.cur;
           end else begin                                 // end of the pass (or an empty pass)
             pw_d.ok = 1'b0;
             if (dir_q == DIR_INIT) begin
@@ -522,30 +465,20 @@ module msr_level_ctrl
     endcase
   end
 
-  // ---- Outer samples of the candidate (lindilate) --------------------------------------------
+  // ---- The third port's read (lindilate) ----------------------------------------------------
   // A' = a - g = m - (o + g) and B' = b + g = m + (2g - o), o = g >> 1, from the walk state
-  // (one small table and one add each); membership in G(k-1): a multiple of n_k up to p, else
-  // the border table of (r, k - 1), both loaded per pass.
-  logic [LCOORD_W:0] ap, bp;
-  logic              oka, okb, aalt;
-  lcoord_t           o2pos;
+  // (one small table and one add each). Whether they exist is worked out after the issue,
+  // once per engine (msr_tile_engine), not here.
+  logic [LCOORD_W:0] bp, g_ext;
+  lcoord_t           ap, o2pos;         // A' only matters where it is in the tile
+  logic              o2a;
 
-  function automatic logic in_grid(lcoord_t v, lcoord_t p, lcoord_t mask, bmask_t bm);
-    logic [2:0] o;            // v - p < 8 wherever it is used
-    o = 3'(v - p);
-    return (v <= p) ? ((v & mask) == '0) : bm[o];
-  endfunction
-
-  logic [LCOORD_W:0] g_ext;
   always_comb begin
     g_ext = (LCOORD_W+1)'(pw_q.gap);
-    ap    = {1'b0, pw_q.cur} - (g_ext + (g_ext >> 1));
+    ap    = pw_q.cur - lcoord_t'(g_ext + (g_ext >> 1));
     bp    = {1'b0, pw_q.cur} + ((g_ext << 1) - (g_ext >> 1));
-    oka   = !ap[LCOORD_W] && in_grid(ap[LCOORD_W-1:0], gp_p_q, gp_mask_q, gp_bm_q);
-    okb   = !bp[LCOORD_W] && (bp[LCOORD_W-1:0] <= gp_nm1_q) &&
-            in_grid(bp[LCOORD_W-1:0], gp_p_q, gp_mask_q, gp_bm_q);
-    aalt  = oka && (pidx_q == '0 || pa_q != ap[LCOORD_W-1:0]);
-    o2pos = aalt ? ap[LCOORD_W-1:0] : bp[LCOORD_W-1:0];
+    o2a   = bp[LCOORD_W] || (bp[LCOORD_W-1:0] > gp_nm1_q);
+    o2pos = o2a ? ap : bp[LCOORD_W-1:0];
   end
 
   logic       out_first_q;
@@ -599,15 +532,8 @@ module msr_level_ctrl
     end
     if (ws_q == WS_SETUP2) begin
       pstart_q  <= walk_start(poss_q);
-      gp_p_q    <= poss_q.p;
-      gp_mask_q <= poss_q.st - 1'b1;
-      gp_bm_q   <= BM_SET[pp_q.r][k_q - 1'b1];
       gp_nm1_q  <= (dir_q == DIR_V) ? hm1_q : wm1_q;
     end
-    pidx_q  <= pidx_d;
-    pa_q    <= pa_d;
-    fline_q <= fline_d;
-    lprev_q <= lprev_d;
     if (ws_q == WS_IDLE && start_valid_i) begin
       levels_q <= levels_i;
       wm1_q    <= lcoord_t'(w_i - 1'b1);
@@ -629,14 +555,9 @@ module msr_level_ctrl
       step_level_o  <= (ws_q == WS_WALK) ? k_q : '0;
       step_nshift_o <= 2'(levels_q - k_q + 1'b1);
       step_dir_o    <= (ws_q == WS_WALK) ? dir_q : DIR_INIT;
-      step_oka_o    <= (ws_q == WS_WALK && dir_q != DIR_INIT) && oka;
-      step_okb_o    <= (ws_q == WS_WALK && dir_q != DIR_INIT) && okb;
-      step_aalt_o   <= (ws_q == WS_WALK && dir_q != DIR_INIT) && aalt;
+      step_o2a_o    <= o2a;
       step_o2x_o    <= (dir_q == DIR_V) ? lw_q.cur : o2pos;
       step_o2y_o    <= (dir_q == DIR_V) ? o2pos : lw_q.cur;
-      step_idx_o    <= pidx_q;
-      step_fline_o  <= fline_q;
-      step_lprev_o  <= lprev_q;
     end
   end
 
@@ -658,9 +579,7 @@ module msr_level_ctrl
   `MSR_ASSERT(a_walk_flags, ws_q == WS_WALK |->
       pw_left0_q == (pw_q.left == '0) && pw_left1_q == (pw_q.left == (LCOORD_W+1)'(1)) &&
       lw_edge_q == (lw_q.cur == '0 || lw_q.left == '0))
-  // The third port never has to read both outer samples (checked over every n and L).
-  `MSR_ASSERT(a_outer_one_read, step_valid_o |-> !(step_aalt_o && step_okb_o))
-  `MSR_COVER(c_outer_alt, step_valid_o && step_aalt_o)
+  `MSR_COVER(c_outer_a, step_valid_o && step_dir_o != DIR_INIT && step_o2a_o)
   `MSR_COVER(c_border_gap3, step_valid_o && step_gap_o == 4'd3)
   `MSR_COVER(c_level3, step_valid_o && step_level_o == 2'd3)
   /* verilator lint_on SYNCASYNCNET */

@@ -40,18 +40,12 @@ module msr_tile_ctx
   output logic [1:0]         step_nshift_o,
   output logic               step_init_o,   // initial-grid position: traced, no reads
   output dir_e               step_dir_o,
-  // for the lindilate rule (msr_level_ctrl's outer-sample outputs)
-  output logic               step_oka_o,    // A' exists
-  output logic               step_okb_o,    // B' exists
-  output logic               step_aalt_o,   // A' is rd_o2_o, not rd_pa_o
-  output logic [3:0]         step_idx_o,
-  output logic               step_fline_o,
-  output lcoord_t            step_lprev_o,
+  output logic               step_o2a_o,    // lindilate: A' is rd_o2_o, not rd_pa_o
   input  logic               issue_i,       // the head leaves this cycle (granted the cycle before)
   // decision reads: the neighbours of the position issued two cycles before
   output rgb_t               rd_a_o,
   output rgb_t               rd_b_o,
-  output rgb_t               rd_o2_o,       // the third port: B' (or A' where aalt)
+  output rgb_t               rd_o2_o,       // the third port: B' (or A' where o2a)
   output rgb_t               rd_pa_o,       // the A of this context's previous issue: A'
   // a render request for a pixel of this context that was already written (lindilate's
   // dilation traces an interpolated pixel of the line before): one more pending write
@@ -108,14 +102,9 @@ module msr_tile_ctx
     logic [1:0] nshift;
     dir_e       dir;
     logic       first;
-    logic       oka;
-    logic       okb;
-    logic       aalt;
+    logic       o2a;
     lcoord_t    o2x;
     lcoord_t    o2y;
-    logic [3:0] idx;
-    logic       fline;
-    lcoord_t    lprev;
   } step_t;
 
   logic    ctrl_valid, ctrl_room, step_valid, ctrl_busy, q_room, q_push;
@@ -150,14 +139,9 @@ module msr_tile_ctx
     .step_nshift_o (ctrl_step.nshift),
     .step_dir_o    (ctrl_step.dir),
     .step_first_o  (ctrl_step.first),
-    .step_oka_o    (ctrl_step.oka),
-    .step_okb_o    (ctrl_step.okb),
-    .step_aalt_o   (ctrl_step.aalt),
+    .step_o2a_o    (ctrl_step.o2a),
     .step_o2x_o    (ctrl_step.o2x),
     .step_o2y_o    (ctrl_step.o2y),
-    .step_idx_o    (ctrl_step.idx),
-    .step_fline_o  (ctrl_step.fline),
-    .step_lprev_o  (ctrl_step.lprev),
     .busy_o        (ctrl_busy)
   );
 
@@ -261,12 +245,7 @@ module msr_tile_ctx
   assign step_level_o  = head_q.level;
   assign step_nshift_o = head_q.nshift;
   assign step_dir_o    = head_q.dir;
-  assign step_oka_o    = head_q.oka;
-  assign step_okb_o    = head_q.okb;
-  assign step_aalt_o   = head_q.aalt;
-  assign step_idx_o    = head_q.idx;
-  assign step_fline_o  = head_q.fline;
-  assign step_lprev_o  = head_q.lprev;
+  assign step_o2a_o    = head_q.o2a;
 
   // ---- State ----------------------------------------------------------------------------------
   always_comb begin
@@ -339,7 +318,7 @@ module msr_tile_ctx
   );
 
   // Port 2 (lindilate): a colour-only copy written with the buffer, reading the head's
-  // third-port address (B', or A' where aalt) every clock like ports 0 and 1. A' is most
+  // third-port address (B', or A' where o2a) every clock like ports 0 and 1. A' is most
   // often the A of the line's previous position, which is this context's previous issue:
   // its port-1 data are kept (prev_a_q, taken when they arrive, two clocks after the issue),
   // so one more port gives all four samples of a position every clock.

@@ -94,10 +94,9 @@ module msr_tile_engine
 
   // ---- Contexts ---------------------------------------------------------------------------------
   logic       [NUM_CTX-1:0] ctx_free, ctx_full, ctx_cand, ctx_start, ctx_issue;
-  // The pass-start flags are for waveforms (the barrier itself lives in each context).
-  /* verilator lint_off UNUSEDSIGNAL */
+  // The pass-start flags: the lindilate line trackers (the barrier itself lives in each
+  // context).
   logic       [NUM_CTX-1:0] ctx_first;
-  /* verilator lint_on UNUSEDSIGNAL */
   tile_desc_t [NUM_CTX-1:0] ctx_desc;
   lcoord_t    [NUM_CTX-1:0] ctx_x, ctx_y;
   gap_t       [NUM_CTX-1:0] ctx_gap, ctx_off;
@@ -105,9 +104,7 @@ module msr_tile_engine
   logic       [NUM_CTX-1:0][1:0] ctx_nshift;
   logic       [NUM_CTX-1:0] ctx_init;
   dir_e       [NUM_CTX-1:0] ctx_dir;
-  logic       [NUM_CTX-1:0] ctx_oka, ctx_okb, ctx_aalt, ctx_fline, ctx_retro;
-  logic       [NUM_CTX-1:0][3:0] ctx_idx;
-  lcoord_t    [NUM_CTX-1:0] ctx_lprev;
+  logic       [NUM_CTX-1:0] ctx_o2a, ctx_retro;
   rgb_t       [NUM_CTX-1:0] ctx_rd_a, ctx_rd_b, ctx_rd_o2, ctx_rd_pa, ctx_str_rgb;
   src_t       [NUM_CTX-1:0] ctx_str_src;
   logic       [NUM_CTX-1:0] ctx_we, ctx_str_own, ctx_str_done;
@@ -224,12 +221,8 @@ module msr_tile_engine
   // init stays the last field (scripts/bench_engine.py reads it as bit 0).
   typedef struct packed {
     dir_e       dir;
-    logic       oka;       // lindilate: the outer samples exist, A' from port 2
-    logic       okb;
-    logic       aalt;
-    logic [3:0] idx;       // index on the line, first line, previous line
-    logic       fline;
-    lcoord_t    lprev;
+    logic       o2a;       // lindilate: A' comes from port 2 (else the context's last A)
+    logic       first;     // the first position of its pass
     lcoord_t    x;
     lcoord_t    y;
     gap_t       gap;
@@ -242,8 +235,7 @@ module msr_tile_engine
   pos_t iss_pos;
   pos_t [NUM_CTX-1:0] ctx_pos;
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_pos
-    assign ctx_pos[c] = '{dir: ctx_dir[c], oka: ctx_oka[c], okb: ctx_okb[c], aalt: ctx_aalt[c],
-                          idx: ctx_idx[c], fline: ctx_fline[c], lprev: ctx_lprev[c],
+    assign ctx_pos[c] = '{dir: ctx_dir[c], o2a: ctx_o2a[c], first: ctx_first[c],
                           x: ctx_x[c], y: ctx_y[c], gap: ctx_gap[c], off: ctx_off[c],
                           level: ctx_level[c], nshift: ctx_nshift[c], init: ctx_init[c]};
   end
@@ -276,9 +268,10 @@ module msr_tile_engine
     is_pos_q <= iss_pos;
   end
 
-  // What travels with a decision to the output. For lindilate (lin): the position's index
-  // on its line and the first-line flag address the dilation's line store; the pass
-  // direction and the distance to the previous line (1..8) address a retro trace.
+  // What travels with a decision to the output. For lindilate (lin): the position on its
+  // line (m >> 1: new positions of a level are at least 2 apart) and the first-line flag
+  // address the dilation's line store; the pass direction and the distance to the previous
+  // line (1..8) address a retro trace.
   typedef struct packed {
     ctx_t       ctx;
     lcoord_t    x;
@@ -288,7 +281,7 @@ module msr_tile_engine
     level_t     level;
     logic       init;
     logic       lin;
-    logic [3:0] idx;
+    logic [3:0] mh;
     logic       fline;
     logic       vert;
     logic [3:0] ldelta;
@@ -311,6 +304,101 @@ module msr_tile_engine
 
   assign is_desc = ctx_desc[is_ctx_q];
 
+  // ---- lindilate: the line trackers and the outer samples' existence, once per engine --------
+  // Per context, the line of its last issued position and the line before it (a pass walks
+  // its lines in order): read at IS for the issued position, updated at IS. fline / ldelta
+  // (first line of the pass / distance to the line before) are formed RD -> AB.
+  lcoord_t [NUM_CTX-1:0] ln_cur_q, ln_prev_q;
+  logic    [NUM_CTX-1:0] ln_has_q;
+  lcoord_t is_line, is_m;
+  logic    is_newline;
+
+  assign is_line    = (is_pos_q.dir == DIR_V) ? is_pos_q.x : is_pos_q.y;
+  assign is_m       = (is_pos_q.dir == DIR_V) ? is_pos_q.y : is_pos_q.x;
+  assign is_newline = is_line != ln_cur_q[is_ctx_q];
+
+  always_ff @(posedge clk_i) begin
+    for (int unsigned c = 0; c < NUM_CTX; c++) begin
+      if (is_valid_q && !is_pos_q.init && is_ctx_q == ctx_t'(c)) begin
+        if (is_pos_q.first) begin
+          ln_cur_q[c] <= is_line;
+          ln_has_q[c] <= 1'b0;
+        end else if (is_newline) begin
+          ln_prev_q[c] <= ln_cur_q[c];
+          ln_cur_q[c]  <= is_line;
+          ln_has_q[c]  <= 1'b1;
+        end
+      end
+    end
+  end
+
+  // A' = a - g and B' = b + g on the position axis exist iff inside the tile and in G(k-1):
+  // a multiple of n_k up to p, else border offset (r, k - 1) (docs/rules.md). IS -> RD: the
+  // two positions and the axis's p, r, n - 1; RD -> AB: the membership tests.
+  typedef logic [MAX_LEVELS-1:0][7:0] bm_row_t;       // [k - 1] for the levels 1..3
+  function automatic bm_row_t bm_row(int unsigned r);
+    bm_row_t t;
+    for (int unsigned k = 0; k < MAX_LEVELS; k++) t[k] = border_set(r, k);
+    return t;
+  endfunction
+  localparam bm_row_t BM_SET [8] = '{bm_row(0), bm_row(1), bm_row(2), bm_row(3),
+                                     bm_row(4), bm_row(5), bm_row(6), bm_row(7)};
+
+  function automatic logic in_grid(lcoord_t v, lcoord_t p, lcoord_t mask, logic [7:0] bm);
+    logic [2:0] o;            // v - p < 8 wherever it is used
+    o = 3'(v - p);
+    return (v <= p) ? ((v & mask) == '0) : bm[o];
+  endfunction
+
+  logic [LCOORD_W:0] is_ap, is_bp, is_a;
+  lcoord_t           is_nm1, is_smask;
+
+  always_comb begin
+    is_a     = (LCOORD_W+1)'(is_m) - (LCOORD_W+1)'(is_pos_q.off);
+    is_ap    = is_a - (LCOORD_W+1)'(is_pos_q.gap);
+    is_bp    = is_a + (LCOORD_W+1)'({is_pos_q.gap, 1'b0});
+    is_nm1   = lcoord_t'(((is_pos_q.dir == DIR_V) ? is_desc.h : is_desc.w) - 1'b1);
+    is_smask = (lcoord_t'(1) << is_desc.levels) - 1'b1;              // S - 1
+  end
+
+  logic              rd_first, rd_newline, rd_has;
+  lcoord_t           rd_line, rd_cur, rd_prev, rd_nm1, rd_p, rd_nkmask;
+  logic [2:0]        rd_r;
+  level_t            rd_km1;
+  logic [LCOORD_W:0] rd_ap, rd_bp;
+
+  always_ff @(posedge clk_i) begin
+    if (is_valid_q) begin
+      rd_first   <= is_pos_q.first;
+      rd_newline <= is_newline;
+      rd_has     <= ln_has_q[is_ctx_q];
+      rd_line    <= is_line;
+      rd_cur     <= ln_cur_q[is_ctx_q];
+      rd_prev    <= ln_prev_q[is_ctx_q];
+      rd_ap      <= is_ap;
+      rd_bp      <= is_bp;
+      rd_nm1     <= is_nm1;
+      rd_p       <= is_nm1 & ~is_smask;
+      rd_r       <= 3'(is_nm1 & is_smask);
+      rd_km1     <= is_pos_q.level - 1'b1;
+      // n_k - 1 = (S >> (k - 1)) - 1
+      rd_nkmask  <= is_smask >> (is_pos_q.level - 1'b1);
+    end
+  end
+
+  logic       rd_fline, rd_oka, rd_okb;
+  lcoord_t    rd_lprev;
+  logic [7:0] rd_bm;
+
+  always_comb begin
+    rd_fline = rd_first || (!rd_newline && !rd_has);
+    rd_lprev = rd_newline ? rd_cur : rd_prev;
+    rd_bm    = BM_SET[rd_r][rd_km1];
+    rd_oka   = !rd_ap[LCOORD_W] && in_grid(rd_ap[LCOORD_W-1:0], rd_p, rd_nkmask, rd_bm);
+    rd_okb   = !rd_bp[LCOORD_W] && (rd_bp[LCOORD_W-1:0] <= rd_nm1) &&
+               in_grid(rd_bp[LCOORD_W-1:0], rd_p, rd_nkmask, rd_bm);
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       rd_valid_q <= 1'b0;
@@ -329,10 +417,8 @@ module msr_tile_engine
                        gx: is_desc.x0 + coord_t'(is_pos_q.x), gy: is_desc.y0 + coord_t'(is_pos_q.y),
                        level: is_pos_q.level, init: is_pos_q.init,
                        lin: is_desc.rule == RULE_LINDILATE && !is_pos_q.init,
-                       idx: is_pos_q.idx, fline: is_pos_q.fline,
-                       vert: is_pos_q.dir == DIR_V,
-                       ldelta: 4'(((is_pos_q.dir == DIR_V) ? is_pos_q.x : is_pos_q.y)
-                                  - is_pos_q.lprev)};
+                       mh: is_m[LCOORD_W-1:1], fline: 1'b0,   // fline, ldelta: RD -> AB
+                       vert: is_pos_q.dir == DIR_V, ldelta: '0};
       rd_metric_q <= is_desc.metric;
       // threshold of the position's level; an initial-grid position gets 0 (always trace)
       rd_thr_q    <= is_pos_q.init ? '0 : is_desc.thr[is_pos_q.level - 1'b1];
@@ -340,7 +426,7 @@ module msr_tile_engine
   end
 
   // ---- AB: the issued context's read data, registered -----------------------------------------
-  logic       ab_valid_q;
+  logic       ab_valid_q, ab_oka_q, ab_okb_q;
   rgb_t       ab_a_q, ab_b_q, ab_oa_q, ab_ob_q;
   side_t      ab_side_q;
   metric_e    ab_metric_q;
@@ -364,11 +450,15 @@ module msr_tile_engine
     if (rd_valid_q) begin
       ab_a_q      <= ctx_rd_a[rd_ctx_q];
       ab_b_q      <= ctx_rd_b[rd_ctx_q];
-      // A': port 2 where aalt, else the context's previous A; B': port 2
-      ab_oa_q     <= rd_pos_q.aalt ? ctx_rd_o2[rd_ctx_q] : ctx_rd_pa[rd_ctx_q];
+      // A': port 2 where o2a, else the context's previous A; B': port 2
+      ab_oa_q     <= rd_pos_q.o2a ? ctx_rd_o2[rd_ctx_q] : ctx_rd_pa[rd_ctx_q];
       ab_ob_q     <= ctx_rd_o2[rd_ctx_q];
+      ab_oka_q    <= rd_oka;
+      ab_okb_q    <= rd_okb;
       ab_pos_q    <= rd_pos_q;
       ab_side_q   <= rd_side_q;
+      ab_side_q.fline  <= rd_fline;
+      ab_side_q.ldelta <= 4'(rd_line - rd_lprev);
       ab_metric_q <= rd_metric_q;
       ab_thr_q    <= rd_thr_q;
     end
@@ -450,11 +540,11 @@ module msr_tile_engine
     .clk_i        (clk_i),
     .en_i         (1'b1),
     .outer_a_i    (ab_oa_q),
-    .outer_a_ok_i (ab_pos_q.oka),
+    .outer_a_ok_i (ab_oka_q),
     .a_i          (ab_a_q),
     .b_i          (ab_b_q),
     .outer_b_i    (ab_ob_q),
-    .outer_b_ok_i (ab_pos_q.okb),
+    .outer_b_ok_i (ab_okb_q),
     .metric_i     (ab_metric_q),
     .thr_i        (ab_thr_q),
     .gap_i        (ab_pos_q.gap),
@@ -478,18 +568,24 @@ module msr_tile_engine
   // position index the line store keeps D of the last line and whether that line's pixel
   // was interpolated. The passes of a context leave the pipeline in order, so no clearing:
   // the first line of a pass reads nothing.
-  logic [NUM_CTX-1:0][14:0] dl_d_q, dl_t_q;    // D(l-), "(l-) was interpolated"
+  // The store is a small memory (read and written at one address a clock, the read of the
+  // old value): distributed RAM on an FPGA.
+  localparam int unsigned DL_AW = CTX_W + LCOORD_W - 1;
+  logic [1:0] dl_mem [NUM_CTX * 16];               // {D(l-), "(l-) was interpolated"}
+  logic [1:0] dl_rd;
+  logic [DL_AW-1:0] dl_addr;
   logic pv_dprev, pv_tprev, pv_lin_interp, pv_retro;
 
-  assign pv_dprev      = pv_side.fline || dl_d_q[pv_side.ctx][pv_side.idx];
-  assign pv_tprev      = !pv_side.fline && dl_t_q[pv_side.ctx][pv_side.idx];
+  assign dl_addr       = {pv_side.ctx, pv_side.mh};
+  assign dl_rd         = dl_mem[dl_addr];
+  assign pv_dprev      = pv_side.fline || dl_rd[1];
+  assign pv_tprev      = !pv_side.fline && dl_rd[0];
   assign pv_lin_interp = pv_dprev && pv_base;
   assign pv_retro      = pv_side.lin && pv_tprev && !pv_base;
 
   always_ff @(posedge clk_i) begin
     if (pv_valid && pv_side.lin) begin
-      dl_d_q[pv_side.ctx][pv_side.idx] <= pv_base;
-      dl_t_q[pv_side.ctx][pv_side.idx] <= pv_lin_interp;
+      dl_mem[dl_addr] <= {pv_base, pv_lin_interp};
     end
   end
 
@@ -849,12 +945,7 @@ module msr_tile_engine
       .step_nshift_o (ctx_nshift[c]),
       .step_init_o   (ctx_init[c]),
       .step_dir_o    (ctx_dir[c]),
-      .step_oka_o    (ctx_oka[c]),
-      .step_okb_o    (ctx_okb[c]),
-      .step_aalt_o   (ctx_aalt[c]),
-      .step_idx_o    (ctx_idx[c]),
-      .step_fline_o  (ctx_fline[c]),
-      .step_lprev_o  (ctx_lprev[c]),
+      .step_o2a_o    (ctx_o2a[c]),
       .issue_i       (ctx_issue[c]),
       .rd_a_o        (ctx_rd_a[c]),
       .rd_b_o        (ctx_rd_b[c]),

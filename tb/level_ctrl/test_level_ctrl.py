@@ -1,10 +1,10 @@
 """msr_level_ctrl against tile_model.tile_schedule: the whole stream of positions (pass by
 pass, with neighbours, gap, offset, level, direction, n_k and the pass-start flag) for every
-L in 1..3 and every tile w, h in 1..32, with random ready back-pressure. Also the outputs for
-the `lindilate` rule (docs/rules.md), derived here from spec.axis_plan: whether the outer
-samples A' = a - g and B' = b + g exist (inside the tile and in G(k-1)), whether A' is not
-the A of the line's previous position (then the third port reads A', else B'), the third
-port's address, the position's index on its line, the first-line flag and the previous line."""
+L in 1..3 and every tile w, h in 1..32, with random ready back-pressure. Also the third read
+port's address for the `lindilate` rule (docs/rules.md): B' = b + g, or A' = a - g where B'
+is outside the tile; and the property that makes one port enough, derived here from
+spec.axis_plan: wherever A' exists (inside the tile, in G(k-1)) and is not the A of the line's
+previous position (what the context keeps), B' is outside the tile."""
 from __future__ import annotations
 
 import random
@@ -23,30 +23,29 @@ from msr_model.tile_model import tile_schedule  # noqa: E402
 DIRS = {"init": 0, "H": 1, "V": 2}
 
 
-def outer(s, w, h, levels, prev, lines):
-    """(oka, okb, aalt, o2x, o2y, idx, fline, lprev) of one H/V step (docs/rules.md): prev
-    is the step before it on its line (None at a line start), lines the pass's lines so far."""
+def outer(s, w, h, levels, prev):
+    """(o2a, o2x, o2y) of one H/V step: prev is the step before it on its line (None at a
+    line start). Checks that one read serves: A' that is not prev's A only where B' is out."""
     horiz = s.direction == "H"
     n = w if horiz else h
     grid = set(spec.axis_plan(n, levels).grids[s.level - 1])       # G(k-1) of the position axis
     a, b = (s.ax, s.bx) if horiz else (s.ay, s.by)
     pa, pb = a - s.gap, b + s.gap
     oka = pa >= 0 and pa in grid
-    okb = pb <= n - 1 and pb in grid
     prev_a = None if prev is None else (prev.ax if horiz else prev.ay)
-    aalt = oka and prev_a != pa
-    o2 = (pa if aalt else pb) % 32
+    o2a = pb > n - 1
+    assert not (oka and prev_a != pa and not o2a), \
+        f"{w}x{h} L={levels}: A' at {pa} is not the previous A and B' at {pb} is inside"
+    o2 = (pa if o2a else pb) % 32
     line = s.y if horiz else s.x
     o2x, o2y = (o2, line) if horiz else (line, o2)
-    fline = lines[0] == line
-    lprev = lines[lines.index(line) - 1] if not fline else None
-    return oka, okb, aalt, o2x, o2y, fline, lprev
+    return o2a, o2x, o2y
 
 
 def expected(w, h, levels):
     out = []
     for p in tile_schedule(w, h, levels):
-        lines, prev, idx = [], None, 0
+        prev, line_of_prev = None, None
         for i, s in enumerate(p.steps):
             if s.direction == "init":
                 row = (s.x, s.y, None, None, None, None, 0, 0, 0, 0, i == 0)
@@ -56,14 +55,13 @@ def expected(w, h, levels):
                 row = (s.x, s.y, s.ax, s.ay, s.bx, s.by, s.gap, s.m_offset, s.level, DIRS[s.direction],
                        i == 0)
                 line = s.y if s.direction == "H" else s.x
-                if not lines or lines[-1] != line:
-                    lines.append(line)
-                    prev, idx = None, 0
-                oka, okb, aalt, o2x, o2y, fline, lprev = outer(s, w, h, levels, prev, lines)
-                assert not (aalt and okb), "the third port would need two reads"
-                extra = (oka, okb, aalt, o2x if (aalt or okb) else None, o2y if (aalt or okb) else None,
-                         idx, fline, lprev)
-                prev, idx = s, idx + 1
+                if line != line_of_prev:
+                    prev = None
+                o2a, o2x, o2y = outer(s, w, h, levels, prev)
+                # the address is only used where the sample is inside the tile
+                inside = 0 <= (o2y if s.direction == "V" else o2x) < (h if s.direction == "V" else w)
+                extra = (o2a, (o2x, o2y) if inside else None)
+                prev, line_of_prev = s, line
             out.append((row, None if s.direction == "init" else nshift, extra))
     return out
 
@@ -106,14 +104,9 @@ async def schedule_matches_golden(dut):
                 nshift = None if d == 0 else int(dut.step_nshift_o.value)
                 extra = None
                 if d != 0:
-                    fline = bool(dut.step_fline_o.value)
-                    use2 = bool(dut.step_aalt_o.value) or bool(dut.step_okb_o.value)
-                    extra = (bool(dut.step_oka_o.value), bool(dut.step_okb_o.value),
-                             bool(dut.step_aalt_o.value),
-                             int(dut.step_o2x_o.value) if use2 else None,
-                             int(dut.step_o2y_o.value) if use2 else None,
-                             int(dut.step_idx_o.value), fline,
-                             None if fline else int(dut.step_lprev_o.value))
+                    o2x, o2y = int(dut.step_o2x_o.value), int(dut.step_o2y_o.value)
+                    w_or_h, pos = (h, o2y) if d == 2 else (w, o2x)
+                    extra = (bool(dut.step_o2a_o.value), (o2x, o2y) if pos < w_or_h else None)
                 res = (row, nshift, extra)
                 assert res == want[got], f"tile {w}x{h} L={lv} step {got}: got {res}, want {want[got]}"
                 got += 1
