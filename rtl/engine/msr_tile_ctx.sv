@@ -40,13 +40,12 @@ module msr_tile_ctx
   output logic [1:0]         step_nshift_o,
   output logic               step_init_o,   // initial-grid position: traced, no reads
   output dir_e               step_dir_o,
-  output logic               step_o2a_o,    // lindilate: A' is rd_o2_o, not rd_pa_o
+  output logic               step_o2a_o,    // lindilate: A' is rd_o2_o (else the engine's last A)
   input  logic               issue_i,       // the head leaves this cycle (granted the cycle before)
   // decision reads: the neighbours of the position issued two cycles before
   output rgb_t               rd_a_o,
   output rgb_t               rd_b_o,
   output rgb_t               rd_o2_o,       // the third port: B' (or A' where o2a)
-  output rgb_t               rd_pa_o,       // the A of this context's previous issue: A'
   // a render request for a pixel of this context that was already written (lindilate's
   // dilation traces an interpolated pixel of the line before): one more pending write
   input  logic               retro_i,
@@ -318,11 +317,10 @@ module msr_tile_ctx
   );
 
   // Port 2 (lindilate): a colour-only copy written with the buffer, reading the head's
-  // third-port address (B', or A' where o2a) every clock like ports 0 and 1. A' is most
-  // often the A of the line's previous position, which is this context's previous issue:
-  // its port-1 data are kept (prev_a_q, taken when they arrive, two clocks after the issue),
-  // so one more port gives all four samples of a position every clock.
-  rgb_t rdata2, rdata2_q, prev_a_q;
+  // third-port address (B', or A' where o2a) every clock like ports 0 and 1. Elsewhere A' is
+  // the A of the line's previous position, this context's previous issue: the engine keeps
+  // it, so one more port gives all four samples of a position every clock.
+  rgb_t rdata2, rdata2_q;
   // Port 1 of the copy is not used.
   /* verilator lint_off UNUSEDSIGNAL */
   rgb_t rdata2_unused;
@@ -344,23 +342,11 @@ module msr_tile_ctx
     .wdata_i  (wrgb_i)
   );
 
-  logic [1:0] issue_d_q;     // issue_i one and two clocks ago
-  msr_clr_reg #(.WIDTH(2)) u_issue_d (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     ({issue_d_q[0], issue_i}),
-    .q_o     (issue_d_q)
-  );
-
   always_ff @(posedge clk_i) begin
     rdata2_q <= rdata2;
-    if (issue_d_q[1]) prev_a_q <= rgb_t'(rdata1_q[$bits(rgb_t)-1:0]);
   end
 
   assign rd_o2_o = rdata2_q;
-  assign rd_pa_o = prev_a_q;
 
   // The read data is registered once more, beside the memory, before anything selects between
   // contexts: a block RAM's clock-to-output (5.8 ns on an ECP5 DP16KD) leaves no room for the

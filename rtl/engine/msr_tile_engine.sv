@@ -105,7 +105,7 @@ module msr_tile_engine
   logic       [NUM_CTX-1:0] ctx_init;
   dir_e       [NUM_CTX-1:0] ctx_dir;
   logic       [NUM_CTX-1:0] ctx_o2a, ctx_retro;
-  rgb_t       [NUM_CTX-1:0] ctx_rd_a, ctx_rd_b, ctx_rd_o2, ctx_rd_pa, ctx_str_rgb;
+  rgb_t       [NUM_CTX-1:0] ctx_rd_a, ctx_rd_b, ctx_rd_o2, ctx_str_rgb;
   src_t       [NUM_CTX-1:0] ctx_str_src;
   logic       [NUM_CTX-1:0] ctx_we, ctx_str_own, ctx_str_done;
   logic       [NUM_CTX-1:0][TADDR_W-1:0] ctx_waddr;
@@ -446,12 +446,23 @@ module msr_tile_engine
     end
   end
 
+  // Per context, the A of its last issued position (A' of the next position on the line,
+  // fact 1 of the lindilate section in docs/architecture.md): written as AB takes the read
+  // data, read the same clock for the position in RD (the old value: the previous issue).
+  // A small memory: distributed RAM on an FPGA.
+  rgb_t rd_a, last_a_mem [NUM_CTX];
+  assign rd_a = ctx_rd_a[rd_ctx_q];
+
+  always_ff @(posedge clk_i) begin
+    if (rd_valid_q) last_a_mem[rd_ctx_q] <= rd_a;
+  end
+
   always_ff @(posedge clk_i) begin
     if (rd_valid_q) begin
-      ab_a_q      <= ctx_rd_a[rd_ctx_q];
+      ab_a_q      <= rd_a;
       ab_b_q      <= ctx_rd_b[rd_ctx_q];
       // A': port 2 where o2a, else the context's previous A; B': port 2
-      ab_oa_q     <= rd_pos_q.o2a ? ctx_rd_o2[rd_ctx_q] : ctx_rd_pa[rd_ctx_q];
+      ab_oa_q     <= rd_pos_q.o2a ? ctx_rd_o2[rd_ctx_q] : last_a_mem[rd_ctx_q];
       ab_ob_q     <= ctx_rd_o2[rd_ctx_q];
       ab_oka_q    <= rd_oka;
       ab_okb_q    <= rd_okb;
@@ -950,7 +961,6 @@ module msr_tile_engine
       .rd_a_o        (ctx_rd_a[c]),
       .rd_b_o        (ctx_rd_b[c]),
       .rd_o2_o       (ctx_rd_o2[c]),
-      .rd_pa_o       (ctx_rd_pa[c]),
       .retro_i       (ctx_retro[c]),
       .we_i          (ctx_we[c]),
       .waddr_i       (ctx_waddr[c]),
