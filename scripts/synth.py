@@ -202,7 +202,8 @@ def bb_param_names(files: list[str], module: str) -> list[str]:
         m = re.search(rf"^\s*module\s+{module}\b(.*?)^\s*endmodule", text, re.M | re.S)
         if m:
             body = m.group(1)
-            names = re.findall(r"\b(?:parameter|localparam)\s+(?:\w+\s+)*?(\w+)\s*=", body)
+            # (an unpacked dimension may follow the name: localparam t NAME [8] = ...)
+            names = re.findall(r"\b(?:parameter|localparam)\s+(?:\w+\s+)*?(\w+)\s*(?:\[[^\]]*\]\s*)*=", body)
             names += re.findall(r"\bgenvar\s+(\w+)", body)
             return sorted(set(names))
     raise ValueError(f"module {module} not in the file list")

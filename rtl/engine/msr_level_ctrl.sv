@@ -50,8 +50,7 @@ module msr_level_ctrl
   // (if it exists) is the A of the line's previous position, which the context keeps;
   // where A' is not that (four cases over every n and L), B' is outside (tb/level_ctrl).
   output logic    step_o2a_o,     // the third port reads A' (B' = b + g is outside the tile)
-  output lcoord_t step_o2x_o,     // the third port's read: A' if o2a, else B'
-  output lcoord_t step_o2y_o,
+  output lcoord_t step_o2_o,      // the third port's read on the line: A' if o2a, else B'
   output logic    busy_o          // a tile is accepted and not all positions are out
 );
 
@@ -556,8 +555,7 @@ module msr_level_ctrl
       step_nshift_o <= 2'(levels_q - k_q + 1'b1);
       step_dir_o    <= (ws_q == WS_WALK) ? dir_q : DIR_INIT;
       step_o2a_o    <= o2a;
-      step_o2x_o    <= (dir_q == DIR_V) ? lw_q.cur : o2pos;
-      step_o2y_o    <= (dir_q == DIR_V) ? o2pos : lw_q.cur;
+      step_o2_o     <= o2pos;
     end
   end
 

@@ -102,8 +102,7 @@ module msr_tile_ctx
     dir_e       dir;
     logic       first;
     logic       o2a;
-    lcoord_t    o2x;
-    lcoord_t    o2y;
+    lcoord_t    o2;
   } step_t;
 
   logic    ctrl_valid, ctrl_room, step_valid, ctrl_busy, q_room, q_push;
@@ -139,8 +138,7 @@ module msr_tile_ctx
     .step_dir_o    (ctrl_step.dir),
     .step_first_o  (ctrl_step.first),
     .step_o2a_o    (ctrl_step.o2a),
-    .step_o2x_o    (ctrl_step.o2x),
-    .step_o2y_o    (ctrl_step.o2y),
+    .step_o2_o     (ctrl_step.o2),
     .busy_o        (ctrl_busy)
   );
 
@@ -332,7 +330,7 @@ module msr_tile_ctx
   ) u_tile_sram_outer (
     .clk_i    (clk_i),
     .re0_i    (computing),
-    .raddr0_i ({head_q.o2y, head_q.o2x}),
+    .raddr0_i ((head_q.dir == DIR_V) ? {head_q.o2, head_q.x} : {head_q.y, head_q.o2}),
     .rdata0_o (rdata2),
     .re1_i    (1'b0),
     .raddr1_i ('0),

@@ -104,9 +104,9 @@ async def schedule_matches_golden(dut):
                 nshift = None if d == 0 else int(dut.step_nshift_o.value)
                 extra = None
                 if d != 0:
-                    o2x, o2y = int(dut.step_o2x_o.value), int(dut.step_o2y_o.value)
-                    w_or_h, pos = (h, o2y) if d == 2 else (w, o2x)
-                    extra = (bool(dut.step_o2a_o.value), (o2x, o2y) if pos < w_or_h else None)
+                    o2 = int(dut.step_o2_o.value)          # on the line: x (H pass) or y (V)
+                    o2x, o2y = (row[0], o2) if d == 2 else (o2, row[1])
+                    extra = (bool(dut.step_o2a_o.value), (o2x, o2y) if o2 < (h if d == 2 else w) else None)
                 res = (row, nshift, extra)
                 assert res == want[got], f"tile {w}x{h} L={lv} step {got}: got {res}, want {want[got]}"
                 got += 1
