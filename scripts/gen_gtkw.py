@@ -22,7 +22,7 @@ from pathlib import Path
 # Names of the system top and the engine as they are now; a name missing from the dump is
 # skipped, so the file still loads when a unit renames a signal.
 ENGINE_SIGS = ["desc_valid_i", "desc_ready_o", "alloc_q", "busy_o", "ctx_start", "ctx_free", "ctx_full", "ctx_issue",
-               "issue", "gnt", "gr_gnt_q", "out_trace",
+               "issue", "gnt", "gr_gnt_q", "out_trace", "retro_phase",
                "req_valid_o", "req_ready_i", "req_x_o", "req_y_o", "req_tag_o", "rsp_valid_i", "rsp_tag_i",
                "inflight_o", "ctx_str_done", "streaming_q", "str_q", "pix_valid_o", "pix_ready_i", "pix_x_o",
                "pix_y_o", "pix_src_o", "pix_last_o"]
