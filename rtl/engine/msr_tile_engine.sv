@@ -480,7 +480,6 @@ module msr_tile_engine
   // ~12 clocks; 16 (the next power of two) keeps one grant per clock.
   localparam int unsigned OUT_DEPTH = 16;
 
-  // trace is formed before the output buffer, so the tag allocation below starts at a register.
   // What the output needs of the sideband (the dilation's fields stay before the buffer).
   typedef struct packed {
     ctx_t       ctx;
@@ -493,6 +492,7 @@ module msr_tile_engine
     logic [3:0] ldelta;
   } oside_t;
 
+  // trace is formed before the output buffer, so the tag allocation below starts at a register.
   typedef struct packed {
     logic   trace;
     logic   retro;      // lindilate: first a trace of the previous line's pixel (see below)
