@@ -272,6 +272,7 @@ module msr_tile_engine
   // line (m >> 1: new positions of a level are at least 2 apart) and the first-line flag
   // address the dilation's line store; the pass direction and the distance to the previous
   // line (1..8) address a retro trace.
+  // The part the output needs (the dilation's fields below stay before the output buffer).
   typedef struct packed {
     ctx_t       ctx;
     lcoord_t    x;
@@ -279,12 +280,16 @@ module msr_tile_engine
     coord_t     gx;
     coord_t     gy;
     level_t     level;
+    logic       vert;
+    logic [3:0] ldelta;
+  } oside_t;
+
+  typedef struct packed {
+    oside_t     o;
     logic       init;
     logic       lin;
     logic [3:0] mh;
     logic       fline;
-    logic       vert;
-    logic [3:0] ldelta;
   } side_t;
 
   // ---- RD: the context's descriptor fields, registered (the read data is on its way) ---------
@@ -413,12 +418,13 @@ module msr_tile_engine
     if (is_valid_q) begin
       rd_ctx_q    <= is_ctx_q;
       rd_pos_q    <= is_pos_q;
-      rd_side_q   <= '{ctx: is_ctx_q, x: is_pos_q.x, y: is_pos_q.y,
-                       gx: is_desc.x0 + coord_t'(is_pos_q.x), gy: is_desc.y0 + coord_t'(is_pos_q.y),
-                       level: is_pos_q.level, init: is_pos_q.init,
+      rd_side_q   <= '{o: '{ctx: is_ctx_q, x: is_pos_q.x, y: is_pos_q.y,
+                            gx: is_desc.x0 + coord_t'(is_pos_q.x),
+                            gy: is_desc.y0 + coord_t'(is_pos_q.y), level: is_pos_q.level,
+                            vert: is_pos_q.dir == DIR_V, ldelta: '0},  // ldelta, fline: RD -> AB
+                       init: is_pos_q.init,
                        lin: is_desc.rule == RULE_LINDILATE && !is_pos_q.init,
-                       mh: is_m[LCOORD_W-1:1], fline: 1'b0,   // fline, ldelta: RD -> AB
-                       vert: is_pos_q.dir == DIR_V, ldelta: '0};
+                       mh: is_m[LCOORD_W-1:1], fline: 1'b0};
       rd_metric_q <= is_desc.metric;
       // threshold of the position's level; an initial-grid position gets 0 (always trace)
       rd_thr_q    <= is_pos_q.init ? '0 : is_desc.thr[is_pos_q.level - 1'b1];
@@ -469,7 +475,7 @@ module msr_tile_engine
       ab_pos_q    <= rd_pos_q;
       ab_side_q   <= rd_side_q;
       ab_side_q.fline  <= rd_fline;
-      ab_side_q.ldelta <= 4'(rd_line - rd_lprev);
+      ab_side_q.o.ldelta <= 4'(rd_line - rd_lprev);
       ab_metric_q <= rd_metric_q;
       ab_thr_q    <= rd_thr_q;
     end
@@ -480,17 +486,6 @@ module msr_tile_engine
   // ~12 clocks; 16 (the next power of two) keeps one grant per clock.
   localparam int unsigned OUT_DEPTH = 16;
 
-  // What the output needs of the sideband (the dilation's fields stay before the buffer).
-  typedef struct packed {
-    ctx_t       ctx;
-    lcoord_t    x;
-    lcoord_t    y;
-    coord_t     gx;
-    coord_t     gy;
-    level_t     level;
-    logic       vert;
-    logic [3:0] ldelta;
-  } oside_t;
 
   // trace is formed before the output buffer, so the tag allocation below starts at a register.
   typedef struct packed {
@@ -587,7 +582,7 @@ module msr_tile_engine
   logic [DL_AW-1:0] dl_addr;
   logic pv_dprev, pv_tprev, pv_lin_interp, pv_retro;
 
-  assign dl_addr       = {pv_side.ctx, pv_side.mh};
+  assign dl_addr       = {pv_side.o.ctx, pv_side.mh};
   assign dl_rd         = dl_mem[dl_addr];
   assign pv_dprev      = pv_side.fline || dl_rd[1];
   assign pv_tprev      = !pv_side.fline && dl_rd[0];
@@ -602,9 +597,7 @@ module msr_tile_engine
 
   assign pv_result = '{trace: pv_side.init || !(pv_side.lin ? pv_lin_interp : pv_interp),
                        retro: pv_retro, rgb: pv_rgb,
-                       side: '{ctx: pv_side.ctx, x: pv_side.x, y: pv_side.y, gx: pv_side.gx,
-                               gy: pv_side.gy, level: pv_side.level, vert: pv_side.vert,
-                               ldelta: pv_side.ldelta}};
+                       side: pv_side.o};
 
   msr_fifo #(
     .WIDTH ($bits(result_t)),
@@ -997,7 +990,7 @@ module msr_tile_engine
   `MSR_ASSERT(a_credits, 32'(credit_q) + 32'(ob_count) <= OUT_DEPTH)
   // the line before is 1..8 away (rows of G_y(k-1), columns of G_x(k))
   `MSR_ASSERT(a_retro_delta, pv_valid && pv_side.lin && !pv_side.fline |->
-      pv_side.ldelta inside {[1 : 8]})
+      pv_side.o.ldelta inside {[1 : 8]})
   `MSR_COVER(c_retro, retro_phase && alloc_tag)
   `MSR_COVER(c_rsp_dropped, rsp_drop_o)
   `MSR_COVER(c_all_ctx_busy, ctx_free == '0)
