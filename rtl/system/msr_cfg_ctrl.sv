@@ -10,8 +10,9 @@
 // wins: the configuration is latched and the frame starts, or the error is reported
 // (STATUS.ERROR, STATUS.CFG_ERR and the interrupt) and the accelerator stays idle (no render
 // request, no memory write). A frame ends when the tile generator has handed out every tile,
-// every tile's last pixel has reached the writer and the writer is idle. SOFT_RESET in any state: DRAIN until no render request is in flight and the
-// writer is idle, then one CLEAR cycle (every unit's synchronous clear), then idle.
+// every tile's last pixel has reached the writer and the writer is idle. SOFT_RESET in any
+// state: DRAIN until no render request is in flight and the writer is idle, then one CLEAR
+// cycle (every unit's synchronous clear), then idle.
 //
 // Watchdog: while a frame runs, WATCHDOG cycles in a row without progress (progress_i: a render
 // request or, while running, a response taken; an AW, W or expected B handshake; a finished
