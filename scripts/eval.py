@@ -24,6 +24,7 @@ import time
 from pathlib import Path
 
 from msr_eval import conv_report as CR
+from msr_eval import conv_store as CS
 from msr_eval import reference as REF
 from msr_eval import report as R
 from msr_eval import sweep as S
@@ -65,6 +66,15 @@ def main(argv=None):
                     help="also write the converged comparison alone as DOCS_DIR/NAME (e.g. results_converged.md)")
     ap.add_argument("--no-conv-check", action="store_true",
                     help="skip the second-seed render of each converged reference (no two-seed PSNR)")
+    ap.add_argument("--conv-check", action="store_true",
+                    help="the second-seed render at full size too (the quick run always has it)")
+    ap.add_argument("--conv-modes", default=None,
+                    help="modes with a converged reference (default: every mode quick, heavy at full size)")
+    ap.add_argument("--store", default=None, metavar="DIR",
+                    help="committed references and records to resume from and write to (default: "
+                         "docs/converged with --full, none in the quick run; 'none' for none)")
+    ap.add_argument("--refs-only", action="store_true",
+                    help="stop after the full renders and converged references")
     a = ap.parse_args(argv)
 
     if a.report_only:
@@ -90,8 +100,17 @@ def main(argv=None):
         scenes = scenes[:a.max_scenes]
     modes = a.modes.split(",") if a.modes else (["fast", "heavy"] if backend.embree else ["image"])
     out = Path(a.out)
+    # Full size (issue 30): the fast renderer is scored against its own full render only (its
+    # error against a converged image is aliasing, which no selective method removes); the heavy
+    # renderer's reference takes the sample count the quick-size ladder chose per scene, one seed
+    # unless --conv-check; finished references and records are committed under docs/converged/.
+    conv_check = (a.conv_check or quick) and not a.no_conv_check
+    conv_modes = tuple(a.conv_modes.split(",")) if a.conv_modes else (None if quick else ("heavy",))
+    store = a.store if a.store is not None else (str(CS.STORE) if full else "none")
     cfg = S.SweepConfig(W, H, tuple(scales), quick, a.all_metrics, out / "cache", conv=not a.no_conv,
-                        conv_grid=a.conv_grid, conv_check=not a.no_conv_check)
+                        conv_grid=a.conv_grid, conv_check=conv_check, conv_modes=conv_modes,
+                        conv_ladder=full, store=None if store == "none" else Path(store),
+                        refs_only=a.refs_only)
     sweep = cfg.sweep
     log = lambda s: print(s, flush=True)  # noqa: E731
     scene_id = S.scene_id
@@ -105,6 +124,9 @@ def main(argv=None):
                                            show_progress=not a.no_progress)
     finally:
         executor.close()
+    if a.refs_only:
+        log(f"eval: references done in {time.perf_counter() - t_start:.0f} s")
+        return None
 
     needed, set_curves, headline = summarise(records, modes)
     conv_records = REF.as_conv(records)
@@ -172,6 +194,9 @@ def main(argv=None):
         "rule_vs_patent": rules_cmp,
         "converged": {"needed_fraction": needed_c, "set_curves": set_curves_c, "headline": headline_c,
                       "conv_grids": {m: list(REF.conv_grids_for(m, a.conv_grid)) for m in modes},
+                      "conv_modes": list(conv_modes) if conv_modes else list(modes),
+                      "per_scene": {S.scene_id(s): infos[(s, m)]["converged"] for s in scenes for m in modes
+                                    if "converged" in infos[(s, m)]},
                       "target_two_seeds_db": REF.CONV_TARGET_DB,
                       "seeds": list(REF.CONV_SEEDS)} if conv_records else None,
         "speedup": speed,

@@ -1,6 +1,7 @@
 """Deferred Adaptive Compute Shading (Mallett and Yuksel, HPG 2018) as a method of the evaluation.
 
-The frame is filled coarse to fine in five passes over 4x4 blocks (the paper's Figure 2 order):
+The frame is filled coarse to fine in five passes over 4x4 blocks (the paper's Figure 2 order;
+`block=8` is our extension, two more passes in front, see passes_for):
 
     pass 0  (0,0) of every block                      traced, always
     pass 1  (2,2)             neighbours (+-2, +-2)   diagonal, 2 apart
@@ -34,25 +35,43 @@ from msr_model import spec
 
 from .methods import SRC_INTERP, SRC_TRACED, CountingRenderer, MethodResult
 
+BLOCKS = (4, 8)          # 4: the paper's; 8: our extension (a first pass of one pixel in 64)
+
+
+def passes_for(block: int = 4) -> tuple:
+    """(positions in a block x block block as (dx, dy), neighbour offsets) for the passes after
+    pass 0: per level s = block/2, block/4, .., 1, the centres of the squares of side 2s
+    (diagonal neighbours s apart), then the centres of their edges (axial neighbours s apart).
+    block = 4 gives the paper's four passes; block = 8 (an extension, labelled so in the
+    evaluation) puts two more levels in front with a first pass of one pixel in 64."""
+    if block not in BLOCKS:
+        raise spec.SpecError(f"DACS block must be one of {BLOCKS}, got {block!r}")
+    out = []
+    s = block // 2
+    while s >= 1:
+        cells = [(x, y) for y in range(block) for x in range(block)]
+        diag = tuple((x, y) for x, y in cells if x % (2 * s) == s and y % (2 * s) == s)
+        axial = tuple((x, y) for x, y in cells if (x % (2 * s), y % (2 * s)) in ((s, 0), (0, s)))
+        out.append((diag, ((-s, -s), (s, -s), (-s, s), (s, s))))
+        out.append((axial, ((-s, 0), (s, 0), (0, -s), (0, s))))
+        s //= 2
+    return tuple(out)
+
+
 # (positions in a 4x4 block as (dx, dy), neighbour offsets) for passes 1..4
-PASSES = (
-    (((2, 2),), ((-2, -2), (2, -2), (-2, 2), (2, 2))),
-    (((2, 0), (0, 2)), ((-2, 0), (2, 0), (0, -2), (0, 2))),
-    (((1, 1), (3, 1), (1, 3), (3, 3)), ((-1, -1), (1, -1), (-1, 1), (1, 1))),
-    (((1, 0), (3, 0), (0, 1), (2, 1), (1, 2), (3, 2), (0, 3), (2, 3)), ((-1, 0), (1, 0), (0, -1), (0, 1))),
-)
+PASSES = passes_for(4)
 METRICS = ("var", "lumvar", "range")
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 
 
-def pass_of(width: int, height: int) -> np.ndarray:
-    """(H, W) int: the pass (0..4) that decides each pixel."""
+def pass_of(width: int, height: int, block: int = 4) -> np.ndarray:
+    """(H, W) int: the pass (0 .. 2 log2(block)) that decides each pixel."""
     yy, xx = np.mgrid[0:height, 0:width]
     out = np.full((height, width), -1, np.int8)
-    out[(xx % 4 == 0) & (yy % 4 == 0)] = 0
-    for k, (pos, _) in enumerate(PASSES, start=1):
+    out[(xx % block == 0) & (yy % block == 0)] = 0
+    for k, (pos, _) in enumerate(passes_for(block), start=1):
         for dx, dy in pos:
-            out[(xx % 4 == dx) & (yy % 4 == dy)] = k
+            out[(xx % block == dx) & (yy % block == dy)] = k
     assert (out >= 0).all()
     return out
 
@@ -77,28 +96,31 @@ def statistic(nb: np.ndarray, valid: np.ndarray, metric: str) -> np.ndarray:
     return ((n * s2 - s1 * s1) / (n * n)).max(axis=-1)
 
 
-def dacs(renderer, width: int, height: int, thr: float, metric: str = "var") -> MethodResult:
-    """DACS on the whole frame with threshold `thr` on `metric` (module docstring)."""
+def dacs(renderer, width: int, height: int, thr: float, metric: str = "var", block: int = 4) -> MethodResult:
+    """DACS on the whole frame with threshold `thr` on `metric` over `block` x `block` blocks
+    (module docstring; block 8 is our extension)."""
     spec.check_frame_size(width, height)
     if metric not in METRICS:
         raise spec.SpecError(f"DACS metric must be one of {', '.join(METRICS)}, got {metric!r}")
+    passes = passes_for(block)
+    B = block
     c = CountingRenderer(renderer, width, height)
-    P = 2                                             # padding: neighbours up to 2 pixels off the frame
+    P = B // 2                                        # padding: neighbours up to B/2 pixels off the frame
     F = np.zeros((height + 2 * P, width + 2 * P, 3), np.uint8)     # the frame, padded
     V = np.zeros((height + 2 * P, width + 2 * P), bool)            # final (inside the frame only)
     source = np.full((height, width), spec.SRC_UNSET, np.uint8)
-    ys, xs = np.arange(0, height, 4), np.arange(0, width, 4)
+    ys, xs = np.arange(0, height, B), np.arange(0, width, B)
     yy, xx = np.meshgrid(ys, xs, indexing="ij")
-    F[P:P + height:4, P:P + width:4] = c.render(xx.ravel(), yy.ravel()).reshape(yy.shape + (3,))
-    V[P:P + height:4, P:P + width:4] = True
-    source[0::4, 0::4] = SRC_TRACED
-    for pos, offs in PASSES:
+    F[P:P + height:B, P:P + width:B] = c.render(xx.ravel(), yy.ravel()).reshape(yy.shape + (3,))
+    V[P:P + height:B, P:P + width:B] = True
+    source[0::B, 0::B] = SRC_TRACED
+    for pos, offs in passes:
         for dx, dy in pos:                            # each position class is a regular sub-grid
-            ny, nx = len(range(dy, height, 4)), len(range(dx, width, 4))
+            ny, nx = len(range(dy, height, B)), len(range(dx, width, B))
             if ny == 0 or nx == 0:
                 continue
-            sl = [(slice(P + dy + oy, P + dy + oy + 4 * (ny - 1) + 1, 4),
-                   slice(P + dx + ox, P + dx + ox + 4 * (nx - 1) + 1, 4)) for ox, oy in offs]
+            sl = [(slice(P + dy + oy, P + dy + oy + B * (ny - 1) + 1, B),
+                   slice(P + dx + ox, P + dx + ox + B * (nx - 1) + 1, B)) for ox, oy in offs]
             xs4 = [F[a, b].astype(np.int64) * V[a, b][..., None] for a, b in sl]   # 0 where not valid
             vs4 = [V[a, b] for a, b in sl]
             nvalid = vs4[0].astype(np.int64) + vs4[1] + vs4[2] + vs4[3]
@@ -117,10 +139,11 @@ def dacs(renderer, width: int, height: int, thr: float, metric: str = "var") -> 
             val = ((s1 + cnt // 2) // cnt).astype(np.uint8)            # rounded mean of the valid ones
             ty, tx = np.nonzero(~ok)
             if ty.size:
-                val[ty, tx] = c.render(dx + 4 * tx, dy + 4 * ty)
-            F[P + dy:P + dy + 4 * (ny - 1) + 1:4, P + dx:P + dx + 4 * (nx - 1) + 1:4] = val
-            V[P + dy:P + dy + 4 * (ny - 1) + 1:4, P + dx:P + dx + 4 * (nx - 1) + 1:4] = True
-            source[dy::4, dx::4] = np.where(ok, SRC_INTERP, SRC_TRACED)
+                val[ty, tx] = c.render(dx + B * tx, dy + B * ty)
+            F[P + dy:P + dy + B * (ny - 1) + 1:B, P + dx:P + dx + B * (nx - 1) + 1:B] = val
+            V[P + dy:P + dy + B * (ny - 1) + 1:B, P + dx:P + dx + B * (nx - 1) + 1:B] = True
+            source[dy::B, dx::B] = np.where(ok, SRC_INTERP, SRC_TRACED)
     assert V[P:P + height, P:P + width].all() and not (source == spec.SRC_UNSET).any(), "every pixel is final"
     frame = np.ascontiguousarray(F[P:P + height, P:P + width])
-    return MethodResult(frame, source, c.requests, "dacs", {"thr": thr, "metric": metric})
+    name = "dacs" if B == 4 else f"dacs_B{B}"
+    return MethodResult(frame, source, c.requests, name, {"thr": thr, "metric": metric, "block": B})

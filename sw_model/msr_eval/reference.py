@@ -35,16 +35,21 @@ CONV_SEEDS = (0x5EED0001, 0x5EED0002)     # reference, check (neither is the mod
 TILE = 32                                  # the local-failure tile
 
 
-def conv_grids_for(mode: str, override: int | None = None) -> tuple:
-    """The grids tried for a mode: CONV_GRIDS[mode], or just `override`."""
+def conv_grids_for(mode: str, override: int | None = None, ladder_grid: int | None = None) -> tuple:
+    """The grids tried for a mode: just `override` if given; else, in heavy mode, the one grid
+    that the quick-size ladder chose for the scene (`ladder_grid`, docs/converged/ladder.json,
+    used by the full-size run); else CONV_GRIDS[mode]."""
     if override:
         return (int(override),)
+    if ladder_grid and mode == "heavy":
+        return (int(ladder_grid),)
     return CONV_GRIDS.get(mode, (16,))
 
 
-def conv_key(mode: str, override: int | None, check: bool) -> str:
-    g = conv_grids_for(mode, override)
-    return "g" + "-".join(map(str, g)) + (f"_t{CONV_TARGET_DB:g}" if check and len(g) > 1 else "")
+def conv_key(mode: str, override: int | None, check: bool, ladder_grid: int | None = None) -> str:
+    g = conv_grids_for(mode, override, ladder_grid)
+    return "g" + "-".join(map(str, g)) + (f"_t{CONV_TARGET_DB:g}" if check and len(g) > 1 else "") + \
+        ("_c" if check else "")
 
 
 def task_converged(backend: str, scene: str, mode: str, width: int, height: int, grids, check: bool):

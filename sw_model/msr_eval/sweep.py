@@ -23,6 +23,7 @@ from pathlib import Path
 from msr_model import ImageRenderer, Params, load_rgb, save_png, spec
 from msr_model.testimage import test_image
 
+from . import conv_store as CS
 from . import gbuffer_rule as G
 from . import methods as M
 from . import reference as REF
@@ -45,7 +46,7 @@ MODEL_FILES = [
 TEXTURED_SCENES = ("duck", "teapots", "spider", "CesiumMilkTruck", "BoxTextured")
 # Threshold scales s: the patent's families use thr = (s, 2s, 4s)[:L] (at least 1 each).
 # Main families get the dense list, the others the sparse one (1080p costs ~0.6 s a setting).
-FULL_SCALES = (0.25, 0.5, 1, 2, 3, 4, 6, 8, 16, 64)
+FULL_SCALES = (0.25, 0.5, 1, 1.5, 2, 3, 4, 6, 8, 12, 16, 24, 32, 64)
 SPARSE_SCALES = (0.5, 2, 8, 32)
 QUICK_SCALES = (0.25, 1, 2, 4, 8, 16, 64)
 MAIN_FAMILIES = ("multi_L3_T16", "multi_L3_T32", "multi_L3_T16_dilate", "multi_L3_T16_lindilate",
@@ -58,15 +59,27 @@ KEY_FAMILIES = ("grid2", "grid4", "checkerboard", "single_traced", "single_borro
 # FLIP in the full run only for these (the quick run: all key families)
 FLIP_FAMILIES_FULL = ("grid2", "checkerboard", "single_borrowed", "multi_L3_T16", "multi_L3_T16_dilate",
                       "multi_L3_T16_lindilate", "dacs", "vrs_T8", "vrs_T16")
-# The code a record depends on: a change to any of these invalidates the record cache.
-RECORD_CODE = ("sw_model/msr_model/golden.py", "sw_model/msr_model/spec.py", "sw_model/msr_model/rules.py",
-               "sw_model/msr_model/passview.py", "sw_model/msr_eval/methods.py", "sw_model/msr_eval/rules.py",
-               "sw_model/msr_eval/metrics.py", "sw_model/msr_eval/sweep.py", "sw_model/msr_eval/gbuffer_rule.py",
-               "sw_model/msr_eval/dacs.py", "sw_model/msr_eval/vrs.py", "sw_model/msr_eval/reference.py")
+# The code every record depends on: a change to any of these invalidates every cached record.
+# Bump RECORD_VERSION when this file changes what a record holds or how it is computed.
+RECORD_VERSION = 2
+COMMON_CODE = ("sw_model/msr_model/spec.py", "sw_model/msr_eval/methods.py", "sw_model/msr_eval/metrics.py",
+               "sw_model/msr_eval/reference.py")
+# ... and the code of each kind of family (by name prefix); a rule family also hashes the source
+# of its rule function and of the rule helpers it calls (rule_source), so a new rule added to
+# msr_model.rules leaves the other rules' records valid.
+FAMILY_CODE = (("multi_", ("sw_model/msr_model/golden.py", "sw_model/msr_model/passview.py")),
+               ("dacs", ("sw_model/msr_eval/dacs.py",)),
+               ("vrs_", ("sw_model/msr_eval/vrs.py",)))
+RECORD_CODE = COMMON_CODE + tuple(f for _, fs in FAMILY_CODE for f in fs) + (
+    "sw_model/msr_model/rules.py", "sw_model/msr_eval/rules.py", "sw_model/msr_eval/gbuffer_rule.py")
 # The peers (issue 17): DACS (msr_eval.dacs) over its variance threshold, the VRS-like baseline
 # (msr_eval.vrs) over its contrast scale, per 8x8 and 16x16 tile.
 # (a variance of 16256 = 127.5^2 is the largest 8-bit neighbours can have: everything interpolated)
 DACS_THR = (0, 1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 4096, 8192, 16384)
+# The DACS variants of the full run (issue 30): the paper's 4x4 blocks and our 8x8 extension
+# (a first pass of one in 64), each with the largest per-channel variance and the luma variance.
+DACS_VARIANTS = (("dacs", 4, "var"), ("dacs_lumvar", 4, "lumvar"), ("dacs_B8", 8, "var"),
+                 ("dacs_B8_lumvar", 8, "lumvar"))
 DACS_THR_QUICK = (0, 2, 8, 32, 128, 512, 2048, 8192, 16384)
 VRS_THR = (1, 2, 4, 8, 16, 32, 64, 128)
 VRS_THR_QUICK = (2, 4, 8, 16, 32, 64)
@@ -121,6 +134,14 @@ def _lib_hash(path) -> str:
 
 def scene_id(scene: str) -> str:
     return Path(scene).stem.replace(" ", "_") if ("/" in scene or "." in scene) else scene
+
+
+def _rel(p: Path) -> str:
+    """A path relative to the repository when it is inside it (for logs)."""
+    try:
+        return str(Path(p).resolve().relative_to(REPO))
+    except ValueError:
+        return str(p)
 
 
 def _close(r):
@@ -190,13 +211,14 @@ def settings(width, height, scales, quick) -> list[Setting]:
             p = Params(tile=tile, levels=levels, thr=level_thr(levels, s), fov_gain=gain)
             out.append(Setting(fam, f"thr={','.join(map(str, p.thr))}", "multi_level",
                                {"params": p, "rule": rule}, {**p.as_dict(), "rule": rule}))
-    for t in (DACS_THR_QUICK if quick else DACS_THR):
-        out.append(Setting("dacs", f"var<={t}", "msr_eval.dacs:dacs", {"thr": t, "metric": "var"},
-                           {"thr": t, "metric": "var"}))
-    for tile in (8, 16):
+    for fam, block, metric in DACS_VARIANTS:
+        for t in (DACS_THR_QUICK if quick else DACS_THR):
+            kw = {"thr": t, "metric": metric, "block": block}
+            out.append(Setting(fam, f"{metric}<={t}", "msr_eval.dacs:dacs", kw, kw))
+    for tile in (8, 16):       # every tier-2 rate, a centred sample per coarse pixel (issue 30)
         for t in (VRS_THR_QUICK if quick else VRS_THR):
-            out.append(Setting(f"vrs_T{tile}", f"s={t}", "msr_eval.vrs:vrs_tier2", {"thr": t, "tile": tile},
-                               {"thr": t, "tile": tile}))
+            kw = {"thr": t, "tile": tile, "rates": "tier2", "anchor": "centre"}
+            out.append(Setting(f"vrs_T{tile}", f"s={t}", "msr_eval.vrs:vrs_tier2", kw, kw))
     for fam, combine in G.SWEEP_FAMILIES.items():    # the G-buffer edge rule (msr_eval.gbuffer_rule)
         for s in (scales if fam in MAIN_FAMILIES else sparse):
             p = Params(tile=16, levels=3, thr=level_thr(3, s), fov_gain=0)
@@ -204,6 +226,33 @@ def settings(width, height, scales, quick) -> list[Setting]:
             out.append(Setting(fam, f"thr={','.join(map(str, p.thr))}", G.METHOD, {"params": p, **kw},
                                {**p.as_dict(), "rule": fam.split("_")[-1], **kw}))
     return out
+
+
+def family_code(family: str) -> tuple:
+    for prefix, files in FAMILY_CODE:
+        if family.startswith(prefix):
+            return files
+    return ()
+
+
+def rule_source(name: str) -> str:
+    """The source of a decision rule and of every function of the msr_ packages it calls,
+    transitively (by the names its code refers to): what a rule family's records depend on."""
+    import inspect
+    import types
+    from .rules import rule_function
+    seen, out, todo = set(), [], [rule_function(name)]
+    while todo:
+        fn = todo.pop()
+        if id(fn) in seen:
+            continue
+        seen.add(id(fn))
+        out.append(inspect.getsource(fn))
+        for n in fn.__code__.co_names:
+            g = fn.__globals__.get(n)
+            if isinstance(g, types.FunctionType) and g.__module__.startswith("msr_"):
+                todo.append(g)
+    return "\n".join(sorted(out))
 
 
 def find_setting(sweep: list[Setting], rec: dict) -> Setting:
@@ -224,22 +273,59 @@ class SweepConfig:
     conv: bool = True                 # score against the converged reference too (msr_eval.reference)
     conv_grid: int | None = None      # its antialiasing grid (None: reference.CONV_GRID per mode)
     conv_check: bool = True           # and a second seed's render, for the two-seed PSNR
+    conv_modes: tuple | None = None   # the modes with a converged reference (None: every mode)
+    conv_ladder: bool = False         # heavy grid per scene from docs/converged/ladder.json (full size)
+    store: Path | None = None         # committed references and records (msr_eval.conv_store), or None
+    refs_only: bool = False           # stop after the references (run_sweep returns no records)
 
     @property
     def sweep(self) -> list[Setting]:
         return settings(self.width, self.height, self.scales, self.quick)
 
+    def conv_signature(self) -> bytes:
+        """What the converged scores of a record depend on besides its family's code."""
+        if not self.conv:
+            return b""
+        out = repr(("conv", self.conv_grid, self.conv_check, REF.CONV_GRIDS, REF.CONV_TARGET_DB,
+                    REF.CONV_SEEDS, self.conv_modes, self.conv_ladder)).encode()
+        if self.conv_ladder:
+            out += CS.LADDER.read_bytes() if CS.LADDER.is_file() else b""
+        return out
+
+    def family_signatures(self) -> dict:
+        """Per family: a hash of its settings, the code that computes its records and the
+        scoring set-up. A record whose family's signature is unchanged is still valid."""
+        common = hashlib.sha1()
+        for f in COMMON_CODE:
+            common.update((REPO / f).read_bytes())
+        common.update(repr((RECORD_VERSION, self.all_metrics, KEY_FAMILIES, FLIP_FAMILIES_FULL,
+                            TARGETS_DB)).encode())
+        common.update(self.conv_signature())
+        sigs = {}
+        for st in self.sweep:
+            h = sigs.get(st.family)
+            if h is None:
+                h = sigs[st.family] = common.copy()
+                for f in family_code(st.family):
+                    h.update((REPO / f).read_bytes())
+                if st.method == "multi_level":
+                    h.update(rule_source(st.kwargs.get("rule", "patent")).encode())
+                elif G.needs_gbuffer(st):
+                    h.update((REPO / "sw_model/msr_eval/gbuffer_rule.py").read_bytes())
+                    h.update(rule_source("patent").encode() + rule_source("lindilate").encode())
+            h.update(f"{st.label}|{sorted(st.setting.items())}".encode())
+        return {f: h.hexdigest()[:10] for f, h in sigs.items()}
+
     def signature(self) -> str:
         """Changes whenever the sweep or the code that computes a record changes."""
-        h = hashlib.sha1()
-        for s in self.sweep:
-            h.update(f"{s.family}|{s.label}|{sorted(s.setting.items())}".encode())
-        for f in RECORD_CODE:
-            h.update((REPO / f).read_bytes())
-        h.update(repr((self.all_metrics, KEY_FAMILIES, FLIP_FAMILIES_FULL, TARGETS_DB)).encode())
-        if self.conv:
-            h.update(repr(("conv", self.conv_grid, self.conv_check, REF.CONV_GRIDS, REF.CONV_TARGET_DB,
-                           REF.CONV_SEEDS)).encode())
+        h = hashlib.sha1(repr(sorted(self.family_signatures().items())).encode())
+        return h.hexdigest()[:10]
+
+    def conv_wanted(self, mode: str) -> bool:
+        return self.conv and (self.conv_modes is None or mode in self.conv_modes)
+
+    def ladder_grid(self, sid: str) -> int | None:
+        return CS.ladder_grid(sid) if self.conv_ladder and not self.conv_grid else None
         return h.hexdigest()[:10]
 
 
@@ -435,21 +521,38 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
             meta.write_text(json.dumps(info))
             refs[(scene, mode)], infos[(scene, mode)] = frame, info
 
-    # Converged references (msr_eval.reference): from the cache, else rendered as tasks.
+    # Converged references (msr_eval.reference): from the committed store (msr_eval.conv_store,
+    # when cfg.store), else the cache, else rendered as tasks; each saved as soon as it is done.
     convs = {}
+    store = CS.Store(W, H, cfg.store) if cfg.store else None
+    full_sha = {pair: CS.frame_sha(refs[pair]) for pair in pairs}
     if cfg.conv:
         todo = []
         for scene, mode in pairs:
-            g = REF.conv_grids_for(mode, cfg.conv_grid)
-            key = f"conv_{scene_id(scene)}_{mode}_{W}x{H}_{backend.lib_hash}_{REF.conv_key(mode, cfg.conv_grid, cfg.conv_check)}"
+            if not cfg.conv_wanted(mode):
+                continue
+            sid = scene_id(scene)
+            lg = cfg.ladder_grid(sid)
+            g = REF.conv_grids_for(mode, cfg.conv_grid, lg)
+            if store is not None and len(g) == 1:
+                hit = store.load_ref(sid, mode, full_sha[(scene, mode)], g[0], REF.CONV_SEEDS[0])
+                if hit is not None and (not cfg.conv_check or "psnr_two_seeds" in hit[1]):
+                    convs[(scene, mode)], infos[(scene, mode)]["converged"] = hit[0], {**hit[1], "from": "store"}
+                    log(f"  {sid}/{mode}: converged reference from {_rel(store.dir)} ({hit[1]['spp']} spp)")
+                    continue
+            key = f"conv_{sid}_{mode}_{W}x{H}_{backend.lib_hash}_{REF.conv_key(mode, cfg.conv_grid, cfg.conv_check, lg)}"
             png, meta = cache / f"{key}.png", cache / f"{key}.json"
             if png.is_file() and meta.is_file():
                 info = json.loads(meta.read_text())
                 if not cfg.conv_check or "psnr_two_seeds" in info:
                     convs[(scene, mode)] = load_rgb(png)
                     infos[(scene, mode)]["converged"] = info
+                    if store is not None and len(g) == 1:
+                        store.save_ref(sid, mode, convs[(scene, mode)], info, full_sha[(scene, mode)])
                     continue
             todo.append((scene, mode, g, png, meta))
+        # the largest first, so the run's length is known early and the small ones fill the end
+        todo.sort(key=lambda t: -max(t[2]))
         with bar(len(todo), "eval: converged references") as b:
             futs = [executor.submit(REF.task_converged, backend.name, scene, mode, W, H, g, cfg.conv_check)
                     for scene, mode, g, _, _ in todo]
@@ -458,31 +561,52 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
                 b.update(1)
                 save_png(png, frame)
                 meta.write_text(json.dumps(info))
+                if store is not None:
+                    store.save_ref(scene_id(scene), mode, frame, info, full_sha[(scene, mode)])
                 convs[(scene, mode)] = frame
                 infos[(scene, mode)]["converged"] = info
-                log(f"  {scene_id(scene)}/{mode}: converged reference, {info['spp']} samples per pixel"
-                    + (f", two seeds {info['psnr_two_seeds']:.2f} dB" if info.get("psnr_two_seeds") else ""))
+                log(f"  {scene_id(scene)}/{mode}: converged reference, {info['spp']} samples per pixel in "
+                    f"{info['render_s']:.0f} s" +
+                    (f", two seeds {info['psnr_two_seeds']:.2f} dB" if info.get("psnr_two_seeds") else ""))
+    if cfg.refs_only:
+        return [], refs, infos
 
     # G-buffers (one primary ray a pixel), for the settings that read them: cached per scene.
     gbufs = {}
     if any(G.needs_gbuffer(s) for s in sweep):
         gbufs = {scene: gbuffer_of(backend, scene, cfg) for scene in scenes}
 
-    # Records: from the per-scene cache, else one task per setting.
+    # Records: from the committed store (the families whose signature is unchanged; cfg.store),
+    # else the per-scene cache, else one task per setting still missing.
+    fsig = cfg.family_signatures()
+    order = {(st.family, st.label): i for i, st in enumerate(sweep)}
     records, pending = {}, []
     for scene, mode in pairs:
-        rfile = cache / f"records_{scene_id(scene)}_{mode}_{W}x{H}_{backend.lib_hash}_{sig}.json"
-        if rfile.is_file():
+        sid = scene_id(scene)
+        rfile = cache / f"records_{sid}_{mode}_{W}x{H}_{backend.lib_hash}_{sig}.json"
+        kept = []
+        if store is not None:
+            kept = [r for r in store.load_records(sid, mode, fsig, full_sha[(scene, mode)])
+                    if (r["family"], r["label"]) in order]
+        elif rfile.is_file():
             records[(scene, mode)] = json.loads(rfile.read_text())
-            log(f"  {scene_id(scene)}/{mode}: {len(records[(scene, mode)])} settings (cached)")
-        else:
-            pending.append((scene, mode, rfile))
+            log(f"  {sid}/{mode}: {len(records[(scene, mode)])} settings (cached)")
+            continue
+        have = {(r["family"], r["label"]) for r in kept}
+        todo = [st for st in sweep if (st.family, st.label) not in have]
+        if not todo:
+            records[(scene, mode)] = sorted(kept, key=lambda r: order[(r["family"], r["label"])])
+            log(f"  {sid}/{mode}: {len(kept)} settings (from {_rel(store.dir)})")
+            continue
+        if kept:
+            log(f"  {sid}/{mode}: {len(kept)} settings from {_rel(store.dir)}, {len(todo)} to compute")
+        pending.append((scene, mode, rfile, todo, kept))
     t0 = time.perf_counter()
-    shared = {(scene, mode): executor.scatter(refs[(scene, mode)]) for scene, mode, _ in pending}
+    shared = {(scene, mode): executor.scatter(refs[(scene, mode)]) for scene, mode, *_ in pending}
     # (a G-buffer is a tuple of three arrays: scattered inside a list, so as one object)
     gshared = {scene: executor.scatter([gbufs[scene]])[0] for scene in {p[0] for p in pending} if scene in gbufs}
 
-    cshared = {(scene, mode): executor.scatter(convs[(scene, mode)]) for scene, mode, _ in pending
+    cshared = {(scene, mode): executor.scatter(convs[(scene, mode)]) for scene, mode, *_ in pending
                if (scene, mode) in convs}
 
     def gb(scene, s):       # the G-buffer (for the settings that read it), then the converged reference
@@ -491,9 +615,9 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     def cv(scene, mode):
         return (cshared.get((scene, mode)),)
 
-    futs = [executor.submit(task_record, shared[(scene, mode)], scene_id(scene), mode, s, cfg.all_metrics,
-                            *gb(scene, s), *cv(scene, mode))
-            for scene, mode, _ in pending for s in sweep]
+    futs = [[executor.submit(task_record, shared[(scene, mode)], scene_id(scene), mode, st, cfg.all_metrics,
+                             *gb(scene, st), *cv(scene, mode)) for st in todo]
+            for scene, mode, _, todo, _ in pending]
 
     def key_jobs(scene, mode):
         """Key settings: the cheapest of each key family reaching the targets on this scene and
@@ -526,17 +650,20 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
         for (r, _), extra in zip(jobs, executor.results([f for _, f in jobs])):
             r.update(extra)
         rfile.write_text(json.dumps(records[(scene, mode)]))
+        if store is not None:
+            store.save_records(scene_id(scene), mode, records[(scene, mode)], fsig, full_sha[(scene, mode)],
+                               {"converged": infos[(scene, mode)].get("converged")})
         log(f"  {scene_id(scene)}/{mode}: {len(sweep)} settings, full render "
             f"{infos[(scene, mode)]['full_render_s']:.2f} s")
 
     # Pair by pair, in submission order: its settings, then its key metrics; a pair's records
-    # are written to the cache as soon as they are complete (a long run that is stopped keeps
-    # every finished pair), while the later pairs' tasks keep the workers busy.
-    n = len(sweep)
+    # are written to the cache (and the store) as soon as they are complete (a long run that is
+    # stopped keeps every finished pair), while the later pairs' tasks keep the workers busy.
     last = None
-    with bar(len(futs), "eval: settings") as b:
-        for i, (scene, mode, rfile) in enumerate(pending):
-            records[(scene, mode)] = executor.results(futs[i * n:(i + 1) * n], b)
+    with bar(sum(map(len, futs)), "eval: settings") as b:
+        for (scene, mode, rfile, todo, kept), pf in zip(pending, futs):
+            recs = kept + executor.results(pf, b)
+            records[(scene, mode)] = sorted(recs, key=lambda r: order[(r["family"], r["label"])])
             jobs = key_jobs(scene, mode)
             if last is not None:
                 finish(*last)
@@ -544,7 +671,7 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     if last is not None:
         finish(*last)
     if pending:
-        log(f"  sweep of {len(futs)} settings on {executor.name}: {time.perf_counter() - t0:.1f} s")
+        log(f"  sweep of {sum(map(len, futs))} settings on {executor.name}: {time.perf_counter() - t0:.1f} s")
     return [r for pair in pairs for r in records[pair]], refs, infos
 
 

@@ -205,3 +205,76 @@ def test_dacs_against_a_pixel_by_pixel_oracle(metric):
                 frame, traced = _dacs_oracle(img, thr, metric)
                 assert set(rec.asked) == traced, (w, h, thr)
                 assert (res.frame == frame).all(), (w, h, thr)
+
+
+# --- issue 30: DACS on 8x8 blocks, VRS with every tier-2 rate and centred samples -------------
+
+def test_dacs_block8_passes_and_counts():
+    """8x8 blocks: six passes after the first, each pixel decided once; the last four are the
+    4x4 passes; a flat frame traces one pixel in 64 (plus the unbracketed edge pixels)."""
+    p = D.pass_of(16, 16, block=8)
+    assert p[0, 0] == 0 and p[4, 4] == 1 and p[0, 4] == 2 and p[4, 0] == 2 and p[2, 2] == 3
+    assert p[2, 0] == 4 and p[1, 1] == 5 and p[0, 1] == 6
+    assert (np.bincount(p.ravel()) == [4, 4, 8, 16, 32, 64, 128]).all()
+    assert D.passes_for(8)[2:] == D.passes_for(4)[:0] + tuple(
+        (tuple(pos), offs) for pos, offs in D.passes_for(8)[2:])       # shape only
+    img = np.full((17, 25, 3), 9, np.uint8)
+    rec = Recorder(img)
+    res = D.dacs(rec, 25, 17, thr=0, block=8)
+    _honest(res, rec, img)
+    assert res.traced == len(range(0, 25, 8)) * len(range(0, 17, 8)) and (res.frame == 9).all()
+    img = make_test_image(45, 27)
+    counts = []
+    for t in (-1, 0, 16, 256, 1e9):
+        rec = Recorder(img)
+        r = D.dacs(rec, 45, 27, thr=t, block=8)
+        _honest(r, rec, img)
+        counts.append(r.traced)
+    assert counts[0] == 45 * 27 and counts == sorted(counts, reverse=True)
+    with pytest.raises(SpecError):
+        D.dacs(Recorder(img), 45, 27, thr=1, block=16)
+
+
+def test_vrs_tier2_rates_by_hand():
+    """The ladder (s = 2): contrast 0 -> 4x4; 3 -> 4x2 when the colour changes less along x
+    (gx <= gy), else 2x4; 7 -> 2x2; 12 -> 2x1 or 1x2 by direction; 50 -> 1x1."""
+    c = np.array([[0, 3, 3, 7, 12, 12, 50]])
+    gx = np.array([[0, 1, 5, 0, 1, 5, 0]])
+    gy = np.array([[0, 5, 1, 0, 5, 1, 0]])
+    got = [V.RATES_TIER2[i] for i in V.rate_index_tier2(c, gx, gy, 2)[0]]
+    assert got == [(4, 4), (4, 2), (2, 4), (2, 2), (2, 1), (1, 2), (1, 1)]
+    # directions: pre-pass samples of one 8x8 tile's window (3x3 samples) with a step along y
+    pre = np.zeros((3, 3, 3), np.uint8)
+    pre[2, :] = 40
+    gx, gy = V.tile_directions(pre, 8, 8, 8)
+    assert gx.tolist() == [[0]] and gy.tolist() == [[40]]
+    # a frame: 16x16, tile 8; tile (1, 1) holds a step along x in its own samples only
+    img = np.full((16, 16, 3), 100, np.uint8)
+    img[8:, 12:] = 160
+    rec = Recorder(img)
+    res = V.vrs_tier2(rec, 16, 16, thr=2, tile=8, rates="tier2", anchor="centre")
+    _honest(res, rec, img)
+    assert V.RATES_TIER2[res.rates[0, 0]] == (4, 4)
+    assert V.RATES_TIER2[res.rates[1, 1]] == (1, 1)         # contrast 60 > 8s
+    assert (res.frame[0:4, 0:4] == img[2, 2]).all()         # a 4x4 coarse pixel: its centred sample
+    r = V.vrs_tier2(Recorder(img), 16, 16, thr=10, tile=8, rates="tier2", anchor="centre")
+    assert V.RATES_TIER2[r.rates[1, 1]] == (1, 2)           # 60 <= 8s, the change is along x
+
+
+def test_vrs_tier2_extremes():
+    img = make_test_image(45, 27)
+    for tile in (8, 16):
+        prev = None
+        for s in (-1, 0, 2, 8, 32, 255, 1e9):
+            rec = Recorder(img)
+            res = V.vrs_tier2(rec, 45, 27, thr=s, tile=tile, rates="tier2", anchor="centre")
+            _honest(res, rec, img)
+            assert prev is None or res.traced <= prev
+            prev = res.traced
+            if s == -1:
+                assert res.traced == 45 * 27 and (res.frame == img).all()
+        assert prev == 12 * 7                          # all 4x4: the centred pre-pass only
+    with pytest.raises(SpecError):
+        V.vrs_tier2(Recorder(img), 45, 27, thr=1, rates="tier3")
+    with pytest.raises(SpecError):
+        V.vrs_tier2(Recorder(img), 45, 27, thr=1, anchor="corner")
