@@ -111,3 +111,68 @@ def test_dask_sweep_equals_serial(tmp_path):
     again = sweep(S.SerialExecutor(), tmp_path / "dask")     # every scene from the cache
     assert again == serial
 
+
+
+def test_full_size_store_resumes_and_recomputes_only_changed_families(tmp_path, monkeypatch):
+    """The full-size flow at a small size (issue 30): the heavy mode alone gets a converged
+    reference, its sample count from the ladder file, one seed; references and records go to
+    the store; a second run takes everything from the store (nothing rendered at the converged
+    count, nothing computed); a family whose signature changes is computed alone."""
+    from msr_eval import conv_store as CS
+    from msr_eval import reference as REF
+    backend = S.Backend("auto")
+    if not backend.embree:
+        pytest.skip("needs the Embree renderer")
+    ladder = tmp_path / "ladder.json"
+    ladder.write_text(json.dumps({"scenes": {"duck": {"spp": 16}}}))
+    monkeypatch.setattr(CS, "LADDER", ladder)
+    store = tmp_path / "store"
+
+    def run(cache, log):
+        cfg = S.SweepConfig(48, 32, (1, 8), False, False, cache, conv_modes=("heavy",), conv_ladder=True,
+                            conv_check=False, store=store)
+        recs, _, infos = S.run_sweep(backend, ["duck"], ["fast", "heavy"], cfg, S.SerialExecutor(),
+                                     log=log.append, show_progress=False)
+        return recs, infos
+
+    log1 = []
+    recs, infos = run(tmp_path / "c1", log1)
+    assert infos[("duck", "heavy")]["converged"]["spp"] == 16 and "converged" not in infos[("duck", "fast")]
+    assert "psnr_two_seeds" not in infos[("duck", "heavy")]["converged"]
+    assert all("psnr_conv" in r for r in recs if r["mode"] == "heavy")
+    assert not any("psnr_conv" in r for r in recs if r["mode"] == "fast")
+    assert (store / "48x32" / "duck_heavy_conv.png").is_file()
+    calls = []
+    monkeypatch.setattr(REF, "task_converged", lambda *a: calls.append(a))
+    log2 = []
+    again, _ = run(tmp_path / "c2", log2)                 # a new cache folder: only the store
+    strip = lambda rs: [{k: v for k, v in r.items() if k != "decide_s"} for r in rs]   # noqa: E731
+    assert not calls and any("from" in s and "store" in s for s in log2)
+    assert len(again) == len(recs)
+    for a, b in zip(strip(again), strip(recs)):
+        assert a.keys() == b.keys()
+        for k in a:
+            assert a[k] == pytest.approx(b[k], rel=1e-4) if isinstance(a[k], float) else a[k] == b[k]
+    # one family's code changes: only its settings are computed again
+    real = S.SweepConfig.family_signatures
+    monkeypatch.setattr(S.SweepConfig, "family_signatures",
+                        lambda self: {**real(self), "dacs": "changed"})
+    log3 = []
+    run(tmp_path / "c3", log3)
+    n_dacs = sum(1 for st in S.settings(48, 32, (1, 8), False) if st.family == "dacs")
+    assert any(f"{n_dacs} to compute" in s for s in log3), log3
+    # a reference of another renderer output (its full-render hash differs) is not taken
+    meta = store / "48x32" / "duck_heavy_conv.json"
+    m = json.loads(meta.read_text())
+    m["full_render_sha"] = "0" * 16
+    meta.write_text(json.dumps(m))
+    assert CS.Store(48, 32, store).load_ref("duck", "heavy", "1" * 16, 4, REF.CONV_SEEDS[0]) is None
+
+
+def test_store_pack_round_trip():
+    from msr_eval import conv_store as CS
+    recs = [{"scene": "a", "family": "f", "label": "x", "psnr": 41.123456789, "setting": {"thr": 3}},
+            {"scene": "a", "family": "g", "label": "y", "psnr": None, "ssim": 0.5}]
+    back = CS.unpack(CS.pack(recs))
+    assert back[0]["psnr"] == pytest.approx(41.123, abs=1e-3) and "ssim" not in back[0]
+    assert back[1] == recs[1]

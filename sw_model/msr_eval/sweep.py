@@ -50,12 +50,20 @@ FULL_SCALES = (0.25, 0.5, 1, 1.5, 2, 3, 4, 6, 8, 12, 16, 24, 32, 64)
 SPARSE_SCALES = (0.5, 2, 8, 32)
 QUICK_SCALES = (0.25, 1, 2, 4, 8, 16, 64)
 MAIN_FAMILIES = ("multi_L3_T16", "multi_L3_T32", "multi_L3_T16_dilate", "multi_L3_T16_lindilate",
-                 "multi_L3_T32_lindilate", *G.SWEEP_FAMILIES)
+                 "multi_L3_T32_lindilate", "multi_L3_T16_lindilate2d", "multi_L3_T32_lindilate2d",
+                 *G.SWEEP_FAMILIES)
 # SSIM and FLIP (FLIP ~6 s per 1080p frame) are computed for these families' key settings.
 KEY_FAMILIES = ("grid2", "grid4", "checkerboard", "single_traced", "single_borrowed", "multi_L1_T16",
                 "multi_L2_T16", "multi_L3_T16", "multi_L3_T32", "multi_L3_T16_fov", "multi_L3_T16_dilate",
-                "multi_L3_T16_lindilate", "multi_L3_T32_lindilate", *G.SWEEP_FAMILIES,
-                "dacs", "vrs_T8", "vrs_T16")
+                "multi_L3_T16_lindilate", "multi_L3_T32_lindilate", "multi_L3_T16_lindilate2d",
+                "multi_L3_T32_lindilate2d", *G.SWEEP_FAMILIES,
+                "dacs", "dacs_lumvar", "dacs_B8", "dacs_B8_lumvar", "vrs_T8", "vrs_T16")
+# The families of the converged head-to-head (msr_eval.headline): at full size their SSIM and
+# FLIP against the converged reference are computed at the equal-quality point.
+CONV_FAMILIES = ("full", "checkerboard", "multi_L3_T16", "multi_L3_T32", "multi_L3_T16_dilate",
+                 "multi_L3_T16_lindilate", "multi_L3_T32_lindilate", "multi_L3_T16_lindilate2d",
+                 "multi_L3_T32_lindilate2d", "dacs", "dacs_lumvar", "dacs_B8", "dacs_B8_lumvar",
+                 "vrs_T8", "vrs_T16")
 # FLIP in the full run only for these (the quick run: all key families)
 FLIP_FAMILIES_FULL = ("grid2", "checkerboard", "single_borrowed", "multi_L3_T16", "multi_L3_T16_dilate",
                       "multi_L3_T16_lindilate", "dacs", "vrs_T8", "vrs_T16")
@@ -203,7 +211,8 @@ def settings(width, height, scales, quick) -> list[Setting]:
              ("L3_T16_fov", 16, 3, 16, "patent"),
              ("L3_T16_dilate", 16, 3, 0, "dilate"), ("L3_T16_linear", 16, 3, 0, "linear"),
              ("L3_T16_lindilate", 16, 3, 0, "lindilate"), ("L3_T16_diag", 16, 3, 0, "diag"),
-             ("L3_T32_lindilate", 32, 3, 0, "lindilate")]
+             ("L3_T32_lindilate", 32, 3, 0, "lindilate"),
+             ("L3_T16_lindilate2d", 16, 3, 0, "lindilate2d"), ("L3_T32_lindilate2d", 32, 3, 0, "lindilate2d")]
     for name, tile, levels, fov_edge, rule in multi:
         gain = fov_gain_for(W, H, tile, fov_edge) if fov_edge else 0
         fam = f"multi_{name}"
@@ -248,6 +257,8 @@ def rule_source(name: str) -> str:
             continue
         seen.add(id(fn))
         out.append(inspect.getsource(fn))
+        if callable(getattr(fn, "interpolate", None)):        # the rule's own reconstruction
+            todo.append(fn.interpolate)
         for n in fn.__code__.co_names:
             g = fn.__globals__.get(n)
             if isinstance(g, types.FunctionType) and g.__module__.startswith("msr_"):
@@ -638,12 +649,22 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
                     r["key_setting"] = True
                     add(r, "ssim")
         if (scene, mode) in convs:      # ... and against the converged reference (the full render too)
-            for fam in (*KEY_FAMILIES, "full"):
-                for t in (TARGETS_DB if cfg.quick else (40.0,)):
-                    r = REF.pick_near_conv(recs, scene_id(scene), mode, fam, t)
-                    if r is not None:
+            if cfg.quick:
+                for fam in (*KEY_FAMILIES, "full"):
+                    for t in TARGETS_DB:
+                        r = REF.pick_near_conv(recs, scene_id(scene), mode, fam, t)
+                        if r is not None:
+                            r["key_setting_conv"] = True
+                            add(r, "ssim_conv")
+            else:   # full size: at the equal-quality point (the full render's own PSNR), with FLIP
+                eq = [r["psnr_conv"] for r in recs if r["family"] == "full"]
+                for fam in CONV_FAMILIES:
+                    r = REF.pick_near_conv(recs, scene_id(scene), mode, fam, eq[0]) if eq else None
+                    if r is not None and "ssim_conv" not in r and not any(r is j[0] for j in jobs):
                         r["key_setting_conv"] = True
-                        add(r, "ssim_conv")
+                        st = find_setting(sweep, r)
+                        jobs.append((r, executor.submit(task_key_metrics, shared[(scene, mode)], st, True,
+                                                        *gb(scene, st), *cv(scene, mode), priority=1)))
         return jobs
 
     def finish(scene, mode, rfile, jobs):

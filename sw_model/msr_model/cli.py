@@ -1,7 +1,7 @@
 """Command line of the golden model (../shared/spec/contracts.md).
 
     python -m msr_model select IMAGE.png --tile 16 --levels 2 --thr 8,16 [--metric max|sum]
-        [--fov-gain 0] [--rule patent|lindilate] --out OUT.png --source-map MAP.png --stats STATS.json
+        [--fov-gain 0] [--rule patent|lindilate|lindilate2d] --out OUT.png --source-map MAP.png --stats STATS.json
         [--overview SUMMARY.png]
     python -m msr_model select --scene SCENE --width W --height H [--camera ...] [the same flags]
     python -m msr_model render --scene SCENE --width W --height H [--camera ...] --out REF.png
@@ -51,7 +51,7 @@ def _add_select_flags(p):
     p.add_argument("--metric", choices=spec.METRICS, default="max")
     p.add_argument("--fov-gain", type=_int_in(0, 255, "--fov-gain"), default=0)
     p.add_argument("--rule", choices=tuple(RULES), default=DEFAULT_RULE,
-                   help="decision rule: patent (algorithm.md, default) or lindilate (docs/rules.md)")
+                   help="decision rule: patent (algorithm.md, default), lindilate or lindilate2d (docs/rules.md)")
     p.add_argument("--out", required=True, help="output frame PNG")
     p.add_argument("--source-map", help="output source-code map PNG (8-bit grey)")
     p.add_argument("--stats", help="output statistics JSON")

@@ -98,7 +98,7 @@ def select(renderer, width: int, height: int, params: Params, rule=DEFAULT_RULE,
             if view is None:
                 continue
             interp = decide_pass(decide, view)
-            values = spec.interpolate(view.A, view.B, view.a, view.b, view.m)
+            values = interpolated_values(decide, view)
             ty, tx = view.ys, view.xs
             n_traced = int((~interp).sum())
             if n_traced:
@@ -124,6 +124,21 @@ def select(renderer, width: int, height: int, params: Params, rule=DEFAULT_RULE,
         "params": params.as_dict(),
     }
     return FrameResult(frame, source, params, stats)
+
+
+def interpolated_values(decide, view: PassView) -> np.ndarray:
+    """The colour of every decision of the pass were it interpolated: the spec's weighted mean
+    of A and B (algorithm.md), or the rule's own reconstruction where the rule has one (a
+    function attribute `interpolate(view, linear) -> (F, M, 3) uint8`, given the spec's
+    values to start from), checked."""
+    values = spec.interpolate(view.A, view.B, view.a, view.b, view.m)
+    own = getattr(decide, "interpolate", None)
+    if own is None:
+        return values
+    out = np.asarray(own(view, values.copy()))
+    if out.shape != values.shape or out.dtype != np.uint8:
+        raise RuntimeError(f"rule's interpolate returned {out.dtype} {out.shape}, want uint8 {values.shape}")
+    return out
 
 
 def decide_pass(decide, view: PassView) -> np.ndarray:

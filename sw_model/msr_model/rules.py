@@ -9,7 +9,12 @@ interpolated. Two rules are part of the contract:
   traced anyway when the same gap fails that test on the previous or the next line of the
   pass inside the same tile.
 
-Both read only pixels of the decision's own tile that are final before the pass. The
+- "lindilate2d" (issue 30, not in the RTL): lindilate's decisions; at the last level's V
+  pass an interpolated pixel is the mean of six final neighbours (its two and the four
+  diagonal corners) where they agree within the threshold (`diagonal_smooth`). A rule may
+  carry such a reconstruction as its `interpolate` attribute (golden.interpolated_values).
+
+All read only pixels of the decision's own tile that are final before the pass. The
 building blocks (`second_difference_ok`, `dilate`) are public so research rules can be
 composed from them without copying.
 """
@@ -72,7 +77,41 @@ def lindilate(v: PassView) -> np.ndarray:
     return dilate(v, patent(v) | second_difference_ok(v))
 
 
-RULES: dict[str, Rule] = {"patent": patent, "lindilate": lindilate}
+def diagonal_smooth(v: PassView, linear: np.ndarray) -> np.ndarray:
+    """lindilate2d's reconstruction (docs/rules.md): in the V pass of the last level (n_k = 2),
+    a new pixel (x, m) between A = (x, m-1) and B = (x, m+1) also reads the four diagonal
+    corners (x-1, m-1), (x+1, m-1), (x-1, m+1), (x+1, m+1), all final (rows of G_y(L-1)).
+    Where all four lie in the tile and the six samples' colour range passes the level's test,
+
+        C = (2 (A + B) + corners + 4) >> 3          per channel
+
+    (exact on a linear ramp; a traced pixel's noise variance is cut to 12/64 instead of the
+    midpoint's 1/2). Elsewhere C is the spec's interpolation (`linear`)."""
+    if v.horizontal or v.nominal != 2:
+        return linear
+    x = v.line
+    cols, ok = [], (v.b - v.a) == 2
+    for dx in (-1, 1):
+        for pos in (v.a, v.b):
+            c, readable = v.read(pos, x + dx)
+            cols.append(c.astype(np.int32))
+            ok = ok & readable
+    A, B = v.A.astype(np.int32), v.B.astype(np.int32)
+    six = np.stack([*cols, np.broadcast_to(A, cols[0].shape), np.broadcast_to(B, cols[0].shape)])
+    rng = spec.color_diff(six.max(axis=0), six.min(axis=0), v.metric)
+    ok = np.broadcast_to(ok, v.shape) & v.below_threshold(rng)
+    smooth = (2 * (A + B) + cols[0] + cols[1] + cols[2] + cols[3] + 4) >> 3
+    return np.where(ok[..., None], smooth, linear).astype(np.uint8)
+
+
+def lindilate2d(v: PassView) -> np.ndarray:
+    """lindilate's decisions with diagonal_smooth's reconstruction at the last level."""
+    return lindilate(v)
+
+
+lindilate2d.interpolate = diagonal_smooth
+
+RULES: dict[str, Rule] = {"patent": patent, "lindilate": lindilate, "lindilate2d": lindilate2d}
 DEFAULT_RULE = "patent"
 
 

@@ -19,7 +19,7 @@ from typing import Callable, Iterable, Sequence
 import numpy as np
 
 from . import spec
-from .golden import decide_pass, frame_axis, pass_view
+from .golden import decide_pass, frame_axis, interpolated_values, pass_view
 from .renderer import render_checked
 from .rules import DEFAULT_RULE, get_rule
 from .spec import Params
@@ -143,7 +143,7 @@ def run_tile(render: RenderFn, x0: int, y0: int, w: int, h: int, params: Params,
             continue
         ok = decide_pass(decide, view)
         diff = view.diff()
-        values = spec.interpolate(view.A, view.B, view.a, view.b, view.m)
+        values = interpolated_values(decide, view)
         at = {(int(y), int(x)): (i, j) for (i, j), y, x in zip(np.ndindex(*view.shape), view.ys.ravel(),
                                                                view.xs.ravel())}
         for s in p.steps:

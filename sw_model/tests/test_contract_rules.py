@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from msr_model import RULES, ImageRenderer, Params, SpecError, run_tile, select, select_tiled, spec
+from msr_model.golden import frame_axis
 from msr_model.testimage import test_image as make_test_image
 
 
@@ -115,3 +116,80 @@ def test_unknown_rule_and_bad_rule_function():
         select(ImageRenderer(img), 8, 8, Params(), rule="magic")
     with pytest.raises(RuntimeError):
         select(ImageRenderer(img), 8, 8, Params(), rule=lambda v: np.ones(3, bool))
+
+
+def test_lindilate2d_decides_as_lindilate_and_smooths_the_last_v_pass():
+    """lindilate2d (issue 30): the same sources as lindilate everywhere; the same colours
+    except at the last level's V-pass interpolations, which are (2 (A + B) + the four
+    diagonal corners + 4) >> 3 where the corners lie in the tile and the six agree within
+    the level's threshold, checked here against a formula written out independently."""
+    rng = np.random.default_rng(7)
+    h, w = 40, 56
+    yy, xx = np.mgrid[0:h, 0:w]
+    img = np.clip(np.stack([2 * xx + yy, 100 + xx - yy, 60 + 0 * xx], -1) + rng.integers(-3, 4, (h, w, 3)),
+                  0, 255).astype(np.uint8)
+    img[20:, 30:] = 220                                   # an edge: the range test must keep it sharp
+    for T, L, thr in ((16, 2, (8, 12)), (8, 1, (10,)), (32, 3, (4, 8, 16))):
+        p = Params(tile=T, levels=L, thr=thr)
+        lin = select(ImageRenderer(img), w, h, p, rule="lindilate")
+        new = select(ImageRenderer(img), w, h, p, rule="lindilate2d")
+        assert (new.source == lin.source).all() and new.stats["traced"] == lin.stats["traced"]
+        F, changed = new.frame.astype(np.int32), 0
+        known = set(int(v) for v in frame_axis(h, T, L).known[L - 1])      # Gy(L-1), frame rows
+        for y, x in zip(*np.nonzero(new.source == 16 + L)):
+            if y in known or y - 1 not in known or y + 1 not in known:     # not the V pass, gap 2
+                assert (new.frame[y, x] == lin.frame[y, x]).all()
+                continue
+            ty, tx = y // T, x // T
+            inside = (x - 1) // T == tx and (x + 1) // T == tx and x + 1 < w and (y + 1) // T == ty and y + 1 < h
+            if not inside:
+                assert (new.frame[y, x] == lin.frame[y, x]).all()
+                continue
+            six = np.stack([F[y - 1, x], F[y + 1, x], F[y - 1, x - 1], F[y - 1, x + 1], F[y + 1, x - 1],
+                            F[y + 1, x + 1]])
+            rng6 = int((six.max(0) - six.min(0)).max())
+            if rng6 * 2 < thr[L - 1] * 2:                     # n_L = 2 = the gap: d < thr
+                want = (2 * (six[0] + six[1]) + six[2:].sum(0) + 4) >> 3
+                changed += int((want != lin.frame[y, x]).any())
+            else:
+                want = lin.frame[y, x]
+            assert (new.frame[y, x] == want).all(), (T, L, y, x)
+        assert changed > 10, (T, L)
+        assert (new.frame[20:, 31:] == 220).all()          # the flat side of the edge stays flat
+    # by hand: T=8, L=1, w=4: G0 = {0, 2, 3} across, {0, 2} down. The V pass's (2, 1) lies
+    # between A = (2, 0) = 100 and B = (2, 2) = 110 (traced); its corners: (1, 0) = 90 (the H
+    # pass's mean of 80 and 100), (3, 0) = 150, (1, 2) = 100 (of 90 and 110), (3, 2) = 100.
+    # Range 60 < 200: (2 * 210 + 90 + 150 + 100 + 100 + 4) >> 3 = 108 (lindilate: 105).
+    img = np.zeros((3, 4, 3), np.uint8)
+    img[0, :, 0] = [80, 0, 100, 150]
+    img[2, :, 0] = [90, 0, 110, 100]
+    p = Params(tile=8, levels=1, thr=(200,))
+    a = select(ImageRenderer(img), 4, 3, p, rule="lindilate")
+    b = select(ImageRenderer(img), 4, 3, p, rule="lindilate2d")
+    assert a.frame[0, 1, 0] == 90 and a.frame[2, 1, 0] == 100 and a.frame[1, 2, 0] == 105
+    assert b.frame[1, 2, 0] == 108 and b.source[1, 2] == a.source[1, 2] == 17
+    assert b.frame[1, 3, 0] == a.frame[1, 3, 0]          # (3, 1): its right corners lie off the frame
+    # one notch of threshold below the range (60): the spec's interpolation again
+    p = Params(tile=8, levels=1, thr=(60,))
+    assert select(ImageRenderer(img), 4, 3, p, rule="lindilate2d").frame[1, 2, 0] == 105
+
+
+def test_lindilate2d_reads_only_its_own_tile():
+    img = make_test_image(64, 48)
+    noisy = np.random.default_rng(4).integers(0, 256, img.shape).astype(np.uint8)
+    noisy[16:32, 32:48] = img[16:32, 32:48]
+    p = Params(16, 2, (40, 80))
+    a = select(ImageRenderer(img), 64, 48, p, rule="lindilate2d")
+    b = select(ImageRenderer(noisy), 64, 48, p, rule="lindilate2d")
+    assert (a.frame[16:32, 32:48] == b.frame[16:32, 32:48]).all()
+    assert (a.source[16:32, 32:48] == b.source[16:32, 32:48]).all()
+
+
+def test_rule_reconstruction_is_checked():
+    img = make_test_image(8, 8)
+
+    def bad(v):
+        return np.ones(v.shape, bool)
+    bad.interpolate = lambda v, lin: lin[..., :2]
+    with pytest.raises(RuntimeError):
+        select(ImageRenderer(img), 8, 8, Params(), rule=bad)
