@@ -25,6 +25,7 @@ from pathlib import Path
 
 from msr_eval import conv_report as CR
 from msr_eval import conv_store as CS
+from msr_eval import headline as HL
 from msr_eval import reference as REF
 from msr_eval import report as R
 from msr_eval import sweep as S
@@ -152,6 +153,19 @@ def main(argv=None):
         if conv_records:
             CR.plot_scene_fronts(records, mode, out / f"fronts_conv_{mode}.png",
                                   f"Pareto fronts against the converged reference, {mode} renderer, {W}x{H}")
+    # The converged head-to-head that leads the page (msr_eval.headline): heavy renderer.
+    head_to_head = HL.analyse(records, "heavy") if conv_records else {}
+    if head_to_head:
+        HL.plot_fronts(records, out / "fronts_headline.png",
+                       f"Traced pixels against PSNR to the converged image, heavy renderer, {W}x{H}")
+    conv_info = {}
+    lad = CS.ladder()
+    for s in scenes:
+        ci = infos.get((s, "heavy"), {}).get("converged")
+        if ci:
+            conv_info[S.scene_id(s)] = {"spp": ci.get("spp"), "render_s": ci.get("render_s"),
+                                        "from": ci.get("from", "rendered"),
+                                        "ladder": lad.get(S.scene_id(s), {}).get("two_seeds_db", {})}
     examples = []
     ex_mode = "heavy" if "heavy" in modes else modes[0]
     for scene in scenes[:2] + ([scenes[-1]] if len(scenes) > 2 else []):
@@ -195,10 +209,12 @@ def main(argv=None):
         "converged": {"needed_fraction": needed_c, "set_curves": set_curves_c, "headline": headline_c,
                       "conv_grids": {m: list(REF.conv_grids_for(m, a.conv_grid)) for m in modes},
                       "conv_modes": list(conv_modes) if conv_modes else list(modes),
-                      "per_scene": {S.scene_id(s): infos[(s, m)]["converged"] for s in scenes for m in modes
-                                    if "converged" in infos[(s, m)]},
+                      "per_scene": {f"{S.scene_id(s)}/{m}": infos[(s, m)]["converged"] for s in scenes
+                                    for m in modes if "converged" in infos[(s, m)]},
                       "target_two_seeds_db": REF.CONV_TARGET_DB,
                       "seeds": list(REF.CONV_SEEDS)} if conv_records else None,
+        "head_to_head": head_to_head,
+        "head_to_head_references": conv_info,
         "speedup": speed,
         "examples": examples,
     }

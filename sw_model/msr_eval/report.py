@@ -103,6 +103,17 @@ def write_docs(result: dict, out: Path, docs: Path):
       "`out/eval/results.json` (every scene x method x setting; copied to docs/results.json).\n")
     w(f"Scene set ({len(cfg['scenes'])}): " + ", ".join(f"`{s}`" for s in cfg["scene_sources"]) + "\n")
     notes = docs / "results_notes.md"
+    if result.get("head_to_head"):                # the converged head-to-head leads (msr_eval.headline)
+        from .headline import docs_lines as head_lines
+        fig = None
+        src = out / "fronts_headline.png"
+        if src.is_file():
+            _small_png(src, img / "eval_fronts_headline.png", 1100)
+            fig = "img/eval_fronts_headline.png"
+        L.extend(head_lines(result["head_to_head"], cfg, fig, result.get("head_to_head_references")))
+        hnotes = docs / "results_headline_notes.md"       # hand-written findings, pasted in
+        if hnotes.is_file():
+            w(hnotes.read_text())
     w(HOW_TO_RERUN)
     if result.get("converged"):                   # the converged comparison leads (msr_eval.reference)
         from .conv_report import docs_lines
