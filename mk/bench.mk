@@ -6,7 +6,7 @@
 # prerequisites are expanded when the rule is read (MSR_RTL_FILES: the top Makefile).
 BENCH_HW_RTL  := $(MSR_RTL_FILES) sim/render_dpi.sv sim/msr_sim_top.sv
 BENCH_HW_CPP  := sim/harness.cpp sim/msr_dpi.cpp
-# Harness builds: e<N>_mo<M> = NUM_ENGINES N, MAX_OUTSTANDING M (64 is the default of msr_top;
+# Harness builds: e<N>_mo<M>[_c<C>] = NUM_ENGINES N, MAX_OUTSTANDING M (64 is the default of msr_top;
 # e1_mo16 shows what fewer tags cost one engine at long latencies, and is the one build
 # scripts/tests/test_bench_hw.py needs).
 BENCH_HW_CFGS ?= e1_mo16 e1_mo64 e2_mo64 e4_mo64

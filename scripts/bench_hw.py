@@ -41,21 +41,24 @@ GOAL_PIXELS = 3.6              # pixels per clock, 4 engines, latency 256
 GOAL_ENGINES, GOAL_LATENCY = 4, 256
 
 
-def parse_cfg(name: str) -> tuple[int, int]:
-    """'e4_mo16' -> (NUM_ENGINES 4, MAX_OUTSTANDING 16)."""
+def parse_cfg(name: str) -> tuple[int, int, int | None]:
+    """'e4_mo16' -> (NUM_ENGINES 4, MAX_OUTSTANDING 16, None: msr_top's NUM_CTX);
+    'e4_mo64_c6' -> (4, 64, NUM_CTX 6) (mk/bench.mk builds it with -GNUM_CTX=6)."""
     try:
         e, mo = name.split("_mo")
-        if not e.startswith("e"):
+        mo, _, ctx = mo.partition("_c")
+        if not e.startswith("e") or (_ and not ctx):
             raise ValueError
-        return int(e[1:]), int(mo)
+        return int(e[1:]), int(mo), (int(ctx) if ctx else None)
     except ValueError:
-        raise UsageError(f"harness config {name!r} is not e<engines>_mo<outstanding> (e.g. e4_mo16)") from None
+        raise UsageError(f"harness config {name!r} is not e<engines>_mo<outstanding>[_c<contexts>] "
+                         "(e.g. e4_mo16, e4_mo64_c6)") from None
 
 
 def parse(argv):
     ap = Parser(prog="bench_hw", description=__doc__.splitlines()[0])
     ap.add_argument("--configs", default="e1_mo16 e1_mo64 e2_mo64 e4_mo64",
-                    help="harness builds e<NUM_ENGINES>_mo<MAX_OUTSTANDING>, space separated")
+                    help="harness builds e<NUM_ENGINES>_mo<MAX_OUTSTANDING>[_c<NUM_CTX>], space separated")
     ap.add_argument("--build-dir", default=str(ROOT / "build" / "bench"))
     ap.add_argument("--scene", default="cornell")
     ap.add_argument("--width", type=int, default=640)
@@ -92,8 +95,8 @@ def parse(argv):
     return a
 
 
-def harness_path(build_dir: Path, engines: int, mo: int) -> Path:
-    return Path(build_dir) / f"hw_e{engines}_mo{mo}" / "Vmsr_sim_top"
+def harness_path(build_dir: Path, engines: int, mo: int, ctx: int | None = None) -> Path:
+    return Path(build_dir) / (f"hw_e{engines}_mo{mo}" + (f"_c{ctx}" if ctx else "")) / "Vmsr_sim_top"
 
 
 def params_for(tile: int, levels: int) -> Params:
@@ -101,15 +104,15 @@ def params_for(tile: int, levels: int) -> Params:
 
 
 def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, tile: int, levels: int,
-              latency: int, golden: GoldenFrames | None, rule: str = "patent") -> dict:
+              latency: int, golden: GoldenFrames | None, rule: str = "patent", ctx: int | None = None) -> dict:
     """One frame through the harness; returns the measured point."""
     p = params_for(tile, levels)
     rtl = HarnessRun(harness, scene, w, h, p, rule=rule, latency=latency, jitter=0, quiet=True).run()
     st = rtl.stats
     built = (rtl.build["num_engines"], rtl.build["max_outstanding"])
-    if built != (engines, mo):
+    if built != (engines, mo) or (ctx is not None and rtl.build.get("num_ctx") != ctx):
         raise RunFailed(f"{harness} is a build of NUM_ENGINES {built[0]}, MAX_OUTSTANDING {built[1]}, "
-                        f"not e{engines}_mo{mo}")
+                        f"NUM_CTX {rtl.build.get('num_ctx')}, not e{engines}_mo{mo}" + (f"_c{ctx}" if ctx else ""))
     pixels = w * h
     traced = rtl.traced_counted
     cycles = st["cycles"]
@@ -118,6 +121,7 @@ def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, 
     beats = rtl.w_beats(tile)
     pt = {
         "num_engines": engines, "max_outstanding": mo, "render_latency": latency,
+        "num_ctx": rtl.build.get("num_ctx"), "num_ctx_overridden": ctx is not None,
         "tile": tile, "levels": levels, "thr": list(p.thr),
         "cycles": cycles, "pixels": pixels, "tiles": tiles,
         "pixels_per_clock": pixels / cycles,
@@ -198,12 +202,13 @@ def plot(report: dict, path: Path) -> None:
     import matplotlib.pyplot as plt
     pts = report["engines_x_latency"]
     fig, ax = plt.subplots(figsize=(6.4, 4.0), dpi=100)
-    for e, mo in sorted({(p["num_engines"], p["max_outstanding"]) for p in pts}):
-        row = sorted((p for p in pts if (p["num_engines"], p["max_outstanding"]) == (e, mo)),
-                     key=lambda p: p["render_latency"])
+    def key(p):
+        return p["num_engines"], p["max_outstanding"], p.get("num_ctx") if p.get("num_ctx_overridden") else None
+    for e, mo, ctx in sorted({key(p) for p in pts}, key=lambda k: (k[0], k[1], k[2] or 0)):
+        row = sorted((p for p in pts if key(p) == (e, mo, ctx)), key=lambda p: p["render_latency"])
         ax.plot([p["render_latency"] for p in row], [p["pixels_per_clock"] for p in row],
                 "o-" if mo == 16 else "s--",
-                label=f"{e} engine{'s' if e > 1 else ''}, MAX_OUTSTANDING {mo}")
+                label=f"{e} engine{'s' if e > 1 else ''}, MAX_OUTSTANDING {mo}" + (f", NUM_CTX {ctx}" if ctx else ""))
     ax.axhline(GOAL_PIXELS, color="grey", ls="--", lw=1, label=f"goal {GOAL_PIXELS} (4 engines, latency 256)")
     wl = pts[0]["pixels"] / pts[0]["bound_writer_cycles"]
     ax.axhline(wl, color="red", ls=":", lw=1, label=f"frame-buffer writer limit ({wl:.2f} pixels/clock, "
@@ -225,32 +230,35 @@ def plot(report: dict, path: Path) -> None:
 def run(a) -> int:
     from tqdm import tqdm
     build = Path(a.build_dir)
-    for e, mo in a.cfgs:
-        if not harness_path(build, e, mo).is_file():
-            raise UsageError(f"harness {harness_path(build, e, mo)} not built (make bench-hw-build)")
-    tl_cfg = next(((e, mo) for e, mo in a.cfgs if e == a.tl_engines), None)
+    for e, mo, ctx in a.cfgs:
+        if not harness_path(build, e, mo, ctx).is_file():
+            raise UsageError(f"harness {harness_path(build, e, mo, ctx)} not built (make bench-hw-build)")
+    tl_cfg = next(((e, mo, ctx) for e, mo, ctx in a.cfgs if e == a.tl_engines and ctx is None), None)
     if not a.no_tile_sweep and tl_cfg is None:
         raise UsageError(f"--tl-engines {a.tl_engines} has no harness among --configs {a.configs!r}")
 
-    jobs = [("main", e, mo, a.tile, a.levels_main, lat) for e, mo in a.cfgs for lat in a.latencies]
+    jobs = [("main", e, mo, ctx, a.tile, a.levels_main, lat) for e, mo, ctx in a.cfgs for lat in a.latencies]
     if not a.no_tile_sweep:
-        jobs += [("tl", tl_cfg[0], tl_cfg[1], t, l, lat)
+        jobs += [("tl", tl_cfg[0], tl_cfg[1], tl_cfg[2], t, l, lat)
                  for t in a.tiles for l in a.levels for lat in a.tl_latencies]
     golden = GoldenFrames(a.scene, a.width, a.height)
     t0 = time.perf_counter()
     main_pts, tl_pts = [], []
     bar = tqdm(jobs, desc="bench_hw", unit="sim", disable=True if a.no_progress else None,
                file=sys.stderr)  # None: a bar only on a terminal
-    for kind, e, mo, t, l, lat in bar:
-        bar.set_postfix_str(f"E={e} MO={mo} T={t} L={l} lat={lat}")
-        pt = run_point(harness_path(build, e, mo), e, mo, a.scene, a.width, a.height, t, l, lat, golden, a.rule)
+    for kind, e, mo, ctx, t, l, lat in bar:
+        bar.set_postfix_str(f"E={e} MO={mo}{f' CTX={ctx}' if ctx else ''} T={t} L={l} lat={lat}")
+        pt = run_point(harness_path(build, e, mo, ctx), e, mo, a.scene, a.width, a.height, t, l, lat, golden, a.rule,
+                       ctx)
         pt["bottleneck"] = bottleneck(pt)
         (main_pts if kind == "main" else tl_pts).append(pt)
     bar.close()
 
     engine = load_engine_bench(Path(a.engine_json))
-    # The goal is judged on msr_top's defaults (MAX_OUTSTANDING 64), else the most tags swept.
-    goal_cands = [p for p in main_pts if p["num_engines"] == GOAL_ENGINES and p["render_latency"] == GOAL_LATENCY]
+    # The goal is judged on msr_top's defaults (MAX_OUTSTANDING 64, its NUM_CTX), else the most
+    # tags swept; builds with NUM_CTX overridden (e4_mo64_c6) are reported but never judged.
+    goal_cands = [p for p in main_pts if p["num_engines"] == GOAL_ENGINES and p["render_latency"] == GOAL_LATENCY
+                  and not p["num_ctx_overridden"]]
     goal_pt = max(goal_cands, key=lambda p: (p["max_outstanding"] == 64, p["max_outstanding"]), default=None)
     dec = engine["decisions_per_clock_in_pass_latency0_min"] if engine else None
     report = {
@@ -310,7 +318,8 @@ def print_tables(r: dict) -> None:
           "memory stall | bound | bit exact |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for p in r["engines_x_latency"]:
-        print(f"| {p['num_engines']} | {p['max_outstanding']} | {p['render_latency']} | {p['cycles']} "
+        eng = f"{p['num_engines']}" + (f" (NUM_CTX {p['num_ctx']})" if p.get("num_ctx_overridden") else "")
+        print(f"| {eng} | {p['max_outstanding']} | {p['render_latency']} | {p['cycles']} "
               f"| {p['pixels_per_clock']:.3f} | {p['traced_fraction']:.3f} | {p['render_stall_cycles']} "
               f"| {p['memory_stall_cycles']} | {p['bottleneck']} | {p.get('bit_exact')} |")
     if r["cycles_per_tile"]:

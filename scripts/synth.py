@@ -253,15 +253,26 @@ def ecp5_stitch(glue: dict, engine: dict, tag: str) -> dict:
 
 # Floorplan of the flat top on the LFE5U-85F: the tile buffers' block RAMs of each engine are
 # locked into one quarter of the die (engine e: rows of pair e // 2, side e % 2), a context's
-# block RAMs side by side. Unconstrained, the placer scatters each engine's 32 block RAMs
-# over the whole width of the die (they are 62 % of the device's), and with them the
-# contexts that read them: wires from the die's corners into the engine's arbiter and read
-# mux. The device's DP16KD sites: four rows, each 13 groups of four (EBR0..3 at x, x+2, x+4,
-# x+6), group columns below; the engines take the outer groups, the glue keeps the middle.
+# block RAMs side by side. Unconstrained, the placer scatters each engine's block RAMs over
+# the whole width of the die (they are 62 % of the device's with 4 per context, 92 % with the
+# lindilate rule's 6), and with them the contexts that read them: wires from the die's corners
+# into the engine's arbiter and read mux. The device's DP16KD sites: four rows, each 13 groups
+# of four (EBR0..3 at x, x+2, x+4, x+6), group columns below; the engines take the outer
+# groups, the glue keeps the middle. A quarter's row is a run of sites (its groups from the
+# die's edge inwards, EBR0..3 in each): a context takes the next `rams` sites of its row, so
+# a context of 4 fills one group (the layout of the patent-only engine) and one of 6 (tile
+# buffer + lindilate's third-port copy) a group and a half. Half the contexts go in each row.
 ECP5_EBR_ROWS = (22, 46, 70, 82)
 ECP5_EBR_LEFT = (4, 13, 22, 31, 40, 49, 58)
 ECP5_EBR_RIGHT = (114, 105, 96, 87, 78, 69)
+ECP5_EBR_PER_GROUP = 4
 TILE_RAM = re.compile(r"g_engine\[(\d+)\]\.u_engine\.g_ctx\[(\d+)\]\.")
+
+
+def ecp5_ebr_site(cols: tuple[int, ...], row: int, i: int) -> str:
+    """The i-th DP16KD site of a quarter's row (cols: its group columns, from the edge in)."""
+    g, k = divmod(i, ECP5_EBR_PER_GROUP)
+    return f"X{cols[g] + 2 * k}/Y{row}/EBR{k}"
 
 
 def ecp5_floorplan(net: Path) -> dict:
@@ -278,17 +289,20 @@ def ecp5_floorplan(net: Path) -> dict:
     engines = sorted({e for e, _ in groups})
     n_ctx = max((c for _, c in groups), default=-1) + 1
     per_row = (n_ctx + 1) // 2
-    if (not groups or len(engines) > 4 or max(len(v) for v in groups.values()) > 4
-            or per_row > len(ECP5_EBR_RIGHT)):
-        return {"locked": 0, "why": "layout does not fit the floorplan (at most 4 engines, "
-                f"{2 * len(ECP5_EBR_RIGHT)} contexts of at most 4 block RAMs)"}
+    rams = max((len(v) for v in groups.values()), default=0)
+    row_sites = ECP5_EBR_PER_GROUP * min(len(ECP5_EBR_LEFT), len(ECP5_EBR_RIGHT))
+    if not groups or len(engines) > 4 or per_row * rams > row_sites:
+        return {"locked": 0, "why": "layout does not fit the floorplan (at most 4 engines; per row of a "
+                f"quarter {row_sites} block RAMs: half the contexts x their block RAMs, here "
+                f"{per_row} x {rams})"}
     for (e, c), names in groups.items():
         row = ECP5_EBR_ROWS[2 * (e // 2) + c // per_row]
-        col = (ECP5_EBR_LEFT if e % 2 == 0 else ECP5_EBR_RIGHT)[c % per_row]
+        cols = ECP5_EBR_LEFT if e % 2 == 0 else ECP5_EBR_RIGHT
         for i, name in enumerate(sorted(names)):
-            cells[name]["attributes"]["BEL"] = f"X{col + 2 * i}/Y{row}/EBR{i}"
+            cells[name]["attributes"]["BEL"] = ecp5_ebr_site(cols, row, (c % per_row) * rams + i)
     net.write_text(json.dumps(d))
-    return {"locked": sum(len(v) for v in groups.values()), "engines": len(engines), "contexts": n_ctx}
+    return {"locked": sum(len(v) for v in groups.values()), "engines": len(engines), "contexts": n_ctx,
+            "rams_per_context": rams}
 
 
 def ecp5_place(netlist: dict, tag: str) -> dict:

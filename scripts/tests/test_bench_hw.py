@@ -116,6 +116,16 @@ def test_bad_config_is_a_usage_error(capsys):
     assert "e<engines>_mo<outstanding>" in capsys.readouterr().err
 
 
+def test_configs_with_a_context_count():
+    assert bench_hw.parse_cfg("e4_mo64") == (4, 64, None)
+    assert bench_hw.parse_cfg("e4_mo64_c6") == (4, 64, 6)
+    assert bench_hw.harness_path(Path("b"), 4, 64) == Path("b/hw_e4_mo64/Vmsr_sim_top")
+    assert bench_hw.harness_path(Path("b"), 4, 64, 6) == Path("b/hw_e4_mo64_c6/Vmsr_sim_top")
+    for bad in ("e4_mo64_c", "e4_mo64_cx", "e4_c6"):
+        with pytest.raises(bench_hw.UsageError):
+            bench_hw.parse_cfg(bad)
+
+
 def test_bad_rule_is_a_usage_error(monkeypatch, capsys):
     assert bench_hw.main(["--rule", "magic"]) == bench_hw.EXIT_BAD_INPUT
     assert "magic" in capsys.readouterr().err

@@ -113,7 +113,7 @@ def _bels(net):
 
 def test_floorplan_puts_each_engine_in_its_quarter(tmp_path):
     net = _netlist(tmp_path, 4, 8)
-    assert synth.ecp5_floorplan(net) == {"locked": 128, "engines": 4, "contexts": 8}
+    assert synth.ecp5_floorplan(net) == {"locked": 128, "engines": 4, "contexts": 8, "rams_per_context": 4}
     bels = _bels(net)
     assert bels["u_fb_writer.lut"] is None
     sites = [b for b in bels.values() if b]
@@ -137,8 +137,42 @@ def test_floorplan_puts_each_engine_in_its_quarter(tmp_path):
 
 
 def test_floorplan_leaves_a_layout_that_does_not_fit_unconstrained(tmp_path):
-    for engines, ctxs, rams in ((5, 2, 4), (2, 14, 4), (2, 2, 5)):
+    for engines, ctxs, rams in ((5, 2, 4), (2, 14, 4), (2, 10, 6), (2, 2, 25)):
         net = _netlist(tmp_path, engines, ctxs, rams)
         r = synth.ecp5_floorplan(net)
         assert r["locked"] == 0 and "does not fit" in r["why"]
         assert not any(_bels(net).values())
+
+
+@pytest.mark.parametrize("ctxs", [8, 7, 6])
+def test_floorplan_of_the_lindilate_engine_six_block_rams_per_context(tmp_path, ctxs):
+    """Tile buffer (4 DP16KD) + the third port's colour copy (2): every context's six locked,
+    a context's six side by side in one row of its engine's quarter (a group and a half)."""
+    cells = {}
+    for e in range(4):
+        for c in range(ctxs):
+            for i in range(4):
+                cells[f"g_engine[{e}].u_engine.g_ctx[{c}].u_ctx.u_tile_sram.mem_q.{i // 2}.{i % 2}"] = \
+                    {"type": "DP16KD", "attributes": {}}
+            for i in range(2):
+                cells[f"g_engine[{e}].u_engine.g_ctx[{c}].u_ctx.u_tile_sram_outer.mem_q.0.{i}"] = \
+                    {"type": "DP16KD", "attributes": {}}
+    net = tmp_path / "top.json"
+    net.write_text(json.dumps({"modules": {"msr_top": {"attributes": {"top": "00000001"}, "cells": cells}}}))
+    assert synth.ecp5_floorplan(net) == {"locked": 24 * ctxs, "engines": 4, "contexts": ctxs,
+                                         "rams_per_context": 6}
+    bels = _bels(net)
+    assert all(bels.values()) and len(set(bels.values())) == 24 * ctxs       # every site used once
+    for name, bel in bels.items():
+        x, y, ebr = bel.split("/")
+        e = int(name[len("g_engine["):].split("]")[0])
+        base = max(b for b in synth.ECP5_EBR_LEFT + synth.ECP5_EBR_RIGHT if b <= int(x[1:]))
+        assert int(ebr[3:]) == (int(x[1:]) - base) // 2
+        assert (int(x[1:]) < 64) == (e % 2 == 0)
+        assert int(y[1:]) in ((22, 46) if e < 2 else (70, 82))
+    for e in range(4):
+        for c in range(ctxs):
+            mine = [b for n, b in bels.items() if n.startswith(f"g_engine[{e}].u_engine.g_ctx[{c}].")]
+            assert len(mine) == 6 and len({b.split("/")[1] for b in mine}) == 1   # one row
+            xs = sorted(int(b.split("/")[0][1:]) for b in mine)
+            assert xs[-1] - xs[0] <= 9 + 6                                        # within two groups
