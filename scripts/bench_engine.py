@@ -6,7 +6,7 @@ plus a Markdown table on stdout.
 
 Set-up per point: 32 tiles of 16x16 back to back, L = 2, metric max; the renderer answers a
 request exactly `latency` cycles after the cycle that accepted it (latency 0 = the next
-cycle), in order; req_ready and pix_ready always 1; NUM_CTX 8 unless MSR_BENCH_NUM_CTX says
+cycle), in order; req_ready and pix_ready always 1; NUM_CTX 7 (msr_top's) unless MSR_BENCH_NUM_CTX says
 otherwise. Scenes: a smooth image with thr 8,16 (31 % traced), 26,52 (17 %, like the
 default cornell frame) and 0,0 (every pixel traced: the worst case). Reported: steady-state
 cycles per tile (between the last pixels of tile 8 and tile 32, so the ramp while the
@@ -29,7 +29,7 @@ sys.path.insert(0, str(ROOT / "tb" / "common"))
 # MSR_BENCH_LATENCIES / MSR_BENCH_OUTSTANDING / MSR_BENCH_NUM_CTX narrow or change the sweep.
 LATENCIES = tuple(int(v) for v in os.environ.get("MSR_BENCH_LATENCIES", "0,16,64,256").split(","))
 OUTSTANDING = tuple(int(v) for v in os.environ.get("MSR_BENCH_OUTSTANDING", "16,64").split(","))
-NUM_CTX = int(os.environ.get("MSR_BENCH_NUM_CTX", "8"))
+NUM_CTX = int(os.environ.get("MSR_BENCH_NUM_CTX", "7"))  # msr_top's default
 THRS = tuple(tuple(int(v) for v in s.split(",")) for s in os.environ.get("MSR_BENCH_THR", "8,16 26,52 0,0").split())
 TILES = 32
 RULE = os.environ.get("MSR_BENCH_RULE", "patent")

@@ -5,7 +5,7 @@
 module msr_sim_top import msr_pkg::*; #(
   parameter int unsigned NUM_ENGINES     = 4,
   parameter int unsigned MAX_OUTSTANDING = 64,
-  parameter int unsigned NUM_CTX         = 8,
+  parameter int unsigned NUM_CTX         = 7,    // msr_top's default
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned RTAG_W = EID_W + $clog2(MAX_OUTSTANDING)
 ) (

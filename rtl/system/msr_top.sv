@@ -13,7 +13,7 @@
 module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES     = 4,    // parallel tile engines (claim 11)
   parameter int unsigned MAX_OUTSTANDING = 64,   // render requests in flight per engine (tags)
-  parameter int unsigned NUM_CTX         = 8,    // tile contexts per engine (2..16)
+  parameter int unsigned NUM_CTX         = 7,    // tile contexts per engine (2..16; 7: area, issue 31)
   parameter int unsigned AXI_ID_W        = 4,    // frame-buffer AXI ID width
   parameter int unsigned AXI_DATA_W      = 256,  // frame-buffer AXI data width (32..256)
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
