@@ -19,7 +19,8 @@
 module msr_tile_ctx
   import msr_pkg::*;
 #(
-  parameter int unsigned PEND_W = 8     // width of the pending-position count
+  parameter int unsigned PEND_W    = 8,  // width of the pending-position count
+  parameter int unsigned LINDILATE = 1   // 0: no third port (patent-only engine; rd_o2_o is 0)
 ) (
   input  logic               clk_i,
   input  logic               rst_ni,
@@ -329,13 +330,13 @@ module msr_tile_ctx
     .DATA_W ($bits(rgb_t))
   ) u_tile_sram_outer (
     .clk_i    (clk_i),
-    .re0_i    (computing),
+    .re0_i    (computing && LINDILATE != 0),
     .raddr0_i ((head_q.dir == DIR_V) ? {head_q.o2, head_q.x} : {head_q.y, head_q.o2}),
     .rdata0_o (rdata2),
     .re1_i    (1'b0),
     .raddr1_i ('0),
     .rdata1_o (rdata2_unused),
-    .we_i     (we_i),
+    .we_i     (we_i && LINDILATE != 0),
     .waddr_i  (waddr_i),
     .wdata_i  (wrgb_i)
   );
@@ -344,7 +345,9 @@ module msr_tile_ctx
     rdata2_q <= rdata2;
   end
 
-  assign rd_o2_o = rdata2_q;
+  // Without the rule the copy is never written or read and nothing reads rd_o2_o: synthesis
+  // drops the copy (two DP16KD per context) with everything behind it.
+  assign rd_o2_o = (LINDILATE != 0) ? rdata2_q : '0;
 
   // The read data is registered once more, beside the memory, before anything selects between
   // contexts: a block RAM's clock-to-output (5.8 ns on an ECP5 DP16KD) leaves no room for the

@@ -39,6 +39,10 @@ module msr_tile_engine
   // 256 cycles with 64 tags (docs/performance.md); 2 suffice when renders answer within ~16.
   parameter int unsigned NUM_CTX         = 8,
   parameter int unsigned MAX_OUTSTANDING = 16,  // render requests in flight (power of two, 2..64)
+  // 1: the lindilate rule is built (a third tile-buffer read port per context: 2 DP16KD each,
+  // the base decision, the dilation); 0: patent only, every descriptor decided by the patent
+  // rule (the top refuses CONFIG.RULE 1 then) and synthesis drops the rule's logic.
+  parameter int unsigned LINDILATE       = 1,
   parameter int unsigned TAG_W = $clog2(MAX_OUTSTANDING)
 ) (
   // The port list is the interface agreed with the system top, comments included.
@@ -90,6 +94,9 @@ module msr_tile_engine
   end
   if (NUM_CTX < 2 || NUM_CTX > 16) begin : g_check_ctx
     $fatal(1, "msr_tile_engine: NUM_CTX %0d must be in 2..16", NUM_CTX);
+  end
+  if (LINDILATE > 1) begin : g_check_lindilate
+    $fatal(1, "msr_tile_engine: LINDILATE %0d must be 0 or 1", LINDILATE);
   end
 
   // ---- Contexts ---------------------------------------------------------------------------------
@@ -423,7 +430,7 @@ module msr_tile_engine
                             gy: is_desc.y0 + coord_t'(is_pos_q.y), level: is_pos_q.level,
                             vert: is_pos_q.dir == DIR_V, ldelta: '0},  // ldelta, fline: RD -> AB
                        init: is_pos_q.init,
-                       lin: is_desc.rule == RULE_LINDILATE && !is_pos_q.init,
+                       lin: LINDILATE != 0 && is_desc.rule == RULE_LINDILATE && !is_pos_q.init,
                        mh: is_m[LCOORD_W-1:1], fline: 1'b0};
       rd_metric_q <= is_desc.metric;
       // threshold of the position's level; an initial-grid position gets 0 (always trace)
@@ -930,7 +937,8 @@ module msr_tile_engine
   // ---- The contexts themselves ----------------------------------------------------------------
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_ctx
     msr_tile_ctx #(
-      .PEND_W (PEND_W)
+      .PEND_W    (PEND_W),
+      .LINDILATE (LINDILATE)
     ) u_ctx (
       .clk_i         (clk_i),
       .rst_ni        (rst_ni),

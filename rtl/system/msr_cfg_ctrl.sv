@@ -6,7 +6,7 @@
 // accumulator in 8-bit segments (a carry goes one segment per clock; 6 more clocks settle
 // it), so a plane that wraps past 4 GiB is seen; then whether the two ranges [base, end)
 // overlap, compared segment by segment from the least significant one; the rule encoding
-// (CONFIG.RULE 2 or 3, code 13). The first failing check in the order of the error codes
+// (CONFIG.RULE 2 or 3, or 1 in a top built without it, LINDILATE 0: code 13). The first failing check in the order of the error codes
 // wins: the configuration is latched and the frame starts, or the error is reported
 // (STATUS.ERROR, STATUS.CFG_ERR and the interrupt) and the accelerator stays idle (no render
 // request, no memory write). A frame ends when the tile generator has handed out every tile,
@@ -31,7 +31,8 @@
 
 module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES   = 4,      // tile engines (tile-done inputs)
-  parameter int unsigned DRAIN_TIMEOUT = 16384   // drain bound without progress when WATCHDOG is 0
+  parameter int unsigned DRAIN_TIMEOUT = 16384,  // drain bound without progress when WATCHDOG is 0
+  parameter int unsigned LINDILATE     = 1       // 0: patent-only engines, CONFIG.RULE 1 refused
 ) (
   input  logic                   clk_i,          // clock
   input  logic                   rst_ni,         // asynchronous reset, active low
@@ -90,7 +91,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   cfg_t             cfg_q;
   err_e             err_q, err_d;
   logic [NCHK-1:0]  chk_q;             // check k failed (error code order)
-  logic             rule_chk_q;        // CONFIG.RULE is 2 or 3 (code 13, after the overlap)
+  logic             rule_chk_q;        // CONFIG.RULE 2, 3 or not built (code 13, after the overlap)
   logic [4:0]       step_q;
   logic             frame_done_q;
   logic [TIF_W-1:0] tif_q;             // tiles handed out and not yet fully written
@@ -315,7 +316,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       if (state_q == ST_IDLE && start_i) raw_q <= raw_i;
       if (state_q == ST_CHECK && step_q == STEP_CMP[4:0]) begin
         chk_q      <= chk_all;
-        rule_chk_q <= raw_q.rule[1];
+        rule_chk_q <= raw_q.rule[1] || (LINDILATE == 0 && raw_q.rule[0]);
       end
       if (accept) begin
         cfg_q.width      <= raw_q.width;

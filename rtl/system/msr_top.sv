@@ -13,9 +13,13 @@
 module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES     = 4,    // parallel tile engines (claim 11)
   parameter int unsigned MAX_OUTSTANDING = 64,   // render requests in flight per engine (tags)
-  parameter int unsigned NUM_CTX         = 7,    // tile contexts per engine (2..16; 7: area, issue 31)
+  parameter int unsigned NUM_CTX         = 7,    // tile contexts per engine (2..16; issue 31)
   parameter int unsigned AXI_ID_W        = 4,    // frame-buffer AXI ID width
   parameter int unsigned AXI_DATA_W      = 256,  // frame-buffer AXI data width (32..256)
+  // The rules built in (beside CONFIG.RULE, the run-time choice): 1 both (the default top);
+  // 0 patent only (no third tile-buffer port: 2 DP16KD fewer per context; CONFIG.RULE 1 is
+  // refused at START with STATUS.ERROR 13).
+  parameter int unsigned LINDILATE       = 1,
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned ETAG_W = $clog2(MAX_OUTSTANDING),
   localparam int unsigned RTAG_W = EID_W + ETAG_W
@@ -170,7 +174,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   logic  [NUM_ENGINES-1:0] wr_tile_done_q;  // wr_tile_done, registered (below)
   logic                    desc_fire_q;     // a tile went to an engine, registered (below)
 
-  msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES)) u_ctrl (
+  msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES), .LINDILATE(LINDILATE)) u_ctrl (
     .clk_i          (clk_i),
     .rst_ni         (rst_ni),
     .start_i        (hwif_out.CTRL.START.value),
@@ -340,7 +344,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
 
     msr_tile_engine #(
       .NUM_CTX         (NUM_CTX),
-      .MAX_OUTSTANDING (MAX_OUTSTANDING)
+      .MAX_OUTSTANDING (MAX_OUTSTANDING),
+      .LINDILATE       (LINDILATE)
     ) u_engine (
       .clk_i        (clk_i),
       .rst_ni       (rst_ni),
