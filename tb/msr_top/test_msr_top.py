@@ -38,6 +38,8 @@ ERR_FB_WRAP, ERR_SRC_WRAP, ERR_OVERLAP = 9, 10, 11
 ERR_WATCHDOG = 12
 ERR_RULE = 13
 RULES = ("patent", "lindilate")   # CONFIG.RULE 0, 1 (2, 3 are refused with ERR_RULE)
+# msr_top's LINDILATE of this build (the rules it carries): 0 = patent only, RULE 1 refused too
+LINDILATE = int(os.environ.get("LINDILATE", "1"))
 DRAIN_TIMEOUT = 16384      # msr_cfg_ctrl: a soft reset's wait without progress, WATCHDOG 0
 
 
@@ -372,8 +374,26 @@ async def test_bad_registers(dut):
 async def test_rule(dut):
     """CONFIG.RULE: sampled at START into every tile descriptor (the descriptor's MSB, seen at
     the tile hand-out; a rule written during the check does not reach the frame), frames in
-    lindilate and patent back to back, each bit-exact with the golden model under its rule."""
+    lindilate and patent back to back, each bit-exact with the golden model under its rule.
+    In a patent-only build (LINDILATE 0): RULE 1 is refused at START (ERR_RULE, nothing
+    rendered or written), and patent frames around the refusal are bit-exact."""
     env, rng = await setup(dut, 23)
+    if not LINDILATE:
+        await env.frame(20, 10, 8, 2, 0, [8, 16], 0, rule=0)
+        env.render.requests = []
+        env.ram.write(0, bytes([FILL]) * MEM)
+        await env.program(20, 10, 8, 2, 0, [8, 16], 0, rule=1)
+        await env.wr(R.CTRL, R.CTRL_START_MASK)
+        await ClockCycles(dut.clk_i, 50)
+        st = await env.rd(R.STATUS)
+        err = (st & R.STATUS_ERROR_MASK) >> R.STATUS_ERROR_LSB
+        assert err == ERR_RULE, f"rule 1 in a patent-only top: error code {err}, want {ERR_RULE}"
+        assert not st & (R.STATUS_BUSY_MASK | R.STATUS_DONE_MASK), f"STATUS {st:#x}: something started"
+        assert not env.render.requests and set(env.ram.read(0, MEM)) == {FILL}, "rule 1 refused, yet work done"
+        for _ in range(2):
+            c = random_config(rng)
+            await env.frame(c["W"], c["H"], c["tile"], c["levels"], c["metric"], c["thr"], c["gain"], rule=0)
+        return
     seen = []
 
     async def monitor():
@@ -917,3 +937,13 @@ def test_msr_top(engines, outstanding, ctx, width):
                {"NUM_ENGINES": engines, "MAX_OUTSTANDING": outstanding, "NUM_CTX": ctx, "AXI_DATA_W": width},
                f"e{engines}_o{outstanding}_c{ctx}_w{width}_chk", extra_env={"NUM_ENGINES": str(engines)},
                sources=rtl_sources() + checkers + [ROOT / "rtl" / "checkers" / "msr_checker_binds.sv"])
+
+
+def test_msr_top_patent_only():
+    """msr_top built with LINDILATE 0 (issue 31: the rules a top carries): test_rule's
+    patent-only branch (RULE 1 refused, patent frames bit-exact)."""
+    from common.msr_runner import rtl_sources, run_cocotb
+    run_cocotb("msr_top", "test_msr_top", HERE,
+               {"NUM_ENGINES": 2, "MAX_OUTSTANDING": 16, "NUM_CTX": 3, "AXI_DATA_W": 256, "LINDILATE": 0},
+               "patent_only", extra_env={"NUM_ENGINES": "2", "LINDILATE": "0"}, sources=rtl_sources(),
+               testcase="test_rule")
