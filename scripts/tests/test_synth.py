@@ -176,3 +176,18 @@ def test_floorplan_of_the_lindilate_engine_six_block_rams_per_context(tmp_path, 
             assert len(mine) == 6 and len({b.split("/")[1] for b in mine}) == 1   # one row
             xs = sorted(int(b.split("/")[0][1:]) for b in mine)
             assert xs[-1] - xs[0] <= 9 + 6                                        # within two groups
+
+
+def test_combine_seeds_median_best_worst():
+    """The flat top over seeds (issue 31): fmax_mhz is the median seed's (the lower middle for
+    an even count), best and worst name their seeds, a failed seed is listed with its error."""
+    rows = [{"seed": 1, "fmax_mhz": 99.5, "seconds": 10, "luts": 7}, {"seed": 2, "fmax_mhz": 103.0, "seconds": 12,
+                                                                        "luts": 8},
+            {"seed": 3, "fmax_mhz": 101.2, "seconds": 11, "luts": 9}]
+    r = synth.combine_seeds(rows)
+    assert r["fmax_mhz"] == 101.2 and r["fmax_median"] == {"seed": 3, "fmax_mhz": 101.2}
+    assert r["fmax_best"]["seed"] == 2 and r["fmax_worst"]["seed"] == 1 and r["luts"] == 9
+    assert [x["seed"] for x in r["fmax_seeds"]] == [1, 2, 3]
+    r = synth.combine_seeds(rows[:2] + [{"seed": 3, "error": "router gave up"}])
+    assert r["fmax_mhz"] == 99.5 and r["fmax_seeds"][2]["error"] == "router gave up"
+    assert "error" in synth.combine_seeds([{"seed": 1, "error": "x"}])
