@@ -236,9 +236,47 @@ def write_docs(result: dict, out: Path, docs: Path):
         for ex in result["examples"]:
             w(f"- `{ex['scene']}`, {ex['mode']}, {FAMILY_NAMES.get(ex['family'], ex['family'])} {ex['label']}: "
               f"{100 * ex['traced_fraction']:.1f} % traced, {_db(ex['psnr'])} dB\n\n  ![{ex['scene']}]({ex['doc_file']})\n")
+    L.extend(appendices(docs))
     (docs / "results.md").write_text("\n".join(L) + "\n")
     # compact copy for the repository: floats to 5 significant digits, no indentation
     (docs / "results.json").write_text(json.dumps(_round(result), separators=(",", ":")))
+
+
+# Earlier runs kept on the same page (issue 30, one results page): (file under docs/appendix/,
+# title). Their own headings move two levels down; links into docs/ are rebased.
+APPENDICES = (
+    ("quick_converged.md", "Appendix A: the converged comparison at the quick size (192x108, 13 scenes, both modes)"),
+    ("fast_16spp_1080p.md", "Appendix B: the complete 1920x1080 run against the 16-spp full render, both modes "
+                            "(2026-11-30, 13 scenes, textured ones included)"),
+)
+
+
+def appendices(docs: Path) -> list[str]:
+    """The appendix sections of results.md from docs/appendix/ (missing files are skipped)."""
+    import re
+    out = []
+    for name, title in APPENDICES:
+        f = docs / "appendix" / name
+        if not f.is_file():
+            continue
+        out.append(f"## {title}\n")
+        out.append(f"Kept as generated (source: [appendix/{name}](appendix/{name})).\n")
+        for line in f.read_text().splitlines():
+            if line.startswith("#"):
+                line = "##" + line if not line.startswith("# ") else "### " + line[2:]
+            line = re.sub(r"\]\((?!https?:|#|\.\./)([^)]+)\)", lambda m: f"]({_rebase(m.group(1), name)})", line)
+            out.append(line)
+        out.append("")
+    return out
+
+
+def _rebase(link: str, name: str) -> str:
+    """A relative link of an appendix page (written for docs/ or docs/eval_1080p/) as seen from docs/."""
+    if name.startswith("fast_16spp") and link.startswith("img/"):
+        return "appendix/" + link
+    if link.startswith("../"):
+        return link[3:]
+    return link
 
 
 def _round(v):
