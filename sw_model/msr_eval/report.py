@@ -38,6 +38,8 @@ HOW_TO_RERUN = """## How to rerun
 
     make eval                                  # quick run: 192x108, every scene, fast and heavy -> out/eval/
     make eval FULL=1                           # this page: 1920x1080, every scene, both modes, + docs/
+    make eval FULL=1 EVAL_ARGS="--modes heavy" # the converged head-to-head alone (heavy renderer)
+    make eval FULL=1 EVAL_ARGS="--conv-check"  # also the second-seed render of each converged reference
     make eval FULL=1 DASK_SCHEDULER=tcp://host:8786   # the sweep's tasks on an existing Dask cluster
     make eval DASK_SCHEDULER=serial            # everything in one process
     .venv/bin/python scripts/eval.py --report-only --docs   # only rewrite this page from out/eval/results.json
@@ -52,7 +54,11 @@ same path or `MSR_RENDER_LIB`). The records are the same, bit for bit, as a seri
 the wall-time fields differ. References and records are cached per scene and mode under
 `out/eval/cache/` (keyed by the renderer library and the code); a scene and mode's records
 are written as soon as its settings and key metrics are in (the key metrics run ahead of later
-pairs' settings), so an interrupted run keeps every finished pair and resumes from there. The speed-up table is measured afterwards in the main process, alone. Code:
+pairs' settings), so an interrupted run keeps every finished pair and resumes from there. At
+full size the converged references and every finished scene's records are also written to
+`docs/converged/` (committed; [converged/README.md](converged/README.md)), and a run on another
+machine takes them back where they are provably the same computation, so the two-hour run can
+be finished in parts. The speed-up table is measured afterwards in the main process, alone. Code:
 `scripts/eval.py` (command line), `msr_eval.metrics`, `msr_eval.sweep`, `msr_eval.report`.
 """
 
