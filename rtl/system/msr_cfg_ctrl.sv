@@ -6,8 +6,9 @@
 // accumulator in 8-bit segments (a carry goes one segment per clock; 6 more clocks settle
 // it), so a plane that wraps past 4 GiB is seen; then whether the two ranges [base, end)
 // overlap, compared segment by segment from the least significant one; the rule encoding
-// (CONFIG.RULE 2 or 3, or 1 in a top built without it, LINDILATE 0: code 13). The first failing check in the order of the error codes
-// wins: the configuration is latched and the frame starts, or the error is reported
+// (CONFIG.RULE 2 or 3, or 1 in a top built without it, LINDILATE 0: code 13). The first
+// failing check in the order of the error codes wins: the configuration is latched and the
+// frame starts, or the error is reported
 // (STATUS.ERROR, STATUS.CFG_ERR and the interrupt) and the accelerator stays idle (no render
 // request, no memory write). A frame ends when the tile generator has handed out every tile,
 // every tile's last pixel has reached the writer and the writer is idle. SOFT_RESET in any
