@@ -10,8 +10,8 @@ the full render's point (100 %, eq): a family that never gets there below that r
 
 Groups (one palette and one set of names for every table and plot of the page): each group's
 front is the Pareto front of all its families' settings, so a peer gets its best per scene as
-ours does (DACS over both statistics; VRS-like over both tile sizes; the patent over T16 and
-T32). Docs code only: the record cache does not depend on this file.
+ours does (DACS over both statistics; VRS-like over both tile sizes; the patent's rule and
+ours over L = 2 and 3, T = 16 and 32, and two threshold shapes (s, 2s, 4s and s, 4s, 16s)). Docs code only: the record cache does not depend on this file.
 """
 from __future__ import annotations
 
@@ -19,10 +19,17 @@ from .metrics import capped, fraction_for, pareto
 
 # (key, name, families, colour, marker): the page's one palette
 GROUPS = (
-    ("patent", "patent (T16, T32)", ("multi_L3_T16", "multi_L3_T32"), "tab:blue", "o"),
-    ("lindilate", "ours: lindilate (T16, T32)", ("multi_L3_T16_lindilate", "multi_L3_T32_lindilate"), "tab:red", "*"),
+    ("patent", "patent (L2, L3; T16, T32)", ("multi_L3_T16", "multi_L3_T32", "multi_L2_T16", "multi_L2_T32",
+                                                   "multi_L3_T32_r4"),
+     "tab:blue", "o"),
+    ("lindilate", "ours: lindilate (L2, L3; T16, T32)", ("multi_L3_T16_lindilate", "multi_L3_T32_lindilate",
+                                                         "multi_L2_T16_lindilate", "multi_L2_T32_lindilate",
+                                                         "multi_L3_T32_lindilate_r4"),
+     "tab:red", "*"),
     ("dilate", "ours: dilate (T16)", ("multi_L3_T16_dilate",), "salmon", "P"),
-    ("lindilate2d", "new: lindilate2d (T16, T32)", ("multi_L3_T16_lindilate2d", "multi_L3_T32_lindilate2d"),
+    ("lindilate2d", "new: lindilate2d (L2, L3; T16, T32)",
+     ("multi_L3_T16_lindilate2d", "multi_L3_T32_lindilate2d", "multi_L2_T16_lindilate2d", "multi_L2_T32_lindilate2d",
+      "multi_L3_T32_lindilate2d_r4"),
      "darkred", "X"),
     ("dacs", "DACS 4x4 (var, luma var)", ("dacs", "dacs_lumvar"), "tab:green", "s"),
     ("dacs8", "DACS 8x8, extension (var, luma var)", ("dacs_B8", "dacs_B8_lumvar"), "olive", "D"),
@@ -133,7 +140,8 @@ def docs_lines(analysis: dict, cfg: dict, fig: str | None = None, conv_info: dic
       "noise). Every family can trace everything (threshold 0), so its front ends at (100 %, eq). "
       "Each group's figure is the best over its families' settings (the union of their Pareto "
       "fronts), peers included: DACS over both block statistics (largest channel variance, luma "
-      "variance), VRS over both tile sizes, the patent over T16 and T32. Methods: "
+      "variance), VRS over both tile sizes, the patent's rule and ours over L = 2 and 3 and T = 16 "
+      "and 32. Methods: "
       "[dacs.md](dacs.md); the new rule: [rules.md](rules.md#lindilate2d).\n")
     cols = [k for k, *_ in GROUPS]
     w("### Traced % at the equal-quality point (as close to the converged image as the full render)\n")

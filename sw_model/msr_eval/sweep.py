@@ -51,7 +51,9 @@ SPARSE_SCALES = (0.5, 2, 8, 32)
 QUICK_SCALES = (0.25, 1, 2, 4, 8, 16, 64)
 MAIN_FAMILIES = ("multi_L3_T16", "multi_L3_T32", "multi_L3_T16_dilate", "multi_L3_T16_lindilate",
                  "multi_L3_T32_lindilate", "multi_L3_T16_lindilate2d", "multi_L3_T32_lindilate2d",
-                 *G.SWEEP_FAMILIES)
+                 "multi_L2_T16", "multi_L2_T32", "multi_L2_T16_lindilate", "multi_L2_T32_lindilate",
+                 "multi_L2_T16_lindilate2d", "multi_L2_T32_lindilate2d", "multi_L3_T32_r4",
+                 "multi_L3_T32_lindilate_r4", "multi_L3_T32_lindilate2d_r4", *G.SWEEP_FAMILIES)
 # SSIM and FLIP (FLIP ~6 s per 1080p frame) are computed for these families' key settings.
 KEY_FAMILIES = ("grid2", "grid4", "checkerboard", "single_traced", "single_borrowed", "multi_L1_T16",
                 "multi_L2_T16", "multi_L3_T16", "multi_L3_T32", "multi_L3_T16_fov", "multi_L3_T16_dilate",
@@ -62,7 +64,9 @@ KEY_FAMILIES = ("grid2", "grid4", "checkerboard", "single_traced", "single_borro
 # FLIP against the converged reference are computed at the equal-quality point.
 CONV_FAMILIES = ("full", "checkerboard", "multi_L3_T16", "multi_L3_T32", "multi_L3_T16_dilate",
                  "multi_L3_T16_lindilate", "multi_L3_T32_lindilate", "multi_L3_T16_lindilate2d",
-                 "multi_L3_T32_lindilate2d", "dacs", "dacs_lumvar", "dacs_B8", "dacs_B8_lumvar",
+                 "multi_L3_T32_lindilate2d", "multi_L2_T16", "multi_L2_T32", "multi_L2_T16_lindilate",
+                 "multi_L2_T32_lindilate", "multi_L2_T16_lindilate2d", "multi_L2_T32_lindilate2d",
+                 "multi_L3_T32_r4", "multi_L3_T32_lindilate_r4", "multi_L3_T32_lindilate2d_r4", "dacs", "dacs_lumvar", "dacs_B8", "dacs_B8_lumvar",
                  "vrs_T8", "vrs_T16")
 # FLIP in the full run only for these (the quick run: all key families)
 FLIP_FAMILIES_FULL = ("grid2", "checkerboard", "single_borrowed", "multi_L3_T16", "multi_L3_T16_dilate",
@@ -167,9 +171,11 @@ def fov_gain_for(width, height, tile, edge_add=16):
     return int(min(255, max(1, round(edge_add * 16 / r2max))))
 
 
-def level_thr(levels, s):
-    """Per-level thresholds for a scale s: s, 2s, 4s (claim 2: rising with the level), >= 1."""
-    return tuple(min(255, max(1, int(s * (1 << k)))) for k in range(levels))
+def level_thr(levels, s, ratio: int = 2):
+    """Per-level thresholds for a scale s: s, 2s, 4s (claim 2: rising with the level), >= 1;
+    ratio 4: s, 4s, 16s (the finest level, whose midpoints are one pixel from their
+    neighbours, interpolates much more: noise averaged where the bias is smallest)."""
+    return tuple(min(255, max(1, int(s * ratio ** k))) for k in range(levels))
 
 
 @dataclass(frozen=True)
@@ -212,12 +218,21 @@ def settings(width, height, scales, quick) -> list[Setting]:
              ("L3_T16_dilate", 16, 3, 0, "dilate"), ("L3_T16_linear", 16, 3, 0, "linear"),
              ("L3_T16_lindilate", 16, 3, 0, "lindilate"), ("L3_T16_diag", 16, 3, 0, "diag"),
              ("L3_T32_lindilate", 32, 3, 0, "lindilate"),
-             ("L3_T16_lindilate2d", 16, 3, 0, "lindilate2d"), ("L3_T32_lindilate2d", 32, 3, 0, "lindilate2d")]
+             ("L3_T16_lindilate2d", 16, 3, 0, "lindilate2d"), ("L3_T32_lindilate2d", 32, 3, 0, "lindilate2d"),
+             # L = 2 (stride 4, DACS's first-pass density): each rule's best per scene may be
+             # either (issue 30); an aliasing texture at the stride 8 of L = 3 needs it
+             ("L2_T32", 32, 2, 0, "patent"), ("L2_T16_lindilate", 16, 2, 0, "lindilate"),
+             ("L2_T32_lindilate", 32, 2, 0, "lindilate"), ("L2_T16_lindilate2d", 16, 2, 0, "lindilate2d"),
+             ("L2_T32_lindilate2d", 32, 2, 0, "lindilate2d"),
+             # thresholds s, 4s, 16s (level_thr ratio 4)
+             ("L3_T32_r4", 32, 3, 0, "patent"), ("L3_T32_lindilate_r4", 32, 3, 0, "lindilate"),
+             ("L3_T32_lindilate2d_r4", 32, 3, 0, "lindilate2d")]
     for name, tile, levels, fov_edge, rule in multi:
         gain = fov_gain_for(W, H, tile, fov_edge) if fov_edge else 0
         fam = f"multi_{name}"
+        ratio = 4 if name.endswith("_r4") else 2
         for s in (scales if fam in MAIN_FAMILIES else sparse):
-            p = Params(tile=tile, levels=levels, thr=level_thr(levels, s), fov_gain=gain)
+            p = Params(tile=tile, levels=levels, thr=level_thr(levels, s, ratio), fov_gain=gain)
             out.append(Setting(fam, f"thr={','.join(map(str, p.thr))}", "multi_level",
                                {"params": p, "rule": rule}, {**p.as_dict(), "rule": rule}))
     for fam, block, metric in DACS_VARIANTS:
