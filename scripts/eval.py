@@ -76,6 +76,9 @@ def main(argv=None):
                          "docs/converged with --full, none in the quick run; 'none' for none)")
     ap.add_argument("--refs-only", action="store_true",
                     help="stop after the full renders and converged references")
+    ap.add_argument("--heldout", action="store_true",
+                    help="held-out scenes (with --scenes): write the head-to-head to "
+                         "docs/converged/heldout_WxH.json for the results page, not the page itself")
     a = ap.parse_args(argv)
 
     if a.report_only:
@@ -219,6 +222,12 @@ def main(argv=None):
         "examples": examples,
     }
     (out / "results.json").write_text(json.dumps(result, indent=1))
+    if a.heldout and head_to_head:
+        ho = {"config": {**result["config"], "conv_spp": (a.conv_grid or 16) ** 2},
+              "head_to_head": head_to_head, "head_to_head_references": conv_info}
+        hf = (CS.STORE if store == "none" else Path(store)) / f"heldout_{W}x{H}.json"
+        hf.write_text(json.dumps(ho, indent=1))
+        log(f"eval: held-out head-to-head in {hf}")
     log(f"eval: wrote {out / 'results.json'} ({len(records)} records) in {time.perf_counter() - t_start:.0f} s")
     for mode, h in headline.items():
         b, c = h["best_psnr_at_most_15pct"], h["cheapest_40db_mean"]

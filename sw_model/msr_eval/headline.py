@@ -124,13 +124,33 @@ def summary(analysis: dict, t: str = "eq") -> dict:
     return rows
 
 
-def docs_lines(analysis: dict, cfg: dict, fig: str | None = None, conv_info: dict | None = None) -> list[str]:
-    """The section that leads docs/results.md."""
+def docs_lines(analysis: dict, cfg: dict, fig: str | None = None, conv_info: dict | None = None,
+               heldout: dict | None = None) -> list[str]:
+    """The section that leads docs/results.md (and, when given, the held-out scenes' tables)."""
+    L = _tables(analysis, cfg, fig, conv_info, f"## The head-to-head at {cfg['width']}x{cfg['height']} against "
+                "the converged image (read this first)", True)
+    if heldout:
+        hc = heldout["config"]
+        L += _tables(heldout["head_to_head"], hc, None, heldout.get("head_to_head_references"),
+                     f"## Held-out scenes at {hc['width']}x{hc['height']}: the same comparison on models outside the set",
+                     False, "Scenes that no rule was designed or tuned on: " +
+                     ", ".join(f"`{s}`" for s in hc.get("scene_sources", hc["scenes"])) +
+                     f"; converged references of {hc.get('conv_spp', 256)} samples per pixel, one seed "
+                     f"(`scripts/eval.py --heldout`, run {hc.get('date_utc', '')}, {hc.get('runtime_s', 0) / 60:.0f} min).\n")
+    return L
+
+
+def _tables(analysis: dict, cfg: dict, fig, conv_info, title: str, intro: bool, lead: str = "") -> list[str]:
     L = []
     w = L.append
     names = {k: n for k, n, *_ in GROUPS}
     scenes = list(analysis)
-    w(f"## The head-to-head at {cfg['width']}x{cfg['height']} against the converged image (read this first)\n")
+    w(title + "\n")
+    if lead:
+        w(lead)
+    if not intro:
+        return L + _body(analysis, scenes, names, None, conv_info, w_level="###")
+    w_level = "###"
     w("The question a user asks: **to get a frame as close to the noise-free image as tracing every "
       "pixel gets, what fraction of the pixels must each method trace?** Heavy renderer (16 samples "
       "per pixel, area light and ambient occlusion); the converged reference is the same renderer with "
@@ -143,8 +163,14 @@ def docs_lines(analysis: dict, cfg: dict, fig: str | None = None, conv_info: dic
       "variance), VRS over both tile sizes, the patent's rule and ours over L = 2 and 3 and T = 16 "
       "and 32. Methods: "
       "[dacs.md](dacs.md); the new rule: [rules.md](rules.md#lindilate2d).\n")
+    return L + _body(analysis, scenes, names, fig, conv_info, w_level)
+
+
+def _body(analysis, scenes, names, fig, conv_info, w_level: str) -> list[str]:
+    L = []
+    w = L.append
     cols = [k for k, *_ in GROUPS]
-    w("### Traced % at the equal-quality point (as close to the converged image as the full render)\n")
+    w(f"{w_level} Traced % at the equal-quality point (as close to the converged image as the full render)\n")
     w("| scene | eq (dB) | " + " | ".join(names[k] for k in cols) + " | best peer - best ours |")
     w("|---|---:|" + "---:|" * len(cols) + "---:|")
     wins = []
@@ -177,7 +203,7 @@ def docs_lines(analysis: dict, cfg: dict, fig: str | None = None, conv_info: dic
           f"equal-quality point (a positive last column: DACS needs more).\n")
     for t, title in (("eq-1", "1 dB below the full render"), ("eq-3", "3 dB below the full render"),
                      ("40", "40 dB"), ("35", "35 dB")):
-        w(f"### Traced % for {title}\n")
+        w(f"{w_level} Traced % for {title}\n")
         w("| scene | " + " | ".join(names[k] for k in cols) + " |")
         w("|---|" + "---:|" * len(cols))
         for sc in scenes:
@@ -193,7 +219,7 @@ def docs_lines(analysis: dict, cfg: dict, fig: str | None = None, conv_info: dic
                              (f"<= {_pct(n['fraction'])}" if n["how"] == "at_or_below" else _pct(n["fraction"])))
             w(f"| {sc} | " + " | ".join(cells) + " |")
         w("")
-    w("### At the equal-quality point: SSIM, FLIP and the worst 32x32 tile\n")
+    w(f"{w_level} At the equal-quality point: SSIM, FLIP and the worst 32x32 tile\n")
     w("Of each group's cheapest recorded setting reaching `eq` (the full render itself where none does "
       "below 100 %); SSIM and FLIP against the converged reference; the worst tile's PSNR shows the "
       "local failures that a frame's mean hides.\n")
@@ -210,7 +236,7 @@ def docs_lines(analysis: dict, cfg: dict, fig: str | None = None, conv_info: dic
                                     for i, v in enumerate((ss, fl, tl))))
         w(f"| {sc} | " + " | ".join(cells) + " |")
     w("")
-    w("### PSNR against the converged image on a common grid of traced fractions (mean over the scenes)\n")
+    w(f"{w_level} PSNR against the converged image on a common grid of traced fractions (mean over the scenes)\n")
     w("Each group's front read at the same traced fractions; `-` where a group cannot trace that few "
       "(DACS 4x4 traces at least its first pass, one pixel in 16).\n")
     w("| group | " + " | ".join(f"{int(100 * f)} %" for f in GRID) + " | " +
@@ -231,7 +257,7 @@ def docs_lines(analysis: dict, cfg: dict, fig: str | None = None, conv_info: dic
     if fig:
         w(f"![Pareto fronts per scene against the converged image]({fig})\n")
     if conv_info:
-        w("### The converged references of this run\n")
+        w(f"{w_level} The converged references of this run\n")
         w("| scene | samples per pixel | render time (s) | from | two seeds at 192x108 (ladder) |")
         w("|---|---:|---:|---|---|")
         for sc in scenes:

@@ -116,7 +116,11 @@ def write_docs(result: dict, out: Path, docs: Path):
         if src.is_file():
             _small_png(src, img / "eval_fronts_headline.png", 1100)
             fig = "img/eval_fronts_headline.png"
-        L.extend(head_lines(result["head_to_head"], cfg, fig, result.get("head_to_head_references")))
+        heldout = None
+        hfs = sorted((docs / "converged").glob("heldout_*.json"))
+        if hfs:                                   # scripts/eval.py --heldout
+            heldout = json.loads(hfs[-1].read_text())
+        L.extend(head_lines(result["head_to_head"], cfg, fig, result.get("head_to_head_references"), heldout))
         hnotes = docs / "results_headline_notes.md"       # hand-written findings, pasted in
         if hnotes.is_file():
             w(hnotes.read_text())
