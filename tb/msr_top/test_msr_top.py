@@ -306,6 +306,20 @@ async def test_random_frames(dut):
                         src_en=int(i % 4 != 3))
 
 
+async def expect_refused(dut, env, code, what):
+    """START with the registers as programmed is refused with `code`: the error and CFG_ERR in
+    STATUS, nothing started, no render request, the memory untouched (still FILL)."""
+    await env.wr(R.CTRL, R.CTRL_START_MASK)
+    await ClockCycles(dut.clk_i, 50)
+    st = await env.rd(R.STATUS)
+    err = (st & R.STATUS_ERROR_MASK) >> R.STATUS_ERROR_LSB
+    assert err == code, f"{what}: error code {err}, want {code}"
+    assert not st & (R.STATUS_BUSY_MASK | R.STATUS_DONE_MASK), f"{what}: STATUS {st:#x}: something started"
+    assert st & R.STATUS_CFG_ERR_MASK, f"{what}: STATUS {st:#x}: CFG_ERR not set"
+    assert not env.render.requests, f"{what}: render requests issued"
+    assert set(env.ram.read(0, MEM)) == {FILL}, f"{what}: memory written"
+
+
 @cocotb.test()
 async def test_bad_registers(dut):
     env, rng = await setup(dut, 12)
@@ -343,15 +357,7 @@ async def test_bad_registers(dut):
         env.render.requests = []
         await env.program(cfg["W"], cfg["H"], cfg["tile"], cfg["levels"], cfg["metric"], cfg["thr"], cfg["gain"],
                           **regs)
-        await env.wr(R.CTRL, R.CTRL_START_MASK)
-        await ClockCycles(dut.clk_i, 50)
-        st = await env.rd(R.STATUS)
-        err = (st & R.STATUS_ERROR_MASK) >> R.STATUS_ERROR_LSB
-        assert err == code, f"{what}: error code {err}, want {code}"
-        assert not st & (R.STATUS_BUSY_MASK | R.STATUS_DONE_MASK), f"{what}: STATUS {st:#x}: something started"
-        assert st & R.STATUS_CFG_ERR_MASK, f"{what}: STATUS {st:#x}: CFG_ERR not set"
-        assert not env.render.requests, f"{what}: render requests issued"
-        assert set(env.ram.read(0, MEM)) == {FILL}, f"{what}: memory written"
+        await expect_refused(dut, env, code, what)
     # A refused START raises the interrupt while IRQ_EN; CFG_ERR is write-1-to-clear.
     await env.wr(R.CTRL, R.CTRL_IRQ_EN_MASK)
     await RisingEdge(dut.clk_i)
@@ -383,13 +389,7 @@ async def test_rule(dut):
         env.render.requests = []
         env.ram.write(0, bytes([FILL]) * MEM)
         await env.program(20, 10, 8, 2, 0, [8, 16], 0, rule=1)
-        await env.wr(R.CTRL, R.CTRL_START_MASK)
-        await ClockCycles(dut.clk_i, 50)
-        st = await env.rd(R.STATUS)
-        err = (st & R.STATUS_ERROR_MASK) >> R.STATUS_ERROR_LSB
-        assert err == ERR_RULE, f"rule 1 in a patent-only top: error code {err}, want {ERR_RULE}"
-        assert not st & (R.STATUS_BUSY_MASK | R.STATUS_DONE_MASK), f"STATUS {st:#x}: something started"
-        assert not env.render.requests and set(env.ram.read(0, MEM)) == {FILL}, "rule 1 refused, yet work done"
+        await expect_refused(dut, env, ERR_RULE, "rule 1 in a patent-only top")
         for _ in range(2):
             c = random_config(rng)
             await env.frame(c["W"], c["H"], c["tile"], c["levels"], c["metric"], c["thr"], c["gain"], rule=0)
