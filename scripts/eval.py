@@ -83,6 +83,8 @@ def main(argv=None):
 
     if a.report_only:
         result = json.loads((Path(a.out) / "results.json").read_text())
+        if any("psnr_conv" in r and r["mode"] == "heavy" for r in result["records"]):
+            result["head_to_head"] = HL.analyse(result["records"], "heavy")    # the page's code of now
         if a.docs or not a.conv_page:
             R.write_docs(result, Path(a.out), Path(a.docs_dir))
         if a.conv_page and result.get("converged"):
