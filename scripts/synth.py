@@ -668,7 +668,8 @@ def main() -> int:
             report["generic"][ENGINE] = {k: results[("generic", (ENGINE, k))] for k in ("inferred", "black box")}
         elif m in mods and m not in (ENGINE, TOP):
             report["generic"][m] = {"inferred": results[("generic", (m, "inferred"))]}
-    seed_rows = [results[("ecp5", f"{TOP}@{s}")] for s in seeds if ("ecp5", f"{TOP}@{s}") in results]
+    # each row names its seed, a failed run's error row too
+    seed_rows = [{"seed": s, **results[("ecp5", f"{TOP}@{s}")]} for s in seeds if ("ecp5", f"{TOP}@{s}") in results]
     if seed_rows:
         top_row = combine_seeds(seed_rows)
         failures += [f"{TOP} ECP5 seed {x['seed']}: {x['error']}" for x in top_row.get("fmax_seeds", [])

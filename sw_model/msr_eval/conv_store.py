@@ -27,8 +27,7 @@ REPO = Path(__file__).resolve().parents[2]
 STORE = REPO / "docs" / "converged"
 LADDER = STORE / "ladder.json"
 
-# Record fields kept in the compact tables (the rest are wall times or derived).
-_FLOAT_DIGITS = 5
+_FLOAT_DIGITS = 5            # significant digits of the floats in the committed tables
 
 
 def frame_sha(frame: np.ndarray) -> str:
@@ -123,8 +122,8 @@ def _round(v):
 
 
 def pack(records: list) -> dict:
-    """Records as a column list and rows (floats to 5 significant digits); the same setting
-    dict is stored once per family label."""
+    """Records as a column list and rows (floats to _FLOAT_DIGITS significant digits; a
+    field a record lacks is stored as "__absent__", so unpack gives back the same keys)."""
     cols = sorted({k for r in records for k in r})
     return {"columns": cols, "rows": [[_round(r.get(k)) if k in r else "__absent__" for k in cols]
                                       for r in records]}

@@ -15,6 +15,7 @@ ours over L = 2 and 3, T = 16 and 32, and three threshold shapes (s, 2s, 4s; s, 
 """
 from __future__ import annotations
 
+from .conv_report import psnr_at
 from .metrics import capped, fraction_for, pareto
 
 # (key, name, families, colour, marker): the page's one palette
@@ -40,17 +41,6 @@ OURS = ("lindilate", "dilate", "lindilate2d")
 PEERS = ("dacs", "dacs8")
 GRID = (0.05, 0.10, 0.15, 0.20, 0.30, 0.40, 0.50, 0.60, 0.80)          # the common traced-fraction grid
 BANDS = ((0.0, 0.10), (0.10, 0.25), (0.25, 0.50), (0.50, 1.0))
-
-
-def psnr_on_front(front, fraction):
-    """PSNR of a Pareto front at a traced fraction (linear between its points; the best point
-    at or below the fraction where it lies past the last one); None below its first point."""
-    if not front or fraction < front[0][0]:
-        return None
-    for (f1, p1), (f2, p2) in zip(front, front[1:]):
-        if f1 <= fraction <= f2:
-            return p1 + (fraction - f1) / (f2 - f1) * (p2 - p1) if f2 > f1 else max(p1, p2)
-    return front[-1][1]
 
 
 def _front(recs, fams, eq):
@@ -87,7 +77,7 @@ def analyse(records, mode: str = "heavy") -> dict:
                 continue
             grid = {}
             for f in GRID:
-                vals = [p for p in (psnr_on_front(fr, f) for fr in fronts.values()) if p is not None]
+                vals = [p for p in (psnr_at(fr, f) for fr in fronts.values()) if p is not None]
                 grid[f"{f:.2f}"] = max(vals) if vals else None
             g = {"needed": {}, "grid": grid}
             for t, v in targets.items():
@@ -124,15 +114,6 @@ def _best_of(a, keys, t="eq"):
 
 def _pct(f):
     return "-" if f is None else f"{100 * f:.1f}"
-
-
-def summary(analysis: dict, t: str = "eq") -> dict:
-    """Per scene: ours (best of OURS), the new rule alone, the best peer; the set means."""
-    rows = {}
-    for sc, a in analysis.items():
-        rows[sc] = {"ours": _best_of(a, OURS, t), "new": (_need(a, "lindilate2d", t), "lindilate2d"),
-                    "peer": _best_of(a, PEERS, t), "patent": (_need(a, "patent", t), "patent")}
-    return rows
 
 
 def docs_lines(analysis: dict, cfg: dict, fig: str | None = None, conv_info: dict | None = None,

@@ -274,7 +274,7 @@ def appendices(docs: Path) -> list[str]:
         for line in f.read_text().splitlines():
             if line.startswith("#"):
                 line = "##" + line if not line.startswith("# ") else "### " + line[2:]
-            line = re.sub(r"\]\((?!https?:|#|\.\./)([^)]+)\)", lambda m: f"]({_rebase(m.group(1), name)})", line)
+            line = re.sub(r"\]\((?!https?:|#)([^)]+)\)", lambda m: f"]({_rebase(m.group(1), name)})", line)
             out.append(line)
         out.append("")
     return out
@@ -282,11 +282,11 @@ def appendices(docs: Path) -> list[str]:
 
 def _rebase(link: str, name: str) -> str:
     """A relative link of an appendix page (written for docs/ or docs/eval_1080p/) as seen from docs/."""
-    if name.startswith("fast_16spp") and link.startswith("img/"):
+    if not name.startswith("fast_16spp"):         # written in docs/: its links hold as they are
+        return link
+    if link.startswith("img/"):
         return "appendix/" + link
-    if link.startswith("../"):
-        return link[3:]
-    return link
+    return link[3:] if link.startswith("../") else "appendix/" + link
 
 
 def _round(v):

@@ -86,8 +86,7 @@ COMMON_CODE = ("sw_model/msr_model/spec.py", "sw_model/msr_eval/methods.py", "sw
 FAMILY_CODE = (("multi_", ("sw_model/msr_model/golden.py", "sw_model/msr_model/passview.py")),
                ("dacs", ("sw_model/msr_eval/dacs.py",)),
                ("vrs_", ("sw_model/msr_eval/vrs.py",)))
-RECORD_CODE = COMMON_CODE + tuple(f for _, fs in FAMILY_CODE for f in fs) + (
-    "sw_model/msr_model/rules.py", "sw_model/msr_eval/rules.py", "sw_model/msr_eval/gbuffer_rule.py")
+
 # The peers (issue 17): DACS (msr_eval.dacs) over its variance threshold, the VRS-like baseline
 # (msr_eval.vrs) over its contrast scale, per 8x8 and 16x16 tile.
 # (a variance of 16256 = 127.5^2 is the largest 8-bit neighbours can have: everything interpolated)
@@ -358,7 +357,6 @@ class SweepConfig:
 
     def ladder_grid(self, sid: str) -> int | None:
         return CS.ladder_grid(sid) if self.conv_ladder and not self.conv_grid else None
-        return h.hexdigest()[:10]
 
 
 # --- tasks (pure functions of their arguments) -----------------------------------------------
@@ -557,7 +555,7 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     # when cfg.store), else the cache, else rendered as tasks; each saved as soon as it is done.
     convs = {}
     store = CS.Store(W, H, cfg.store) if cfg.store else None
-    full_sha = {pair: CS.frame_sha(refs[pair]) for pair in pairs}
+    full_sha = {pair: CS.frame_sha(refs[pair]) for pair in pairs} if store is not None else {}
     if cfg.conv:
         todo = []
         for scene, mode in pairs:
@@ -657,9 +655,10 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
         jobs = []
         recs = records[(scene, mode)]
 
-        def add(r, done_key):
+        def add(r, done_key, want_flip=None):
             if done_key not in r and not any(r is j[0] for j in jobs):
-                want_flip = cfg.quick or r["family"] in FLIP_FAMILIES_FULL
+                if want_flip is None:
+                    want_flip = cfg.quick or r["family"] in FLIP_FAMILIES_FULL
                 st = find_setting(sweep, r)
                 jobs.append((r, executor.submit(task_key_metrics, shared[(scene, mode)], st, want_flip,
                                                 *gb(scene, st), *cv(scene, mode), priority=1)))
@@ -681,11 +680,9 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
                 eq = [r["psnr_conv"] for r in recs if r["family"] == "full"]
                 for fam in CONV_FAMILIES:
                     r = REF.pick_near_conv(recs, scene_id(scene), mode, fam, eq[0]) if eq else None
-                    if r is not None and "ssim_conv" not in r and not any(r is j[0] for j in jobs):
+                    if r is not None:
                         r["key_setting_conv"] = True
-                        st = find_setting(sweep, r)
-                        jobs.append((r, executor.submit(task_key_metrics, shared[(scene, mode)], st, True,
-                                                        *gb(scene, st), *cv(scene, mode), priority=1)))
+                        add(r, "ssim_conv", want_flip=True)
         return jobs
 
     def finish(scene, mode, rfile, jobs):
