@@ -5,6 +5,7 @@ rtl/msr_pkg.sv
 rtl/prim/msr_lzc.sv
 rtl/prim/msr_clr_reg.sv
 rtl/prim/msr_seg_add.sv
+rtl/prim/msr_sat_counter.sv
 rtl/prim/msr_rr_arb.sv
 rtl/prim/msr_fifo.sv
 rtl/prim/msr_spill_reg.sv
@@ -19,7 +20,6 @@ rtl/engine/msr_tile_engine.sv
 rtl/regs/msr_regs_pkg.sv
 rtl/regs/msr_regs.sv
 rtl/system/msr_sys_pkg.sv
-rtl/system/msr_sat_counter.sv
 rtl/system/msr_axil_cpuif.sv
 rtl/system/msr_cfg_ctrl.sv
 rtl/system/msr_tile_gen.sv

@@ -13,11 +13,12 @@
 // request, no memory write). A frame ends when the tile generator has handed out every tile,
 // every tile's last pixel has reached the writer and the writer is idle. SOFT_RESET in any
 // state: DRAIN until no render request is in flight and the writer is idle, then one CLEAR
-// cycle (every unit's synchronous clear), then idle.
+// cycle (every unit's synchronous clear, sent a clock later from one register per engine and
+// one for the rest), then idle. The interrupt pin is registered here too.
 //
-// Watchdog: while a frame runs, WATCHDOG cycles in a row without progress (progress_i: a render
-// request or, while running, a response taken; an AW, W or expected B handshake; a finished
-// pixel taken) end the frame: CLEAR at once, STATUS.ERROR = 12, STATUS.WDOG (the interrupt).
+// Watchdog: while a frame runs, WATCHDOG cycles in a row without progress (moved_i: a render
+// request, an AW, W or expected B handshake, a finished pixel taken; rsp_taken_i: a response
+// taken, while running) end the frame: CLEAR at once, STATUS.ERROR = 12, STATUS.WDOG (the interrupt).
 // The same count bounds a soft reset's drain (with WATCHDOG 0, DRAIN_TIMEOUT cycles): responses
 // do not count as progress there, so a unit that keeps sending responses cannot hold the drain
 // open; the events that do count are finite once no tile is handed out, so the drain always
@@ -49,16 +50,17 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   output logic                   done_clr_o,     // STATUS.DONE, CFG_ERR cleared (START, SOFT_RESET)
   output logic                   cfg_err_set_o,  // STATUS.CFG_ERR: a START was refused
   output logic                   wdog_set_o,     // STATUS.WDOG: the watchdog forced a CLEAR
-  output logic [15:0]            mem_err_cnt_o,  // write error responses (saturating)
-  output logic [31:0]            mem_err_addr_o, // address of the first failing burst
-  output logic                   b_unexp_o,      // a write response came with nothing outstanding
-  output logic [15:0]            rsp_drop_cnt_o, // render responses dropped (saturating)
+  output err_counts_t            err_counts_o,   // MEM_ERR, MEM_ERR_ADDR, RSP_DROP
+  input  logic                   irq_en_i,       // CTRL.IRQ_EN
+  input  logic [2:0]             irq_flags_i,    // STATUS.DONE, CFG_ERR, WDOG
+  output logic                   irq_o,          // the interrupt pin, a clock after the flags
   // Units.
   output logic                   start_o,        // pulse: the frame starts with cfg_o
   output logic                   run_o,          // a frame runs: tiles may be handed out
   output logic                   drain_o,        // soft reset: hold requests, drop pixels
-  output logic                   clear_o,        // pulse: synchronous clear of every unit
-  input  logic                   desc_fire_i,    // a tile went to an engine (may come a clock late)
+  output logic                   clear_o,        // pulse: synchronous clear of the system units
+  output logic [NUM_ENGINES-1:0] eng_clear_o,    // the same pulse, one register per engine
+  input  logic                   desc_fire_i,    // a tile went to an engine
   input  logic [NUM_ENGINES-1:0] tile_done_i,    // the last pixel of a tile reached the writer
   input  logic                   tg_done_i,      // the tile generator handed out every tile
   input  logic                   rnd_idle_i,     // no render request in flight in any engine
@@ -66,9 +68,14 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   input  logic                   bresp_err_i,    // pulse: a write error response
   input  logic [31:0]            bresp_addr_i,   // its burst's address
   input  logic                   b_unexp_i,      // pulse: a write response with nothing outstanding
-  input  logic [4:0]             rsp_drop_n_i,   // render responses dropped this clock
-  input  logic                   progress_i      // something moved on the ports this clock
+  input  logic [NUM_ENGINES-1:0] rsp_drop_i,     // engine i dropped a render response
+  input  logic                   bad_eid_i,      // the render mux dropped one (no such engine)
+  input  logic                   moved_i,        // a handshake on the ports (watchdog progress)
+  input  logic                   rsp_taken_i     // a render response taken (progress in RUN)
 );
+  if (NUM_ENGINES > 30) begin : g_check_engines
+    $fatal(1, "msr_cfg_ctrl: NUM_ENGINES must be 1..30 (5-bit drop count), got %0d", NUM_ENGINES);
+  end
   typedef enum logic [2:0] {
     ST_IDLE   = 3'd0,   // no frame
     ST_SAMPLE = 3'd1,   // registers sampled
@@ -105,6 +112,50 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   logic [31:0]      wd_q;              // cycles in a row without progress
   logic             wd_fire;           // the watchdog ends the frame or the drain
 
+  // ---- Clear fan-out ----------------------------------------------------------------------------
+  // The soft reset's clear reaches every flip-flop of the design: one register per engine and
+  // one for the rest, so that no path runs from the state register across the die into some
+  // forty thousand loads. Every unit clears on the same clock, one after ST_CLEAR (the next
+  // frame's START is two clocks further at the earliest: ST_SAMPLE, ST_CHECK).
+  logic                   clear_q;
+  logic [NUM_ENGINES-1:0] eng_clear_q;
+  msr_clr_reg #(.WIDTH(1 + NUM_ENGINES)) u_clear_q (
+    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
+    .d_i ({state_q == ST_CLEAR, {NUM_ENGINES{state_q == ST_CLEAR}}}),
+    .q_o ({clear_q, eng_clear_q})
+  );
+
+  // The events of the tiles-in-flight count are registered on their way in: a tile handed to
+  // an engine (the generator's dispatch, which reads RUN) and a tile's last pixel taken by the
+  // writer (its row state). Each path through the count's adder set the clock (glue 10.0 ns,
+  // flat top 11.95 ns). The count moves a clock later; DONE also waits while a dispatch is on
+  // its way, so DONE comes a clock later, never earlier. Events in the units' clear clock are
+  // dropped, as the units drop them.
+  logic                   desc_fire_q;
+  logic [NUM_ENGINES-1:0] tile_done_q;
+  msr_clr_reg #(.WIDTH(1 + NUM_ENGINES)) u_events_q (
+    .clk_i, .rst_ni, .clear_i (clear_q), .en_i (1'b1),
+    .d_i ({desc_fire_i, tile_done_i}),
+    .q_o ({desc_fire_q, tile_done_q})
+  );
+
+  // Watchdog progress, registered: the handshakes come from every engine and both ports, and
+  // a watchdog one clock late loses nothing. Responses count only while running: during a
+  // drain they cannot keep the wait open.
+  logic progress_q;
+  msr_clr_reg #(.WIDTH(1)) u_progress_q (
+    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
+    .d_i (moved_i || (state_q == ST_RUN && rsp_taken_i)),
+    .q_o (progress_q)
+  );
+
+  // Responses dropped this clock: the engines' and the mux's (at most NUM_ENGINES + 1).
+  logic [4:0] rsp_drop_n;
+  always_comb begin
+    rsp_drop_n = 5'(bad_eid_i);
+    for (int unsigned i = 0; i < NUM_ENGINES; i++) rsp_drop_n += 5'(rsp_drop_i[i]);
+  end
+
   // ---- Field checks (from the sampled registers) ---------------------------------------------
   logic [6:0] fchk;
   always_comb begin
@@ -113,13 +164,13 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
               raw_q.height == '0 || raw_q.height > dim_t'(MAX_FRAME);
     fchk[1] = !(raw_q.tile inside {6'd8, 6'd16, 6'd32});
     fchk[2] = raw_q.levels == '0;
-    fchk[3] = (raw_q.fb_stride[31:15] == '0 && raw_q.fb_stride[14:0] < {raw_q.width, 2'b0}) ||
-              raw_q.fb_stride[1:0] != '0;
-    fchk[4] = raw_q.fb_base[1:0] != '0;
-    fchk[5] = raw_q.src_en && ((raw_q.src_stride[31:13] == '0 &&
-                                raw_q.src_stride[12:0] < raw_q.width) ||
-                               raw_q.src_stride[1:0] != '0);
-    fchk[6] = raw_q.src_en && raw_q.src_base[1:0] != '0;
+    fchk[3] = (raw_q.fb.fb_stride[31:15] == '0 && raw_q.fb.fb_stride[14:0] < {raw_q.width, 2'b0}) ||
+              raw_q.fb.fb_stride[1:0] != '0;
+    fchk[4] = raw_q.fb.fb_base[1:0] != '0;
+    fchk[5] = raw_q.fb.src_en && ((raw_q.fb.src_stride[31:13] == '0 &&
+                                   raw_q.fb.src_stride[12:0] < raw_q.width) ||
+                                  raw_q.fb.src_stride[1:0] != '0);
+    fchk[6] = raw_q.fb.src_en && raw_q.fb.src_base[1:0] != '0;
   end
 
   // ---- Plane ranges: end = base + (H-1)*stride + row bytes, per plane (0 fb, 1 src) ----------
@@ -141,7 +192,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       if (step_q < STEP_H[4:0]) begin
         addend[p] = hm1_q[0] ? sh_q[p] : '0;
       end else if (step_q == STEP_BASE[4:0]) begin
-        addend[p] = ACC_W'((p != 0) ? raw_q.src_base : raw_q.fb_base);
+        addend[p] = ACC_W'((p != 0) ? raw_q.fb.src_base : raw_q.fb.fb_base);
       end else if (step_q == STEP_ROW[4:0]) begin
         addend[p] = (p != 0) ? ACC_W'(raw_q.width) : ACC_W'({raw_q.width, 2'b0});
       end
@@ -156,7 +207,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       cy_q  <= '0;
       lt_q  <= '0;
     end else if (state_q == ST_SAMPLE) begin
-      sh_q  <= {ACC_W'(raw_q.src_stride), ACC_W'(raw_q.fb_stride)};
+      sh_q  <= {ACC_W'(raw_q.fb.src_stride), ACC_W'(raw_q.fb.fb_stride)};
       hm1_q <= 12'(raw_q.height - 1'b1);
       acc_q <= '0;
       cy_q  <= '0;
@@ -187,7 +238,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   always_comb begin
     for (int unsigned p = 0; p < 2; p++) begin
       logic [7:0] a, b;
-      a       = 8'(ACC_W'((p != 0) ? raw_q.src_base : raw_q.fb_base) >> (8 * cmp_seg));
+      a       = 8'(ACC_W'((p != 0) ? raw_q.fb.src_base : raw_q.fb.fb_base) >> (8 * cmp_seg));
       b       = 8'(acc_q[1-p] >> (8 * cmp_seg));
       lt_d[p] = (a < b) || (a == b && lt_q[p]);
     end
@@ -203,7 +254,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     chk_all      = {3'b0, fchk};
     chk_all[7]   = 1'b0;                                // code 8 is the memory error
     chk_all[8]   = wraps(acc_q[0]);
-    chk_all[9]   = raw_q.src_en && wraps(acc_q[1]);
+    chk_all[9]   = raw_q.fb.src_en && wraps(acc_q[1]);
   end
 
   // The first failing check, in the order of the codes (code k + 1 for flag k).
@@ -218,12 +269,12 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
 
   always_comb begin
     n_done = '0;
-    for (int unsigned i = 0; i < NUM_ENGINES; i++) n_done += $bits(n_done)'(tile_done_i[i]);
+    for (int unsigned i = 0; i < NUM_ENGINES; i++) n_done += $bits(n_done)'(tile_done_q[i]);
   end
 
   // ---- Control ----------------------------------------------------------------------------------
   logic overlap;
-  assign overlap = raw_q.src_en && lt_q[0] && lt_q[1];
+  assign overlap = raw_q.fb.src_en && lt_q[0] && lt_q[1];
   assign accept  = (state_q == ST_CHECK) && (step_q == STEP_END[4:0]) && (chk_q == '0) &&
                    !overlap && !rule_chk_q;
 
@@ -273,7 +324,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   // all ones" flag (set the clock before the lower half reaches it), so no path holds a
   // 32-bit carry: the count is exact, the logic depth that of a 16-bit counter.
   logic wd_clr, wd_lo_ones_q;
-  assign wd_clr = !wd_on || progress_i || wd_fire || soft_reset_i;
+  assign wd_clr = !wd_on || progress_q || wd_fire || soft_reset_i;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -311,7 +362,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       start_q      <= accept && state_d == ST_RUN;
       refused_q    <= (state_q == ST_CHECK) && (step_q == STEP_END[4:0]) && !accept &&
                       state_d == ST_IDLE;
-      frame_done_q <= (state_q == ST_RUN) && !start_q && tg_done_i && tif_q == '0 && !desc_fire_i &&
+      frame_done_q <= (state_q == ST_RUN) && !start_q && tg_done_i && tif_q == '0 && !desc_fire_q &&
                       wr_idle_i && !frame_done_q;
       step_q       <= (state_q == ST_CHECK) ? step_q + 1'b1 : '0;
       if (state_q == ST_IDLE && start_i) raw_q <= raw_i;
@@ -329,18 +380,14 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
         cfg_q.rule       <= rule_e'(raw_q.rule[0]);
         cfg_q.thr        <= raw_q.thr;
         cfg_q.fov_gain   <= raw_q.fov_gain;
-        cfg_q.fb_base    <= raw_q.fb_base;
-        cfg_q.fb_stride  <= raw_q.fb_stride;
-        cfg_q.src_en     <= raw_q.src_en;
-        cfg_q.src_base   <= raw_q.src_base;
-        cfg_q.src_stride <= raw_q.src_stride;
+        cfg_q.fb         <= raw_q.fb;
       end
-      // Counted in RUN and DRAIN only: the units clear a clock after ST_CLEAR (msr_top
-      // registers the clear on its way), and a tile finishing in that clock is not in flight.
+      // Counted in RUN and DRAIN only: the units clear a clock after ST_CLEAR (clear_q), and a
+      // tile finishing in that clock is not in flight.
       if (state_q == ST_CLEAR || start_q) begin
         tif_q <= '0;
       end else if (state_q == ST_RUN || state_q == ST_DRAIN) begin
-        tif_q <= tif_q + TIF_W'(desc_fire_i) - TIF_W'(n_done);
+        tif_q <= tif_q + TIF_W'(desc_fire_q) - TIF_W'(n_done);
       end
       // Memory errors: counted, the first address kept, until the next accepted START (so they
       // survive a soft reset; dropped responses likewise, in u_rsp_drop_cnt below).
@@ -364,9 +411,9 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   assign done_clr_o     = start_q || soft_reset_i;
   assign cfg_err_set_o  = refused_q;
   assign wdog_set_o     = wd_fire;
-  assign mem_err_cnt_o  = mem_err_cnt_q;
-  assign mem_err_addr_o = mem_err_addr_q;
-  assign b_unexp_o      = b_unexp_q;
+  assign err_counts_o.mem_err_cnt  = mem_err_cnt_q;
+  assign err_counts_o.mem_err_addr = mem_err_addr_q;
+  assign err_counts_o.b_unexpected = b_unexp_q;
   // Several engines and the mux may drop a response in the same clock: the count takes their
   // sum (a segmented saturating counter, its carry registered; it reads true a clock later).
   msr_sat_counter #(.WIDTH(16), .INC_W(5), .SEG_W(8)) u_rsp_drop_cnt (
@@ -374,17 +421,27 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     .rst_ni  (rst_ni),
     .clear_i (accept),
     .en_i    (1'b1),
-    .inc_i   (rsp_drop_n_i),
-    .count_o (rsp_drop_cnt_o)
+    .inc_i   (rsp_drop_n),
+    .count_o (err_counts_o.rsp_drop_cnt)
   );
   assign start_o        = start_q;
   assign run_o          = (state_q == ST_RUN);
   assign drain_o        = (state_q == ST_DRAIN) || (state_q == ST_CLEAR);
-  assign clear_o        = (state_q == ST_CLEAR);
+  assign clear_o        = clear_q;
+  assign eng_clear_o    = eng_clear_q;
+
+  // The interrupt leaves from a flip-flop of its own, a clock after STATUS: the pin is far
+  // from the register block, and without it the STATUS bits were pulled towards the pin and
+  // the register block's write decode into them set the glue's clock.
+  msr_clr_reg #(.WIDTH(1)) u_irq_q (
+    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
+    .d_i (irq_en_i && irq_flags_i != '0),
+    .q_o (irq_o)
+  );
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_tif_no_underflow,
-              (state_q == ST_RUN) |-> !(tif_q == '0 && n_done != '0 && !desc_fire_i))
+              (state_q == ST_RUN) |-> !(tif_q == '0 && n_done != '0 && !desc_fire_q))
   `MSR_ASSERT(a_tif_no_overflow, tif_q != '1)
   `MSR_COVER(c_refused, refused_q)
   `MSR_COVER(c_overlap_refused, refused_q && err_q == ERR_OVERLAP)

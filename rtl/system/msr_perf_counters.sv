@@ -3,10 +3,12 @@
 // request offered and not taken) and memory-stall cycles (some engine offered a finished pixel
 // the writer could not take). Up to NUM_ENGINES pixels are counted per clock. The events are
 // registered first (per-kind pixel counts of the clock), then added into saturating counters
-// (msr_sat_counter), so the counters sit two clocks behind the events.
+// (msr_sat_counter), so the counters sit two clocks behind the events. The unit also holds
+// the read-back registers of every count the register block shows, these and the
+// controller's error counts (err_i), one clock old.
 `include "msr_assert.svh"
 
-module msr_perf_counters import msr_pkg::*; #(
+module msr_perf_counters import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES = 4,
   localparam int unsigned N_W = $clog2(NUM_ENGINES + 1)
 ) (
@@ -18,12 +20,12 @@ module msr_perf_counters import msr_pkg::*; #(
   input  src_t [NUM_ENGINES-1:0] pix_src_i,    // its source code
   input  logic                   rstall_i,     // a render request waits
   input  logic                   mstall_i,     // a finished pixel waits for the writer
-  output logic [31:0]            cycles_o,
-  output logic [3:0][31:0]       traced_o,     // [k]: traced at level k (0: initial samples)
-  output logic [2:0][31:0]       interp_o,     // [k-1]: interpolated at level k
-  output logic [31:0]            rstall_o,
-  output logic [31:0]            mstall_o
+  input  err_counts_t            err_i,        // the controller's error counts
+  output readback_t              readback_o    // every count, registered (one clock old)
 );
+  logic [31:0]      cycles, rstall, mstall;
+  logic [3:0][31:0] traced;                    // [k]: traced at level k (0: initial samples)
+  logic [2:0][31:0] interp;                    // [k-1]: interpolated at level k
   logic [3:0][N_W-1:0] n_traced_d, n_traced_q;
   logic [2:0][N_W-1:0] n_interp_d, n_interp_q;
   logic                en_q, rstall_q, mstall_q;
@@ -52,27 +54,41 @@ module msr_perf_counters import msr_pkg::*; #(
 
   msr_sat_counter #(.WIDTH(32), .INC_W(1)) u_cycles (
     .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (en_q), .inc_i (1'b1),
-    .count_o (cycles_o)
+    .count_o (cycles)
   );
   msr_sat_counter #(.WIDTH(32), .INC_W(1)) u_rstall (
     .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (rstall_q), .inc_i (1'b1),
-    .count_o (rstall_o)
+    .count_o (rstall)
   );
   msr_sat_counter #(.WIDTH(32), .INC_W(1)) u_mstall (
     .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (mstall_q), .inc_i (1'b1),
-    .count_o (mstall_o)
+    .count_o (mstall)
   );
   for (genvar k = 0; k < 4; k++) begin : g_traced
     msr_sat_counter #(.WIDTH(32), .INC_W(N_W)) u_cnt (
       .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (1'b1),
-      .inc_i (n_traced_q[k]), .count_o (traced_o[k])
+      .inc_i (n_traced_q[k]), .count_o (traced[k])
     );
   end
   for (genvar k = 0; k < 3; k++) begin : g_interp
     msr_sat_counter #(.WIDTH(32), .INC_W(N_W)) u_cnt (
       .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (1'b1),
-      .inc_i (n_interp_q[k]), .count_o (interp_o[k])
+      .inc_i (n_interp_q[k]), .count_o (interp[k])
     );
   end
+
+  // Read-back registers: the register block's read multiplexer then selects among flip-flops
+  // placed next to it, not among counters spread over the die (the address decode's fan-out
+  // to them and back set the glue's clock). A read returns a count one clock old; the status
+  // bits (BUSY, DONE, ...) are not delayed, so a frame's counts are final when DONE reads 1.
+  msr_clr_reg #(.WIDTH($bits(readback_t))) u_readback_q (
+    .clk_i,
+    .rst_ni,
+    .clear_i (1'b0),
+    .en_i    (1'b1),
+    .d_i     (readback_t'{cycles: cycles, traced: traced, interp: interp, rstall: rstall,
+                          mstall: mstall, err: err_i}),
+    .q_o     (readback_o)
+  );
 
 endmodule : msr_perf_counters

@@ -2,6 +2,37 @@
 package msr_sys_pkg;
   import msr_pkg::*;
 
+  // Where the frame goes: the frame-buffer plane and the optional source-map plane. The
+  // registers' values and the checked ones are the same (the checks only refuse), so both
+  // configuration types below carry this one struct, and the writer takes it whole.
+  typedef struct packed {
+    logic [31:0] fb_base;      // frame-buffer plane: byte address of pixel (0, 0)
+    logic [31:0] fb_stride;    // bytes per row, a multiple of 4
+    logic        src_en;       // write the source map too
+    logic [31:0] src_base;     // source-map plane: byte address of pixel (0, 0)
+    logic [31:0] src_stride;   // bytes per row, a multiple of 4
+  } fb_cfg_t;
+
+  // Counts the controller keeps for the register block beside the performance counters:
+  // memory errors, the first failing address, a write response with nothing outstanding,
+  // dropped render responses (docs/regs.md: MEM_ERR, MEM_ERR_ADDR, RSP_DROP).
+  typedef struct packed {
+    logic [15:0] mem_err_cnt;
+    logic [31:0] mem_err_addr;
+    logic        b_unexpected;
+    logic [15:0] rsp_drop_cnt;
+  } err_counts_t;
+
+  // What the register block reads back from the counters (registered beside it).
+  typedef struct packed {
+    logic [31:0]      cycles;       // PERF_CYCLES
+    logic [3:0][31:0] traced;       // PERF_TRACED[k]
+    logic [2:0][31:0] interp;       // PERF_INTERP[k]
+    logic [31:0]      rstall;       // PERF_RENDER_STALL
+    logic [31:0]      mstall;       // PERF_MEM_STALL
+    err_counts_t      err;          // MEM_ERR, MEM_ERR_ADDR, RSP_DROP
+  } readback_t;
+
   // Frame configuration as the registers hold it (sampled at START, checked, then latched).
   typedef struct packed {
     dim_t                  width;
@@ -12,11 +43,7 @@ package msr_sys_pkg;
     logic [1:0]            rule;       // decision rule as written (0 patent, 1 lindilate)
     thr_t [MAX_LEVELS-1:0] thr;
     logic [7:0]            fov_gain;
-    logic [31:0]           fb_base;
-    logic [31:0]           fb_stride;
-    logic                  src_en;
-    logic [31:0]           src_base;
-    logic [31:0]           src_stride;
+    fb_cfg_t               fb;
   } cfg_raw_t;
 
   // The checked configuration the units run a frame with.
@@ -29,11 +56,7 @@ package msr_sys_pkg;
     rule_e                 rule;
     thr_t [MAX_LEVELS-1:0] thr;
     logic [7:0]            fov_gain;
-    logic [31:0]           fb_base;
-    logic [31:0]           fb_stride;
-    logic                  src_en;
-    logic [31:0]           src_base;
-    logic [31:0]           src_stride;
+    fb_cfg_t               fb;
   } cfg_t;
 
   // STATUS.ERROR codes (rtl/regs/msr_regs.rdl).

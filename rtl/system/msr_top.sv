@@ -152,27 +152,23 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     thr:        {hwif_out.THRESH.THR3.value, hwif_out.THRESH.THR2.value,
                  hwif_out.THRESH.THR1.value},
     fov_gain:   hwif_out.FOV_GAIN.GAIN.value,
-    fb_base:    hwif_out.FB_BASE.ADDR.value,
-    fb_stride:  hwif_out.FB_STRIDE.STRIDE.value,
-    src_en:     hwif_out.SRC_CTRL.ENABLE.value,
-    src_base:   hwif_out.SRC_BASE.ADDR.value,
-    src_stride: hwif_out.SRC_STRIDE.STRIDE.value
+    fb:         '{fb_base:    hwif_out.FB_BASE.ADDR.value,
+                  fb_stride:  hwif_out.FB_STRIDE.STRIDE.value,
+                  src_en:     hwif_out.SRC_CTRL.ENABLE.value,
+                  src_base:   hwif_out.SRC_BASE.ADDR.value,
+                  src_stride: hwif_out.SRC_STRIDE.STRIDE.value}
   };
 
   // ---- Configuration check and control ----------------------------------------------------------
-  cfg_t  cfg;
-  err_e  err;
-  logic  busy, done_set, done_clr, cfg_err_set, wdog_set, start, run, drain, clear, b_unexp_flag;
-  logic  progress;
+  cfg_t        cfg;
+  err_e        err;
+  err_counts_t err_counts;
+  logic  busy, done_set, done_clr, cfg_err_set, wdog_set, start, run, drain, clear, moved;
   logic  tg_done, tg_busy, rnd_idle, wr_idle, bresp_err, b_unexpected;
-  logic  [31:0] bresp_addr, mem_err_addr;
-  logic  [15:0] mem_err_cnt, rsp_drop_cnt;
+  logic  [31:0] bresp_addr;
   logic  rmux_busy, bad_eid;
-  logic  [NUM_ENGINES-1:0] eng_rsp_drop;
-  logic  [4:0]             rsp_drop_n;   // responses dropped this clock: engines and the mux
+  logic  [NUM_ENGINES-1:0] eng_rsp_drop, eng_clear;
   logic  [NUM_ENGINES-1:0] eng_desc_valid, eng_desc_ready, eng_busy, wr_tile_done;
-  logic  [NUM_ENGINES-1:0] wr_tile_done_q;  // wr_tile_done, registered (below)
-  logic                    desc_fire_q;     // a tile went to an engine, registered (below)
 
   msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES), .LINDILATE(LINDILATE)) u_ctrl (
     .clk_i          (clk_i),
@@ -188,24 +184,28 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .done_clr_o     (done_clr),
     .cfg_err_set_o  (cfg_err_set),
     .wdog_set_o     (wdog_set),
-    .mem_err_cnt_o  (mem_err_cnt),
-    .mem_err_addr_o (mem_err_addr),
-    .b_unexp_o      (b_unexp_flag),
-    .rsp_drop_cnt_o (rsp_drop_cnt),
+    .err_counts_o   (err_counts),
+    .irq_en_i       (hwif_out.CTRL.IRQ_EN.value),
+    .irq_flags_i    ({hwif_out.STATUS.DONE.value, hwif_out.STATUS.CFG_ERR.value,
+                      hwif_out.STATUS.WDOG.value}),
+    .irq_o          (irq_o),
     .start_o        (start),
     .run_o          (run),
     .drain_o        (drain),
     .clear_o        (clear),
-    .desc_fire_i    (desc_fire_q),
-    .tile_done_i    (wr_tile_done_q),
+    .eng_clear_o    (eng_clear),
+    .desc_fire_i    (|eng_desc_valid),
+    .tile_done_i    (wr_tile_done),
     .tg_done_i      (tg_done),
     .rnd_idle_i     (rnd_idle),
     .wr_idle_i      (wr_idle),
     .bresp_err_i    (bresp_err),
     .bresp_addr_i   (bresp_addr),
     .b_unexp_i      (b_unexpected),
-    .rsp_drop_n_i   (rsp_drop_n),
-    .progress_i     (progress)
+    .rsp_drop_i     (eng_rsp_drop),
+    .bad_eid_i      (bad_eid),
+    .moved_i        (moved),
+    .rsp_taken_i    (rnd_rsp_valid_i && rnd_rsp_ready_o)
   );
 
   assign hwif_in.STATUS.BUSY.next  = busy;
@@ -216,60 +216,6 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   assign hwif_in.STATUS.CFG_ERR.hwclr = done_clr;
   assign hwif_in.STATUS.WDOG.hwset = wdog_set;
   assign hwif_in.STATUS.WDOG.hwclr = done_clr;
-  // The interrupt leaves from a flip-flop of its own, a clock after STATUS: the pin is far
-  // from the register block, and without it the STATUS bits were pulled towards the pin and
-  // the register block's write decode into them set the glue's clock.
-  logic irq_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) irq_q <= 1'b0;
-    else         irq_q <= hwif_out.CTRL.IRQ_EN.value &&
-                          (hwif_out.STATUS.DONE.value || hwif_out.STATUS.CFG_ERR.value ||
-                           hwif_out.STATUS.WDOG.value);
-  end
-  assign irq_o = irq_q;
-
-  always_comb begin
-    rsp_drop_n = 5'(bad_eid);
-    for (int unsigned i = 0; i < NUM_ENGINES; i++) rsp_drop_n += 5'(eng_rsp_drop[i]);
-  end
-
-  // ---- Clear distribution ------------------------------------------------------------------------
-  // The soft reset's clear reaches every flip-flop of the design: one register per engine and
-  // one for the rest, so that no path runs from the controller's state across the die into
-  // some forty thousand loads. Every unit clears on the same clock, one after ST_CLEAR (the
-  // next frame's START is two clocks further at the earliest: ST_SAMPLE, ST_CHECK).
-  logic                   clear_q;
-  logic [NUM_ENGINES-1:0] eng_clear_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      clear_q     <= 1'b0;
-      eng_clear_q <= '0;
-    end else begin
-      clear_q     <= clear;
-      eng_clear_q <= {NUM_ENGINES{clear}};
-    end
-  end
-
-  // The events of the controller's tiles-in-flight count are registered on their way to it: a
-  // tile handed to an engine (the generator's dispatch, which reads the controller's own RUN)
-  // and a tile's last pixel taken by the writer (its row state). Each path through that adder
-  // set the clock (glue 10.0 ns, flat top 11.95 ns). The count moves a clock later; the
-  // controller also holds DONE while a dispatch is on its way, so DONE comes a clock later,
-  // never earlier. Events in the units' clear clock are dropped, as the controller would not
-  // count them.
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      wr_tile_done_q <= '0;
-      desc_fire_q    <= 1'b0;
-    end else if (clear_q) begin
-      wr_tile_done_q <= '0;
-      desc_fire_q    <= 1'b0;
-    end else begin
-      wr_tile_done_q <= wr_tile_done;
-      desc_fire_q    <= |eng_desc_valid;
-    end
-  end
-
   // ---- Tile generation -------------------------------------------------------------------------
   tile_desc_t desc;
   logic [NUM_ENGINES-1:0] desc_sp_ready;
@@ -322,7 +268,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     msr_spill_reg #(.WIDTH($bits(tile_desc_t))) u_desc_slice_gen (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
-      .clear_i (clear_q),
+      .clear_i (clear),
       .valid_i (eng_desc_valid[i]),
       .ready_o (desc_sp_ready[i]),
       .data_i  (desc),
@@ -333,7 +279,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     msr_spill_reg #(.WIDTH($bits(tile_desc_t))) u_desc_slice_eng (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
-      .clear_i (eng_clear_q[i]),
+      .clear_i (eng_clear[i]),
       .valid_i (gs_desc_valid),
       .ready_o (gs_desc_ready),
       .data_i  (gs_desc),
@@ -349,7 +295,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     ) u_engine (
       .clk_i        (clk_i),
       .rst_ni       (rst_ni),
-      .clear_i      (eng_clear_q[i]),
+      .clear_i      (eng_clear[i]),
       .desc_valid_i (sp_desc_valid),
       .desc_ready_o (eng_desc_ready[i]),
       .desc_i       (sp_desc),
@@ -381,7 +327,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   msr_render_mux #(.NUM_ENGINES(NUM_ENGINES), .ETAG_W(ETAG_W)) u_render_mux (
     .clk_i           (clk_i),
     .rst_ni          (rst_ni),
-    .clear_i         (clear_q),
+    .clear_i         (clear),
     // Requests are not held during a soft reset: an engine counts a request it offers as in
     // flight, so a held request would never come home and the drain would not end. The
     // engines finish the tiles they hold (no new tile is handed out, their pixels are
@@ -433,7 +379,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     msr_spill_reg #(.WIDTH($bits(pix_word_t))) u_pix_slice_eng (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
-      .clear_i (eng_clear_q[i]),
+      .clear_i (eng_clear[i]),
       .valid_i (eng_pix_valid[i]),
       .ready_o (eng_pix_ready[i]),
       .data_i  (pix_word_t'{x: eng_pix_x[i], y: eng_pix_y[i], rgb: eng_pix_rgb[i],
@@ -445,7 +391,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     msr_spill_reg #(.WIDTH($bits(pix_word_t))) u_pix_slice_wr (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
-      .clear_i (clear_q),
+      .clear_i (clear),
       .valid_i (ep_pix_valid[i]),
       .ready_o (ep_pix_ready[i]),
       .data_i  (ep_pix[i]),
@@ -471,14 +417,14 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   ) u_fb_writer (
     .clk_i          (clk_i),
     .rst_ni         (rst_ni),
-    .clear_i        (clear_q),
+    .clear_i        (clear),
     .width_i        (cfg.width),
     .tile_i         (cfg.tile),
-    .fb_base_i      (cfg.fb_base),
-    .fb_stride_i    (cfg.fb_stride),
-    .src_en_i       (cfg.src_en),
-    .src_base_i     (cfg.src_base),
-    .src_stride_i   (cfg.src_stride),
+    .fb_base_i      (cfg.fb.fb_base),
+    .fb_stride_i    (cfg.fb.fb_stride),
+    .src_en_i       (cfg.fb.src_en),
+    .src_base_i     (cfg.fb.src_base),
+    .src_stride_i   (cfg.fb.src_stride),
     .pix_valid_i    (wr_pix_valid),
     .pix_ready_o    (wr_pix_ready),
     .pix_x_i        (wr_pix_x),
@@ -514,90 +460,40 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
 
   // ---- Watchdog progress -------------------------------------------------------------------------
   // Render requests and finished pixels, the write channels, and B responses the writer expected
-  // (a spurious B is not progress). Responses count only while running: during a drain they
-  // cannot keep the wait open (msr_cfg_ctrl). Registered: the handshakes come from every
-  // engine and both ports, and a watchdog one clock late loses nothing.
-  logic progress_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) progress_q <= 1'b0;
-    else         progress_q <= (rnd_req_valid_o && rnd_req_ready_i) ||
-                               (run && rnd_rsp_valid_i && rnd_rsp_ready_o) ||
-                               ((eng_pix_valid & eng_pix_ready) != '0) ||
-                               (m_axi_awvalid && m_axi_awready) || (m_axi_wvalid && m_axi_wready) ||
-                               (m_axi_bvalid && m_axi_bready && !b_unexpected);
-  end
-  assign progress = progress_q;
+  // (a spurious B is not progress); the controller adds render responses while running.
+  assign moved = (rnd_req_valid_o && rnd_req_ready_i) || ((eng_pix_valid & eng_pix_ready) != '0) ||
+                 (m_axi_awvalid && m_axi_awready) || (m_axi_wvalid && m_axi_wready) ||
+                 (m_axi_bvalid && m_axi_bready && !b_unexpected);
 
-  // ---- Performance counters -------------------------------------------------------------------------
-  logic [31:0]      perf_cycles, perf_rstall, perf_mstall;
-  logic [3:0][31:0] perf_traced;
-  logic [2:0][31:0] perf_interp;
+  // ---- Performance counters and read-back ---------------------------------------------------------
+  readback_t readback;
 
   msr_perf_counters #(.NUM_ENGINES(NUM_ENGINES)) u_perf (
-    .clk_i     (clk_i),
-    .rst_ni    (rst_ni),
-    .clear_i   (start || clear_q),
-    .en_i      (run),
-    .pix_hs_i  (wr_pix_valid & wr_pix_ready),
-    .pix_src_i (wr_pix_src),
-    .rstall_i  (rnd_req_valid_o && !rnd_req_ready_i),
-    .mstall_i  ((wr_pix_valid & ~wr_pix_ready) != '0),
-    .cycles_o  (perf_cycles),
-    .traced_o  (perf_traced),
-    .interp_o  (perf_interp),
-    .rstall_o  (perf_rstall),
-    .mstall_o  (perf_mstall)
+    .clk_i      (clk_i),
+    .rst_ni     (rst_ni),
+    .clear_i    (start || clear),
+    .en_i       (run),
+    .pix_hs_i   (wr_pix_valid & wr_pix_ready),
+    .pix_src_i  (wr_pix_src),
+    .rstall_i   (rnd_req_valid_o && !rnd_req_ready_i),
+    .mstall_i   ((wr_pix_valid & ~wr_pix_ready) != '0),
+    .err_i      (err_counts),
+    .readback_o (readback)
   );
 
-  // ---- Counter readback ---------------------------------------------------------------------------
-  // The counters are registered once more beside the register block: its read multiplexer then
-  // selects among flip-flops placed next to it, not among counters spread over the die (the
-  // address decode's fan-out to them and back set the glue's clock). A read returns a count one
-  // clock old; the status bits (BUSY, DONE, ...) are not delayed, so a frame's counts are final
-  // by the time DONE reads 1.
-  logic [31:0]      perf_cycles_q, perf_rstall_q, perf_mstall_q, mem_err_addr_q;
-  logic [3:0][31:0] perf_traced_q;
-  logic [2:0][31:0] perf_interp_q;
-  logic [15:0]      mem_err_cnt_q, rsp_drop_cnt_q;
-  logic             b_unexp_flag_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      perf_cycles_q  <= '0;
-      perf_rstall_q  <= '0;
-      perf_mstall_q  <= '0;
-      perf_traced_q  <= '0;
-      perf_interp_q  <= '0;
-      mem_err_cnt_q  <= '0;
-      mem_err_addr_q <= '0;
-      rsp_drop_cnt_q <= '0;
-      b_unexp_flag_q <= 1'b0;
-    end else begin
-      perf_cycles_q  <= perf_cycles;
-      perf_rstall_q  <= perf_rstall;
-      perf_mstall_q  <= perf_mstall;
-      perf_traced_q  <= perf_traced;
-      perf_interp_q  <= perf_interp;
-      mem_err_cnt_q  <= mem_err_cnt;
-      mem_err_addr_q <= mem_err_addr;
-      rsp_drop_cnt_q <= rsp_drop_cnt;
-      b_unexp_flag_q <= b_unexp_flag;
-    end
-  end
-
-  assign hwif_in.PERF_CYCLES.COUNT.next       = perf_cycles_q;
-  assign hwif_in.PERF_RENDER_STALL.COUNT.next = perf_rstall_q;
-  assign hwif_in.PERF_MEM_STALL.COUNT.next    = perf_mstall_q;
+  assign hwif_in.PERF_CYCLES.COUNT.next       = readback.cycles;
+  assign hwif_in.PERF_RENDER_STALL.COUNT.next = readback.rstall;
+  assign hwif_in.PERF_MEM_STALL.COUNT.next    = readback.mstall;
   for (genvar k = 0; k < 4; k++) begin : g_perf_traced
-    assign hwif_in.PERF_TRACED[k].COUNT.next = perf_traced_q[k];
+    assign hwif_in.PERF_TRACED[k].COUNT.next = readback.traced[k];
   end
   for (genvar k = 0; k < 3; k++) begin : g_perf_interp
-    assign hwif_in.PERF_INTERP[k].COUNT.next = perf_interp_q[k];
+    assign hwif_in.PERF_INTERP[k].COUNT.next = readback.interp[k];
   end
-  assign hwif_in.MEM_ERR.COUNT.next        = mem_err_cnt_q;
-  assign hwif_in.MEM_ERR.UNEXPECTED_B.next = b_unexp_flag_q;
-  assign hwif_in.MEM_ERR_ADDR.ADDR.next    = mem_err_addr_q;
-  assign hwif_in.RSP_DROP.COUNT.next       = rsp_drop_cnt_q;
+  assign hwif_in.MEM_ERR.COUNT.next        = readback.err.mem_err_cnt;
+  assign hwif_in.MEM_ERR.UNEXPECTED_B.next = readback.err.b_unexpected;
+  assign hwif_in.MEM_ERR_ADDR.ADDR.next    = readback.err.mem_err_addr;
+  assign hwif_in.RSP_DROP.COUNT.next       = readback.err.rsp_drop_cnt;
 
   // ---- Debug ports -----------------------------------------------------------------------------------
   assign dbg_desc_fire_o = |eng_desc_valid;
