@@ -12,6 +12,7 @@ rtl/prim/msr_spill_reg.sv
 rtl/prim/msr_tile_sram.sv
 rtl/engine/msr_base_decision.sv
 rtl/engine/msr_decision_pipe.sv
+rtl/engine/msr_border_pkg.sv
 rtl/engine/msr_level_ctrl.sv
 rtl/engine/msr_tile_stream.sv
 rtl/engine/msr_tag_pool.sv

@@ -10,18 +10,19 @@
 // border region [p, n-1] of r = (n-1) & (S-1) < 8 pixels. In the regular part G(k) is the
 // multiples of S >> k and the new positions of level k are the odd multiples of n_k / 2 with
 // neighbours m -+ n_k / 2; the border region's positions and gaps depend only on (r, k) and
-// come from small constant tables (border_set, border_gap below, computed at elaboration).
+// come from small constant tables (msr_border_pkg, computed at elaboration).
 // So the next position is an add, a compare and an 8-bit lowest-set-bit search.
 //
 // Pipeline: the walk state (which pass, line, position) runs one position ahead of the
 // output register, which holds the position on offer with its neighbours; both are computed
-// from registers only. Each pass starts with one set-up cycle that loads the pass's list
-// parameters; an invalid corner, an empty row of the initial grid and an empty pass cost one
+// from registers only. Each pass starts with three set-up cycles (WS_SETUP0..2: the pass's
+// list parameters, the lists, the walks' start states); an invalid corner, an empty row of the initial grid and an empty pass cost one
 // idle cycle each. Inside a pass a position is offered every clock.
 `include "msr_assert.svh"
 
 module msr_level_ctrl
   import msr_pkg::*;
+  import msr_border_pkg::*;
 (
   input  logic    clk_i,
   input  logic    rst_ni,
@@ -54,107 +55,7 @@ module msr_level_ctrl
   output logic    busy_o          // a tile is accepted and not all positions are out
 );
 
-  // ---- Border-region tables (offsets from p, 0..7) ---------------------------------------
-  typedef logic [7:0] bmask_t;
-
-  // The helpers below take whole values or structs and use a part of them.
-  /* verilator lint_off UNUSEDSIGNAL */
-
-  // border_set(r, k): msr_pkg (the engine's outer-sample flags use it too).
-
-  // border_gap(r, k, o): gap b - a of the new position o of level k (0 if o is not new).
-  function automatic gap_t border_gap(int unsigned r, int unsigned k, int unsigned o);
-    bmask_t prev, cur;
-    int unsigned a, b;
-    prev = border_set(r, k - 1);
-    cur  = border_set(r, k);
-    if (!cur[o] || prev[o]) return '0;
-    a = 0;
-    b = 0;
-    for (int unsigned i = 0; i < o; i++) if (prev[i]) a = i;
-    for (int unsigned i = 7; i > o; i--) if (prev[i]) b = i;
-    return gap_t'(b - a);
-  endfunction
-
-  // Offsets o >= 1 of a border mask in ascending order (a bq, 3 bits each, the first at
-  // bits [2:0]) and how many there are.
-  typedef logic [6:0][2:0] bqueue_t;
-
-  function automatic bqueue_t border_queue(bmask_t bm);
-    bqueue_t q;
-    int unsigned n;
-    q = '0;
-    n = 0;
-    for (int unsigned o = 1; o < 8; o++) begin
-      if (bm[o]) begin
-        q[n] = 3'(o);
-        n++;
-      end
-    end
-    return q;
-  endfunction
-
-  function automatic logic [2:0] border_count(bmask_t bm);
-    logic [2:0] n;
-    n = '0;
-    for (int unsigned o = 1; o < 8; o++) n += 3'(bm[o]);
-    return n;
-  endfunction
-
-  // The same tables as queues: G(k)'s border offsets >= 1 (BQ_SET) and level k's new border
-  // offsets (BQ_NEW, with their gaps BG_NEW), each with its length: constants, so a pass's
-  // set-up is table look-ups and no search.
-  typedef bqueue_t     [MAX_LEVELS:0] bq_row_t;
-  typedef logic [MAX_LEVELS:0][2:0] bn_row_t;
-
-  function automatic bmask_t new_mask(int unsigned r, int unsigned k);
-    return (k == 0) ? '0 : (border_set(r, k) & ~border_set(r, k - 1));
-  endfunction
-  // The offsets of G(k) (is_new = 0) or of level k's new positions (is_new = 1).
-  function automatic bmask_t list_mask(int unsigned r, int unsigned k, bit is_new);
-    return is_new ? new_mask(r, k) : border_set(r, k);
-  endfunction
-  function automatic bq_row_t bq_row(int unsigned r, bit is_new);
-    bq_row_t t;
-    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_queue(list_mask(r, k, is_new));
-    return t;
-  endfunction
-  function automatic bn_row_t bn_row(int unsigned r, bit is_new);
-    bn_row_t t;
-    for (int unsigned k = 0; k <= MAX_LEVELS; k++) t[k] = border_count(list_mask(r, k, is_new));
-    return t;
-  endfunction
-
-  typedef logic [6:0][3:0]      gqueue_t;    // gaps of the new border offsets, in order
-  typedef gqueue_t [MAX_LEVELS:0] gq_row_t;
-  function automatic gq_row_t gq_new_row(int unsigned r);
-    gq_row_t t;
-    int unsigned n;
-    t = '0;
-    for (int unsigned k = 1; k <= MAX_LEVELS; k++) begin
-      n = 0;
-      for (int unsigned o = 1; o < 8; o++) begin
-        if (new_mask(r, k)[o]) begin
-          t[k][n] = 4'(border_gap(r, k, o));
-          n++;
-        end
-      end
-    end
-    return t;
-  endfunction
-  localparam gq_row_t BGQ_NEW [8] = '{gq_new_row(0), gq_new_row(1), gq_new_row(2), gq_new_row(3),
-                                      gq_new_row(4), gq_new_row(5), gq_new_row(6), gq_new_row(7)};
-
-  localparam bq_row_t BQ_SET [8] = '{bq_row(0, 0), bq_row(1, 0), bq_row(2, 0), bq_row(3, 0),
-                                     bq_row(4, 0), bq_row(5, 0), bq_row(6, 0), bq_row(7, 0)};
-  localparam bn_row_t BN_SET [8] = '{bn_row(0, 0), bn_row(1, 0), bn_row(2, 0), bn_row(3, 0),
-                                     bn_row(4, 0), bn_row(5, 0), bn_row(6, 0), bn_row(7, 0)};
-  localparam bq_row_t BQ_NEW [8] = '{bq_row(0, 1), bq_row(1, 1), bq_row(2, 1), bq_row(3, 1),
-                                     bq_row(4, 1), bq_row(5, 1), bq_row(6, 1), bq_row(7, 1)};
-  localparam bn_row_t BN_NEW [8] = '{bn_row(0, 1), bn_row(1, 1), bn_row(2, 1), bn_row(3, 1),
-                                     bn_row(4, 1), bn_row(5, 1), bn_row(6, 1), bn_row(7, 1)};
-
-  /* verilator lint_on UNUSEDSIGNAL */
+  // The border region's constant tables: rtl/engine/msr_border_pkg.sv.
 
   // ---- Tile registers (set at start) -----------------------------------------------------
   level_t  levels_q;
