@@ -149,6 +149,21 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     .q_o (progress_q)
   );
 
+  // The writer's idle flag, registered on its way in: it is an OR over every stage of the
+  // writer, and that tree into the state register set the flat top's clock (10.5 ns, seed 2,
+  // issue 31). It reads a clock late, and only late in turning false: the writer leaves idle
+  // only by taking a pixel. In RUN the frame's last pixel reaches the count two clocks after
+  // the writer takes it (tile_done_q, then tif_q), when the registered flag already shows
+  // the writer busy, so DONE never comes early. In DRAIN no pixel reaches the writer (drain_o
+  // gates them from the first DRAIN clock), so the flag is exact from the second DRAIN clock
+  // on, and the drain does not end in its first clock (drain_seen_q).
+  logic wr_idle_q, drain_seen_q;
+  msr_clr_reg #(.WIDTH(2)) u_wr_idle_q (
+    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
+    .d_i ({wr_idle_i, state_q == ST_DRAIN}),
+    .q_o ({wr_idle_q, drain_seen_q})
+  );
+
   // Responses dropped this clock: the engines' and the mux's (at most NUM_ENGINES + 1).
   logic [4:0] rsp_drop_n;
   always_comb begin
@@ -296,7 +311,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       end
       ST_DRAIN: begin
         if (bresp_err_i) err_d = ERR_AXI_WRITE;
-        if (rnd_idle_i && wr_idle_i) state_d = ST_CLEAR;
+        if (rnd_idle_i && wr_idle_q && drain_seen_q) state_d = ST_CLEAR;
       end
       ST_CLEAR: begin
         // STATUS returns to 0, except a memory error or a watchdog seen in the frame or the drain
@@ -363,7 +378,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       refused_q    <= (state_q == ST_CHECK) && (step_q == STEP_END[4:0]) && !accept &&
                       state_d == ST_IDLE;
       frame_done_q <= (state_q == ST_RUN) && !start_q && tg_done_i && tif_q == '0 && !desc_fire_q &&
-                      wr_idle_i && !frame_done_q;
+                      wr_idle_q && !frame_done_q;
       step_q       <= (state_q == ST_CHECK) ? step_q + 1'b1 : '0;
       if (state_q == ST_IDLE && start_i) raw_q <= raw_i;
       if (state_q == ST_CHECK && step_q == STEP_CMP[4:0]) begin
