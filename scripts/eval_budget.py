@@ -37,7 +37,7 @@ MODEL_FILES = [
     "/usr/share/assimp/models/glTF/CesiumMilkTruck/CesiumMilkTruck.gltf",
     "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf",
 ]
-LADDER = tuple(int(round(256 * 2 ** (k / 2))) for k in range(-4, 6))      # u = 64 .. 1448
+LADDER = (BG.U_MIN,) + tuple(int(round(256 * 2 ** (k / 2))) for k in range(-4, 6))   # u = 45, 64 .. 1448
 
 
 def psnr(ref, img) -> float:
@@ -107,7 +107,7 @@ def evaluate_scene(ref, params, rule, budgets, frames, log) -> dict:
                         "scale_out": f["scale_out"]})
         out["budgets"][pct] = {"budget": B, "frames": rec}
         log("   " + f"{pct:>2}%: " + "  ".join(
-            f"f{r['frame']} {r['error_pct']:+6.2f}% {r['psnr_delta'] if r['psnr_delta'] is None else round(r['psnr_delta'], 2):>5} dB"
+            f"f{r['frame']} {r['error_pct']:+6.2f}% " + ("  n/a" if r["psnr_delta"] is None else f"{r['psnr_delta']:+5.2f}") + " dB"
             for r in rec))
     out["curve"] = {str(u): {"traced": v["traced"], "psnr": v["psnr"]} for u, v in sorted(curve.items())}
     out["example_source"] = None
