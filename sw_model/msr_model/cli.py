@@ -2,7 +2,7 @@
 
     python -m msr_model select IMAGE.png --tile 16 --levels 2 --thr 8,16 [--metric max|sum]
         [--fov-gain 0] [--rule patent|lindilate|lindilate2d] --out OUT.png --source-map MAP.png --stats STATS.json
-        [--overview SUMMARY.png]
+        [--overview SUMMARY.png] [--budget N|P%] [--scale-init U] [--prior-shift S] [--budget-prev STATS.json]
     python -m msr_model select --scene SCENE --width W --height H [--camera ...] [the same flags]
     python -m msr_model render --scene SCENE --width W --height H [--camera ...] --out REF.png
 
@@ -17,12 +17,13 @@ from __future__ import annotations
 import argparse
 import json
 import time
+from fractions import Fraction
 
 import numpy as np
 
 from . import spec
+from . import budget as BG
 from .clitools import OutputSet, Parser, UsageError, check_outputs, int_in, int_list, run_main
-from .golden import select
 from .image_renderer import ImageRenderer, check_image, load_rgb, save_png
 from .rules import DEFAULT_RULE, RULES
 
@@ -57,6 +58,71 @@ def _add_select_flags(p):
     p.add_argument("--stats", help="output statistics JSON")
     p.add_argument("--overview", help="output summary PNG for people: frame, full reference, error, "
                    "source map in colour with a legend, traced fraction per tile (msr_model.overview)")
+    p.add_argument("--budget", type=_budget_arg, default=None, metavar="N|P%",
+                   help="ray budget (docs/budget.md): traced pixels per frame, or P%% of the frame's "
+                        "pixels; 0 = off (the default: exactly as without the flag)")
+    p.add_argument("--scale-init", type=_int_in(0, BG.U_MAX, "--scale-init"), default=None, metavar="U",
+                   help=f"budget: the seed scale of the first two tile rows (1.0 = 256, 0 = 1.0; "
+                        f"register SCALE_INIT; default from --budget-prev, else {BG.SCALE_ONE})")
+    p.add_argument("--prior-shift", type=_int_in(0, BG.PRIOR_SHIFT_MAX, "--prior-shift"),
+                   default=BG.PRIOR_SHIFT, metavar="S",
+                   help=f"budget: weight of the seed's guess, a frame >> S (default {BG.PRIOR_SHIFT})")
+    p.add_argument("--budget-prev", default=None, metavar="STATS.json",
+                   help="budget: seed from the previous frame's STATS.json (its final scale and its "
+                        "activity per tile row), as the hardware seeds the next frame")
+
+
+def _budget_arg(text):
+    """`N` (pixels) or `P%` (of the frame, P a decimal number 0..100): ('px', N) or ('pct', P)."""
+    t = str(text).strip()
+    try:
+        if t.endswith("%"):
+            pct = Fraction(t[:-1].strip())
+            if not 0 <= pct <= 100:
+                raise argparse.ArgumentTypeError(f"--budget {text}: a percentage must be 0..100")
+            return ("pct", pct)
+        n = int(t, 10)
+    except (ValueError, ZeroDivisionError):
+        raise argparse.ArgumentTypeError(f"--budget must be a pixel count or a percentage like 10%, "
+                                         f"got {text!r}") from None
+    if not 0 <= n <= BG.BUDGET_MAX:
+        raise argparse.ArgumentTypeError(f"--budget {n} outside 0..{BG.BUDGET_MAX}")
+    return ("px", n)
+
+
+def _budget_config(args, width: int, height: int) -> BG.BudgetConfig:
+    """The budget registers for a W x H frame from the flags (pixels; a percentage rounds down)."""
+    kind, v = args.budget if args.budget is not None else ("px", 0)
+    pixels = int(v * width * height // 100) if kind == "pct" else v
+    if kind == "px" and pixels > width * height:
+        raise UsageError(f"--budget {pixels} is more than the frame's {width * height} pixels")
+    scale_init, profile = args.scale_init, None
+    if args.budget_prev is not None:
+        prev = _read_prev(args.budget_prev)
+        profile = tuple(prev["activity_per_row"])
+        if scale_init is None:
+            scale_init = prev["scale_out"]
+    elif args.budget is None and args.scale_init is not None:
+        raise UsageError("--scale-init needs --budget")
+    cfg = BG.BudgetConfig(budget=pixels, scale_init=BG.SCALE_ONE if scale_init is None else scale_init,
+                          prior_shift=args.prior_shift, profile=profile)
+    if pixels:
+        BG.Controller(width, height, _params(args), cfg)      # refuses a budget below the grid now
+    return cfg
+
+
+def _read_prev(path) -> dict:
+    try:
+        data = json.loads(open(path).read())
+        ctl = data["budget_control"]
+        out = {"scale_out": int(ctl["scale_out"]), "activity_per_row": [int(a) for a in ctl["activity_per_row"]]}
+    except OSError as e:
+        raise UsageError(f"cannot read --budget-prev {path}: {e.strerror or e}") from None
+    except (ValueError, KeyError, TypeError):
+        raise UsageError(f"--budget-prev {path}: not the STATS.json of a select run with a budget") from None
+    if not 0 <= out["scale_out"] <= BG.U_MAX:
+        raise UsageError(f"--budget-prev {path}: scale_out {out['scale_out']} outside 0..{BG.U_MAX}")
+    return out
 
 
 def _add_scene_flags(p, required):
@@ -115,16 +181,20 @@ def cmd_select(args) -> int:
         check_image(args.image)          # size and bit depth from the header, before decoding
         reference = load_rgb(args.image)
         renderer = ImageRenderer(reference)
-        result = select(renderer, renderer.width, renderer.height, params, rule=args.rule)
+        budget = _budget_config(args, renderer.width, renderer.height)
+        result = BG.select_budget(renderer, renderer.width, renderer.height, params, budget, rule=args.rule)
     else:
+        if args.width is not None and args.height is not None:
+            budget = _budget_config(args, args.width, args.height)
         renderer = _open_scene(args)
         try:
-            result = select(renderer, args.width, args.height, params, rule=args.rule)
+            result = BG.select_budget(renderer, args.width, args.height, params, budget, rule=args.rule)
             # the full reference only for the overview (it traces every pixel)
             reference = renderer.render_full() if args.overview else None
         finally:
             _close(renderer)
     stats = dict(result.stats)
+    stats.setdefault("budget", 0)
     stats["seconds"] = round(time.perf_counter() - t0, 4)
     stats["source"] = args.image if args.image is not None else args.scene
     # All computed: only now write, all or nothing.

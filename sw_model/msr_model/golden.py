@@ -75,10 +75,20 @@ def select(renderer, width: int, height: int, params: Params, rule=DEFAULT_RULE,
     pixels. `rule`: a contract rule name (rules.RULES) or a function of a PassView."""
     spec.check_frame_size(width, height)
     rule_name, decide = get_rule(rule)
+    ntx, nty = spec.tile_counts(width, height, params.tile)
+    frame, source, per_level = select_region(renderer, width, height, params, decide,
+                                             threshold_maps(params, ntx, nty), progress)
+    return FrameResult(frame, source, params, frame_stats(source, params, per_level, rule_name))
+
+
+def select_region(renderer, width: int, height: int, params: Params, decide, thr_maps,
+                  progress=None) -> tuple[np.ndarray, np.ndarray, dict]:
+    """Every pass over a width x height region cut into tiles from its top-left, with the
+    per-tile thresholds `thr_maps` (list over k of (tile rows, tile columns) arrays): the
+    region's frame, source codes and traced / interpolated counts per level. select() runs
+    it on the whole frame; the ray-budget mode (budget.py) on one tile row at a time."""
     T, L = params.tile, params.levels
-    ntx, nty = spec.tile_counts(width, height, T)
     ax, ay = frame_axis(width, T, L), frame_axis(height, T, L)
-    thr_maps = threshold_maps(params, ntx, nty)
 
     frame = np.zeros((height, width, 3), dtype=np.uint8)
     source = np.full((height, width), spec.SRC_UNSET, dtype=np.uint8)
@@ -111,9 +121,16 @@ def select(renderer, width: int, height: int, params: Params, rule=DEFAULT_RULE,
             progress(k)
 
     assert not (source == spec.SRC_UNSET).any(), "every pixel is final after level L"
+    return frame, source, per_level
+
+
+def frame_stats(source: np.ndarray, params: Params, per_level: dict, rule_name: str) -> dict:
+    """STATS.json's counts of a finished frame (contracts.md)."""
+    height, width = source.shape
+    L = params.levels
     traced = int((source < spec.SRC_INTERP_BASE).sum())
     total = width * height
-    stats = {
+    return {
         "width": width, "height": height, "pixels": total,
         "traced": traced, "interpolated": total - traced,
         "traced_fraction": traced / total,
@@ -123,7 +140,6 @@ def select(renderer, width: int, height: int, params: Params, rule=DEFAULT_RULE,
         "rule": rule_name,
         "params": params.as_dict(),
     }
-    return FrameResult(frame, source, params, stats)
 
 
 def interpolated_values(decide, view: PassView) -> np.ndarray:

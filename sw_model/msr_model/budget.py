@@ -1,0 +1,250 @@
+"""Ray budget: the closed-loop rate controller of docs/budget.md, in integers, bit for bit.
+
+A budget B (traced pixels per frame; 0 = off) makes the tile generator scale every tile's
+per-level thresholds by one factor per tile row. The controller's scale u is unsigned fixed
+point, 1.0 = 256, in [U_MIN, U_MAX] = [45, 1448]; the thresholds take its square,
+
+    m = (u * u + 128) >> 8                               # once per tile row, 8..8190
+    thr_k'' = min(255, (thr_k' * m + 128) >> 8)          # per tile; thr_k' the foveated threshold
+
+because a tile row's traced pixels above its initial grid fall about as 1 / sqrt(threshold):
+in u they fall as 1 / u, which the law below assumes.
+
+Rows 0 and 1 take the seed u_0 (register SCALE_INIT, 0 read as 1.0); row r >= 2 takes the
+scale the controller computed when row r - 2 was finished, and is handed out only after that
+(so nothing depends on which engine was faster). After each finished row j, in row order:
+
+    a_j = (c_j - g_j) * u_j            # the row's activity: traced above its initial grid, times u
+    N  += a_j;  C += c_j;  P += p_j    # activity, traced and pixels of the finished rows
+    X   = B - C - G_rem                # budget left above the initial grid of the rows to come
+    q   = ((N + N0) * Q) // ((P + P0) * X)           # first frame: the rows seen so far, extrapolated
+    q   = (A_prev - A_done) // X                       # seeded: the previous frame's row activities
+    u_{j+2} = clamp(max(q, u_{j+1} >> 1))              # X <= 0: U_MAX; down by at most half a row
+
+with Q the pixels and G_rem the initial grid of the rows not finished, N0 = ((B - G) * u_0) >>
+PRIOR_SHIFT and P0 = (W * H) >> PRIOR_SHIFT (the seed's guess "u_0 traces B", weighted as that
+part of a frame), A_prev the previous frame's activity and A_done its part over rows <= j
+(the per-row activity memory). After the last row SCALE_OUT = clamp(N // (B - G)): the one
+scale that, on this frame's activity, traces B; it and the activity memory seed the next frame.
+
+A budget below the frame's initial grid (`grid_count`) cannot be met: START refuses it
+(`BudgetRefused`; STATUS.ERROR ERR_BUDGET in the hardware).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import spec
+from .golden import FrameResult, frame_stats, select, select_region, threshold_maps
+from .rules import DEFAULT_RULE, get_rule
+from .spec import Params
+
+SCALE_FRAC = 8                     # fraction bits of u and m: 1.0 = 256
+SCALE_ONE = 1 << SCALE_FRAC
+U_MIN = 45                         # m = 8: thresholds x 1/32
+U_MAX = 1448                       # m = 8190: thresholds x 32 (u: 11 bits)
+PRIOR_SHIFT = 6                    # default weight of the seed's guess: 1/64 of a frame
+PRIOR_SHIFT_MAX = 7
+BUDGET_MAX = (1 << 24) - 1         # BUDGET register: 24 bits (W * H <= 2^24)
+ERR_BUDGET = 14                    # STATUS.ERROR: budget below the frame's initial grid
+ERR_PROFILE = 15                   # STATUS.ERROR: seeded from a profile of another tile-row count
+
+
+class BudgetRefused(spec.SpecError):
+    """START refuses a budget below the frame's initial grid (it cannot be met)."""
+
+
+def thr_multiplier(u: int) -> int:
+    """m = (u * u + 128) >> 8: the row's threshold multiplier (1.0 = 256)."""
+    return (int(u) * int(u) + (SCALE_ONE >> 1)) >> SCALE_FRAC
+
+
+def scale_threshold(thr, m: int):
+    """thr'' = min(255, (thr * m + 128) >> 8): one 8 x 13-bit product at the descriptor stage."""
+    out = np.minimum(255, (np.asarray(thr, dtype=np.int64) * int(m) + (SCALE_ONE >> 1)) >> SCALE_FRAC)
+    return int(out) if np.ndim(out) == 0 else out.astype(np.int32)
+
+
+def clamp_scale(u: int) -> int:
+    return min(U_MAX, max(U_MIN, int(u)))
+
+
+def grid_axis(n: int, stride: int) -> int:
+    """|G0(n)|: ceil(n / S) positions, plus the far corner n - 1 when (n - 1) mod S != 0."""
+    return (n + stride - 1) // stride + (1 if (n - 1) % stride else 0)
+
+
+def grid_line(n_total: int, tile: int, stride: int) -> int:
+    """Sum of |G0(extent)| over the tiles of one axis: full tiles and the last, shorter one."""
+    full, rest = divmod(n_total, tile)
+    return full * grid_axis(tile, stride) + (grid_axis(rest, stride) if rest else 0)
+
+
+def row_grid(width: int, h: int, params: Params) -> int:
+    """g_r: the initial samples of a tile row of height h (closed form of spec section 2)."""
+    return grid_line(width, params.tile, params.stride) * grid_axis(h, params.stride)
+
+
+def grid_count(width: int, height: int, params: Params) -> int:
+    """G: the frame's initial samples, the least any budget can trace."""
+    return grid_line(width, params.tile, params.stride) * grid_line(height, params.tile, params.stride)
+
+
+@dataclass(frozen=True)
+class BudgetConfig:
+    """The budget registers: BUDGET (pixels, 0 = off), SCALE_INIT (seed u_0, 1.0 = 256, 0 read
+    as 1.0), PRIOR_SHIFT (weight of the seed's guess: a frame >> PRIOR_SHIFT) and, for a seeded
+    frame, the previous frame's activity per tile row (the activity memory; None = first frame)."""
+
+    budget: int = 0
+    scale_init: int = SCALE_ONE
+    prior_shift: int = PRIOR_SHIFT
+    profile: tuple[int, ...] | None = None
+
+    def __post_init__(self):
+        if not 0 <= int(self.budget) <= BUDGET_MAX:
+            raise spec.SpecError(f"budget {self.budget} outside 0..{BUDGET_MAX}")
+        if not 0 <= int(self.scale_init) <= U_MAX:
+            raise spec.SpecError(f"scale_init {self.scale_init} outside 0..{U_MAX}")
+        if not 0 <= int(self.prior_shift) <= PRIOR_SHIFT_MAX:
+            raise spec.SpecError(f"prior_shift {self.prior_shift} outside 0..{PRIOR_SHIFT_MAX}")
+
+    @property
+    def seed(self) -> int:
+        """u_0, the scale of rows 0 and 1: SCALE_INIT clamped to [U_MIN, U_MAX], 0 read as 1.0."""
+        return clamp_scale(self.scale_init or SCALE_ONE)
+
+
+@dataclass
+class Controller:
+    """The controller over one frame (docs/budget.md, "State"): feed it every finished row's
+    traced count in row order (`finish_row`); `scales[r]` is row r's u once it is known."""
+
+    width: int
+    height: int
+    params: Params
+    cfg: BudgetConfig
+    n_act: int = 0                 # N: activity of the finished rows
+    traced: int = 0                # C
+    pixels: int = 0                # P
+    grid_done: int = 0             # initial grid of the finished rows
+    prof_done: int = 0             # A_done: the previous frame's activity over the finished rows
+    rows_done: int = 0
+    scales: list[int] = field(default_factory=list)      # u of every tile row, as handed out
+    activity: list[int] = field(default_factory=list)    # a_j: this frame's, for the next
+    scale_out: int | None = None
+
+    def __post_init__(self):
+        self.total = self.width * self.height
+        self.grid = grid_count(self.width, self.height, self.params)
+        self.budget = min(int(self.cfg.budget), self.total)     # BUDGET saturates at W * H
+        if self.budget < self.grid:
+            raise BudgetRefused(f"budget {self.budget} below the {self.grid} pixels of the initial grid "
+                                f"(W {self.width}, H {self.height}, T {self.params.tile}, "
+                                f"L {self.params.levels}): status error {ERR_BUDGET}")
+        self.nty = spec.tile_counts(self.width, self.height, self.params.tile)[1]
+        self.profile = None if self.cfg.profile is None else [int(a) for a in self.cfg.profile]
+        if self.profile is not None and len(self.profile) != self.nty:
+            raise BudgetRefused(f"activity profile of {len(self.profile)} tile rows, the frame has "
+                                f"{self.nty}: status error {ERR_PROFILE}")
+        self.prof_total = sum(self.profile) if self.profile is not None else 0
+        u0 = self.cfg.seed
+        self.prior_n = ((self.budget - self.grid) * u0) >> self.cfg.prior_shift
+        self.prior_p = self.total >> self.cfg.prior_shift
+        self.scales = [u0] * min(2, self.nty)
+
+    def row_height(self, r: int) -> int:
+        return min(self.params.tile, self.height - r * self.params.tile)
+
+    def finish_row(self, traced: int) -> None:
+        """Row `rows_done` is finished with `traced` pixels of source code < 16: update, and set
+        the scale of row rows_done + 2, or SCALE_OUT after the last row."""
+        j = self.rows_done
+        h = self.row_height(j)
+        g, p = row_grid(self.width, h, self.params), self.width * h
+        if not g <= traced <= p:
+            raise ValueError(f"row {j}: traced {traced} outside {g}..{p}")
+        a = (traced - g) * self.scales[j]
+        self.activity.append(a)
+        self.n_act += a
+        self.traced += traced
+        self.pixels += p
+        self.grid_done += g
+        if self.profile is not None:
+            self.prof_done += self.profile[j]
+        self.rows_done += 1
+        if self.rows_done == self.nty:
+            spare = self.budget - self.grid
+            self.scale_out = U_MAX if spare <= 0 else clamp_scale(self.n_act // spare)
+        elif j + 2 < self.nty:
+            self.scales.append(clamp_scale(max(self.quotient(), self.scales[j + 1] >> 1)))
+
+    def quotient(self) -> int:
+        """q of the law: the scale at which the rows to come are expected to trace the budget left
+        above their grid; U_MAX + 1 when nothing is left."""
+        x = self.budget - self.traced - (self.grid - self.grid_done)
+        if x <= 0:
+            return U_MAX + 1
+        if self.profile is not None:
+            return max(self.prof_total - self.prof_done, 0) // x
+        q = self.total - self.pixels
+        return ((self.n_act + self.prior_n) * q) // ((self.pixels + self.prior_p) * x)
+
+
+def select_budget(renderer, width: int, height: int, params: Params, cfg: BudgetConfig,
+                  rule=DEFAULT_RULE, fixed_scale: int | None = None) -> FrameResult:
+    """The selective render with a ray budget: tile rows in dispatch order, each with its scale.
+    With cfg.budget == 0 this is golden.select(), bit for bit. `fixed_scale` (a u, for the
+    evaluation) runs every row at that one scale without the controller: fixed thresholds."""
+    spec.check_frame_size(width, height)
+    if cfg.budget == 0 and fixed_scale is None:
+        return select(renderer, width, height, params, rule=rule)
+    rule_name, decide = get_rule(rule)
+    T = params.tile
+    ntx, nty = spec.tile_counts(width, height, T)
+    thr_maps = threshold_maps(params, ntx, nty)
+    ctl = Controller(width, height, params, cfg) if fixed_scale is None else None
+    frame = np.zeros((height, width, 3), dtype=np.uint8)
+    source = np.full((height, width), spec.SRC_UNSET, dtype=np.uint8)
+    per_level: dict = {}
+    row_traced = []
+    for r in range(nty):
+        y0, h = r * T, min(T, height - r * T)
+        m = thr_multiplier(fixed_scale if ctl is None else ctl.scales[r])
+        band_thr = [scale_threshold(t[r:r + 1], m) for t in thr_maps]
+        f, s, counts = select_region(_Band(renderer, width, y0, h), width, h, params, decide, band_thr)
+        frame[y0:y0 + h], source[y0:y0 + h] = f, s
+        for key, v in counts.items():
+            per_level[key] = per_level.get(key, 0) + v
+        row_traced.append(int((s < spec.SRC_INTERP_BASE).sum()))
+        if ctl is not None:
+            ctl.finish_row(row_traced[-1])
+    stats = frame_stats(source, params, per_level, rule_name)
+    stats["budget"] = 0 if ctl is None else ctl.budget
+    scales = [fixed_scale] * nty if ctl is None else ctl.scales
+    stats["budget_control"] = {
+        "scale_init": None if ctl is None else cfg.seed,
+        "prior_shift": None if ctl is None else cfg.prior_shift,
+        "seeded": ctl is not None and ctl.profile is not None,
+        "fixed_scale": fixed_scale,
+        "grid": grid_count(width, height, params),
+        "scale_per_row": scales,
+        "thr_multiplier_per_row": [thr_multiplier(u) for u in scales],
+        "traced_per_row": row_traced,
+        "activity_per_row": None if ctl is None else ctl.activity,
+        "scale_out": None if ctl is None else ctl.scale_out,
+        "budget_error": None if ctl is None else (stats["traced"] - ctl.budget) / ctl.budget,
+    }
+    return FrameResult(frame, source, params, stats)
+
+
+class _Band:
+    """One tile row of the rendering unit as a frame of its own (tiles never read each other)."""
+
+    def __init__(self, renderer, width: int, y0: int, h: int):
+        self.renderer, self.width, self.height, self.y0 = renderer, width, h, y0
+
+    def render(self, xs, ys):
+        return self.renderer.render(np.asarray(xs), np.asarray(ys) + self.y0)

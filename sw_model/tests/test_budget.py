@@ -1,0 +1,196 @@
+"""The ray-budget controller (msr_model.budget, docs/budget.md): the worked example by hand,
+budget 0 unchanged, monotonic, bounded, refusals, the CLI."""
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from msr_model import ImageRenderer, Params, save_png, select
+from msr_model import budget as BG
+from msr_model.testimage import test_image as make_picture
+
+L2 = Params(tile=16, levels=2, thr=(8, 16))
+L3 = Params(tile=16, levels=3, thr=(8, 16, 32))
+
+
+def _noise_picture(w, h, seed):
+    """Smooth ramps plus blocks of noise: rows of very different activity."""
+    rng = np.random.default_rng(seed)
+    img = make_picture(w, h).astype(np.int32)
+    y0 = rng.integers(0, h // 2)
+    img[y0:y0 + h // 4, : w // 2] += rng.integers(-40, 41, size=(min(h // 4, h - y0), w // 2, 3))
+    return np.clip(img, 0, 255).astype(np.uint8)
+
+
+# --- the worked example of docs/budget.md, by hand --------------------------------------------
+
+def test_worked_example_by_hand():
+    """64 x 40, T 16, L 2: rows of height 16, 16, 8; grid 100, 100, 60 (G = 260); B = 640."""
+    assert BG.grid_axis(16, 4) == 5 and BG.grid_axis(8, 4) == 3
+    assert BG.grid_count(64, 40, L2) == 260
+    ctl = BG.Controller(64, 40, L2, BG.BudgetConfig(budget=640, scale_init=256, prior_shift=6))
+    assert (ctl.prior_n, ctl.prior_p) == (1520, 40)       # (380 * 256) >> 6, 2560 >> 6
+    assert ctl.scales == [256, 256]
+    ctl.finish_row(300)               # a = 200 * 256; X = 640 - 300 - 160 = 180; Q = 1536
+    assert ctl.activity == [51200]
+    assert ctl.scales == [256, 256, 422]                  # 52720 * 1536 // (1064 * 180)
+    assert BG.thr_multiplier(422) == 696
+    assert [BG.scale_threshold(t, 696) for t in (8, 16)] == [22, 44]
+    ctl.finish_row(200)
+    assert ctl.scales == [256, 256, 422] and ctl.scale_out is None
+    ctl.finish_row(130)               # a = 70 * 422 = 29540; N = 106340
+    assert ctl.activity == [51200, 25600, 29540]
+    assert ctl.scale_out == 279                           # 106340 // 380
+    # the next frame, seeded with SCALE_OUT and the activity memory
+    nxt = BG.Controller(64, 40, L2, BG.BudgetConfig(640, ctl.scale_out, 6, tuple(ctl.activity)))
+    assert nxt.scales == [279, 279]
+    nxt.finish_row(290)               # X = 640 - 290 - 160 = 190; (106340 - 51200) // 190 = 290
+    assert nxt.scales == [279, 279, 290]
+
+
+def test_threshold_scale_identity_and_saturation():
+    assert BG.thr_multiplier(256) == 256
+    assert all(BG.scale_threshold(t, 256) == t for t in range(256))
+    assert BG.scale_threshold(255, BG.thr_multiplier(BG.U_MAX)) == 255
+    assert BG.scale_threshold(8, BG.thr_multiplier(BG.U_MIN)) == 0      # (8 * 8 + 128) >> 8
+    assert BG.thr_multiplier(BG.U_MIN) == 8 and BG.thr_multiplier(BG.U_MAX) == 8190
+
+
+def test_grid_count_is_the_initial_samples():
+    for (w, h), p in (((64, 40), L2), ((100, 37), L3), ((33, 17), Params(tile=8, levels=1, thr=(9,))),
+                      ((96, 70), Params(tile=32, levels=3, thr=(4, 8, 16)))):
+        r = select(ImageRenderer(make_picture(w, h)), w, h, p)
+        assert BG.grid_count(w, h, p) == r.stats["traced_initial"]
+
+
+# --- budget 0 is today's select, bit for bit; the row-by-row run is too -----------------------
+
+@pytest.mark.parametrize("rule", ["patent", "lindilate"])
+@pytest.mark.parametrize("seed,size,params", [(0, (96, 64), L2), (1, (120, 75), L3),
+                                              (2, (70, 53), Params(tile=8, levels=2, thr=(5, 30), fov_gain=40))])
+def test_budget_zero_and_unit_scale_are_select(rule, seed, size, params):
+    w, h = size
+    img = _noise_picture(w, h, seed)
+    ref = select(ImageRenderer(img), w, h, params, rule=rule)
+    off = BG.select_budget(ImageRenderer(img), w, h, params, BG.BudgetConfig(0), rule=rule)
+    one = BG.select_budget(ImageRenderer(img), w, h, params, BG.BudgetConfig(0), rule=rule, fixed_scale=256)
+    for r in (off, one):
+        assert np.array_equal(r.frame, ref.frame) and np.array_equal(r.source, ref.source)
+        assert r.stats["traced"] == ref.stats["traced"]
+    assert "budget" not in off.stats or off.stats["budget"] == 0
+
+
+def test_rows_use_their_own_scale():
+    """A budgeted frame equals, row for row, a fixed-scale frame at that row's scale."""
+    w, h = 96, 64
+    img = _noise_picture(w, h, 3)
+    r = BG.select_budget(ImageRenderer(img), w, h, L3, BG.BudgetConfig(w * h // 5))
+    scales = r.stats["budget_control"]["scale_per_row"]
+    assert len(set(scales)) > 1
+    for row, u in enumerate(scales):
+        f = BG.select_budget(ImageRenderer(img), w, h, L3, BG.BudgetConfig(0), fixed_scale=u)
+        band = slice(row * 16, row * 16 + 16)
+        assert np.array_equal(r.source[band], f.source[band]) and np.array_equal(r.frame[band], f.frame[band])
+
+
+# --- monotonic, bounded ------------------------------------------------------------------------
+
+def test_traced_rises_with_the_budget_and_falls_with_the_scale():
+    w, h = 160, 96
+    img = _noise_picture(w, h, 4)
+    fixed = [BG.select_budget(ImageRenderer(img), w, h, L3, BG.BudgetConfig(0), fixed_scale=u).stats["traced"]
+             for u in (BG.U_MIN, 128, 256, 512, BG.U_MAX)]
+    assert fixed == sorted(fixed, reverse=True) and fixed[0] > fixed[-1]
+    traced = [BG.select_budget(ImageRenderer(img), w, h, L3, BG.BudgetConfig(w * h * p // 100)).stats["traced"]
+              for p in (6, 10, 20, 40)]
+    assert traced == sorted(traced) and traced[0] < traced[-1]
+
+
+def test_scales_stay_in_bounds_on_random_rows():
+    rng = np.random.default_rng(5)
+    for _ in range(200):
+        w, h = int(rng.integers(16, 400)), int(rng.integers(16, 300))
+        p = [L2, L3][int(rng.integers(0, 2))]
+        g, total = BG.grid_count(w, h, p), w * h
+        budget = int(rng.integers(g, total + 1))
+        ctl = BG.Controller(w, h, p, BG.BudgetConfig(budget, int(rng.integers(0, BG.U_MAX + 1)),
+                                                     int(rng.integers(0, 8))))
+        for r in range(ctl.nty):
+            hr = ctl.row_height(r)
+            lo = BG.row_grid(w, hr, p)
+            ctl.finish_row(int(rng.integers(lo, w * hr + 1)))
+            assert all(BG.U_MIN <= u <= BG.U_MAX for u in ctl.scales)
+            assert all(b >= a >> 1 or b == BG.U_MIN for a, b in zip(ctl.scales[1:], ctl.scales[2:]))
+        assert BG.U_MIN <= ctl.scale_out <= BG.U_MAX and len(ctl.scales) == ctl.nty
+
+
+def test_spent_budget_gives_the_largest_scale():
+    ctl = BG.Controller(64, 64, L2, BG.BudgetConfig(budget=BG.grid_count(64, 64, L2) + 10))
+    ctl.finish_row(64 * 16)           # a whole row traced: nothing left above the grid
+    assert ctl.scales[2] == BG.U_MAX
+
+
+# --- refusals ----------------------------------------------------------------------------------
+
+def test_budget_below_the_grid_is_refused():
+    g = BG.grid_count(64, 40, L2)
+    with pytest.raises(BG.BudgetRefused, match=str(BG.ERR_BUDGET)):
+        BG.Controller(64, 40, L2, BG.BudgetConfig(g - 1))
+    BG.Controller(64, 40, L2, BG.BudgetConfig(g))              # exactly the grid: accepted
+    with pytest.raises(BG.BudgetRefused, match=str(BG.ERR_PROFILE)):
+        BG.Controller(64, 40, L2, BG.BudgetConfig(g, 256, 6, (1, 2)))
+
+
+def test_budget_config_ranges():
+    for bad in ({"budget": -1}, {"budget": 1 << 24}, {"scale_init": BG.U_MAX + 1}, {"prior_shift": 8}):
+        with pytest.raises(BG.spec.SpecError):
+            BG.BudgetConfig(**bad)
+    assert BG.BudgetConfig(1, scale_init=0).seed == 256 and BG.BudgetConfig(1, scale_init=1).seed == BG.U_MIN
+
+
+# --- the command line ---------------------------------------------------------------------------
+
+def _cli(*args):
+    return subprocess.run([sys.executable, "-m", "msr_model", *map(str, args)], capture_output=True, text=True)
+
+
+@pytest.fixture
+def picture(tmp_path):
+    p = tmp_path / "in.png"
+    save_png(p, _noise_picture(96, 64, 6))
+    return p
+
+
+def test_cli_budget_percent_pixels_and_seed(tmp_path, picture):
+    s1, s2, s0 = tmp_path / "s1.json", tmp_path / "s2.json", tmp_path / "s0.json"
+    base = [picture, "--levels", "3", "--thr", "8,16,32"]
+    assert _cli("select", *base, "--budget", "20%", "--out", tmp_path / "a.png", "--stats", s1).returncode == 0
+    d1 = json.loads(s1.read_text())
+    assert d1["budget"] == 96 * 64 * 20 // 100 and "traced" in d1
+    ctl = d1["budget_control"]
+    assert len(ctl["scale_per_row"]) == 4 and ctl["scale_out"] is not None
+    r = _cli("select", *base, "--budget", str(d1["budget"]), "--budget-prev", s1, "--out", tmp_path / "b.png",
+             "--stats", s2)
+    assert r.returncode == 0, r.stderr
+    d2 = json.loads(s2.read_text())
+    assert d2["budget_control"]["seeded"] and d2["budget_control"]["scale_per_row"][0] == ctl["scale_out"]
+    assert _cli("select", *base, "--out", tmp_path / "c.png", "--stats", s0).returncode == 0
+    assert json.loads(s0.read_text())["budget"] == 0
+
+
+@pytest.mark.parametrize("value,word", [("abc", "percentage"), ("-5", "outside"), ("101%", "0..100"),
+                                        ("10", "initial grid"), ("99999", "more than"), ("x%", "percentage")])
+def test_cli_bad_budget_exit_2(tmp_path, picture, value, word):
+    out = tmp_path / "o.png"
+    r = _cli("select", picture, "--levels", "3", "--thr", "8,16,32", "--budget", value, "--out", out)
+    assert r.returncode == 2 and word in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    assert not out.exists()
+
+
+def test_cli_bad_budget_prev(tmp_path, picture):
+    bad = tmp_path / "bad.json"
+    bad.write_text("{}")
+    r = _cli("select", picture, "--budget", "30%", "--budget-prev", bad, "--out", tmp_path / "o.png")
+    assert r.returncode == 2 and "budget-prev" in r.stderr
