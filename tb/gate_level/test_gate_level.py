@@ -1,7 +1,7 @@
 """The mapped netlist of one tile engine computes the same pixels as the golden model.
 
 `make asic` maps msr_tile_engine to the OSU 0.18 um cells (scripts/asic.py); `make test` builds
-that netlist first (build/asic/gate_msr_tile_engine.v, with the parameters the default top
+that netlist first (build/asic/msr_tile_engine.v, with the parameters the default top
 gives the engine). This bench simulates it with Verilator on the library's own Verilog cell
 models (/usr/share/qflow/tech/osu018/osu018_stdcells.v, the flip-flops through their
 user-defined primitive) and the tile buffers as the generated macro models (each wraps the
@@ -30,10 +30,19 @@ sys.path.insert(0, str(ROOT / "tb" / "tile_engine"))
 from msr_runner import run_cocotb, rtl_sources  # noqa: E402
 from msr_tb import next_cycle, settle, start_clock_and_reset  # noqa: E402
 
-NETLIST = ROOT / "build" / "asic" / "gate_msr_tile_engine.v"
-MACROS = ROOT / "build" / "asic" / "gate_msr_tile_engine.macros.v"
+NETLIST = ROOT / "build" / "asic" / "msr_tile_engine.v"
+MACROS = ROOT / "build" / "asic" / "msr_tile_engine.macros.v"
 CELLS = Path("/usr/share/qflow/tech/osu018/osu018_stdcells.v")
-MAX_OUTSTANDING = 64        # the default top's engine (scripts/asic.py maps it with these)
+
+
+
+def max_outstanding() -> int:
+    """The netlist's tag count: the default top's MAX_OUTSTANDING (scripts/asic.py maps the
+    engine with the top's parameters)."""
+    sys.path.insert(0, str(ROOT / "scripts"))
+    from synth import TOP, default_params, read_filelist
+    return default_params(read_filelist(), TOP)["MAX_OUTSTANDING"]
+
 # tiles per profile (fast, jitter, long); about half of them in each rule
 TILE_COUNTS = os.environ.get("GATE_TILE_COUNTS", "80,24,6")
 
@@ -44,6 +53,7 @@ async def gate_level_random_tiles(dut):
     seed = int(os.environ.get("SEED", "21"))
     dut._log.info("SEED %d", seed)
     rng = random.Random(seed)
+    max_out = int(os.environ["MAX_OUTSTANDING"])
     await start_clock_and_reset(dut, te.IDLE)
     counts = [int(v) for v in TILE_COUNTS.split(",")]
     rules = {"patent": 0, "lindilate": 0}
@@ -53,10 +63,10 @@ async def gate_level_random_tiles(dut):
             for t in tiles:
                 t["w"], t["h"] = min(t["w"], 12), min(t["h"], 12)
                 t["img"] = t["img"][:t["h"], :t["w"]]
-        cycles = await te.run_tiles(dut, tiles, te.PROFILES[name], rng, MAX_OUTSTANDING, dup_prob=0.0)
+        cycles = await te.run_tiles(dut, tiles, te.PROFILES[name], rng, max_out, dup_prob=0.0)
         for t in tiles:
             rules[t["rule"]] += 1
-        await te.stale_responses(dut, rng, MAX_OUTSTANDING)
+        await te.stale_responses(dut, rng, max_out)
         dut._log.info("profile %s: %d tiles in %d cycles, bit exact", name, n, cycles)
         dut.clear_i.value = 1
         await settle()
@@ -67,11 +77,11 @@ async def gate_level_random_tiles(dut):
 
 
 def test_gate_level_tile_engine():
-    for p, how in ((NETLIST, "make build/asic/gate_msr_tile_engine.v (make test does)"),
+    for p, how in ((NETLIST, "make build/asic/msr_tile_engine.v (make test does)"),
                    (CELLS, "install the Debian package qflow-tech-osu018 (make setup does)")):
         if not p.is_file():
             pytest.fail(f"{p} is missing: {how}")
     sram = [s for s in rtl_sources() if s.name == "msr_tile_sram.sv"]
     # the cell library first: its `timescale then holds for every file after it
     run_cocotb("msr_tile_engine", "test_gate_level", HERE, tag="gate",
-               sources=[CELLS, *sram, MACROS, NETLIST], extra_env={"GATE_TILE_COUNTS": TILE_COUNTS})
+               sources=[CELLS, *sram, MACROS, NETLIST], extra_env={"GATE_TILE_COUNTS": TILE_COUNTS, "MAX_OUTSTANDING": max_outstanding()})
