@@ -318,7 +318,9 @@ def map_unit(files: list[str], unit: str, params: dict | None = None, blackbox: 
     if bbs:       # read_cmd takes one black box; add the others the same way
         script = script.rstrip("\n") + "".join(f" --blackboxed-module {b}" for b in bbs) + "\n"
     if blackbox and bb_netlist:
-        script += f"delete ={blackbox}\nread_verilog -lib {rel(bb_netlist)}\n"
+        names = bb_param_names(files, blackbox)
+        script += (f"delete ={blackbox}\nread_verilog -lib {rel(bb_netlist)}\n"
+                   f"setparam {' '.join('-unset ' + n for n in names)} t:{blackbox}\n")
     sram_dump = OUT / f"{tag}.sram.il"
     script += (f"hierarchy -top {unit}\nsynth -top {unit} -flatten\n"
                f"tee -q -o {rel(sram_dump)} dump t:{SRAM_MODULE}\n"
@@ -650,14 +652,18 @@ def compose_top(glue: dict, engine: dict, n: int, sta: dict, period_ns: float, n
     return row
 
 
-def add_rates(row: dict, n_engines: int) -> None:
+def add_rates(row: dict, n_engines: int, top_engines: int) -> None:
     """Decisions and pixels per second per mm^2 of logic, as scripts/synth.py's add_pixel_rate
-    gives pixels per second per LUT4: Fmax x the bench's pixels per clock of the default top.
-    The decision figure is the peak: one decision per clock per engine while a pass runs."""
+    gives pixels per second per LUT4: Fmax x the bench's pixels per clock of the default top
+    (for one engine, its share: the top's figure x n_engines / top_engines). The decision
+    figure is the peak: one decision per clock per engine while a pass runs."""
     ppc, source = pixels_per_clock()
+    ppc = ppc * n_engines / top_engines
+    if n_engines != top_engines:
+        source = f"{source}, x {n_engines}/{top_engines} engines"
     mm2 = row["area_um2"] / 1e6
     hz = row["fmax_mhz"] * 1e6
-    row["pixels_per_clock"] = ppc
+    row["pixels_per_clock"] = round(ppc, 4)
     row["pixels_per_clock_source"] = source
     row["pixels_per_second"] = round(hz * ppc)
     row["pixels_per_second_per_mm2_logic"] = round(hz * ppc / mm2)
@@ -729,6 +735,7 @@ def run(args) -> int:
     n_engines = top_params["NUM_ENGINES"]
     if args.netlist_only:
         m = map_unit(files, ENGINE, engine_params)
+        m.netlist.touch()          # make's target: newer than its prerequisites even when cached
         print(f"asic: {rel(m.netlist)} and {rel(OUT / (m.tag + '.macros.v'))} written "
               f"({m.stat['num_cells']} cells, {m.seconds} s)")
         return 0
@@ -754,7 +761,7 @@ def run(args) -> int:
         try:
             if unit == TOP:
                 report["modules"][TOP] = top_row(files, mapped, n_engines, args.period_ns, nand2)
-                add_rates(report["modules"][TOP], n_engines)
+                add_rates(report["modules"][TOP], n_engines, n_engines)
                 report["modules"][TOP]["scaled_estimates"] = scaled(report["modules"][TOP])
                 continue
             params = engine_params if unit == ENGINE else None
@@ -764,7 +771,7 @@ def run(args) -> int:
             sta = run_sta(unit, [m.netlist], OUT / f"{m.tag}.macros.lib" if m.macros else None, args.period_ns, m.tag)
             row = unit_row(m, sta, args.period_ns, nand2, figs)
             if unit == ENGINE:
-                add_rates(row, 1)
+                add_rates(row, 1, n_engines)
                 row["scaled_estimates"] = scaled(row)
             mapped[unit] = {"row": row, "mapped": m}
             report["modules"][unit] = row
