@@ -11,7 +11,7 @@ asic: setup
 
 # The gate-level netlist of one tile engine for the gate-level bench (tb/gate_level), rebuilt
 # when the RTL or the flow changes; part of make test (about 2 min).
-ASIC_GATE_NETLIST := build/asic/msr_tile_engine.v
+ASIC_GATE_NETLIST := build/asic/msr_tile_engine.sim.v
 $(ASIC_GATE_NETLIST): $(MSR_RTL_FILES) scripts/asic.py scripts/synth.py syn/asic/sram_macro.json | setup
 	$(ENV) python scripts/asic.py --netlist-only
 TEST_DEPS += $(ASIC_GATE_NETLIST)

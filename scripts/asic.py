@@ -54,7 +54,7 @@ MACRO_JSON = ROOT / "syn" / "asic" / "sram_macro.json"
 TECH = Path("/usr/share/qflow/tech/osu018")
 LIBERTY_SRC = TECH / "osu018_stdcells.lib"
 CELL_MODELS = TECH / "osu018_stdcells.v"
-LIB_NAME = "OSU 0.18 um standard cells (osu018_stdcells, Debian qflow-tech-osu018), typical corner"
+LIB_NAME = "OSU 0.18 um standard cells (osu018_stdcells, Debian qflow-tech-osu018)"
 NAND2 = "NAND2X1"                  # the NAND2-equivalent's reference cell
 TARGET_MHZ = 200.0                 # the goal; ABC maps for the aim below
 AIM_MHZ = 250.0
@@ -362,6 +362,28 @@ def map_unit(files: list[str], unit: str, params: dict | None = None, blackbox: 
     return Mapped(unit, tag, netlist, params or {}, stat, macros, blackbox, round(time.time() - t0, 1))
 
 
+def sim_netlist(m: Mapped) -> Path:
+    """The mapped netlist in simulation form for the gate-level bench: every library cell
+    replaced by the function the liberty gives it (Yosys `read_liberty`: gates and flip-flops
+    with their set and reset), flattened, split into single-bit nets (no false combinational
+    loops through a vector), internal names hidden; the macros stay instances of their
+    models. Verilator takes this in about a minute, where the same netlist on the library's
+    Verilog cell models (58 000 module instances) took 17 minutes to convert into 323 MB of
+    C++."""
+    lib = liberty()
+    sim = OUT / f"{m.tag}.sim.v"
+    models = OUT / f"{m.tag}.macros.v"
+    script = (f"read_liberty -ignore_miss_func {rel(lib)}\n"
+              + (f"read_verilog -sv -lib {rel(models)}\n" if m.macros else "")
+              + f"read_verilog {rel(m.netlist)}\nhierarchy -top {m.unit}\nflatten\n"
+              "delete t:$scopeinfo\nsplitnets -driver\nrename -hide w:* i:* %d o:* %d\nopt_clean -purge\n"
+              f"tee -q -o {rel(OUT / f'{m.tag}.sim.stat.txt')} stat\n"
+              f"write_verilog -noattr {rel(sim)}\n")
+    yosys(script, f"{m.tag}.sim", f"{m.unit}: simulation netlist", inputs=(m.netlist, lib) + ((models,) if m.macros else ()),
+          outputs=(sim,))
+    return sim
+
+
 # The "ideal" macro of the logic-only timing: the SRAM outputs launch like a flip-flop of the
 # library (DFFPOSX1's clock-to-output, osu018_stdcells.lib: about 0.2 ns at a light load).
 IDEAL_MACRO_NS = 0.2
@@ -558,6 +580,23 @@ def run_sta(top: str, netlists: list[Path], macro_lib: Path | None, period_ns: f
 
 # ---- Per-unit rows -----------------------------------------------------------------------------------
 
+def name_registers(path: dict | None, netlists: list[Path]) -> dict | None:
+    """Give a path's start and end the names of their registers: a mapped flip-flop is
+    anonymous (`_104072_`), the net on its Q pin keeps the RTL register's name."""
+    if not path:
+        return path
+    texts = [p.read_text() for p in netlists]
+    for key in ("start", "end"):
+        inst = path[key].split(" ")[0].split("/")[-1]
+        for text in texts:
+            m = re.search(rf"^\s*\w+\s+{re.escape(inst)}\s*\((.*?)\);", text, re.M | re.S)
+            q = re.search(r"\.Q\(([^)]*)\)", m.group(1)) if m else None
+            if q:
+                path[f"{key}_register"] = q.group(1).strip().lstrip("\\")
+                break
+    return path
+
+
 def unit_row(m: Mapped, sta: dict, period_ns: float, nand2_um2: float, figures: dict) -> dict:
     st = m.stat
     logic = float(st["area"])
@@ -588,6 +627,7 @@ def unit_row(m: Mapped, sta: dict, period_ns: float, nand2_um2: float, figures: 
         "max_fanout_driver": figures["max_fanout_driver"],
         "seconds": m.seconds,
     }
+    name_registers(row["critical_path"], [m.netlist])
     if m.macros:
         model_d = json.loads(MACRO_JSON.read_text())
         all_path = sta.get("all")
@@ -652,12 +692,27 @@ def compose_top(glue: dict, engine: dict, n: int, sta: dict, period_ns: float, n
     return row
 
 
+def top_pixels_per_clock() -> tuple[float, str]:
+    """Pixels per clock of the default top, as make synth takes it (scripts/synth.py): the
+    bench's measurement (out/bench/report.json); without one here, the measured figure the
+    committed make synth report used (docs/synthesis.json), before synth.py's constant."""
+    ppc, source = pixels_per_clock()
+    if source.startswith("constant"):
+        try:
+            r = json.loads((ROOT / "docs" / "synthesis.json").read_text())["top_ecp5"]
+            if r.get("pixels_per_clock"):
+                return float(r["pixels_per_clock"]), "measured by make bench, as recorded in docs/synthesis.json"
+        except (OSError, ValueError, KeyError, TypeError):
+            pass
+    return ppc, source
+
+
 def add_rates(row: dict, n_engines: int, top_engines: int) -> None:
     """Decisions and pixels per second per mm^2 of logic, as scripts/synth.py's add_pixel_rate
     gives pixels per second per LUT4: Fmax x the bench's pixels per clock of the default top
     (for one engine, its share: the top's figure x n_engines / top_engines). The decision
     figure is the peak: one decision per clock per engine while a pass runs."""
-    ppc, source = pixels_per_clock()
+    ppc, source = top_pixels_per_clock()
     ppc = ppc * n_engines / top_engines
     if n_engines != top_engines:
         source = f"{source}, x {n_engines}/{top_engines} engines"
@@ -735,9 +790,10 @@ def run(args) -> int:
     n_engines = top_params["NUM_ENGINES"]
     if args.netlist_only:
         m = map_unit(files, ENGINE, engine_params)
-        m.netlist.touch()          # make's target: newer than its prerequisites even when cached
-        print(f"asic: {rel(m.netlist)} and {rel(OUT / (m.tag + '.macros.v'))} written "
-              f"({m.stat['num_cells']} cells, {m.seconds} s)")
+        sim = sim_netlist(m)
+        sim.touch()                # make's target: newer than its prerequisites even when cached
+        print(f"asic: {rel(m.netlist)} mapped ({m.stat['num_cells']} cells); its simulation form "
+              f"{rel(sim)} and the macro models {rel(OUT / (m.tag + '.macros.v'))} written")
         return 0
     want = select_units(units, args.modules)
     if shutil.which("sta") is None:
@@ -822,7 +878,9 @@ def top_row(files, mapped: dict, n: int, period_ns: float, nand2: float) -> dict
                 "cells_by_type": types, "params": glue.params, "logic_depth": figs["logic_depth"],
                 "max_fanout": figs["max_fanout"], "max_fanout_driver": figs["max_fanout_driver"],
                 "seconds": glue.seconds}
-    return compose_top(glue_row, eng["row"], n, sta, period_ns, nand2)
+    top = compose_top(glue_row, eng["row"], n, sta, period_ns, nand2)
+    name_registers(top["critical_path"], [glue.netlist, eng["mapped"].netlist])
+    return top
 
 
 def ecp5_figure() -> dict | None:
@@ -857,8 +915,15 @@ def path_text(p: dict | None, cells: int = 40) -> str:
     if not p:
         return "(none)"
     seq = " -> ".join(p["cells"][:cells]) + (" ..." if len(p["cells"]) > cells else "")
-    return (f"from `{p['start']}` to `{p['end']}`, arrival {p['arrival_ns']} ns, slack {p['slack_ns']} ns, "
+    start = p["start"].split(" (")[0] + (f" (register `{p['start_register']}`)" if p.get("start_register") else "")
+    end = p["end"].split(" (")[0] + (f" (register `{p['end_register']}`)" if p.get("end_register") else "")
+    return (f"from {start} to {end}, arrival {p['arrival_ns']} ns, slack {p['slack_ns']} ns, "
             f"{p['depth']} gates: {seq}")
+
+
+def reg_or_pin(p: dict, key: str) -> str:
+    """A path end for the table: the register's name, else the port or pin."""
+    return f"`{p[key + '_register']}`" if p.get(key + "_register") else f"`{p.get(key, '').split(' ')[0]}`"
 
 
 def write_doc(report: dict) -> None:
@@ -875,7 +940,7 @@ def write_doc(report: dict) -> None:
         rows.append(f"| `{name}` | {fmt_int(round(r['area_um2']))} | {fmt_int(r['nand2_eq'])} | {fmt_int(r['cells'])} | "
                     f"{fmt_int(r['flip_flops'])} | {100 * r['sequential_share']:.0f} % | {r['wns_ns']} | "
                     f"**{r['fmax_mhz']}** | {r['logic_depth']} | {cp.get('depth', '')}: "
-                    f"{cp.get('start', '').split(' ')[0]} -> {cp.get('end', '').split(' ')[0]} | {r['max_fanout']} |")
+                    f"{reg_or_pin(cp, 'start')} -> {reg_or_pin(cp, 'end')} | {r['max_fanout']} |")
     eng, top = mods.get(ENGINE, {}), mods.get(TOP, {})
     ecp5 = ecp5_figure()
     ecp5_text = (f"ECP5 (make synth, {ecp5['from']}): {fmt_int(ecp5['luts'])} LUT4 at {ecp5['fmax_mhz']} MHz, "
@@ -1015,11 +1080,16 @@ path, its start and end.
 ## Does the netlist compute the same frame?
 
 `tb/gate_level/test_gate_level.py` (part of `make test`) simulates the mapped netlist of one
-tile engine (`build/asic/msr_tile_engine.v`, the top's engine parameters) with Verilator on
-the library's own Verilog cell models (`{CELL_MODELS}`) and the macro models, driven by the
-tile-engine bench's own stimulus and checker: random tiles of both decision rules, random
-render latency, response order and back-pressure, every render request and output pixel
-compared bit for bit with the golden model. Result: {gate_level_result()}.
+tile engine (`build/asic/msr_tile_engine.v`, the top's engine parameters) with Verilator, in
+its simulation form `build/asic/msr_tile_engine.sim.v`: Yosys replaces every library cell by
+the function the liberty gives it (`read_liberty`, flip-flops with their asynchronous reset),
+flattens and splits the nets to single bits. The library's Verilog cell models
+(`{CELL_MODELS}`) describe the same cells, but Verilator needed 17 minutes and 323 MB of C++ for the engine's 58 000
+cell instances, too slow for `make test`. The tile buffers are the generated macro models
+(`build/asic/msr_tile_engine.macros.v`: each wraps the behavioural `msr_tile_sram` at its real
+size). The stimulus and the checker are the tile-engine bench's own: random tiles of both
+decision rules, random render latency, response order and back-pressure, every render request
+and output pixel compared bit for bit with the golden model. Result: {gate_level_result()}.
 
 ## What a synthesis team would change
 

@@ -145,7 +145,8 @@ def test_macro_liberty_reads_in_opensta(tmp_path):
     assert "msr_tile_sram #(.DEPTH(1024), .DATA_W(24), .ADDR_W(10))" in models
     if shutil.which("sta") is None:
         pytest.skip("OpenSTA not installed")
-    p = subprocess.run(["sta", "-no_splash", "-exit"], input=f"read_liberty {lib}\n", capture_output=True, text=True)
+    p = subprocess.run(["sta", "-no_splash", "-exit"], input=f"read_liberty {lib}\n", capture_output=True, text=True,
+                       cwd=tmp_path)     # (sta saves its command history in the working directory)
     assert "Error" not in p.stdout + p.stderr, p.stdout + p.stderr
 
 
