@@ -490,7 +490,7 @@ def netlist_figures(verilog: str, module: str | None = None) -> dict:
 
 
 COMB_CELLS: set[str] = set()
-NOT_FANOUT = {"clk_i", "rst_ni"}        # filled from the liberty (cells that are not sequential)
+NOT_FANOUT = {"clk_i", "rst_ni", "arst_n"}     # the clock and the asynchronous resets (msr_regs: arst_n)        # filled from the liberty (cells that are not sequential)
 
 
 # ---- Static timing ----------------------------------------------------------------------------------
@@ -679,6 +679,7 @@ def compose_top(glue: dict, engine: dict, n: int, sta: dict, period_ns: float, n
         "critical_path_depth": sta["logic"].as_dict()["depth"] if sta.get("logic") else None,
         "logic_depth": max(glue["logic_depth"], engine["logic_depth"]),
         "max_fanout": max(glue["max_fanout"], engine["max_fanout"]),
+        "max_fanout_driver": (glue if glue["max_fanout"] >= engine["max_fanout"] else engine)["max_fanout_driver"],
         "sram_macros": {**engine["sram_macros"], "instances": n * engine["sram_macros"]["instances"],
                         "macros_1r1w": n * engine["sram_macros"]["macros_1r1w"],
                         "bits": n * engine["sram_macros"]["bits"], "area_um2": round(macro_area, 1)},
@@ -686,6 +687,8 @@ def compose_top(glue: dict, engine: dict, n: int, sta: dict, period_ns: float, n
         "wns_with_cited_sram_ns": round(float(sta["WORST_ALL"]), 3),
         "fmax_with_cited_sram_mhz": fmax_mhz(period_ns, float(sta["WORST_ALL"])),
         "critical_path_with_cited_sram": sta["all"].as_dict() if sta.get("all") else None,
+        "path_from_sram": sta["from_macro"].as_dict() if sta.get("from_macro") else None,
+        "path_to_sram": sta["to_macro"].as_dict() if sta.get("to_macro") else None,
         "glue": {k: glue[k] for k in ("area_um2", "nand2_eq", "cells", "flip_flops", "sequential_share",
                                       "logic_depth", "max_fanout", "seconds")},
     }
@@ -879,6 +882,8 @@ def top_row(files, mapped: dict, n: int, period_ns: float, nand2: float) -> dict
                 "max_fanout": figs["max_fanout"], "max_fanout_driver": figs["max_fanout_driver"],
                 "seconds": glue.seconds}
     top = compose_top(glue_row, eng["row"], n, sta, period_ns, nand2)
+    if sta.get("from_macro"):
+        top["sram_access_budget_ns"] = round(sta["from_macro"].slack_ns + top["sram_macros"]["access_ns"], 3)
     name_registers(top["critical_path"], [glue.netlist, eng["mapped"].netlist])
     return top
 
