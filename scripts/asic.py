@@ -1115,12 +1115,13 @@ and output pixel compared bit for bit with the golden model. Result: {gate_level
   level controllers' tables, the output and render FIFOs, the frame-buffer writer's buffers)
   onto register-file macros: flip-flops are {100 * (top.get('sequential_share', 0) if top else 0):.0f} % of the
   top's logic area.
-- **Reset.** {fmt_int(dffsr)} of the top's {fmt_int(dffsr + dff)} flip-flops have the asynchronous reset (DFFSR, 176 um^2
-  against 96 um^2 for DFFPOSX1); a team would reset only the control state and leave the data
-  path without reset, or use a library with smaller resettable flip-flops.
-- **Clock gating.** Most data registers load under an enable (a multiplexer in front of the
-  flip-flop here); integrated clock-gating cells would remove those multiplexers and most of
-  the clock power.
+- **Reset.** {fmt_int(dffsr)} of the top's {fmt_int(dffsr + dff)} flip-flops have the asynchronous reset (DFFSR,
+  176 um^2 against 96 um^2 for DFFPOSX1): {fmt_int(dffsr * 80)} um^2, {100 * dffsr * 80 / max(1.0, top.get('area_um2', 1.0) if top else 1.0):.1f} % of the logic, is
+  the price of the reset; the RTL already leaves the data path without reset, so the lever
+  left is a library with a smaller resettable flip-flop.
+- **Clock gating.** Registers that load under an enable get their hold multiplexer in logic
+  here (a MUX2X1, or the AOI/OAI it is merged into, in front of the flip-flop); integrated
+  clock-gating cells would remove it and most of the clock power.
 - **Timing closure.** A wire-load model or, better, placement-aware synthesis; hold fixing and
   a clock tree; the slow and fast corners; a physical-aware tool (or OpenROAD's resizer) in
   place of ABC's buffering and sizing. The critical paths above are the ones to watch.
