@@ -10,6 +10,10 @@ DEB_PKGS=(build-essential cmake pkg-config perl python3-venv
           liblz4-dev zlib1g-dev libembree-dev libassimp-dev
           glmark2-data assimp-testmodels gtkwave libgtest-dev libstb-dev z3 cvc4)
 
+# standard cells and static timing (make asic, the gate-level bench): the OSU 0.18 um library
+# (liberty, LEF, Verilog cell models) and OpenSTA
+DEB_PKGS+=(qflow-tech-osu018 opensta)
+
 # waves screenshots for docs/ (scripts/waves_shot.py: GTKWave under a virtual X server)
 DEB_PKGS+=(xvfb xauth scrot)
 

