@@ -33,7 +33,6 @@ from msr_model.clitools import EXIT_BAD_INPUT, Parser, RunFailed, UsageError, in
 from msr_harness import RTL_RULES, GoldenFrames, HarnessRun, compare
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tb" / "common"))
 from msr_runner import rtl_digest  # noqa: E402  (what RTL the figures were measured on)
 
 GOAL_DECISIONS = 0.95          # decisions per clock per engine inside a pass

@@ -16,7 +16,6 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "sw_model"))
 
 from msr_model.embree import open_renderer, scene_names  # noqa: E402
 

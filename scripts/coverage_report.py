@@ -30,7 +30,6 @@ from collections import defaultdict
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tb" / "common"))
 
 from msr_funcov import AXES, CROSSES  # noqa: E402
 

@@ -37,7 +37,6 @@ from pathlib import Path
 from tqdm import tqdm
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tb" / "common"))
 from msr_runner import rtl_digest, rtl_sources  # noqa: E402  (the one reader of rtl/msr.f)
 FILELIST = ROOT / "rtl" / "msr.f"
 OUT = ROOT / "build" / "synth"

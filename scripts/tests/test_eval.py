@@ -1,9 +1,7 @@
 """The small evaluation run (make eval) as part of make test, its analysis helpers, and the
 sweep on Dask distributed against the serial sweep."""
 import json
-import sys
 import time
-from pathlib import Path
 
 import pytest
 
@@ -11,8 +9,7 @@ from msr_eval import sweep as S
 from msr_eval.executors import SerialExecutor, make_executor
 from msr_eval.metrics import fraction_for, pareto
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-import eval as ev  # noqa: E402
+import eval as ev
 
 
 def test_pareto_and_fraction_for_by_hand():

@@ -1,13 +1,10 @@
 """The synthesis report's bookkeeping (no Yosys run): parameters read from the RTL, the
 bottom-up roll-up of the top, memory bits from an RTLIL dump."""
 import json
-import sys
-from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-import synth  # noqa: E402
+import synth
 
 
 def test_default_params_read_from_the_module_headers():
