@@ -24,7 +24,6 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tb" / "common"))
 
 # MSR_BENCH_LATENCIES / MSR_BENCH_OUTSTANDING / MSR_BENCH_NUM_CTX narrow or change the sweep.
 LATENCIES = tuple(int(v) for v in os.environ.get("MSR_BENCH_LATENCIES", "0,16,64,256").split(","))
@@ -176,8 +175,7 @@ def main() -> int:
         run_cocotb("msr_tile_engine", "bench_engine", ROOT / "scripts",
                    {"MAX_OUTSTANDING": max_out, "NUM_CTX": NUM_CTX}, tag="bench",
                    extra_env={"MSR_BENCH_SIM": "1", "MSR_BENCH_OUT": part,
-                              "PYTHONPATH": os.pathsep.join([str(ROOT / "tb" / "common"),
-                                                            str(ROOT / "scripts")])})
+                              "PYTHONPATH": str(ROOT / "scripts")})     # this module, as the test
         for r in json.loads(part.read_text()):
             r["max_outstanding"] = max_out
             table.append(r)

@@ -31,10 +31,9 @@ from pathlib import Path
 from msr_model import Params, spec
 from msr_model.clitools import EXIT_BAD_INPUT, Parser, RunFailed, UsageError, int_list, run_main
 from msr_harness import RTL_RULES, GoldenFrames, HarnessRun, compare
+from msr_runner import rtl_digest  # what RTL the figures were measured on
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tb" / "common"))
-from msr_runner import rtl_digest  # noqa: E402  (what RTL the figures were measured on)
 
 GOAL_DECISIONS = 0.95          # decisions per clock per engine inside a pass
 GOAL_PIXELS = 3.6              # pixels per clock, 4 engines, latency 256

@@ -29,10 +29,9 @@ import sys
 from collections import defaultdict
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tb" / "common"))
+from msr_funcov import AXES, CROSSES
 
-from msr_funcov import AXES, CROSSES  # noqa: E402
+ROOT = Path(__file__).resolve().parents[1]
 
 COVER_RE = re.compile(r"`MSR_COVER\(\s*(\w+)|^\s*(\w+)\s*:\s*cover\s+property", re.M)
 

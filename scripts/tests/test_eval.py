@@ -1,17 +1,15 @@
 """The small evaluation run (make eval) as part of make test, its analysis helpers, and the
 sweep on Dask distributed against the serial sweep."""
 import json
-import sys
 import time
-from pathlib import Path
 
 import pytest
 
 from msr_eval import sweep as S
+from msr_eval.executors import SerialExecutor, make_executor
 from msr_eval.metrics import fraction_for, pareto
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-import eval as ev  # noqa: E402
+import eval as ev
 
 
 def test_pareto_and_fraction_for_by_hand():
@@ -102,13 +100,13 @@ def test_dask_sweep_equals_serial(tmp_path):
             executor.close()
         return [{k: v for k, v in r.items() if k != "decide_s"} for r in recs]
 
-    serial = sweep(S.SerialExecutor(), tmp_path / "serial")
-    dask = sweep(S.make_executor(workers=2), tmp_path / "dask")
+    serial = sweep(SerialExecutor(), tmp_path / "serial")
+    dask = sweep(make_executor(workers=2), tmp_path / "dask")
     assert len(serial) == len(S.settings(64, 48, (1, 8), True)) * len(scenes) * len(modes)
     assert dask == serial
     assert any(r["key_setting"] and "ssim" in r for r in serial)
     assert all("psnr_conv" in r for r in serial) and any("ssim_conv" in r for r in serial)
-    again = sweep(S.SerialExecutor(), tmp_path / "dask")     # every scene from the cache
+    again = sweep(SerialExecutor(), tmp_path / "dask")     # every scene from the cache
     assert again == serial
 
 
@@ -131,7 +129,7 @@ def test_full_size_store_resumes_and_recomputes_only_changed_families(tmp_path, 
     def run(cache, log):
         cfg = S.SweepConfig(48, 32, (1, 8), False, False, cache, conv_modes=("heavy",), conv_ladder=True,
                             conv_check=False, store=store)
-        recs, _, infos = S.run_sweep(backend, ["duck"], ["fast", "heavy"], cfg, S.SerialExecutor(),
+        recs, _, infos = S.run_sweep(backend, ["duck"], ["fast", "heavy"], cfg, SerialExecutor(),
                                      log=log.append, show_progress=False)
         return recs, infos
 

@@ -1,10 +1,8 @@
 """The hand-off package stays consistent: one file list (rtl/msr.f) that every flow reads."""
 import re
-import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tb" / "common"))
 from msr_runner import rtl_sources  # noqa: E402  (the one reader of rtl/msr.f)
 
 

@@ -1,13 +1,11 @@
 """The synthesis report's bookkeeping (no Yosys run): parameters read from the RTL, the
-bottom-up roll-up of the top, memory bits from an RTLIL dump."""
+bottom-up roll-up of the top, memory bits from an RTLIL dump, the job graph (its plan and the
+order and failure rules of its runner)."""
 import json
-import sys
-from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-import synth  # noqa: E402
+import synth
 
 
 def test_default_params_read_from_the_module_headers():
@@ -191,3 +189,107 @@ def test_combine_seeds_median_best_worst():
     r = synth.combine_seeds(rows[:2] + [{"seed": 3, "error": "router gave up"}])
     assert r["fmax_mhz"] == 99.5 and r["fmax_seeds"][2]["error"] == "router gave up"
     assert "error" in synth.combine_seeds([{"seed": 1, "error": "x"}])
+
+
+# --- the job graph (issue 35): declared jobs, run in dependency order -------------------------
+
+def _recording_jobs(calls, fail=()):
+    def fn(name):
+        def run(*a):
+            calls.append((name, a))
+            if name in fail:
+                raise RuntimeError(f"{name} broke")
+            return {"name": name, "args": a}
+        return run
+    return fn
+
+
+def test_graph_runs_a_job_after_its_dependencies_listed_order_first():
+    calls = []
+    fn = _recording_jobs(calls)
+    jobs = [synth.Job(("net", "a"), fn("a"), ("tag_a",), (("net", "b"),)),
+            synth.Job(("net", "b"), fn("b"), (1, 2)),
+            synth.Job(("ecp5", "c"), fn("c")),
+            synth.Job(("ecp5", "d"), fn("d"), ("tag_d",), (("net", "a"), ("net", "b")))]
+    results, failures = synth.run_graph(jobs, workers=1)
+    assert failures == []
+    # b is the first ready job; then a (listed before c) and c; d waits for a
+    assert [name for name, _ in calls] == ["b", "a", "c", "d"]
+    # the dependencies' results come first in the call, in the order named, then the job's own args
+    assert dict(calls)["a"] == (results[("net", "b")], "tag_a")
+    assert dict(calls)["d"] == (results[("net", "a")], results[("net", "b")], "tag_d")
+    assert set(results) == {j.key for j in jobs}
+
+
+def test_graph_a_failure_stops_what_needs_it_and_nothing_else():
+    calls = []
+    fn = _recording_jobs(calls, fail={"b"})
+    jobs = [synth.Job(("net", "b"), fn("b")),
+            synth.Job(("net", "a"), fn("a"), (), (("net", "b"),)),
+            synth.Job(("ecp5", "d"), fn("d"), (), (("net", "a"),)),
+            synth.Job(("ecp5", "c"), fn("c")),
+            synth.Job(("ecp5", "e"), fn("e"), (), (("ecp5", "c"),))]
+    results, failures = synth.run_graph(jobs, workers=2)
+    assert sorted(name for name, _ in calls) == ["b", "c", "e"]          # a and d never run
+    assert failures == ["b broke"]                                       # reported once, where it broke
+    assert results[("net", "b")] == {"error": "b broke"}
+    assert results[("net", "a")] == {"error": "needs a run that failed: b broke"}
+    assert results[("ecp5", "d")] == {"error": "needs a run that failed: needs a run that failed: b broke"}
+    assert "error" not in results[("ecp5", "e")]
+
+
+def test_graph_a_dependency_no_job_provides_is_a_failure():
+    calls = []
+    fn = _recording_jobs(calls)
+    jobs = [synth.Job(("ecp5", "x"), fn("x"), (), (("net", "nobody"),)), synth.Job(("ecp5", "y"), fn("y"))]
+    results, failures = synth.run_graph(jobs, workers=2)
+    assert [name for name, _ in calls] == ["y"]
+    assert results[("ecp5", "x")] == {"error": "a dependency was never scheduled"}
+    assert failures == ["ecp5 x: a dependency was never scheduled"]
+
+
+def _plan(*argv):
+    args = synth.parser().parse_args(list(argv))
+    files = synth.read_filelist()
+    units = [m for m in synth.modules_in(files) if not m.endswith("_pkg")]
+    mods = args.modules.split(",") if args.modules else units
+    return synth.plan(args, files, mods, {"NUM_CTX": 7}, "msr_tile_sram", (1, 2, 3)), units
+
+
+def _check_dag(jobs):
+    keys = [j.key for j in jobs]
+    assert len(keys) == len(set(keys))
+    done = set()
+    for j in jobs:                       # as planned, every dependency is listed before its user
+        assert set(j.deps) <= done, (j.key, j.deps)
+        done.add(j.key)
+
+
+def test_plan_of_the_whole_design():
+    jobs, units = _plan()
+    _check_dag(jobs)
+    by_key = {j.key: j for j in jobs}
+    assert jobs[0].key == ("net", synth.ENGINE) and jobs[1].key == ("net", "msr_top_glue")   # the long chain first
+    assert by_key[("net", "msr_top")].deps == (("net", "msr_top_glue"), ("net", synth.ENGINE))
+    for seed in (1, 2, 3):
+        j = by_key[("ecp5", f"msr_top@{seed}")]
+        assert j.fn is synth.ecp5_place and j.deps == (("net", "msr_top"),) and j.args[1:] == (seed, True)
+    assert by_key[("ecp5", "msr_top_glue")].deps == (("net", "msr_top_glue_cut"),)
+    assert {m for (kind, m) in by_key if kind == "ecp5"} >= set(synth.ECP5_UNITS)
+    generic = {w for (kind, w) in by_key if kind == "generic"}
+    assert generic == ({(m, "inferred") for m in units if m != "msr_top"}
+                       | {(synth.ENGINE, "black box"), ("msr_top", "glue")})
+
+
+def test_plan_follows_the_options():
+    jobs, _ = _plan("--no-ecp5")
+    assert jobs and all(j.key[0] == "generic" and not j.deps for j in jobs)
+    jobs, _ = _plan("--modules", "msr_top", "--glue-only")
+    _check_dag(jobs)
+    assert not any(synth.ENGINE in str(j.key) for j in jobs)
+    assert ("ecp5", "msr_top_glue") in {j.key for j in jobs} and ("net", "msr_top") not in {j.key for j in jobs}
+    jobs, _ = _plan("--modules", "msr_top", "--no-top-ecp5")
+    _check_dag(jobs)
+    assert not any(j.key[1] == "msr_top" or "@" in str(j.key[1]) for j in jobs if j.key[0] in ("net", "ecp5"))
+    jobs, _ = _plan("--modules", "msr_fb_writer")
+    assert [j.key for j in jobs] == [("ecp5", "msr_fb_writer"), ("generic", ("msr_fb_writer", "inferred"))]

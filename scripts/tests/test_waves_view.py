@@ -1,10 +1,7 @@
 """scripts/gen_gtkw.py's view: the save file opens zoomed on the recorded window with marker A
 at the tile's start and B at its end (GTKWave's `*zoom marker a b ...` line)."""
-import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-import gen_gtkw  # noqa: E402
+import gen_gtkw
 
 
 class FakeDump:

@@ -3,7 +3,8 @@ summaries, the section that leads docs/results.md, a page of its own (--conv-pag
 per-scene Pareto-front plots. Docs code only: the record cache does not depend on this file."""
 from __future__ import annotations
 
-from .metrics import TARGETS_DB, capped, fraction_for, pareto
+from .metrics import TARGETS_DB, capped, fraction_for, pareto, rule_comparison
+from .present import db, finish_scene_grid, needed_cell, pct, scene_grid, scene_panel, small_png
 from .reference import as_conv, pick_near_conv
 
 
@@ -56,7 +57,6 @@ def plot_scene_fronts(records, mode, path, title):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from .report import finish_scene_grid, scene_grid, scene_panel
     groups = [("patent (L3, T16/T32)", PATENT, "tab:blue", "o"), ("ours (dilate / lindilate)", OURS, "tab:red", "*"),
               ("DACS", ("dacs",), "tab:green", "s"), ("VRS-like 8x8", ("vrs_T8",), "tab:purple", "D"),
               ("VRS-like 16x16", ("vrs_T16",), "violet", "d"), ("checkerboard", ("checkerboard",), "tab:brown", "^")]
@@ -91,18 +91,8 @@ H2H = ("full", "multi_L3_T16", "multi_L3_T32", "multi_L3_T16_dilate", "multi_L3_
        "multi_L3_T32_lindilate", "dacs", "vrs_T8", "vrs_T16", "checkerboard")
 
 
-def _pct(f, how=None):
-    if f is None:
-        return "not reached"
-    return f"<= {100 * f:.1f}" if how == "at_or_below" else f"{100 * f:.1f}"
-
-
 def _cell(b):
-    return "not reached" if b is None else f"{_pct(b[1], b[2])} ({NAMES.get(b[0], b[0]).replace('**', '')})"
-
-
-def _db(p):
-    return "exact" if p is None else f"{p:.2f}"
+    return "not reached" if b is None else f"{pct(b[1], b[2])} ({NAMES.get(b[0], b[0]).replace('**', '')})"
 
 
 def psnr_at(points, fraction):
@@ -128,7 +118,6 @@ def comparisons(records, modes):
     """Where DACS or the VRS-like baseline beats the patent's rule or ours: per mode and scene,
     their fractions for 35 and 40 dB side by side, and the PSNR difference at equal traced
     fraction (metrics.rule_comparison on the converged scores)."""
-    from .metrics import rule_comparison
     conv = as_conv(records)
     out = {}
     for base in ("multi_L3_T16", "multi_L3_T32_lindilate"):
@@ -174,15 +163,15 @@ def docs_lines(result: dict, figs: list) -> list[str]:
         if r is None:
             continue
         two = c.get("psnr_two_seeds")
-        w(f"| {fr['scene']} | {fr['mode']} | {c['spp']} | {_db(two) if 'psnr_two_seeds' in c else '-'} | "
+        w(f"| {fr['scene']} | {fr['mode']} | {c['spp']} | {db(two) if 'psnr_two_seeds' in c else '-'} | "
           f"{c['tile_min_psnr_two_seeds']:.2f} | {100 * c.get('mse_share_top1pct', 0):.0f} % | "
           if "tile_min_psnr_two_seeds" in c else
           f"| {fr['scene']} | {fr['mode']} | {c['spp']} | - | - | - | ")
-        L[-1] += (f"{_db(r['psnr_conv'])} | {r['ssim_conv']:.4f} | " if "ssim_conv" in r else f"{_db(r['psnr_conv'])} | - | ")
+        L[-1] += (f"{db(r['psnr_conv'])} | {r['ssim_conv']:.4f} | " if "ssim_conv" in r else f"{db(r['psnr_conv'])} | - | ")
         L[-1] += (f"{r['flip_conv']:.4f} | " if "flip_conv" in r else "- | ") + f"{r['tile32_min_psnr_conv']:.2f} |"
         if len(c.get("tried", [])) > 1:
             tried.append(f"{fr['scene']} {fr['mode']}: " + ", ".join(
-                f"{t['spp']} spp {_db(t['psnr_two_seeds'])} dB" for t in c["tried"]))
+                f"{t['spp']} spp {db(t['psnr_two_seeds'])} dB" for t in c["tried"]))
     w("")
     if tried:
         w("Scenes that needed more than the first count (two-seed PSNR per count tried): " + "; ".join(tried) + ".\n")
@@ -202,8 +191,8 @@ def docs_lines(result: dict, figs: list) -> list[str]:
             for k in worst:
                 x, y = a[k], b[k]
                 worst[k].append((a["scene"], x[1] if x else None))
-                cells.append(f"{_pct(x[1], x[2]) if x else 'not reached'} ({_pct(y[1], y[2]) if y else 'not reached'})")
-            w(f"| {a['scene']} | " + " | ".join(cells) + f" | {_db(full['psnr_conv']) + ' dB' if full else '-'} |")
+                cells.append(f"{pct(x[1], x[2]) if x else 'not reached'} ({pct(y[1], y[2]) if y else 'not reached'})")
+            w(f"| {a['scene']} | " + " | ".join(cells) + f" | {db(full['psnr_conv']) + ' dB' if full else '-'} |")
         cells = []
         for k, v in worst.items():
             miss = [s for s, f in v if f is None]
@@ -246,7 +235,7 @@ def docs_lines(result: dict, figs: list) -> list[str]:
                 pts = [(r["traced_fraction"], capped(r["psnr_conv"])) for r in rs if r["family"] in fams]
                 cells.append(" / ".join(_db_or_dash(psnr_at(pts, f)) for f in (0.10, 0.20)))
             cb = [r for r in rs if r["family"] == "checkerboard"]
-            cells.append(_db(cb[0]["psnr_conv"]) if cb else "-")
+            cells.append(db(cb[0]["psnr_conv"]) if cb else "-")
             w(f"| {s} | " + " | ".join(cells) + " |")
         w("")
     notes = result.get("_conv_notes")             # hand-written findings (docs/results_converged_notes.md)
@@ -280,7 +269,7 @@ def docs_lines(result: dict, figs: list) -> list[str]:
                 if d is None:
                     cells.append("-")
                     continue
-                cells.append(f"{_pct(d['35']['fraction'], d['35']['how'])} / {_pct(d['40']['fraction'], d['40']['how'])}")
+                cells.append(needed_cell(d))
                 w40.append((s, d["40"]["fraction"]))
             miss = [s for s, x in w40 if x is None]
             worst = (f"not reached on {len(miss)}" if miss else
@@ -301,8 +290,8 @@ def docs_lines(result: dict, figs: list) -> list[str]:
                     continue
                 ss = f"{r['ssim_conv']:.4f}" if "ssim_conv" in r else "-"
                 fl = f"{r['flip_conv']:.4f}" if "flip_conv" in r else "-"
-                w(f"| {s} | {NAMES.get(f, f)} | {r['label']} | {100 * r['traced_fraction']:.1f} | {_db(r['psnr_conv'])} | "
-                  f"{r['tile32_min_psnr_conv']:.2f} | {ss} | {fl} | {_db(r['psnr'])} |")
+                w(f"| {s} | {NAMES.get(f, f)} | {r['label']} | {100 * r['traced_fraction']:.1f} | {db(r['psnr_conv'])} | "
+                  f"{r['tile32_min_psnr_conv']:.2f} | {ss} | {fl} | {db(r['psnr'])} |")
         w("")
     for mode, path in figs:
         w(f"Pareto fronts against the converged reference, {mode} renderer (patent, ours, DACS, VRS-like, "
@@ -322,8 +311,6 @@ def write_page(result: dict, out, docs, name: str = "results_converged.md"):
     """A page of its own with the converged comparison only (docs/NAME, figures in docs/img/):
     for a run whose size differs from docs/results.md's (the quick run)."""
     from pathlib import Path
-
-    from .report import _small_png
     out, docs = Path(out), Path(docs)
     cfg = result["config"]
     figs = []
@@ -331,7 +318,7 @@ def write_page(result: dict, out, docs, name: str = "results_converged.md"):
         src = out / f"fronts_conv_{mode}.png"
         if src.is_file():
             rel = f"img/conv_fronts_{cfg['width']}x{cfg['height']}_{mode}.png"
-            _small_png(src, docs / rel, 900)
+            small_png(src, docs / rel, 900)
             figs.append((mode, rel))
     head = [f"# Against the converged reference, {cfg['width']}x{cfg['height']}\n",
             f"Generated by `scripts/eval.py [--report-only] --out {_rel(out)} --conv-page {name}` (run of "

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from .conv_report import psnr_at
 from .metrics import capped, fraction_for, pareto
+from .present import finish_scene_grid, scene_grid, scene_panel
 
 # (key, name, families, colour, marker): the page's one palette
 GROUPS = (
@@ -273,7 +274,6 @@ def plot_fronts(records, path, title, mode: str = "heavy"):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from .report import finish_scene_grid, scene_grid, scene_panel
     scenes = list(dict.fromkeys(r["scene"] for r in records if r["mode"] == mode and "psnr_conv" in r))
     if not scenes:
         return

@@ -10,28 +10,14 @@ import json
 from pathlib import Path
 
 import numpy as np
-from PIL import Image
 
 from msr_model.palette import legend_image, source_rgb
 
+from .conv_report import docs_lines as conv_lines
+from .headline import docs_lines as head_lines
 from .metrics import capped, flip, pareto
-
-FAMILY_NAMES = {
-    "full": "full render", "grid2": "uniform grid, every 2nd pixel, bilinear",
-    "grid4": "uniform grid, every 4th pixel, bilinear", "checkerboard": "checkerboard (4-neighbour mean)",
-    "single_traced": "single level, stride 4, tile borders traced (Fig. 4/5b)",
-    "single_borrowed": "single level, stride 4, borders borrowed (Fig. 5 [0068], serial)",
-    "multi_L1_T16": "patent, L=1, T=16", "multi_L2_T16": "patent, L=2, T=16", "multi_L2_T32": "patent, L=2, T=32",
-    "multi_L3_T16": "patent, L=3, T=16", "multi_L3_T32": "patent, L=3, T=32",
-    "multi_L3_T16_fov": "patent, L=3, T=16, foveated (+~16 at the edge)",
-    "multi_L3_T16_dilate": "**new** dilate rule, L=3, T=16", "multi_L3_T16_linear": "**new** linear rule, L=3, T=16",
-    "multi_L3_T16_lindilate": "**new** lindilate rule, L=3, T=16", "multi_L3_T16_diag": "**new** diag rule, L=3, T=16",
-    "multi_L3_T32_lindilate": "**new** lindilate rule, L=3, T=32",
-    "dacs": "DACS (Mallett and Yuksel 2018), variance threshold", "vrs_T8": "VRS-like (tier 2), 8x8 rate tiles",
-    "vrs_T16": "VRS-like (tier 2), 16x16 rate tiles",
-    "multi_L3_T16_gbuf": "**new** G-buffer rule (gbuf), L=3, T=16",
-    "multi_L3_T16_gbuflindilate": "**new** G-buffer + lindilate (gbuflindilate), L=3, T=16",
-}
+from .present import FAMILY_NAMES, db, finish_scene_grid, needed_cell, scene_grid, scene_panel, small_png
+from .textured import section as textured_section
 
 
 HOW_TO_RERUN = """## How to rerun
@@ -63,28 +49,6 @@ be finished in parts. The speed-up table is measured afterwards in the main proc
 """
 
 
-def _pct(f, how=None):
-    if f is None:
-        return "not reached"
-    s = f"{100 * f:.1f}"
-    return f"<= {s}" if how == "at_or_below" else s
-
-
-def _db(p):
-    return "exact" if p is None else f"{p:.2f}"
-
-
-def _small_png(src: Path, dst: Path, max_w: int, colors: int | None = 128):
-    """Downscaled PNG; plots are palette-quantised, example frames are not (banding)."""
-    im = Image.open(src).convert("RGB")
-    if im.width > max_w:
-        im = im.resize((max_w, round(im.height * max_w / im.width)), Image.LANCZOS)
-    if colors:
-        im = im.quantize(colors=colors, method=Image.Quantize.MEDIANCUT)
-    dst.parent.mkdir(parents=True, exist_ok=True)
-    im.save(dst, optimize=True)
-
-
 def write_docs(result: dict, out: Path, docs: Path):
     cfg = result["config"]
     img = docs / "img"
@@ -94,10 +58,10 @@ def write_docs(result: dict, out: Path, docs: Path):
         for kind in ("pareto", "curves"):
             src = out / f"{kind}_{mode}.png"
             if src.is_file():
-                _small_png(src, img / f"eval_{kind}_{mode}.png", 900)
+                small_png(src, img / f"eval_{kind}_{mode}.png", 900)
                 figs.append((kind, mode, f"img/eval_{kind}_{mode}.png"))
     for ex in result["examples"]:
-        _small_png(out / ex["file"], img / f"eval_{ex['file']}", 968, None)
+        small_png(out / ex["file"], img / f"eval_{ex['file']}", 968, None)
         ex["doc_file"] = f"img/eval_{ex['file']}"
 
     L = []
@@ -110,11 +74,10 @@ def write_docs(result: dict, out: Path, docs: Path):
     w(f"Scene set ({len(cfg['scenes'])}): " + ", ".join(f"`{s}`" for s in cfg["scene_sources"]) + "\n")
     notes = docs / "results_notes.md"
     if result.get("head_to_head"):                # the converged head-to-head leads (msr_eval.headline)
-        from .headline import docs_lines as head_lines
         fig = None
         src = out / "fronts_headline.png"
         if src.is_file():
-            _small_png(src, img / "eval_fronts_headline.png", 1100)
+            small_png(src, img / "eval_fronts_headline.png", 1100)
             fig = "img/eval_fronts_headline.png"
         heldout = None
         hfs = sorted((docs / "converged").glob("heldout_*.json"))
@@ -126,15 +89,14 @@ def write_docs(result: dict, out: Path, docs: Path):
             w(hnotes.read_text())
     w(HOW_TO_RERUN)
     if result.get("converged"):                   # the converged comparison leads (msr_eval.reference)
-        from .conv_report import docs_lines
         cfigs = []
         for mode in cfg["modes"]:
             src = out / f"fronts_conv_{mode}.png"
             if src.is_file():
-                _small_png(src, img / f"eval_fronts_conv_{mode}.png", 900)
+                small_png(src, img / f"eval_fronts_conv_{mode}.png", 900)
                 cfigs.append((mode, f"img/eval_fronts_conv_{mode}.png"))
         cnotes = docs / "results_converged_notes.md"      # hand-written findings, pasted in
-        L.extend(docs_lines({**result, "_conv_notes": cnotes.read_text() if cnotes.is_file() else None}, cfigs))
+        L.extend(conv_lines({**result, "_conv_notes": cnotes.read_text() if cnotes.is_file() else None}, cfigs))
         w("## Against the renderer's own full render\n")
         w("Everything below scores against the renderer's full render of the same mode (the "
           "evaluation's original reference), as before.\n")
@@ -171,18 +133,11 @@ def write_docs(result: dict, out: Path, docs: Path):
         w("|---" * (len(scenes) + 2) + "|")
         setn = result["headline"].get(mode, {}).get("set_needed", {})
         for f in fams:
-            cells = []
-            for s in scenes:
-                d = needed[s].get(mode, {}).get(f)
-                cells.append("-" if d is None else
-                             f"{_pct(d['35']['fraction'], d['35']['how'])} / {_pct(d['40']['fraction'], d['40']['how'])}")
-            d = setn.get(f)
-            cells.append("-" if d is None else
-                         f"{_pct(d['35']['fraction'], d['35']['how'])} / {_pct(d['40']['fraction'], d['40']['how'])}")
+            cells = [needed_cell(needed[s].get(mode, {}).get(f)) for s in scenes]
+            cells.append(needed_cell(setn.get(f)))
             w(f"| {FAMILY_NAMES[f]} | " + " | ".join(cells) + " |")
         w("")
 
-    from .textured import section as textured_section  # noqa: PLC0415 - it imports this module
     L.extend(textured_section(result))
 
     w("## New decision rules against the patent's rule\n")
@@ -219,7 +174,7 @@ def write_docs(result: dict, out: Path, docs: Path):
                 ss = f"{r['ssim']:.4f}" if "ssim" in r else "-"
                 fl = f"{r['flip']:.4f}" if "flip" in r else "-"
                 w(f"| {s} | {FAMILY_NAMES[f]} | {r['label']} | {100 * r['traced_fraction']:.1f} | "
-                  f"{_db(r['psnr'])} | {ss} | {fl} |")
+                  f"{db(r['psnr'])} | {ss} | {fl} |")
         w("")
 
     if result["speedup"]:
@@ -245,7 +200,7 @@ def write_docs(result: dict, out: Path, docs: Path):
           "summary.png, legend under each strip | FLIP error map, magma, black = no error):\n")
         for ex in result["examples"]:
             w(f"- `{ex['scene']}`, {ex['mode']}, {FAMILY_NAMES.get(ex['family'], ex['family'])} {ex['label']}: "
-              f"{100 * ex['traced_fraction']:.1f} % traced, {_db(ex['psnr'])} dB\n\n  ![{ex['scene']}]({ex['doc_file']})\n")
+              f"{100 * ex['traced_fraction']:.1f} % traced, {db(ex['psnr'])} dB\n\n  ![{ex['scene']}]({ex['doc_file']})\n")
     L.extend(appendices(docs))
     (docs / "results.md").write_text("\n".join(L) + "\n")
     # compact copy for the repository: floats to 5 significant digits, no indentation
@@ -320,39 +275,6 @@ FAMILY_STYLE = {
     "multi_L3_T16_gbuf": ("new rule: G-buffer, L3 T16", "X", "teal"),
     "multi_L3_T16_gbuflindilate": ("new rule: G-buffer + lindilate, L3 T16", "X", "darkcyan"),
 }
-
-
-def scene_grid(plt, nscenes):
-    """The figure of a per-scene plot (plot_curves, conv_report.plot_scene_fronts): one small
-    panel a scene, four a row. Returns (fig, axes), axes 2-D."""
-    ncol = min(4, nscenes)
-    nrow = -(-nscenes // ncol)
-    return plt.subplots(nrow, ncol, figsize=(max(6.4, 3.2 * ncol), 2.6 * nrow + 0.9), squeeze=False)
-
-
-def scene_panel(ax, scene, xmax, ymax):
-    """One scene's panel of a scene grid: its name over it, traced pixels 0..xmax %, PSNR
-    20..ymax dB, a dotted line at 40 dB."""
-    ax.axhline(40, color="k", lw=0.4, ls=":")
-    ax.set_title(scene, fontsize=8)
-    ax.set_xlim(0, xmax)
-    ax.set_ylim(20, ymax)
-    ax.tick_params(labelsize=6)
-
-
-def finish_scene_grid(plt, fig, axes, nscenes, ylabel, title, path):
-    """Blank the panels past the last scene, label the axes (traced pixels against `ylabel`),
-    one legend under the grid (the first panel's lines), the title; write `path`, close."""
-    for ax in axes.ravel()[nscenes:]:
-        ax.axis("off")
-    fig.supxlabel("traced pixels (%)", fontsize=8)
-    fig.supylabel(ylabel, fontsize=8)
-    h, lab = axes[0, 0].get_legend_handles_labels()
-    fig.legend(h, lab, fontsize=6, loc="lower center", ncol=4, frameon=False)
-    fig.suptitle(title, fontsize=9)
-    fig.tight_layout(rect=(0, 0.12 if axes.shape[0] == 1 else 0.08, 1, 1))
-    fig.savefig(path, dpi=70)
-    plt.close(fig)
 
 
 def plot_curves(records, mode, path, title):

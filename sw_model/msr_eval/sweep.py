@@ -5,17 +5,16 @@ folder). The renderer is deterministic (same pixel, same colour), so every setti
 against the cached reference as the rendering unit: each method still asks the unit only for
 the pixels it traces, and the traced count is what the unit was asked for.
 
-Tasks run on an executor: `SerialExecutor` (in this process, in order) or Dask distributed
-(`dask_executor`: a LocalCluster sized to the machine, or an existing scheduler). Each task is
-a pure function of its inputs, so both give the same records; only the wall-time fields
-(`decide_s`, `full_render_s`) differ between runs. Records are cached per scene and mode,
-keyed by the renderer library and the code that computes them, so an interrupted run resumes.
+Tasks run on an executor (msr_eval.executors: in this process, in order, or on Dask
+distributed). Each task is a pure function of its inputs, so both give the same records; only
+the wall-time fields (`decide_s`, `full_render_s`) differ between runs. References and records
+are cached per scene and mode (`Cache`), keyed by the renderer library and the code that
+computes them, so an interrupted run resumes.
 """
 from __future__ import annotations
 
 import hashlib
 import json
-import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -28,22 +27,10 @@ from . import gbuffer_rule as G
 from . import methods as M
 from . import reference as REF
 from .metrics import TARGETS_DB, pick_near, psnr, ssim, flip
+from .scenes import scene_id
 
 REPO = Path(__file__).resolve().parents[2]
 
-# Debian-packaged real models (glmark2-data, assimp-testmodels) used besides the built-ins.
-MODEL_FILES = [
-    "/usr/share/glmark2/models/horse.3ds",
-    "/usr/share/glmark2/models/cat.3ds",
-    "/usr/share/glmark2/models/asteroid-high.3ds",
-    "/usr/share/assimp/models/OBJ/WusonOBJ.obj",
-    # textured (besides the built-in duck and teapots): OBJ + .mtl + JPEG, glTF 1.0, glTF 2.0
-    "/usr/share/assimp/models/OBJ/spider.obj",
-    "/usr/share/assimp/models/glTF/CesiumMilkTruck/CesiumMilkTruck.gltf",
-    "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf",
-]
-# Scenes whose surfaces carry diffuse textures (scene ids), reported on their own.
-TEXTURED_SCENES = ("duck", "teapots", "spider", "CesiumMilkTruck", "BoxTextured")
 # Threshold scales s: the patent's families use thr = (s, 2s, 4s)[:L] (at least 1 each).
 # Main families get the dense list, the others the sparse one (1080p costs ~0.6 s a setting).
 FULL_SCALES = (0.25, 0.5, 1, 1.5, 2, 3, 4, 6, 8, 12, 16, 24, 32, 64)
@@ -145,10 +132,6 @@ def _lib_hash(path) -> str:
     """Content hash of the renderer library (so a rebuilt renderer invalidates the cache)."""
     p = Path(path)
     return hashlib.sha1(p.read_bytes()).hexdigest()[:10] if p.is_file() else "nolib"
-
-
-def scene_id(scene: str) -> str:
-    return Path(scene).stem.replace(" ", "_") if ("/" in scene or "." in scene) else scene
 
 
 def _rel(p: Path) -> str:
@@ -420,98 +403,60 @@ def task_key_metrics(ref, setting: Setting, want_flip: bool, gbuf=None, conv=Non
     return out
 
 
-# --- executors -------------------------------------------------------------------------------
+# --- the cache --------------------------------------------------------------------------------
 
-class _Deferred:
-    def __init__(self, fn, args):
-        self._fn, self._args = fn, args
+class Cache:
+    """The sweep's cache folder. What is cached under a key is KEY.json, and for a frame KEY.png
+    beside it (the frame, KEY.json its info); the key names everything the value depends on
+    (scene, mode, size, renderer library, settings and code), so a value found is valid."""
 
-    def result(self):
-        return self._fn(*self._args)
+    def __init__(self, folder: Path):
+        self.dir = Path(folder)
+        self.dir.mkdir(parents=True, exist_ok=True)
 
+    def load(self, key: str, frame: bool = True, valid=None):
+        """(frame, info) under `key` (with `frame`), else the JSON value; None when it is
+        missing, or when `valid(info)` says it does not serve."""
+        meta, png = self.dir / f"{key}.json", self.dir / f"{key}.png"
+        if not meta.is_file() or (frame and not png.is_file()):
+            return None
+        info = json.loads(meta.read_text())
+        if valid is not None and not valid(info):
+            return None
+        return (load_rgb(png), info) if frame else info
 
-class SerialExecutor:
-    """Runs every task in this process, in submission order, when its result is collected."""
+    def save(self, key: str, value, info=None):
+        """`value` under `key`: a frame with its `info`, or (info None) a JSON value."""
+        if info is None:
+            (self.dir / f"{key}.json").write_text(json.dumps(value))
+            return
+        save_png(self.dir / f"{key}.png", value)
+        (self.dir / f"{key}.json").write_text(json.dumps(info))
 
-    name = "serial"
-
-    def submit(self, fn, *args, priority: int = 0):
-        return _Deferred(fn, args)
-
-    def scatter(self, value):
-        return value
-
-    def results(self, futures, progress=None):
-        out = []
-        for f in futures:
-            out.append(f.result())
-            if progress is not None:
-                progress.update(1)
+    def frames(self, executor, jobs, bar, valid=None, done=None) -> dict:
+        """Cache or compute: `jobs` is a list of (item, key, task), task = (fn, *args) giving
+        (frame, info). Each item's pair comes from the cache (when there and valid), else from
+        its task on the executor, written here as soon as it is in (in list order, so a stopped
+        run keeps every finished one). `done(item, frame, info, fresh)` after each item; `bar(n)`
+        is the progress bar of the n tasks. Returns {item: (frame, info)}."""
+        out, todo = {}, []
+        for item, key, task in jobs:
+            hit = self.load(key, valid=valid)
+            if hit is None:
+                todo.append((item, key, task))
+                continue
+            out[item] = hit
+            if done is not None:
+                done(item, *hit, False)
+        with bar(len(todo)) as b:
+            futs = [executor.submit(*task) for _, _, task in todo]
+            for (item, key, _), fut in zip(todo, futs):
+                frame, info = out[item] = fut.result()
+                b.update(1)
+                self.save(key, frame, info)
+                if done is not None:
+                    done(item, frame, info, True)
         return out
-
-    def close(self):
-        pass
-
-
-class DaskExecutor:
-    """Tasks on Dask distributed: an existing scheduler, or a LocalCluster of this machine."""
-
-    def __init__(self, scheduler: str | None = None, workers: int | None = None):
-        import logging
-
-        import dask
-        from distributed import Client, LocalCluster
-        # The nanny starts each worker with MALLOC_TRIM_THRESHOLD_=65536, which turns off
-        # glibc's adaptive mmap threshold: every large numpy temporary is then mapped and
-        # faulted in afresh, and a sweep's tasks run about 1.5 times slower than in this
-        # process. The workers here get the environment of this process instead.
-        dask.config.set({"distributed.nanny.pre-spawn-environ": {}})
-        self.cluster = None
-        if scheduler:
-            self.client = Client(scheduler)
-            self.name = f"dask {scheduler}"
-        else:
-            n = workers or _cpus()
-            # One thread a worker: the tasks are numpy code that holds the GIL most of the time.
-            self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                        dashboard_address=None, silence_logs=logging.ERROR)
-            self.client = Client(self.cluster)
-            self.name = f"dask LocalCluster, {n} workers"
-
-    def submit(self, fn, *args, priority: int = 0):
-        # priority: a pair's key metrics (submitted once its settings are in) run before the
-        # settings of later pairs, so each pair's records are complete and cached early
-        return self.client.submit(fn, *args, pure=False, priority=priority)
-
-    def scatter(self, value):
-        return self.client.scatter(value, broadcast=False)
-
-    def results(self, futures, progress=None):
-        from distributed import as_completed
-        for _ in as_completed(futures):
-            if progress is not None:
-                progress.update(1)
-        return self.client.gather(futures)
-
-    def close(self):
-        self.client.close()
-        if self.cluster is not None:
-            self.cluster.close()
-
-
-def _cpus() -> int:
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:
-        return max(1, os.cpu_count() or 1)
-
-
-def make_executor(scheduler: str | None = None, workers: int | None = None):
-    """`scheduler`: "serial", a Dask address (tcp://host:port), or None for $MSR_DASK_SCHEDULER
-    and else a LocalCluster with `workers` workers (default: one per CPU)."""
-    if scheduler == "serial" or workers == 0:
-        return SerialExecutor()
-    return DaskExecutor(scheduler or os.environ.get("MSR_DASK_SCHEDULER") or None, workers)
 
 
 # --- the sweep -------------------------------------------------------------------------------
@@ -522,8 +467,7 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     keyed by (scene, mode); records in the order scene, mode, setting."""
     from tqdm import tqdm
 
-    cache = Path(cfg.cache)
-    cache.mkdir(parents=True, exist_ok=True)
+    cache = Cache(cfg.cache)
     W, H = cfg.width, cfg.height
     sweep = cfg.sweep
     sig = cfg.signature()
@@ -533,23 +477,12 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
         return tqdm(total=total, desc=desc, unit="task", disable=True if not show_progress or total == 0 else None,
                     leave=False, mininterval=1.0)
 
-    # References: from the cache, else rendered as tasks and cached here.
-    refs, infos, todo = {}, {}, []
-    for scene, mode in pairs:
-        key = f"{scene_id(scene)}_{mode}_{W}x{H}_{backend.lib_hash}"
-        png, meta = cache / f"{key}.png", cache / f"{key}.json"
-        if png.is_file() and meta.is_file():
-            refs[(scene, mode)], infos[(scene, mode)] = load_rgb(png), json.loads(meta.read_text())
-        else:
-            todo.append((scene, mode, png, meta))
-    with bar(len(todo), "eval: references") as b:
-        futs = [executor.submit(task_reference, backend.name, scene, mode, W, H) for scene, mode, _, _ in todo]
-        for (scene, mode, png, meta), fut in zip(todo, futs):
-            frame, info = fut.result()          # in order, each cached as soon as it is done
-            b.update(1)
-            save_png(png, frame)
-            meta.write_text(json.dumps(info))
-            refs[(scene, mode)], infos[(scene, mode)] = frame, info
+    # References: from the cache, else rendered as tasks (each cached as soon as it is done).
+    got = cache.frames(executor, [(pair, f"{scene_id(pair[0])}_{pair[1]}_{W}x{H}_{backend.lib_hash}",
+                                   (task_reference, backend.name, *pair, W, H)) for pair in pairs],
+                       lambda n: bar(n, "eval: references"))
+    refs = {pair: got[pair][0] for pair in pairs}
+    infos = {pair: got[pair][1] for pair in pairs}
 
     # Converged references (msr_eval.reference): from the committed store (msr_eval.conv_store,
     # when cfg.store), else the cache, else rendered as tasks; each saved as soon as it is done.
@@ -557,13 +490,13 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     store = CS.Store(W, H, cfg.store) if cfg.store else None
     full_sha = {pair: CS.frame_sha(refs[pair]) for pair in pairs} if store is not None else {}
     if cfg.conv:
-        todo = []
+        jobs, grids = [], {}
         for scene, mode in pairs:
             if not cfg.conv_wanted(mode):
                 continue
             sid = scene_id(scene)
             lg = cfg.ladder_grid(sid)
-            g = REF.conv_grids_for(mode, cfg.conv_grid, lg)
+            g = grids[(scene, mode)] = REF.conv_grids_for(mode, cfg.conv_grid, lg)
             if store is not None and len(g) == 1:
                 hit = store.load_ref(sid, mode, full_sha[(scene, mode)], g[0], REF.CONV_SEEDS[0])
                 if hit is not None and (not cfg.conv_check or "psnr_two_seeds" in hit[1]):
@@ -571,33 +504,22 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
                     log(f"  {sid}/{mode}: converged reference from {_rel(store.dir)} ({hit[1]['spp']} spp)")
                     continue
             key = f"conv_{sid}_{mode}_{W}x{H}_{backend.lib_hash}_{REF.conv_key(mode, cfg.conv_grid, cfg.conv_check, lg)}"
-            png, meta = cache / f"{key}.png", cache / f"{key}.json"
-            if png.is_file() and meta.is_file():
-                info = json.loads(meta.read_text())
-                if not cfg.conv_check or "psnr_two_seeds" in info:
-                    convs[(scene, mode)] = load_rgb(png)
-                    infos[(scene, mode)]["converged"] = info
-                    if store is not None and len(g) == 1:
-                        store.save_ref(sid, mode, convs[(scene, mode)], info, full_sha[(scene, mode)])
-                    continue
-            todo.append((scene, mode, g, png, meta))
+            jobs.append(((scene, mode), key, (REF.task_converged, backend.name, scene, mode, W, H, g, cfg.conv_check)))
         # the largest first, so the run's length is known early and the small ones fill the end
-        todo.sort(key=lambda t: -max(t[2]))
-        with bar(len(todo), "eval: converged references") as b:
-            futs = [executor.submit(REF.task_converged, backend.name, scene, mode, W, H, g, cfg.conv_check)
-                    for scene, mode, g, _, _ in todo]
-            for (scene, mode, g, png, meta), fut in zip(todo, futs):
-                frame, info = fut.result()    # in order, each cached as soon as it is done (hours at 1080p)
-                b.update(1)
-                save_png(png, frame)
-                meta.write_text(json.dumps(info))
-                if store is not None:
-                    store.save_ref(scene_id(scene), mode, frame, info, full_sha[(scene, mode)])
-                convs[(scene, mode)] = frame
-                infos[(scene, mode)]["converged"] = info
-                log(f"  {scene_id(scene)}/{mode}: converged reference, {info['spp']} samples per pixel in "
+        jobs.sort(key=lambda j: -max(grids[j[0]]))
+
+        def conv_done(pair, frame, info, fresh):
+            convs[pair] = frame
+            infos[pair]["converged"] = info
+            sid, mode = scene_id(pair[0]), pair[1]
+            if store is not None and (fresh or len(grids[pair]) == 1):
+                store.save_ref(sid, mode, frame, info, full_sha[pair])
+            if fresh:                     # (hours at 1080p)
+                log(f"  {sid}/{mode}: converged reference, {info['spp']} samples per pixel in "
                     f"{info['render_s']:.0f} s" +
                     (f", two seeds {info['psnr_two_seeds']:.2f} dB" if info.get("psnr_two_seeds") else ""))
+        cache.frames(executor, jobs, lambda n: bar(n, "eval: converged references"),
+                     valid=lambda info: not cfg.conv_check or "psnr_two_seeds" in info, done=conv_done)
     if cfg.refs_only:
         return [], refs, infos
 
@@ -613,13 +535,13 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     records, pending = {}, []
     for scene, mode in pairs:
         sid = scene_id(scene)
-        rfile = cache / f"records_{sid}_{mode}_{W}x{H}_{backend.lib_hash}_{sig}.json"
+        rkey = f"records_{sid}_{mode}_{W}x{H}_{backend.lib_hash}_{sig}"
         kept = []
         if store is not None:
             kept = [r for r in store.load_records(sid, mode, fsig, full_sha[(scene, mode)])
                     if (r["family"], r["label"]) in order]
-        elif rfile.is_file():
-            records[(scene, mode)] = json.loads(rfile.read_text())
+        elif (hit := cache.load(rkey, frame=False)) is not None:
+            records[(scene, mode)] = hit
             log(f"  {sid}/{mode}: {len(records[(scene, mode)])} settings (cached)")
             continue
         have = {(r["family"], r["label"]) for r in kept}
@@ -630,7 +552,7 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
             continue
         if kept:
             log(f"  {sid}/{mode}: {len(kept)} settings from {_rel(store.dir)}, {len(todo)} to compute")
-        pending.append((scene, mode, rfile, todo, kept))
+        pending.append((scene, mode, rkey, todo, kept))
     t0 = time.perf_counter()
     shared = {(scene, mode): executor.scatter(refs[(scene, mode)]) for scene, mode, *_ in pending}
     # (a G-buffer is a tuple of three arrays: scattered inside a list, so as one object)
@@ -685,10 +607,10 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
                         add(r, "ssim_conv", want_flip=True)
         return jobs
 
-    def finish(scene, mode, rfile, jobs):
+    def finish(scene, mode, rkey, jobs):
         for (r, _), extra in zip(jobs, executor.results([f for _, f in jobs])):
             r.update(extra)
-        rfile.write_text(json.dumps(records[(scene, mode)]))
+        cache.save(rkey, records[(scene, mode)])
         if store is not None:
             store.save_records(scene_id(scene), mode, records[(scene, mode)], fsig, full_sha[(scene, mode)],
                                {"converged": infos[(scene, mode)].get("converged")})
@@ -700,13 +622,13 @@ def run_sweep(backend: Backend, scenes: list[str], modes: list[str], cfg: SweepC
     # stopped keeps every finished pair), while the later pairs' tasks keep the workers busy.
     last = None
     with bar(sum(map(len, futs)), "eval: settings") as b:
-        for (scene, mode, rfile, todo, kept), pf in zip(pending, futs):
+        for (scene, mode, rkey, todo, kept), pf in zip(pending, futs):
             recs = kept + executor.results(pf, b)
             records[(scene, mode)] = sorted(recs, key=lambda r: order[(r["family"], r["label"])])
             jobs = key_jobs(scene, mode)
             if last is not None:
                 finish(*last)
-            last = (scene, mode, rfile, jobs)
+            last = (scene, mode, rkey, jobs)
     if last is not None:
         finish(*last)
     if pending:

@@ -14,8 +14,8 @@ import sys
 
 from .gbuffer_rule import DEFAULT_DEPTH_TOL, SWEEP_FAMILIES
 from .metrics import rule_comparison, summarise
-from .report import FAMILY_NAMES, _pct
-from .sweep import TEXTURED_SCENES
+from .present import FAMILY_NAMES, needed_cell
+from .scenes import TEXTURED_SCENES
 
 # What carries the texture in each textured scene (docs/renderer.md, section Textures).
 TEXTURES = {"duck": "`duckCM.tga` (Collada)", "teapots": "an earth map on one teapot (Collada)",
@@ -23,12 +23,6 @@ TEXTURES = {"duck": "`duckCM.tga` (Collada)", "teapots": "an earth map on one te
             "CesiumMilkTruck": "`CesiumMilkTruck.png` (glTF 1.0)",
             "BoxTextured": "`CesiumLogoFlat.png` (glTF 2.0)"}
 GB_COMPARE = ("multi_L3_T16", "multi_L3_T16_lindilate", *SWEEP_FAMILIES)
-
-
-def _cell(d):
-    if d is None:
-        return "-"
-    return f"{_pct(d['35']['fraction'], d['35']['how'])} / {_pct(d['40']['fraction'], d['40']['how'])}"
 
 
 def _subset(records, scenes, modes):
@@ -80,9 +74,9 @@ def section(result: dict) -> list[str]:
               + " | textured mean 35 / 40 | other scenes' mean 35 / 40 |")
             w("|---" * (len(textured) + 3) + "|")
             for f in fams:
-                cells = [_cell(needed[s].get(mode, {}).get(f)) for s in textured]
-                cells.append(_cell(head_t.get(mode, {}).get("set_needed", {}).get(f)))
-                cells.append(_cell(head_p.get(mode, {}).get("set_needed", {}).get(f)))
+                cells = [needed_cell(needed[s].get(mode, {}).get(f)) for s in textured]
+                cells.append(needed_cell(head_t.get(mode, {}).get("set_needed", {}).get(f)))
+                cells.append(needed_cell(head_p.get(mode, {}).get("set_needed", {}).get(f)))
                 w(f"| {FAMILY_NAMES[f]} | " + " | ".join(cells) + " |")
             w("")
         w("### How textures change the headline\n")
@@ -108,7 +102,7 @@ def section(result: dict) -> list[str]:
         w("|---" * (len(GB_COMPARE) + 1) + "|")
         for s in scenes:
             w(f"| {s}{' *' if s in TEXTURED_SCENES else ''} | "
-              + " | ".join(_cell(needed[s].get(mode, {}).get(f)) for f in GB_COMPARE) + " |")
+              + " | ".join(needed_cell(needed[s].get(mode, {}).get(f)) for f in GB_COMPARE) + " |")
             for rule, base in (("multi_L3_T16_gbuf", "multi_L3_T16"),
                                ("multi_L3_T16_gbuflindilate", "multi_L3_T16_lindilate")):
                 a, b = _f40(needed, s, mode, rule), _f40(needed, s, mode, base)

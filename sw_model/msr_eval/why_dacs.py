@@ -134,7 +134,7 @@ def main(argv=None):
     a = ap.parse_args(argv)
     from msr_model import embree
     from . import conv_store as CS
-    from .sweep import scene_id
+    from .scenes import scene_id
     with embree.open_renderer(a.scene, a.width, a.height, "heavy") as r:
         ref = r.render_full(progress=False)
     hit = CS.Store(a.width, a.height).load_ref(scene_id(a.scene), "heavy", CS.frame_sha(ref),

@@ -1,5 +1,5 @@
 """A rendering unit for tests that remembers every pixel it was asked for, duplicates
-included (imported by name, like spec_oracle: conftest.py puts this folder on sys.path)."""
+included (imported by name, like spec_oracle: pytest.ini puts this folder on the path)."""
 import numpy as np
 
 

@@ -7,7 +7,6 @@ second differences of +-510) and random colours, with random outer-sample flags;
 enable toggles at random (the engine's global stall)."""
 from __future__ import annotations
 
-import sys
 from collections import deque
 from pathlib import Path
 
@@ -15,11 +14,10 @@ import cocotb
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
-from msr_runner import run_cocotb  # noqa: E402
-from msr_tb import pack_rgb, seeded_rng  # noqa: E402
+from msr_runner import run_cocotb
+from msr_tb import pack_rgb, seeded_rng
 
-from msr_model import rules, spec  # noqa: E402
+from msr_model import rules, spec
 
 STAGES = 4   # S1..S4: base_o holds the inputs taken four enabled clocks before
 

@@ -3,16 +3,14 @@
 all 64 extreme colour pairs (channels 0/255), and random colours; random valid/ready."""
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import cocotb
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
-from msr_runner import run_cocotb  # noqa: E402
-from msr_tb import pack_rgb, seeded_rng, start_clock_and_reset, stream  # noqa: E402
+from msr_runner import run_cocotb
+from msr_tb import pack_rgb, seeded_rng, start_clock_and_reset, stream
 
-from msr_model import spec  # noqa: E402
+from msr_model import spec
 
 
 def colour_with_diff(rng, d, metric):

@@ -7,19 +7,17 @@ from __future__ import annotations
 
 import os
 import random
-import sys
 from pathlib import Path
 
 import pytest
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent))
 
 import cocotb  # noqa: E402
 from cocotb.clock import Clock  # noqa: E402
 from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly, Timer  # noqa: E402
 from cocotbext.axi import AxiRamWrite, AxiWriteBus  # noqa: E402
-from common.msr_funcov import backpressure, record  # noqa: E402
+from msr_funcov import backpressure, record  # noqa: E402
 
 TILE_ENC = {8: 0, 16: 1, 32: 2}
 CODES = (0, 1, 2, 3, 17, 18, 19)
@@ -178,7 +176,7 @@ async def test_random_frames(dut):
 @pytest.mark.parametrize("n_in,width,max_out,seed", [(4, 256, 8, 77), (3, 128, 1, 78), (1, 32, 8, 79),
                                                    (2, 64, 4, 80)])
 def test_fb_writer(n_in, width, max_out, seed):
-    from common.msr_runner import ROOT, RTL, rtl_entries, run_cocotb
+    from msr_runner import ROOT, RTL, rtl_entries, run_cocotb
     # The AXI4 protocol checker bound to the writer (rtl/checkers/msr_checker_binds.sv).
     checkers = [ROOT / e for e in rtl_entries(RTL / "checkers" / "checkers.f")]
     run_cocotb("msr_fb_writer", "test_fb_writer", HERE,

@@ -10,17 +10,15 @@
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 
 import cocotb
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
-from msr_runner import ROOT, run_cocotb  # noqa: E402
-from msr_tb import pack_rgb, seeded_rng, start_clock_and_reset, stream, unpack_rgb  # noqa: E402
+from msr_runner import ROOT, run_cocotb
+from msr_tb import pack_rgb, seeded_rng, start_clock_and_reset, stream, unpack_rgb
 
-from msr_model import spec  # noqa: E402
+from msr_model import spec
 
 SRC = ROOT / "rtl" / "engine" / "msr_decision_pipe.sv"
 

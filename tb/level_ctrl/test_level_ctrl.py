@@ -8,17 +8,15 @@ previous position (what the context keeps), B' is outside the tile."""
 from __future__ import annotations
 
 import random
-import sys
 from pathlib import Path
 
 import cocotb
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
-from msr_runner import run_cocotb  # noqa: E402
-from msr_tb import next_cycle, settle, start_clock_and_reset  # noqa: E402
+from msr_runner import run_cocotb
+from msr_tb import next_cycle, settle, start_clock_and_reset
 
-from msr_model import spec  # noqa: E402
-from msr_model.tile_model import tile_schedule  # noqa: E402
+from msr_model import spec
+from msr_model.tile_model import tile_schedule
 
 DIRS = {"init": 0, "H": 1, "V": 2}
 

@@ -6,13 +6,11 @@ from __future__ import annotations
 
 import json
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
-from msr_sim_run import build_harness, run_sim  # noqa: E402
+from msr_sim_run import build_harness, run_sim
 
 MODEL = Path("/usr/share/assimp/models/3DS/fels.3ds")   # Debian assimp-testmodels
 

@@ -3,8 +3,6 @@ against the run's own contract files (frame.png, reference.png, source_map.png);
 summary names it and the output carries no progress bars (stderr is not a terminal here)."""
 from __future__ import annotations
 
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,8 +11,7 @@ from PIL import Image
 from msr_model.overview import layout, legend_swatches
 from msr_model.palette import SOURCE_COLOURS, source_rgb
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
-from msr_sim_run import build_harness, run_sim  # noqa: E402
+from msr_sim_run import build_harness, run_sim
 
 
 @pytest.fixture(scope="module")

@@ -11,14 +11,12 @@ from __future__ import annotations
 
 import os
 import random
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent))
 
 import cocotb  # noqa: E402
 from cocotb.clock import Clock  # noqa: E402
@@ -26,7 +24,7 @@ from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly, Timer  # noqa: E4
 from cocotbext.axi import AxiLiteBus, AxiLiteMaster, AxiRamWrite, AxiWriteBus  # noqa: E402
 
 import msr_regs as R  # noqa: E402  (generated from rtl/regs/msr_regs.rdl)
-from common.msr_funcov import backpressure, partial, record  # noqa: E402
+from msr_funcov import backpressure, partial, record  # noqa: E402
 
 MEM = 1 << 18
 FILL = 0xEE
@@ -928,7 +926,7 @@ async def test_soak(dut):
 
 @pytest.mark.parametrize("engines,outstanding,ctx,width", [(4, 16, 8, 256), (3, 4, 3, 64)])
 def test_msr_top(engines, outstanding, ctx, width):
-    from common.msr_runner import ROOT, rtl_entries, rtl_sources, run_cocotb
+    from msr_runner import ROOT, rtl_entries, rtl_sources, run_cocotb
     # The AXI protocol checkers bound to the writer and the register block (rtl/checkers). Their
     # own build folder (_chk): scripts/soak.py builds this bench from rtl/msr.f alone, and two
     # source lists in one folder would rebuild each other (or race under pytest -n 2).
@@ -942,7 +940,7 @@ def test_msr_top(engines, outstanding, ctx, width):
 def test_msr_top_patent_only():
     """msr_top built with LINDILATE 0 (issue 31: the rules a top carries): test_rule's
     patent-only branch (RULE 1 refused, patent frames bit-exact)."""
-    from common.msr_runner import rtl_sources, run_cocotb
+    from msr_runner import rtl_sources, run_cocotb
     run_cocotb("msr_top", "test_msr_top", HERE,
                {"NUM_ENGINES": 2, "MAX_OUTSTANDING": 16, "NUM_CTX": 3, "AXI_DATA_W": 256, "LINDILATE": 0},
                "patent_only", extra_env={"NUM_ENGINES": "2", "LINDILATE": "0"}, sources=rtl_sources(),

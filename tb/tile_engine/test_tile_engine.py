@@ -15,20 +15,18 @@ from __future__ import annotations
 import os
 import itertools
 import random
-import sys
 from pathlib import Path
 
 import cocotb
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
-from msr_runner import run_cocotb  # noqa: E402
-from msr_tb import next_cycle, pack_rgb, settle, start_clock_and_reset, unpack_rgb  # noqa: E402
-from msr_funcov import record, size_class  # noqa: E402
+from msr_runner import run_cocotb
+from msr_tb import next_cycle, pack_rgb, settle, start_clock_and_reset, unpack_rgb
+from msr_funcov import record, size_class
 
-from msr_model.spec import Params  # noqa: E402
-from msr_model.tile_model import run_tile  # noqa: E402
+from msr_model.spec import Params
+from msr_model.tile_model import run_tile
 
 COORD_W, LDIM_W = 12, 6
 

@@ -3,19 +3,17 @@ and foveated thresholds (spec section 1) and the frame's decision rule, dispatch
 ready engines."""
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import pytest
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent))
 
 import cocotb  # noqa: E402
 from cocotb.clock import Clock  # noqa: E402
 from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly, Timer  # noqa: E402
-from common.msr_funcov import partial, record  # noqa: E402
-from common.msr_tb import seeded_rng  # noqa: E402
+from msr_funcov import partial, record  # noqa: E402
+from msr_tb import seeded_rng  # noqa: E402
 
 TILE_ENC = {8: 0, 16: 1, 32: 2}
 
@@ -125,7 +123,7 @@ async def test_frames(dut):
 
 @pytest.mark.parametrize("engines", [1, 3, 4])
 def test_tile_gen(engines):
-    from common.msr_runner import RTL, run_cocotb
+    from msr_runner import RTL, run_cocotb
     run_cocotb("msr_tile_gen", "test_tile_gen", HERE, {"NUM_ENGINES": engines}, f"e{engines}",
                sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_clr_reg.sv",
                         RTL / "system/msr_tile_gen.sv"])

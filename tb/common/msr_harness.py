@@ -25,7 +25,7 @@ import numpy as np
 from msr_model import ImageRenderer, Params, select, spec
 from msr_model.clitools import RunFailed
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 # Rules the RTL implements, by their CONFIG.RULE value (the index); the golden model knows more.
 RTL_RULES = ("patent", "lindilate")
 
