@@ -43,10 +43,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "scripts"))
-from synth import (ENGINE, TOP, bb_param_names, default_params, modules_in, params_text,  # noqa: E402
+from synth import (ENGINE, TOP, bb_param_names, default_params, modules_in, params_text,  # the script's folder
                    pixels_per_clock, read_cmd, read_filelist)
-from msr_runner import rtl_digest  # noqa: E402  (synth.py puts tb/common on the path)
+from msr_runner import rtl_digest   # the installed msr_tb package
 
 OUT = ROOT / "build" / "asic"
 DOC = ROOT / "docs" / "asic.md"

@@ -5,14 +5,12 @@ from __future__ import annotations
 import json
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "scripts"))
-import asic  # noqa: E402
+import asic   # scripts/ (pytest.ini's pythonpath)
 
 # An OpenSTA 2.0.17 path report as scripts/asic.py asks for it (-fields {fanout cap slew}).
 STA_PATH = """\

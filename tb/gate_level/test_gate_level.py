@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import os
 import random
-import sys
 from pathlib import Path
 
 import cocotb
@@ -26,10 +25,8 @@ import pytest
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
-sys.path.insert(0, str(ROOT / "tb" / "common"))
-sys.path.insert(0, str(ROOT / "tb" / "tile_engine"))
-from msr_runner import run_cocotb, rtl_sources  # noqa: E402
-from msr_tb import next_cycle, settle, start_clock_and_reset  # noqa: E402
+from msr_runner import run_cocotb, rtl_sources
+from msr_tb import next_cycle, settle, start_clock_and_reset
 
 NETLIST = ROOT / "build" / "asic" / "msr_tile_engine.sim.v"
 MACROS = ROOT / "build" / "asic" / "msr_tile_engine.macros.v"
@@ -39,8 +36,7 @@ MACROS = ROOT / "build" / "asic" / "msr_tile_engine.macros.v"
 def max_outstanding() -> int:
     """The netlist's tag count: the default top's MAX_OUTSTANDING (scripts/asic.py maps the
     engine with the top's parameters)."""
-    sys.path.insert(0, str(ROOT / "scripts"))
-    from synth import TOP, default_params, read_filelist
+    from synth import TOP, default_params, read_filelist   # scripts/ (pytest.ini's pythonpath)
     return default_params(read_filelist(), TOP)["MAX_OUTSTANDING"]
 
 # tiles per profile (fast, jitter, long); about half of them in each rule
@@ -89,7 +85,10 @@ def test_gate_level_tile_engine():
     try:
         run_cocotb("msr_tile_engine", "test_gate_level", HERE, tag="gate",
                    sources=[*sram, MACROS, NETLIST],
-                   extra_env={"GATE_TILE_COUNTS": TILE_COUNTS, "MAX_OUTSTANDING": max_outstanding()})
+                   extra_env={"GATE_TILE_COUNTS": TILE_COUNTS, "MAX_OUTSTANDING": max_outstanding(),
+                              # the simulator's Python imports the RTL bench's module
+                              "PYTHONPATH": os.pathsep.join(
+                                  [str(ROOT / "tb" / "tile_engine"), os.environ.get("PYTHONPATH", "")])})
     finally:                # the other benches of the session keep their own flags
         if flags is None:
             os.environ.pop("MAKEFLAGS", None)
