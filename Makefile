@@ -34,6 +34,8 @@ help: ## list the targets
 	@echo "  make test   set up, then run every test (pytest, cocotb on Verilator)"
 	@echo "  make lint   Verilator -Wall, Verible and slang on every RTL module"
 	@echo "  make synth  Yosys synthesis reports"
+	@echo "  make asic   OSU 0.18 um standard cells + OpenSTA -> build/asic/report.json, docs/asic.md"
+	@echo "  make test-gate  the gate-level bench of the mapped tile engine (tb/gate_level)"
 	@echo "  make formal SymbiYosys proofs of the primitives, tag pool and register block (part of make test)"
 	@echo "  make coverage  line, cover-point and functional coverage of the benches -> build/coverage/"
 	@echo "  make soak   random frames through msr_top until SOAK_MINUTES (default 10), seeds in build/soak/"

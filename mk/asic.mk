@@ -12,8 +12,12 @@ asic: setup
 	$(ENV) python scripts/asic.py $(if $(UNIT),--modules $(UNIT)) $(ASIC_ARGS)
 
 # The gate-level netlist of one tile engine for the gate-level bench (tb/gate_level), rebuilt
-# when the RTL or the flow changes; part of make test (about 3 min on an idle machine).
+# when the RTL or the flow changes (about 3 min on an idle machine). make test-gate runs the
+# bench (its model's build is some ten minutes; make test leaves it out: pytest.ini's `gate`).
 ASIC_GATE_NETLIST := build/asic/msr_tile_engine.sim.v
 $(ASIC_GATE_NETLIST): $(MSR_RTL_FILES) scripts/asic.py scripts/synth.py syn/asic/sram_macro.json | setup
 	$(ENV) python scripts/asic.py --netlist-only
-TEST_DEPS += $(ASIC_GATE_NETLIST)
+
+.PHONY: test-gate
+test-gate: setup $(ASIC_GATE_NETLIST)
+	$(ENV) python -m pytest -m gate tb/gate_level $(PYTEST_ARGS)

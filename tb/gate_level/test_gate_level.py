@@ -72,6 +72,7 @@ async def gate_level_random_tiles(dut):
     dut._log.info("GATE_LEVEL_TILES %s", rules)
 
 
+@pytest.mark.gate
 def test_gate_level_tile_engine():
     if not NETLIST.is_file():
         pytest.fail(f"{NETLIST} is missing: make {NETLIST.relative_to(ROOT)} (make test does)")
