@@ -214,7 +214,7 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
             # a duplicate only while at least 4 tags are free: the engine reuses a tag only
             # after every other free one, so the copy cannot meet a new request of that tag
             if (len(taken) == 2 and rng.random() < dup_prob
-                    and int(dut.u_tag_pool.inflight_o.value) <= max_out - 4):
+                    and int(dut.inflight_o.value) <= max_out - 4):
                 rsp_cur = (taken[0], taken[1], "duplicate")
                 dup_sent += 1
         if dut.rsp_drop_o.value:
@@ -392,7 +392,8 @@ def test_bad_parameters_rejected(params):
             ("msr_pkg.sv", "msr_lzc.sv", "msr_clr_reg.sv", "msr_rr_arb.sv", "msr_fifo.sv",
              "msr_spill_reg.sv", "msr_tile_sram.sv", "msr_decision_pipe.sv", "msr_base_decision.sv",
              "msr_level_ctrl.sv",
-             "msr_tile_stream.sv", "msr_tag_pool.sv", "msr_tile_ctx.sv", "msr_tile_engine.sv")]
+             "msr_tile_stream.sv", "msr_tag_pool.sv", "msr_tile_ctx.sv", "msr_lin_track.sv",
+             "msr_lin_dilate.sv", "msr_req_out.sv", "msr_rsp_check.sv", "msr_tile_engine.sv")]
     cmd = ["verilator", "--lint-only", "-Irtl/prim", "--top-module", "msr_tile_engine"]
     cmd += [f"-G{k}={v}" for k, v in params.items()]
     p = subprocess.run(cmd + srcs, cwd=ROOT, capture_output=True, text=True)
