@@ -87,7 +87,7 @@ def main() -> int:
     ap.add_argument("-G", dest="params", action="append", default=[], help="parameter override K=V")
     ap.add_argument("--blackbox", action="append", default=None, help="module kept as a black box")
     ap.add_argument("--seq", type=int, default=1, help="equiv_simple -seq depth")
-    ap.add_argument("--induct", type=int, default=1, help="equiv_induct -seq depth")
+    ap.add_argument("--induct", type=int, default=2, help="equiv_induct -seq depth (2: assume at one step, prove the next)")
     args = ap.parse_args()
     blackbox = args.blackbox if args.blackbox is not None else ["msr_tile_sram"]
 
@@ -116,7 +116,7 @@ def main() -> int:
           f" --top {args.unit} --top {gold_name}{params}{bbs}\n"
           # read_slang elaborates each top into one flat module (black boxes aside); hierarchy
           # and flatten would keep one top and delete the other
-          "proc\nasync2sync\nopt_clean\nmemory -nomap\nmemory_map\nopt_clean\n"
+          "proc\nasync2sync\nopt_clean\nmemory_collect\nmemory_map\nopt_clean\n"
           f"write_rtlil {flat.relative_to(ROOT)}\n", work, "flatten")
     rtlil = flat.read_text()
     gold_w, gate_w = wires(rtlil, gold_name), wires(rtlil, args.unit)
