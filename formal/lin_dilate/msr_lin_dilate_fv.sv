@@ -48,9 +48,13 @@ module msr_lin_dilate_fv
     else if (clear_i) held_q <= 1'b0;
     else              held_q <= out_valid_i && !out_done_i;
   end
-  always_ff @(posedge clk_i) res_q <= res;
+  logic [$bits(trk_i)-1:0] trk_q;
+  always_ff @(posedge clk_i) begin
+    res_q <= res;
+    trk_q <= trk_i;
+  end
   always_comb begin
-    if (!init) assume ($stable(trk_i));
+    if (!init) assume (trk_i == trk_q);
     if (out_done_i) assume (out_valid_i && !retro_phase_o);
     if (held_q && !clear_i) assume (out_valid_i && res == res_q);
   end

@@ -70,6 +70,8 @@ module msr_req_out_fv
                                   !(done && out_trace_i) || alloc_tag_o);
   a_tags:        assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i)
                                   !done || 32'(n_q) + 32'(alloc_tag_o) == 32'(out_trace_i) + 32'(rsent_q));
+  // induction strengthener: before it leaves, a result has taken only its retro request's tag
+  a_taken:       assert property (@(posedge clk_i) disable iff (!rst_ni) n_q == 2'(rsent_q));
   a_req_hold:    assert property (@(posedge clk_i) disable iff (!rst_ni)
                                   !stall_q || (req_valid_o && {req_x_o, req_y_o, req_tag_o} == word_q));
 
