@@ -6,15 +6,20 @@
 The old file that defines the unit is taken from git (`git show REV:path`), its module renamed
 <unit>_gold, and read with yosys-slang together with the current file list rtl/msr.f (so the
 gold reads today's versions of the modules it instantiates: shared submodules are the same on
-both sides). Both tops are flattened, memories mapped to flip-flops, and the refactored
-hierarchy's nets renamed to the gold's flat names where the two agree after dropping instance
-prefixes (u_rsp.r1_valid_q -> r1_valid_q), so the proof can pair up the state of both sides.
-Then equiv_make / equiv_simple -seq / equiv_induct / equiv_status -assert: exit 0 only when
-every output and every paired net is proven equal. Modules named by --blackbox (default the
-tile SRAM, too big to map) stay black boxes; their instances carry the same names on both
-sides, so equiv_make pairs them and proves their inputs equal.
+both sides). read_slang elaborates each top into one flat module; processes become netlists,
+asynchronous resets synchronous (async2sync: the same on both sides) and memories flip-flops
+(memory_collect + memory_map, without memory_dff, so no register is renamed into a memory
+port). The refactored hierarchy's nets are renamed to the gold's flat names where the two
+agree after dropping instance prefixes and a `_q` the refactor added (u_rsp_check.r1_valid_q
+-> r1_valid_q, u_lin_track.rd_first_q -> rd_first), so the proof pairs the state of both sides.
+Then equiv_make; the black boxes (--blackbox, default the tile SRAM: too big to map) carry the
+same instance names on both sides, so equiv_make pairs them (their inputs get $equiv cells)
+and `expose -evert` cuts them into free miter inputs and outputs; equiv_simple -short -seq 1
+(the combinational matches), equiv_induct -seq 2 (assume every pair equal at one step, prove
+the next: the state), equiv_status -assert. Exit 0 only when every $equiv cell (every output
+and every paired internal net) is proven.
 
-Work files and the yosys logs land in build/equiv/<unit>/.
+Work files and the yosys logs land in build/equiv/<unit>_<params>/.
 """
 from __future__ import annotations
 

@@ -26,7 +26,7 @@ module msr_req_out
   // tags
   input  logic             tag_avail_i,            // a tag is free ...
   input  logic [TAG_W-1:0] free_tag_i,             // ... this one
-  output logic             alloc_tag_o,            // take it (the request enters the spill register)
+  output logic             alloc_tag_o,            // take it (the request enters the spill reg.)
   // render request, global frame coordinates
   output logic             req_valid_o,
   input  logic             req_ready_i,

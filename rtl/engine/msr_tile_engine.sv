@@ -468,12 +468,10 @@ module msr_tile_engine
   assign out_side = out_result.side;
 
   // Credits: output-buffer slots not yet reserved by an issued position.
-  msr_clr_reg #(
-    .WIDTH ($clog2(OUT_DEPTH) + 1),
-    .RESET (($clog2(OUT_DEPTH) + 1)'(OUT_DEPTH))
-  ) u_credit_q (
+  localparam int unsigned CRED_W = $clog2(OUT_DEPTH) + 1;
+  msr_clr_reg #(.WIDTH(CRED_W), .RESET(CRED_W'(OUT_DEPTH))) u_credit_q (
     .clk_i, .rst_ni, .clear_i, .en_i (1'b1),
-    .d_i   (credit_q - ($clog2(OUT_DEPTH)+1)'(issue) + ($clog2(OUT_DEPTH)+1)'(ob_valid && os_ready)),
+    .d_i   (credit_q - CRED_W'(issue) + CRED_W'(ob_valid && os_ready)),
     .q_o   (credit_q)
   );
 
