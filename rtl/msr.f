@@ -17,6 +17,10 @@ rtl/engine/msr_level_ctrl.sv
 rtl/engine/msr_tile_stream.sv
 rtl/engine/msr_tag_pool.sv
 rtl/engine/msr_tile_ctx.sv
+rtl/engine/msr_lin_track.sv
+rtl/engine/msr_lin_dilate.sv
+rtl/engine/msr_req_out.sv
+rtl/engine/msr_rsp_check.sv
 rtl/engine/msr_tile_engine.sv
 rtl/regs/msr_regs_pkg.sv
 rtl/regs/msr_regs.sv

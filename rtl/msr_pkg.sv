@@ -105,6 +105,21 @@ package msr_pkg;
 
   localparam int unsigned TADDR_W = 2 * LCOORD_W;            // tile buffer address {y, x}
 
+  // ---- Tile engine: one issued position (a context's head, carried from the issue to AB) ---
+  // init stays the last field (scripts/bench_engine.py reads it as bit 0).
+  typedef struct packed {
+    dir_e       dir;
+    logic       o2a;       // lindilate: A' comes from port 2 (else the context's last A)
+    logic       first;     // the first position of its pass
+    lcoord_t    x;         // tile-local coordinates
+    lcoord_t    y;
+    gap_t       gap;       // b - a
+    gap_t       off;       // position - a
+    level_t     level;
+    logic [1:0] nshift;
+    logic       init;      // initial-grid position: traced, no reads
+  } eng_pos_t;
+
   // ---- Decision arithmetic shared by the decision units ------------------------------------
   // |x - y| of one colour channel.
   function automatic chan_t chan_absdiff(chan_t x, chan_t y);

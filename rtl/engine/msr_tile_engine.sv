@@ -11,10 +11,10 @@
 //   AB   : the issued context's read data, registered
 //   msr_decision_pipe (6 stages): decide and interpolate; never stalls: a position is issued
 //          only with a slot of the 16-entry output buffer reserved (credits)
-//   out  : interpolate -> write {16+k, C} into the context's buffer (a registered port);
-//          trace -> tag (msr_tag_pool) -> render request {x0+x, y0+y, tag} (spill register)
-//   rsp  : spill register -> R1 (tag looked up, checked in flight) -> write {k, rgb} into
-//          the tag's context, unless the pipeline writes that context in the same cycle
+//   out  : msr_req_out: interpolate -> write {16+k, C} into the context's buffer (a registered
+//          port); trace -> tag -> render request {x0+x, y0+y, tag} (spill register)
+//   rsp  : msr_rsp_check: the tag pool, and each response checked -> write {k, rgb} into the
+//          tag's context, unless the pipeline writes that context in the same cycle
 //   full contexts, round robin --> msr_tile_stream --> pix stream (row-major, whole tiles)
 //
 // Why contexts: a tile is a chain of 5-7 dependent passes, each waiting up to one render
@@ -30,6 +30,14 @@
 // inflight_o counts tags handed out and not yet answered (a request waiting for req_ready_i
 // counts as in flight); tags_out_o is a register that is clear only when none is (the top's
 // drain check reads it across the die).
+//
+// lindilate (LINDILATE 1, docs/rules.md) lives in units beside these stages: msr_lin_track
+// (IS -> RD -> AB: line tracking, the outer samples A', B' and their existence),
+// msr_base_decision (beside the decision pipeline: Q) and msr_lin_dilate (the dilation's line
+// store as decisions leave the pipeline, the retro request at the output).
+//
+// Registers: control flip-flops (valid bits, flags, counts) are msr_clr_reg instances (reset
+// and clear_i); data registers that a valid bit qualifies are plain flip-flops without reset.
 `include "msr_assert.svh"
 
 module msr_tile_engine
@@ -99,25 +107,22 @@ module msr_tile_engine
     $fatal(1, "msr_tile_engine: LINDILATE %0d must be 0 or 1", LINDILATE);
   end
 
+
   // ---- Contexts ---------------------------------------------------------------------------------
   logic       [NUM_CTX-1:0] ctx_free, ctx_full, ctx_cand, ctx_start, ctx_issue;
-  // The pass-start flags: the lindilate line trackers (the barrier itself lives in each
-  // context).
+  // the head is the first position of its pass (waveforms, scripts/bench_engine.py)
+  /* verilator lint_off UNUSEDSIGNAL */
   logic       [NUM_CTX-1:0] ctx_first;
+  /* verilator lint_on UNUSEDSIGNAL */
   tile_desc_t [NUM_CTX-1:0] ctx_desc;
-  lcoord_t    [NUM_CTX-1:0] ctx_x, ctx_y;
-  gap_t       [NUM_CTX-1:0] ctx_gap, ctx_off;
-  level_t     [NUM_CTX-1:0] ctx_level;
-  logic       [NUM_CTX-1:0][1:0] ctx_nshift;
-  logic       [NUM_CTX-1:0] ctx_init;
-  dir_e       [NUM_CTX-1:0] ctx_dir;
-  logic       [NUM_CTX-1:0] ctx_o2a, ctx_retro;
+  eng_pos_t   [NUM_CTX-1:0] ctx_pos;
   rgb_t       [NUM_CTX-1:0] ctx_rd_a, ctx_rd_b, ctx_rd_o2, ctx_str_rgb;
   src_t       [NUM_CTX-1:0] ctx_str_src;
-  logic       [NUM_CTX-1:0] ctx_we, ctx_str_own, ctx_str_done;
-  logic       [NUM_CTX-1:0][TADDR_W-1:0] ctx_waddr;
-  src_t       [NUM_CTX-1:0] ctx_wsrc;
-  rgb_t       [NUM_CTX-1:0] ctx_wrgb;
+  logic       [NUM_CTX-1:0] ctx_str_own, ctx_str_done;
+  logic       [NUM_CTX-1:0] ctx_we_q, ctx_retro_q;
+  logic       [NUM_CTX-1:0][TADDR_W-1:0] ctx_waddr_q;
+  src_t       [NUM_CTX-1:0] ctx_wsrc_q;
+  rgb_t       [NUM_CTX-1:0] ctx_wrgb_q;
 
   // ---- Tile start: the lowest free context, chosen a clock ahead --------------------------------
   // The choice is registered: the lowest context that is free and neither starting nor being
@@ -145,21 +150,14 @@ module msr_tile_engine
     .empty_o (none_avail)
   );
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      alloc_q    <= '0;
-      any_free_q <= 1'b0;
-      start_q    <= '0;
-    end else if (clear_i) begin
-      alloc_q    <= alloc;
-      any_free_q <= 1'b0;
-      start_q    <= '0;
-    end else begin
-      alloc_q    <= alloc;
-      any_free_q <= !none_avail;
-      start_q    <= hs_onehot;
-    end
-  end
+  // the choice is remade every clock, so a clear need not reset it
+  msr_clr_reg #(.WIDTH(CTX_W)) u_alloc_q (
+    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1), .d_i (alloc), .q_o (alloc_q)
+  );
+  msr_clr_reg #(.WIDTH(1 + NUM_CTX)) u_start_q (
+    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({!none_avail, hs_onehot}),
+    .q_o ({any_free_q, start_q})
+  );
 
   always_ff @(posedge clk_i) begin
     if (desc_hs) desc_q <= desc_i;
@@ -168,9 +166,19 @@ module msr_tile_engine
   assign ctx_start = start_q;
 
   // ---- Issue ----------------------------------------------------------------------------------
-  logic             arb_valid, can_issue, issue;
-  logic [CTX_W-1:0] gnt_idx;
-  logic [NUM_CTX-1:0] gnt;
+  // No stage between the issue and the output buffer ever stalls: a position is granted only
+  // with a free slot in that buffer reserved for it (a credit), so the pipeline registers need
+  // no enable and the issue does not wait on the output's handshake.
+  //
+  // The grant is registered (GR): the arbiter's output goes into flip-flops beside it, and the
+  // contexts, spread over the die with their tile buffers, see a register one clock later
+  // (their issue_i: the head leaves, the buffer reads it). The contexts' candidate bits know
+  // about the grant in flight, so a context can still win every clock.
+  logic               arb_valid, can_issue, issue;
+  logic [CTX_W-1:0]   gnt_idx;
+  logic [NUM_CTX-1:0] gnt, gr_gnt_q;
+  logic               gr_valid_q;
+  ctx_t               gr_ctx;
 
   msr_rr_arb #(.N(NUM_CTX), .IDX_W(CTX_W)) u_issue_arb (
     .clk_i   (clk_i),
@@ -183,32 +191,12 @@ module msr_tile_engine
     .ready_i (can_issue)
   );
 
-  // No stage between the issue and the output buffer ever stalls: a position is granted only
-  // with a free slot in that buffer reserved for it (a credit), so the pipeline registers need
-  // no enable and the issue does not wait on the output's handshake.
-  //
-  // The grant is registered (GR): the arbiter's output goes into flip-flops beside it, and the
-  // contexts, spread over the die with their tile buffers, see a register one clock later
-  // (their issue_i: the head leaves, the buffer reads it). The contexts' candidate bits know
-  // about the grant in flight, so a context can still win every clock.
   assign issue = arb_valid && can_issue;
 
-  logic               gr_valid_q;
-  logic [NUM_CTX-1:0] gr_gnt_q;
-  ctx_t               gr_ctx;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      gr_valid_q <= 1'b0;
-      gr_gnt_q   <= '0;
-    end else if (clear_i) begin
-      gr_valid_q <= 1'b0;
-      gr_gnt_q   <= '0;
-    end else begin
-      gr_valid_q <= issue;
-      gr_gnt_q   <= gnt & {NUM_CTX{can_issue}};
-    end
-  end
+  msr_clr_reg #(.WIDTH(1 + NUM_CTX)) u_gr_q (
+    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({issue, gnt & {NUM_CTX{can_issue}}}),
+    .q_o ({gr_valid_q, gr_gnt_q})
+  );
 
   // The granted context's index, encoded from the registered one-hot grant (one LUT level in
   // the short GR -> IS path) rather than registered from the arbiter's index output (two LUT
@@ -225,51 +213,28 @@ module msr_tile_engine
   assign ctx_issue = gr_gnt_q;
 
   // The issued position, picked with the one-hot grant (an AND-OR, not an index multiplexer).
-  // init stays the last field (scripts/bench_engine.py reads it as bit 0).
-  typedef struct packed {
-    dir_e       dir;
-    logic       o2a;       // lindilate: A' comes from port 2 (else the context's last A)
-    logic       first;     // the first position of its pass
-    lcoord_t    x;
-    lcoord_t    y;
-    gap_t       gap;
-    gap_t       off;
-    level_t     level;
-    logic [1:0] nshift;
-    logic       init;
-  } pos_t;
-
-  pos_t iss_pos;
-  pos_t [NUM_CTX-1:0] ctx_pos;
-  for (genvar c = 0; c < NUM_CTX; c++) begin : g_pos
-    assign ctx_pos[c] = '{dir: ctx_dir[c], o2a: ctx_o2a[c], first: ctx_first[c],
-                          x: ctx_x[c], y: ctx_y[c], gap: ctx_gap[c], off: ctx_off[c],
-                          level: ctx_level[c], nshift: ctx_nshift[c], init: ctx_init[c]};
-  end
+  eng_pos_t iss_pos;
   always_comb begin
     iss_pos = '0;
     for (int unsigned c = 0; c < NUM_CTX; c++) begin
-      iss_pos |= ctx_pos[c] & {$bits(pos_t){gr_gnt_q[c]}};
+      iss_pos |= ctx_pos[c] & {$bits(eng_pos_t){gr_gnt_q[c]}};
     end
   end
 
-  // ---- IS: the issue registers (the buffer reads happen in the GR cycle) ----------------------
-  logic is_valid_q;
-  ctx_t is_ctx_q;
-  pos_t is_pos_q;
+  // ---- Stage valid bits: IS (the buffer reads happen in the GR cycle), RD, AB -----------------
+  logic is_valid_q, rd_valid_q, ab_valid_q;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      is_valid_q <= 1'b0;
-    end else if (clear_i) begin
-      is_valid_q <= 1'b0;
-    end else begin
-      is_valid_q <= gr_valid_q;
-    end
-  end
+  msr_clr_reg #(.WIDTH(3)) u_valid_q (
+    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({gr_valid_q, is_valid_q, rd_valid_q}),
+    .q_o ({is_valid_q, rd_valid_q, ab_valid_q})
+  );
 
+  // ---- IS: the issue registers ----------------------------------------------------------------
   // No enable: is_valid_q says whether they hold an issue (an enable would hang the grant's
   // fan-out on every one of these flip-flops).
+  ctx_t     is_ctx_q;
+  eng_pos_t is_pos_q;
+
   always_ff @(posedge clk_i) begin
     is_ctx_q <= gr_ctx;
     is_pos_q <= iss_pos;
@@ -303,143 +268,18 @@ module msr_tile_engine
   // The tile buffer's data arrive two clocks after the read (GR): the block RAM's registered
   // read, then the register beside it in the context. This stage uses the wait for the
   // descriptor: global coordinates and the threshold of the position's level.
-  logic       rd_valid_q;
   ctx_t       rd_ctx_q;
   side_t      rd_side_q;
   metric_e    rd_metric_q;
   thr_t       rd_thr_q;
   // Each of these is read in part: the position's x / y and the tile's size go elsewhere.
   /* verilator lint_off UNUSEDSIGNAL */
-  pos_t       rd_pos_q;
+  eng_pos_t   rd_pos_q;
   tile_desc_t is_desc;
   /* verilator lint_on UNUSEDSIGNAL */
+  logic [LCOORD_W-2:0] is_mh;
 
   assign is_desc = ctx_desc[is_ctx_q];
-
-  // ---- lindilate: the line trackers and the outer samples' existence, once per engine --------
-  // Per context, the line of its last issued position and the line before it (a pass walks
-  // its lines in order): read at IS for the issued position, updated at IS. fline / ldelta
-  // (first line of the pass / distance to the line before) are formed RD -> AB.
-  lcoord_t [NUM_CTX-1:0] ln_cur_q, ln_prev_q;
-  logic    [NUM_CTX-1:0] ln_has_q;
-  lcoord_t is_line, is_m;
-  logic    is_newline;
-
-  assign is_line    = (is_pos_q.dir == DIR_V) ? is_pos_q.x : is_pos_q.y;
-  assign is_m       = (is_pos_q.dir == DIR_V) ? is_pos_q.y : is_pos_q.x;
-  assign is_newline = is_line != ln_cur_q[is_ctx_q];
-
-  // The trackers' update has issue registers of its own, taken from the grant: per context
-  // "its first position of a pass" and "another position of a pass" (one-hot, so the update
-  // needs no decode of is_ctx_q) and the position's line. The shared IS registers fan out to
-  // the descriptor choice and the RD stage across the engine, and the path from them through
-  // the tracker choice and the line compare into the trackers set the flat top's clock
-  // (10.1 ns, 7.6 of them wire, seed 3, issue 31). The values are those of IS.
-  logic [NUM_CTX-1:0] ln_first_q, ln_next_q;
-  lcoord_t            ln_line_q, ln_cur_sel;
-  msr_clr_reg #(.WIDTH(2 * NUM_CTX)) u_ln_upd_q (
-    .clk_i, .rst_ni, .clear_i, .en_i (1'b1),
-    .d_i ({gr_gnt_q & {NUM_CTX{gr_valid_q && !iss_pos.init && iss_pos.first}},
-           gr_gnt_q & {NUM_CTX{gr_valid_q && !iss_pos.init && !iss_pos.first}}}),
-    .q_o ({ln_first_q, ln_next_q})
-  );
-  always_ff @(posedge clk_i) begin
-    ln_line_q <= (iss_pos.dir == DIR_V) ? iss_pos.x : iss_pos.y;
-  end
-  always_comb begin
-    ln_cur_sel = '0;
-    for (int unsigned c = 0; c < NUM_CTX; c++) ln_cur_sel |= ln_cur_q[c] & {LCOORD_W{ln_next_q[c]}};
-  end
-
-  always_ff @(posedge clk_i) begin
-    for (int unsigned c = 0; c < NUM_CTX; c++) begin
-      if (ln_first_q[c]) begin
-        ln_cur_q[c] <= ln_line_q;
-        ln_has_q[c] <= 1'b0;
-      end else if (ln_next_q[c] && ln_line_q != ln_cur_sel) begin
-        ln_prev_q[c] <= ln_cur_q[c];
-        ln_cur_q[c]  <= ln_line_q;
-        ln_has_q[c]  <= 1'b1;
-      end
-    end
-  end
-
-  // A' = a - g and B' = b + g on the position axis exist iff inside the tile and in G(k-1):
-  // a multiple of n_k up to p, else border offset (r, k - 1) (docs/rules.md). IS -> RD: the
-  // two positions and the axis's p, r, n - 1; RD -> AB: the membership tests.
-  typedef logic [MAX_LEVELS-1:0][7:0] bm_row_t;       // [k - 1] for the levels 1..3
-  function automatic bm_row_t bm_row(int unsigned r);
-    bm_row_t t;
-    for (int unsigned k = 0; k < MAX_LEVELS; k++) t[k] = border_set(r, k);
-    return t;
-  endfunction
-  localparam bm_row_t BM_SET [8] = '{bm_row(0), bm_row(1), bm_row(2), bm_row(3),
-                                     bm_row(4), bm_row(5), bm_row(6), bm_row(7)};
-
-  function automatic logic in_grid(lcoord_t v, lcoord_t p, lcoord_t mask, logic [7:0] bm);
-    logic [2:0] o;            // v - p < 8 wherever it is used
-    o = 3'(v - p);
-    return (v <= p) ? ((v & mask) == '0) : bm[o];
-  endfunction
-
-  logic [LCOORD_W:0] is_ap, is_bp, is_a;
-  lcoord_t           is_nm1, is_smask;
-
-  always_comb begin
-    is_a     = (LCOORD_W+1)'(is_m) - (LCOORD_W+1)'(is_pos_q.off);
-    is_ap    = is_a - (LCOORD_W+1)'(is_pos_q.gap);
-    is_bp    = is_a + (LCOORD_W+1)'({is_pos_q.gap, 1'b0});
-    is_nm1   = lcoord_t'(((is_pos_q.dir == DIR_V) ? is_desc.h : is_desc.w) - 1'b1);
-    is_smask = (lcoord_t'(1) << is_desc.levels) - 1'b1;              // S - 1
-  end
-
-  logic              rd_first, rd_newline, rd_has;
-  lcoord_t           rd_line, rd_cur, rd_prev, rd_nm1, rd_p, rd_nkmask;
-  logic [2:0]        rd_r;
-  level_t            rd_km1;
-  logic [LCOORD_W:0] rd_ap, rd_bp;
-
-  always_ff @(posedge clk_i) begin
-    if (is_valid_q) begin
-      rd_first   <= is_pos_q.first;
-      rd_newline <= is_newline;
-      rd_has     <= ln_has_q[is_ctx_q];
-      rd_line    <= is_line;
-      rd_cur     <= ln_cur_q[is_ctx_q];
-      rd_prev    <= ln_prev_q[is_ctx_q];
-      rd_ap      <= is_ap;
-      rd_bp      <= is_bp;
-      rd_nm1     <= is_nm1;
-      rd_p       <= is_nm1 & ~is_smask;
-      rd_r       <= 3'(is_nm1 & is_smask);
-      rd_km1     <= is_pos_q.level - 1'b1;
-      // n_k - 1 = (S >> (k - 1)) - 1
-      rd_nkmask  <= is_smask >> (is_pos_q.level - 1'b1);
-    end
-  end
-
-  logic       rd_fline, rd_oka, rd_okb;
-  lcoord_t    rd_lprev;
-  logic [7:0] rd_bm;
-
-  always_comb begin
-    rd_fline = rd_first || (!rd_newline && !rd_has);
-    rd_lprev = rd_newline ? rd_cur : rd_prev;
-    rd_bm    = BM_SET[rd_r][rd_km1];
-    rd_oka   = !rd_ap[LCOORD_W] && in_grid(rd_ap[LCOORD_W-1:0], rd_p, rd_nkmask, rd_bm);
-    rd_okb   = !rd_bp[LCOORD_W] && (rd_bp[LCOORD_W-1:0] <= rd_nm1) &&
-               in_grid(rd_bp[LCOORD_W-1:0], rd_p, rd_nkmask, rd_bm);
-  end
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      rd_valid_q <= 1'b0;
-    end else if (clear_i) begin
-      rd_valid_q <= 1'b0;
-    end else begin
-      rd_valid_q <= is_valid_q;
-    end
-  end
 
   always_ff @(posedge clk_i) begin
     if (is_valid_q) begin
@@ -451,58 +291,68 @@ module msr_tile_engine
                             vert: is_pos_q.dir == DIR_V, ldelta: '0},  // ldelta, fline: RD -> AB
                        init: is_pos_q.init,
                        lin: LINDILATE != 0 && is_desc.rule == RULE_LINDILATE && !is_pos_q.init,
-                       mh: is_m[LCOORD_W-1:1], fline: 1'b0};
+                       mh: is_mh, fline: 1'b0};
       rd_metric_q <= is_desc.metric;
       // threshold of the position's level; an initial-grid position gets 0 (always trace)
       rd_thr_q    <= is_pos_q.init ? '0 : is_desc.thr[is_pos_q.level - 1'b1];
     end
   end
 
+  // lindilate: line tracking, the outer samples' existence (IS -> RD) and A' (RD)
+  logic       rd_fline, rd_oka, rd_okb;
+  logic [3:0] rd_ldelta;
+  rgb_t       rd_a, rd_o2, rd_oa;
+
+  assign rd_a  = ctx_rd_a[rd_ctx_q];
+  assign rd_o2 = ctx_rd_o2[rd_ctx_q];
+
+  msr_lin_track #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W)) u_lin_track (
+    .clk_i       (clk_i),
+    .rst_ni      (rst_ni),
+    .clear_i     (clear_i),
+    .gr_valid_i  (gr_valid_q),
+    .gr_gnt_i    (gr_gnt_q),
+    .gr_pos_i    (iss_pos),
+    .is_valid_i  (is_valid_q),
+    .is_ctx_i    (is_ctx_q),
+    .is_pos_i    (is_pos_q),
+    .is_desc_i   (is_desc),
+    .is_mh_o     (is_mh),
+    .rd_valid_i  (rd_valid_q),
+    .rd_ctx_i    (rd_ctx_q),
+    .rd_o2a_i    (rd_pos_q.o2a),
+    .rd_a_i      (rd_a),
+    .rd_o2_i     (rd_o2),
+    .rd_fline_o  (rd_fline),
+    .rd_ldelta_o (rd_ldelta),
+    .rd_oka_o    (rd_oka),
+    .rd_okb_o    (rd_okb),
+    .rd_oa_o     (rd_oa)
+  );
+
   // ---- AB: the issued context's read data, registered -----------------------------------------
-  logic       ab_valid_q, ab_oka_q, ab_okb_q;
+  logic       ab_oka_q, ab_okb_q;
   rgb_t       ab_a_q, ab_b_q, ab_oa_q, ab_ob_q;
   side_t      ab_side_q;
   metric_e    ab_metric_q;
   thr_t       ab_thr_q;
   // Each of these is read in part: the position's x / y go elsewhere.
   /* verilator lint_off UNUSEDSIGNAL */
-  pos_t       ab_pos_q;
+  eng_pos_t   ab_pos_q;
   /* verilator lint_on UNUSEDSIGNAL */
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      ab_valid_q <= 1'b0;
-    end else if (clear_i) begin
-      ab_valid_q <= 1'b0;
-    end else begin
-      ab_valid_q <= rd_valid_q;
-    end
-  end
-
-  // Per context, the A of its last issued position (A' of the next position on the line,
-  // fact 1 of the lindilate section in docs/architecture.md): written as AB takes the read
-  // data, read the same clock for the position in RD (the old value: the previous issue).
-  // A small memory: distributed RAM on an FPGA.
-  rgb_t rd_a, last_a_mem [NUM_CTX];
-  assign rd_a = ctx_rd_a[rd_ctx_q];
-
-  always_ff @(posedge clk_i) begin
-    if (rd_valid_q) last_a_mem[rd_ctx_q] <= rd_a;
-  end
 
   always_ff @(posedge clk_i) begin
     if (rd_valid_q) begin
       ab_a_q      <= rd_a;
       ab_b_q      <= ctx_rd_b[rd_ctx_q];
-      // A': port 2 where o2a, else the context's previous A; B': port 2
-      ab_oa_q     <= rd_pos_q.o2a ? ctx_rd_o2[rd_ctx_q] : last_a_mem[rd_ctx_q];
-      ab_ob_q     <= ctx_rd_o2[rd_ctx_q];
+      ab_oa_q     <= rd_oa;     // A': port 2 where o2a, else the context's previous A
+      ab_ob_q     <= rd_o2;     // B': port 2
       ab_oka_q    <= rd_oka;
       ab_okb_q    <= rd_okb;
       ab_pos_q    <= rd_pos_q;
       ab_side_q   <= rd_side_q;
-      ab_side_q.fline  <= rd_fline;
-      ab_side_q.o.ldelta <= 4'(rd_line - rd_lprev);
+      ab_side_q.fline    <= rd_fline;
+      ab_side_q.o.ldelta <= rd_ldelta;
       ab_metric_q <= rd_metric_q;
       ab_thr_q    <= rd_thr_q;
     end
@@ -513,11 +363,10 @@ module msr_tile_engine
   // ~12 clocks; 16 (the next power of two) keeps one grant per clock.
   localparam int unsigned OUT_DEPTH = 16;
 
-
-  // trace is formed before the output buffer, so the tag allocation below starts at a register.
+  // trace is formed before the output buffer, so the tag allocation starts at a register.
   typedef struct packed {
     logic   trace;
-    logic   retro;      // lindilate: first a trace of the previous line's pixel (see below)
+    logic   retro;      // lindilate: first a trace of the previous line's pixel
     rgb_t   rgb;
     oside_t side;
   } result_t;
@@ -559,12 +408,10 @@ module msr_tile_engine
     .user_o   (pv_side)
   );
 
-  // ---- lindilate: base decision D = P or Q beside the decision pipeline, and the dilation ----
-  // msr_base_decision takes the same AB registers plus A' and B' and answers four clocks
-  // later; two registers align its Q with the decision pipeline's six stages (neither
-  // stalls). D = P or Q with the pipeline's own P: the unit's P and D outputs are left
-  // open, so synthesis drops their logic.
-  logic base_q, base_q1_q, base_q2_q, pv_base;
+  // lindilate: msr_base_decision takes the same AB registers plus A' and B' and answers four
+  // clocks later with Q; msr_lin_dilate aligns it with the pipeline and forms D = P or Q with
+  // the pipeline's own P (the unit's P and D outputs are left open: synthesis drops them).
+  logic base_q, pv_lin_interp, pv_retro;
   /* verilator lint_off UNUSEDSIGNAL */
   logic base_p, base_d;
   /* verilator lint_on UNUSEDSIGNAL */
@@ -586,41 +433,6 @@ module msr_tile_engine
     .patent_o     (base_p),
     .second_o     (base_q)
   );
-
-  always_ff @(posedge clk_i) begin
-    base_q1_q <= base_q;
-    base_q2_q <= base_q1_q;
-  end
-  assign pv_base = pv_interp || base_q2_q;
-
-  // Dilation (docs/rules.md step 4) in decision order. A position's D is known when it
-  // leaves the pipeline, the next line's only when the same position of the next line does.
-  // So the position is interpolated (for now) iff D(l-) and D(l); when D(l+) fails later, a
-  // retro trace of (l-, m) follows, and its render answer overwrites the interpolated pixel
-  // (same final pixel and code as the rule, one request per traced pixel). Per context and
-  // position index the line store keeps D of the last line and whether that line's pixel
-  // was interpolated. The passes of a context leave the pipeline in order, so no clearing:
-  // the first line of a pass reads nothing.
-  // The store is a small memory (read and written at one address a clock, the read of the
-  // old value): distributed RAM on an FPGA.
-  localparam int unsigned DL_AW = CTX_W + LCOORD_W - 1;
-  logic [1:0] dl_mem [NUM_CTX * 16];               // {D(l-), "(l-) was interpolated"}
-  logic [1:0] dl_rd;
-  logic [DL_AW-1:0] dl_addr;
-  logic pv_dprev, pv_tprev, pv_lin_interp, pv_retro;
-
-  assign dl_addr       = {pv_side.o.ctx, pv_side.mh};
-  assign dl_rd         = dl_mem[dl_addr];
-  assign pv_dprev      = pv_side.fline || dl_rd[1];
-  assign pv_tprev      = !pv_side.fline && dl_rd[0];
-  assign pv_lin_interp = pv_dprev && pv_base;
-  assign pv_retro      = pv_side.lin && pv_tprev && !pv_base;
-
-  always_ff @(posedge clk_i) begin
-    if (pv_valid && pv_side.lin) begin
-      dl_mem[dl_addr] <= {pv_base, pv_lin_interp};
-    end
-  end
 
   assign pv_result = '{trace: pv_side.init || !(pv_side.lin ? pv_lin_interp : pv_interp),
                        retro: pv_retro, rgb: pv_rgb,
@@ -657,236 +469,155 @@ module msr_tile_engine
     .data_o  (out_result)
   );
 
-  assign out_rgb    = out_result.rgb;
-  assign out_side   = out_result.side;
+  assign out_rgb  = out_result.rgb;
+  assign out_side = out_result.side;
 
   // Credits: output-buffer slots not yet reserved by an issued position.
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      credit_q <= ($clog2(OUT_DEPTH)+1)'(OUT_DEPTH);
-    end else if (clear_i) begin
-      credit_q <= ($clog2(OUT_DEPTH)+1)'(OUT_DEPTH);
-    end else begin
-      credit_q <= credit_q - ($clog2(OUT_DEPTH)+1)'(issue)
-                           + ($clog2(OUT_DEPTH)+1)'(ob_valid && os_ready);
-    end
-  end
+  localparam int unsigned CRED_W = $clog2(OUT_DEPTH) + 1;
+  msr_clr_reg #(.WIDTH(CRED_W), .RESET(CRED_W'(OUT_DEPTH))) u_credit_q (
+    .clk_i, .rst_ni, .clear_i, .en_i (1'b1),
+    .d_i   (credit_q - CRED_W'(issue) + CRED_W'(ob_valid && os_ready)),
+    .q_o   (credit_q)
+  );
 
   assign can_issue = (credit_q != '0);
 
   // ---- Output: interpolate -> write, trace -> tag and render request -----------------------------
-  typedef struct packed {
-    ctx_t               ctx;
-    logic [TADDR_W-1:0] addr;
-    level_t             level;
-  } tag_entry_t;
+  logic               out_trace, out_write, retro_phase, alloc_tag, tag_avail;
+  logic [TAG_W-1:0]   free_tag;
+  coord_t             req_x, req_y;
+  logic [TADDR_W-1:0] req_addr;
 
-  typedef struct packed {
-    coord_t           x;
-    coord_t           y;
-    logic [TAG_W-1:0] tag;
-  } req_t;
+  assign out_trace = out_result.trace;
 
-  logic             out_trace, out_write, tag_avail, req_in_ready, alloc_tag, req_in_valid;
-  logic             retro_phase, retro_sent_q;
-  logic [TAG_W-1:0] free_tag;
-  req_t             req_in, req_out;
-  coord_t           rt_gx, rt_gy, rt_line_g;
-  lcoord_t          rt_line;
-
-  // A result with a retro trace takes two clocks: the retro request (the previous line's
-  // pixel at the same position), then the result's own write or request.
-  assign rt_line     = (out_side.vert ? out_side.x : out_side.y) - lcoord_t'(out_side.ldelta);
-  assign rt_line_g   = (out_side.vert ? out_side.gx : out_side.gy) - coord_t'(out_side.ldelta);
-  assign rt_gx       = out_side.vert ? rt_line_g : out_side.gx;
-  assign rt_gy       = out_side.vert ? out_side.gy : rt_line_g;
-  assign retro_phase = out_valid && out_result.retro && !retro_sent_q;
-  assign req_in      = retro_phase ? '{x: rt_gx, y: rt_gy, tag: free_tag}
-                                   : '{x: out_side.gx, y: out_side.gy, tag: free_tag};
-
-  assign out_trace    = out_result.trace;
-  assign out_write    = out_valid && !out_trace && !retro_phase;
-  assign out_ready    = !retro_phase && (!out_trace || (tag_avail && req_in_ready));
-  assign req_in_valid = out_valid && (out_trace || retro_phase) && tag_avail;
-  assign alloc_tag    = req_in_valid && req_in_ready;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      retro_sent_q <= 1'b0;
-    end else if (clear_i) begin
-      retro_sent_q <= 1'b0;
-    end else if (out_valid && out_ready) begin
-      retro_sent_q <= 1'b0;
-    end else if (retro_phase && alloc_tag) begin
-      retro_sent_q <= 1'b1;
-    end
-  end
-
-  msr_spill_reg #(
-    .WIDTH ($bits(req_t))
-  ) u_req_spill (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .valid_i (req_in_valid),
-    .ready_o (req_in_ready),
-    .data_i  (req_in),
-    .valid_o (req_valid_o),
-    .ready_i (req_ready_i),
-    .data_o  (req_out)
+  msr_lin_dilate #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W)) u_lin_dilate (
+    .clk_i           (clk_i),
+    .rst_ni          (rst_ni),
+    .clear_i         (clear_i),
+    .base_q_i        (base_q),
+    .pv_valid_i      (pv_valid),
+    .pv_interp_i     (pv_interp),
+    .pv_lin_i        (pv_side.lin),
+    .pv_fline_i      (pv_side.fline),
+    .pv_ctx_i        (pv_side.o.ctx),
+    .pv_mh_i         (pv_side.mh),
+    .pv_lin_interp_o (pv_lin_interp),
+    .pv_retro_o      (pv_retro),
+    .out_valid_i     (out_valid),
+    .out_retro_i     (out_result.retro),
+    .out_done_i      (out_valid && out_ready),
+    .alloc_i         (alloc_tag),
+    .out_vert_i      (out_side.vert),
+    .out_x_i         (out_side.x),
+    .out_y_i         (out_side.y),
+    .out_gx_i        (out_side.gx),
+    .out_gy_i        (out_side.gy),
+    .out_ldelta_i    (out_side.ldelta),
+    .retro_phase_o   (retro_phase),
+    .req_x_o         (req_x),
+    .req_y_o         (req_y),
+    .req_addr_o      (req_addr)
   );
 
-  assign req_x_o   = req_out.x;
-  assign req_y_o   = req_out.y;
-  assign req_tag_o = req_out.tag;
-
-  // ---- Responses --------------------------------------------------------------------------------
-  typedef struct packed {
-    logic [TAG_W-1:0] tag;
-    rgb_t             rgb;
-  } rsp_t;
-
-  logic             rs_valid, rs_ready;
-  rsp_t             rs_data, rsp_in;
-  logic             r1_valid_q, r1_ready;
-  rsp_t             r1_q;
-  tag_entry_t       r1_entry;
-  logic             r1_inflight;
-  logic             r2_valid_q, r2_ok_q, r2_write, r2_drop, r2_done;
-  rsp_t             r2_q;
-  tag_entry_t       r2_entry_q;
-
-  msr_spill_reg #(
-    .WIDTH ($bits(rsp_t))
-  ) u_rsp_spill (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .valid_i (rsp_valid_i),
-    .ready_o (rsp_ready_o),
-    .data_i  (rsp_in),
-    .valid_o (rs_valid),
-    .ready_i (rs_ready),
-    .data_o  (rs_data)
+  msr_req_out #(.TAG_W(TAG_W)) u_req_out (
+    .clk_i         (clk_i),
+    .rst_ni        (rst_ni),
+    .clear_i       (clear_i),
+    .out_valid_i   (out_valid),
+    .out_ready_o   (out_ready),
+    .out_trace_i   (out_trace),
+    .retro_phase_i (retro_phase),
+    .out_write_o   (out_write),
+    .req_x_i       (req_x),
+    .req_y_i       (req_y),
+    .tag_avail_i   (tag_avail),
+    .free_tag_i    (free_tag),
+    .alloc_tag_o   (alloc_tag),
+    .req_valid_o   (req_valid_o),
+    .req_ready_i   (req_ready_i),
+    .req_x_o       (req_x_o),
+    .req_y_o       (req_y_o),
+    .req_tag_o     (req_tag_o)
   );
 
-  assign rsp_in = '{tag: rsp_tag_i, rgb: rsp_rgb_i};
+  // ---- Responses and tags -----------------------------------------------------------------------
+  logic               r2_write;
+  ctx_t               rsp_wctx;
+  logic [TADDR_W-1:0] rsp_waddr;
+  level_t             rsp_wlevel;
+  rgb_t               rsp_wrgb;
 
-  // R1 looks the tag up (where the answer goes, and whether the tag is in flight, minus the
-  // tag R2 releases this cycle, so a duplicate right behind its original is caught). R2 writes
-  // the colour when its context's port is free this cycle (the pipeline's interpolated write
-  // goes first), or drops an answer whose tag was not in flight.
-  assign r2_drop  = r2_valid_q && !r2_ok_q;
-  assign r2_write = r2_valid_q && r2_ok_q && !(out_write && out_side.ctx == r2_entry_q.ctx);
-  assign r2_done  = r2_drop || r2_write;
-  assign r1_ready = !r2_valid_q || r2_done;
-  assign rs_ready = !r1_valid_q || r1_ready;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      r1_valid_q <= 1'b0;
-      r2_valid_q <= 1'b0;
-    end else if (clear_i) begin
-      r1_valid_q <= 1'b0;
-      r2_valid_q <= 1'b0;
-    end else begin
-      if (rs_ready) r1_valid_q <= rs_valid;
-      if (r1_ready) r2_valid_q <= r1_valid_q;
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (rs_ready && rs_valid) r1_q <= rs_data;
-    if (r1_ready && r1_valid_q) begin
-      r2_q       <= r1_q;
-      r2_entry_q <= r1_entry;
-      r2_ok_q    <= r1_inflight && !(r2_write && r2_q.tag == r1_q.tag);
-    end
-  end
-
-  assign rsp_drop_o = r2_drop;
-
-  // ---- Tags -------------------------------------------------------------------------------------
-  logic [TAG_W:0] tags_inflight;
-  tag_entry_t     alloc_entry;
-
-  assign alloc_entry = '{ctx: out_side.ctx, level: out_side.level,
-                         addr: !retro_phase  ? {out_side.y, out_side.x} :
-                               out_side.vert ? {out_side.y, rt_line}
-                                             : {rt_line, out_side.x}};
-
-  msr_tag_pool #(
-    .N       (MAX_OUTSTANDING),
-    .ENTRY_W ($bits(tag_entry_t)),
-    .TAG_W   (TAG_W)
-  ) u_tag_pool (
-    .clk_i            (clk_i),
-    .rst_ni           (rst_ni),
-    .clear_i          (clear_i),
-    .avail_o          (tag_avail),
-    .tag_o            (free_tag),
-    .alloc_i          (alloc_tag),
-    .entry_i          (alloc_entry),
-    .query_tag_i      (r1_q.tag),
-    .query_entry_o    (r1_entry),
-    .query_inflight_o (r1_inflight),
-    .release_tag_i    (r2_q.tag),
-    .release_i        (r2_write),
-    .inflight_o       (tags_inflight),
-    .out_q_o          (tags_out_o),
-    .init_o           (tags_init)
+  msr_rsp_check #(
+    .MAX_OUTSTANDING (MAX_OUTSTANDING),
+    .TAG_W           (TAG_W),
+    .CTX_W           (CTX_W)
+  ) u_rsp_check (
+    .clk_i         (clk_i),
+    .rst_ni        (rst_ni),
+    .clear_i       (clear_i),
+    .rsp_valid_i   (rsp_valid_i),
+    .rsp_ready_o   (rsp_ready_o),
+    .rsp_tag_i     (rsp_tag_i),
+    .rsp_rgb_i     (rsp_rgb_i),
+    .tag_avail_o   (tag_avail),
+    .free_tag_o    (free_tag),
+    .alloc_i       (alloc_tag),
+    .alloc_ctx_i   (out_side.ctx),
+    .alloc_addr_i  (req_addr),
+    .alloc_level_i (out_side.level),
+    .pipe_we_i     (out_write),
+    .pipe_ctx_i    (out_side.ctx),
+    .we_o          (r2_write),
+    .wctx_o        (rsp_wctx),
+    .waddr_o       (rsp_waddr),
+    .wlevel_o      (rsp_wlevel),
+    .wrgb_o        (rsp_wrgb),
+    .drop_o        (rsp_drop_o),
+    .inflight_o    (inflight_o),
+    .tags_out_o    (tags_out_o),
+    .init_o        (tags_init)
   );
-
-  assign inflight_o = tags_inflight;
 
   // ---- Writes: each context's one port, registered -----------------------------------------
   // The write reaches its context a clock after the output or R2 decided it: the contexts sit
   // across the engine's area, and the decision -> context path (its pending count's adder
   // behind) was the placed top's worst path at 10.9 ns. Nothing waits on a write but the
   // context itself (its pending count and pass barrier see the write when it lands), so the
-  // register only delays a barrier by one clock. A clear drops a write on its way.
+  // register only delays a barrier by one clock. A clear drops a write on its way. A retro
+  // request is one more pending write of its context (registered like the write).
+  logic [NUM_CTX-1:0] ctx_we_d, ctx_retro_d;
+
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_write
     logic pipe_we, rsp_we;
-    assign pipe_we = out_write && (out_side.ctx == ctx_t'(c));
-    assign rsp_we  = r2_write && (r2_entry_q.ctx == ctx_t'(c));
+    assign pipe_we        = out_write && (out_side.ctx == ctx_t'(c));
+    assign rsp_we         = r2_write && (rsp_wctx == ctx_t'(c));
+    assign ctx_we_d[c]    = pipe_we || rsp_we;
+    assign ctx_retro_d[c] = retro_phase && alloc_tag && (out_side.ctx == ctx_t'(c));
 
-    // a retro request is one more pending write of its context (registered like the write)
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        ctx_retro[c] <= 1'b0;
-      end else if (clear_i) begin
-        ctx_retro[c] <= 1'b0;
-      end else begin
-        ctx_retro[c] <= retro_phase && alloc_tag && (out_side.ctx == ctx_t'(c));
-      end
-    end
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        ctx_we[c] <= 1'b0;
-      end else if (clear_i) begin
-        ctx_we[c] <= 1'b0;
-      end else begin
-        ctx_we[c] <= pipe_we || rsp_we;
-      end
-    end
-
-    // Data without an enable: it is used only with ctx_we.
+    // Data without an enable: it is used only with ctx_we_q.
     always_ff @(posedge clk_i) begin
-      ctx_waddr[c] <= pipe_we ? {out_side.y, out_side.x} : r2_entry_q.addr;
-      ctx_wsrc[c]  <= pipe_we ? src_interp(out_side.level) : src_traced(r2_entry_q.level);
-      ctx_wrgb[c]  <= pipe_we ? out_rgb : r2_q.rgb;
+      ctx_waddr_q[c] <= pipe_we ? {out_side.y, out_side.x} : rsp_waddr;
+      ctx_wsrc_q[c]  <= pipe_we ? src_interp(out_side.level) : src_traced(rsp_wlevel);
+      ctx_wrgb_q[c]  <= pipe_we ? out_rgb : rsp_wrgb;
     end
   end
 
+  msr_clr_reg #(.WIDTH(2 * NUM_CTX)) u_write_q (
+    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({ctx_we_d, ctx_retro_d}),
+    .q_o ({ctx_we_q, ctx_retro_q})
+  );
+
   // ---- Output streamer ----------------------------------------------------------------------
-  logic             str_arb_valid, streaming_q, str_start_q, str_start_ready;
-  logic             str_re, str_done;
-  logic [CTX_W-1:0] str_sel, str_q;
+  // Pick a full context (one cycle), start the streamer on it (next cycle), free it when its
+  // last pixel has left.
+  logic               str_arb_valid, streaming_q, str_start_q, str_start_ready;
+  logic               streaming_d, str_start_d, str_pick;
+  logic               str_re, str_done;
+  logic [CTX_W-1:0]   str_sel, str_q, str_d;
   logic [TADDR_W-1:0] str_raddr;
   // The streamer needs the winner's index and the tile's origin and size only.
   /* verilator lint_off UNUSEDSIGNAL */
-  tile_desc_t       str_desc;
+  tile_desc_t         str_desc;
   logic [NUM_CTX-1:0] str_gnt;
   /* verilator lint_on UNUSEDSIGNAL */
 
@@ -901,27 +632,17 @@ module msr_tile_engine
     .ready_i (!streaming_q)
   );
 
-  // Pick a full context (one cycle), start the streamer on it (next cycle), free it when its
-  // last pixel has left.
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      streaming_q <= 1'b0;
-      str_start_q <= 1'b0;
-      str_q       <= '0;
-    end else if (clear_i) begin
-      streaming_q <= 1'b0;
-      str_start_q <= 1'b0;
-      str_q       <= '0;
-    end else begin
-      if (!streaming_q && str_arb_valid) begin
-        streaming_q <= 1'b1;
-        str_start_q <= 1'b1;
-        str_q       <= str_sel;
-      end
-      if (str_start_q && str_start_ready) str_start_q <= 1'b0;
-      if (str_done) streaming_q <= 1'b0;
-    end
+  always_comb begin
+    str_pick    = !streaming_q && str_arb_valid;
+    streaming_d = !str_done && (str_pick || streaming_q);
+    str_start_d = !(str_start_q && str_start_ready) && (str_pick || str_start_q);
+    str_d       = str_pick ? str_sel : str_q;
   end
+
+  msr_clr_reg #(.WIDTH(2 + CTX_W)) u_stream_q (
+    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({streaming_d, str_start_d, str_d}),
+    .q_o ({streaming_q, str_start_q, str_q})
+  );
 
   assign str_desc = ctx_desc[str_q];
 
@@ -968,25 +689,25 @@ module msr_tile_engine
       .free_o        (ctx_free[c]),
       .desc_o        (ctx_desc[c]),
       .cand_o        (ctx_cand[c]),
-      .step_first_o  (ctx_first[c]),
-      .step_x_o      (ctx_x[c]),
-      .step_y_o      (ctx_y[c]),
-      .step_gap_o    (ctx_gap[c]),
-      .step_off_o    (ctx_off[c]),
-      .step_level_o  (ctx_level[c]),
-      .step_nshift_o (ctx_nshift[c]),
-      .step_init_o   (ctx_init[c]),
-      .step_dir_o    (ctx_dir[c]),
-      .step_o2a_o    (ctx_o2a[c]),
+      .step_first_o  (ctx_pos[c].first),
+      .step_x_o      (ctx_pos[c].x),
+      .step_y_o      (ctx_pos[c].y),
+      .step_gap_o    (ctx_pos[c].gap),
+      .step_off_o    (ctx_pos[c].off),
+      .step_level_o  (ctx_pos[c].level),
+      .step_nshift_o (ctx_pos[c].nshift),
+      .step_init_o   (ctx_pos[c].init),
+      .step_dir_o    (ctx_pos[c].dir),
+      .step_o2a_o    (ctx_pos[c].o2a),
       .issue_i       (ctx_issue[c]),
       .rd_a_o        (ctx_rd_a[c]),
       .rd_b_o        (ctx_rd_b[c]),
       .rd_o2_o       (ctx_rd_o2[c]),
-      .retro_i       (ctx_retro[c]),
-      .we_i          (ctx_we[c]),
-      .waddr_i       (ctx_waddr[c]),
-      .wsrc_i        (ctx_wsrc[c]),
-      .wrgb_i        (ctx_wrgb[c]),
+      .retro_i       (ctx_retro_q[c]),
+      .we_i          (ctx_we_q[c]),
+      .waddr_i       (ctx_waddr_q[c]),
+      .wsrc_i        (ctx_wsrc_q[c]),
+      .wrgb_i        (ctx_wrgb_q[c]),
       .full_o        (ctx_full[c]),
       .str_own_i     (ctx_str_own[c]),
       .str_re_i      (str_re),
@@ -995,6 +716,7 @@ module msr_tile_engine
       .str_src_o     (ctx_str_src[c]),
       .str_done_i    (ctx_str_done[c])
     );
+    assign ctx_first[c] = ctx_pos[c].first;
   end
 
   assign busy_o = !(&ctx_free) || (|start_q) || tags_init;
@@ -1012,7 +734,7 @@ module msr_tile_engine
   `MSR_ASSUME(m_desc_legal, desc_valid_i |-> desc_i.w inside {[1 : MAX_TILE]} &&
       desc_i.h inside {[1 : MAX_TILE]} && desc_i.levels inside {[1 : MAX_LEVELS]})
   // Internal invariants.
-  `MSR_ASSERT(a_one_writer, !(out_write && r2_write && out_side.ctx == r2_entry_q.ctx))
+  `MSR_ASSERT(a_one_writer, !(out_write && r2_write && out_side.ctx == rsp_wctx))
   `MSR_ASSERT(a_issue_onehot, $onehot0(ctx_issue))
   `MSR_ASSERT(a_out_buf_room, pv_valid |-> ob_ready)
   `MSR_ASSERT(a_credits, 32'(credit_q) + 32'(ob_count) <= OUT_DEPTH)
@@ -1020,7 +742,6 @@ module msr_tile_engine
   `MSR_ASSERT(a_retro_delta, pv_valid && pv_side.lin && !pv_side.fline |->
       pv_side.o.ldelta inside {[1 : 8]})
   `MSR_COVER(c_retro, retro_phase && alloc_tag)
-  `MSR_COVER(c_rsp_dropped, rsp_drop_o)
   `MSR_COVER(c_all_ctx_busy, ctx_free == '0)
   /* verilator lint_on SYNCASYNCNET */
 

@@ -212,7 +212,7 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
             # a duplicate only while at least 4 tags are free: the engine reuses a tag only
             # after every other free one, so the copy cannot meet a new request of that tag
             if (len(taken) == 2 and rng.random() < dup_prob
-                    and int(dut.u_tag_pool.inflight_o.value) <= max_out - 4):
+                    and int(dut.inflight_o.value) <= max_out - 4):
                 rsp_cur = (taken[0], taken[1], "duplicate")
                 dup_sent += 1
         if dut.rsp_drop_o.value:
