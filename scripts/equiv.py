@@ -31,8 +31,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tb" / "common"))
-from msr_runner import rtl_incdirs, rtl_sources  # noqa: E402
+from msr_runner import rtl_incdirs, rtl_sources   # the installed msr_tb package
 
 
 def defining_file(unit: str, files: list[Path]) -> Path:
