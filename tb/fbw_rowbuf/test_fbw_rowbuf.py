@@ -75,6 +75,8 @@ async def test_rows(dut):
         W, H, T = rng.randint(1, 80), rng.randint(1, 40), rng.choice((8, 16, 32))
         frames.append((W, H, T, 4 * rng.randrange(0x4000), 4 * W + 4 * rng.randrange(8), 4 * rng.randrange(0x4000),
                        (W + 3) // 4 * 4 + 4 * rng.randrange(4), rng.random() * 0.6, rng.random() * 0.8))
+    nxt_pick = [0] * n_in                 # the buffer the ring offers next (kept across frames)
+    col = [0] * n_in                      # the buffer that collects
     for W, H, T, fb_base, fb_stride, src_base, src_stride, gap_p, slow_p in frames:
         await FallingEdge(dut.clk_i)
         dut.width_i.value = W
@@ -85,9 +87,6 @@ async def test_rows(dut):
         ntiles = len(range(0, W, T)) * len(range(0, H, T))
         pos = [(0, 0)] * n_in             # per input: (row, pixel) offered next
         held = [[] for _ in range(n_in)]  # per input: complete rows not yet freed, oldest first
-        nxt_pick = [0] * n_in             # the buffer the ring offers next
-        col = [0] * n_in                  # the buffer that collects
-        taken = [0] * n_in                # rows taken
         job = None                        # the row being read: (input, buffer, row, beats, wait)
         free = None
         tiles = 0
@@ -114,7 +113,7 @@ async def test_rows(dut):
                     words[i] = pix_word(x, y, rgb, code, last)
                     offer[i] = (r, p)
             dut.pix_valid_i.value = valid
-            dut.pix_i.value = pack(words, 45)
+            dut.pix_i.value = pack(words, 57)
             # take one offered row (the oldest complete, untaken one of a random input)
             take = 0
             cand = [i for i in range(n_in) if (row_ready >> i) & 1]
@@ -130,7 +129,6 @@ async def test_rows(dut):
                 y, x0, pix = rows[i][ent[2]]
                 meta_want = (i, y, x0, len(pix) - 1)
                 nxt_pick[i] = (nxt_pick[i] + 1) % NBUF
-                taken[i] += 1
             dut.take_i.value = take
             # the W side: one beat per clock of the oldest taken row, after a short wait
             if job is None:
