@@ -1,7 +1,7 @@
 // Formal harness of msr_fbw_aw, the frame-buffer writer's AW side: one input, a 32-bit bus,
 // two bursts outstanding. Every input free but two environment rules: the W side's room only
 // shrinks by a push (as msr_fbw_w's burst queue does), and the frame's src_en is constant.
-// Proves (k-induction): AW held and stable until taken; the bursts outstanding (AW taken, B
+// Checks (bounded): AW held and stable until taken; the bursts outstanding (AW taken, B
 // not yet) counted from the handshakes never pass MAX_OUT, and a B with none outstanding is
 // flagged, one with a burst outstanding is not; an error response names the address of the
 // oldest outstanding burst; every row taken yields its bursts (one per plane, two when the
@@ -88,7 +88,9 @@ module msr_fbw_aw_fv import msr_fbw_pkg::*; #(
   endfunction
   logic [3:0] owed_q, rows_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni || clear_i) begin
+    if (!rst_ni) begin
+      owed_q <= '0; rows_q <= '0;
+    end else if (clear_i) begin
       owed_q <= '0; rows_q <= '0;
     end else begin
       owed_q <= owed_q + (take ? 4'(nbursts(row, src_en_i)) : 4'(0)) - 4'(wb_push);
@@ -119,7 +121,8 @@ module msr_fbw_aw_fv import msr_fbw_pkg::*; #(
                                            4'(dut.u_aw_reg.b_full_q && dut.u_aw_reg.b_data_q[0]));
   a_idle:       assert property (@(posedge clk_i) disable iff (!rst_ni) !idle || (owed_q == '0 && out_q == '0));
 
-  // Induction strengtheners: the budget counts the AW register and the bus.
+  // The budget counts the AW register and the bus (the inline a_budget_flags and
+  // a_onbus_in_budget of msr_fbw_aw.sv, restated and made exact).
   a_onbus:   assert property (@(posedge clk_i) disable iff (!rst_ni) dut.onbus_q == 2'(out_q));
   a_budget:  assert property (@(posedge clk_i) disable iff (!rst_ni)
                               dut.budget_q == dut.onbus_q + 2'(dut.aw_sp_valid) + 2'(dut.u_aw_reg.b_full_q)
