@@ -133,8 +133,9 @@ module msr_fbw_aw_fv import msr_fbw_pkg::*; #(
   a_list:    assert property (@(posedge clk_i) disable iff (!rst_ni)
                               dut.blv_q inside {4'b0000, 4'b0001, 4'b0011, 4'b0111, 4'b1111});
 
-  // Non-vacuity: a row with four bursts; the budget full; an error response with its address.
+  // Non-vacuity: a row with four bursts; a burst waiting on a full budget; an error response
+  // with its address.
   c_four:    cover property (@(posedge clk_i) disable iff (!rst_ni) take && nbursts(row, src_en_i) == 3'd4);
-  c_full:    cover property (@(posedge clk_i) disable iff (!rst_ni) out_q == MAX_OUT && aw_hs == 1'b0 && awvalid);
+  c_full:    cover property (@(posedge clk_i) disable iff (!rst_ni) out_q == MAX_OUT && dut.blv_q[0]);
   c_err:     cover property (@(posedge clk_i) disable iff (!rst_ni) bresp_err && trk_q && trk_pos_q == '0);
 endmodule
