@@ -29,6 +29,11 @@ rtl/system/msr_axil_cpuif.sv
 rtl/system/msr_cfg_ctrl.sv
 rtl/system/msr_tile_gen.sv
 rtl/system/msr_render_mux.sv
+rtl/system/msr_fbw_pkg.sv
+rtl/system/msr_fbw_rowbuf.sv
+rtl/system/msr_fbw_addr.sv
+rtl/system/msr_fbw_aw.sv
+rtl/system/msr_fbw_w.sv
 rtl/system/msr_fb_writer.sv
 rtl/system/msr_perf_counters.sv
 rtl/system/msr_top.sv

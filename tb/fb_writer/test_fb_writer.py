@@ -184,6 +184,8 @@ def test_fb_writer(n_in, width, max_out, seed):
                sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_clr_reg.sv",
                         RTL / "prim/msr_seg_add.sv", RTL / "prim/msr_fifo.sv",
                         RTL / "prim/msr_rr_arb.sv", RTL / "prim/msr_spill_reg.sv",
-                        RTL / "system/msr_fb_writer.sv", *checkers,
+                        RTL / "system/msr_fbw_pkg.sv", RTL / "system/msr_fbw_rowbuf.sv",
+                        RTL / "system/msr_fbw_addr.sv", RTL / "system/msr_fbw_aw.sv",
+                        RTL / "system/msr_fbw_w.sv", RTL / "system/msr_fb_writer.sv", *checkers,
                         RTL / "checkers" / "msr_checker_binds.sv"],
                extra_env={"SEED": str(seed), "NUM_IN": str(n_in), "AXI_DATA_W": str(width)})
