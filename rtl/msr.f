@@ -26,6 +26,7 @@ rtl/regs/msr_regs_pkg.sv
 rtl/regs/msr_regs.sv
 rtl/system/msr_sys_pkg.sv
 rtl/system/msr_axil_cpuif.sv
+rtl/system/msr_reg_if.sv
 rtl/system/msr_cfg_ctrl.sv
 rtl/system/msr_tile_gen.sv
 rtl/system/msr_render_mux.sv

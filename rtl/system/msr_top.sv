@@ -95,50 +95,15 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   msr_regs_pkg::msr_regs__in_t  hwif_in;
   msr_regs_pkg::msr_regs__out_t hwif_out;
 
-  // The AXI4-Lite front end registers every request before the block decodes it.
-  logic                 cpuif_req, cpuif_req_is_wr, cpuif_stall_wr, cpuif_stall_rd;
-  logic [6:0]           cpuif_addr;
-  logic [31:0]          cpuif_wr_data, cpuif_wr_biten, cpuif_rd_data;
-  logic                 cpuif_rd_ack, cpuif_rd_err, cpuif_wr_ack, cpuif_wr_err;
-
-  msr_axil_cpuif #(.ADDR_W(7), .DATA_W(32)) u_axil (
+  msr_reg_if u_reg_if (
     .clk_i, .rst_ni,
     .s_axil_awvalid, .s_axil_awready, .s_axil_awaddr, .s_axil_awprot,
     .s_axil_wvalid, .s_axil_wready, .s_axil_wdata, .s_axil_wstrb,
     .s_axil_bvalid, .s_axil_bready, .s_axil_bresp,
     .s_axil_arvalid, .s_axil_arready, .s_axil_araddr, .s_axil_arprot,
     .s_axil_rvalid, .s_axil_rready, .s_axil_rdata, .s_axil_rresp,
-    .cpuif_req_o          (cpuif_req),
-    .cpuif_req_is_wr_o    (cpuif_req_is_wr),
-    .cpuif_addr_o         (cpuif_addr),
-    .cpuif_wr_data_o      (cpuif_wr_data),
-    .cpuif_wr_biten_o     (cpuif_wr_biten),
-    .cpuif_req_stall_wr_i (cpuif_stall_wr),
-    .cpuif_req_stall_rd_i (cpuif_stall_rd),
-    .cpuif_rd_ack_i       (cpuif_rd_ack),
-    .cpuif_rd_err_i       (cpuif_rd_err),
-    .cpuif_rd_data_i      (cpuif_rd_data),
-    .cpuif_wr_ack_i       (cpuif_wr_ack),
-    .cpuif_wr_err_i       (cpuif_wr_err)
-  );
-
-  msr_regs u_regs (
-    .clk                  (clk_i),
-    .arst_n               (rst_ni),
-    .s_cpuif_req          (cpuif_req),
-    .s_cpuif_req_is_wr    (cpuif_req_is_wr),
-    .s_cpuif_addr         (cpuif_addr),
-    .s_cpuif_wr_data      (cpuif_wr_data),
-    .s_cpuif_wr_biten     (cpuif_wr_biten),
-    .s_cpuif_req_stall_wr (cpuif_stall_wr),
-    .s_cpuif_req_stall_rd (cpuif_stall_rd),
-    .s_cpuif_rd_ack       (cpuif_rd_ack),
-    .s_cpuif_rd_err       (cpuif_rd_err),
-    .s_cpuif_rd_data      (cpuif_rd_data),
-    .s_cpuif_wr_ack       (cpuif_wr_ack),
-    .s_cpuif_wr_err       (cpuif_wr_err),
-    .hwif_in              (hwif_in),
-    .hwif_out             (hwif_out)
+    .hwif_in_i  (hwif_in),
+    .hwif_out_o (hwif_out)
   );
 
   cfg_raw_t raw;
