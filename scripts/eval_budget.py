@@ -27,16 +27,7 @@ from msr_model import ImageRenderer, Params, load_rgb, save_png
 from msr_model import budget as BG
 
 REPO = Path(__file__).resolve().parents[1]
-# The evaluation set (msr_eval.sweep): the built-in scenes and these Debian-packaged models.
-MODEL_FILES = [
-    "/usr/share/glmark2/models/horse.3ds",
-    "/usr/share/glmark2/models/cat.3ds",
-    "/usr/share/glmark2/models/asteroid-high.3ds",
-    "/usr/share/assimp/models/OBJ/WusonOBJ.obj",
-    "/usr/share/assimp/models/OBJ/spider.obj",
-    "/usr/share/assimp/models/glTF/CesiumMilkTruck/CesiumMilkTruck.gltf",
-    "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf",
-]
+from msr_eval.scenes import MODEL_FILES   # the evaluation set's model files, besides the built-ins
 LADDER = (BG.U_MIN,) + tuple(int(round(256 * 2 ** (k / 2))) for k in range(-4, 6))   # u = 45, 64 .. 1448
 
 
