@@ -369,14 +369,24 @@ module msr_level_ctrl
   // A' = a - g = m - (o + g) and B' = b + g = m + (2g - o), o = g >> 1, from the walk state
   // (one small table and one add each). Whether they exist is worked out after the issue,
   // once per engine (msr_tile_engine), not here.
-  logic [LCOORD_W:0] bp, g_ext;
+  logic [LCOORD_W:0] bp;
+  logic [GAP_W:0]    back, fwd;         // g + o and 2g - o, o = g >> 1
   lcoord_t           ap, o2pos;         // A' only matters where it is in the tile
   logic              o2a;
 
+  // back and fwd as tables of the gap (one LUT per bit) rather than two adders in series with
+  // the add to cur and the compare: that chain of carries was the top's critical path on a seed.
   always_comb begin
-    g_ext = (LCOORD_W+1)'(pw_q.gap);
-    ap    = pw_q.cur - lcoord_t'(g_ext + (g_ext >> 1));
-    bp    = {1'b0, pw_q.cur} + ((g_ext << 1) - (g_ext >> 1));
+    back = '0;
+    fwd  = '0;
+    for (int unsigned v = 0; v < 2**GAP_W; v++) begin
+      if (pw_q.gap == gap_t'(v)) begin
+        back = (GAP_W+1)'(v + v / 2);
+        fwd  = (GAP_W+1)'(2 * v - v / 2);
+      end
+    end
+    ap    = pw_q.cur - lcoord_t'(back);
+    bp    = {1'b0, pw_q.cur} + (LCOORD_W+1)'(fwd);
     o2a   = bp[LCOORD_W] || (bp[LCOORD_W-1:0] > gp_nm1_q);
     o2pos = o2a ? ap : bp[LCOORD_W-1:0];
   end

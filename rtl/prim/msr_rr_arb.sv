@@ -5,9 +5,9 @@
 // its request stays up, so a valid/ready consumer sees stable data.
 //
 // Timing: the "requests above the last winner" mask is a register (a thermometer code), and
-// the grant and the next mask both come from one 2N-bit carry chain (the lowest set bit of
-// {requests, requests above the last winner}), so the grant is a handful of LUT levels for
-// any N.
+// the grant and the next mask both come from the lowest set bit of {requests, requests above
+// the last winner}: a prefix OR in LUTs for N <= 8, one 2N-bit carry chain above that, so the
+// grant is a handful of LUT levels for any N.
 `include "msr_assert.svh"
 
 module msr_rr_arb #(
@@ -33,13 +33,29 @@ module msr_rr_arb #(
   logic [2*N-1:0] both, below_incl, lowest;
   logic [N-1:0]   gnt, above_pick;
 
-  // One carry chain for the whole choice: the requests above the last winner in the low half,
-  // all requests in the high half; the lowest set bit of that 2N-bit vector is the winner (in
-  // the high half only when nobody above the last winner asks). x ^ (x - 1) marks the bits
-  // up to and including the lowest set one; the pointer for the next round comes from the
-  // same subtraction, not from a second chain behind the grant.
-  assign both       = {req_i, req_i & above_q};
-  assign below_incl = both ^ (both - 1'b1);
+  // One 2N-bit vector for the whole choice: the requests above the last winner in the low half,
+  // all requests in the high half; its lowest set bit is the winner (in the high half only
+  // when nobody above the last winner asks). below_incl marks the bits up to and including
+  // the lowest set one (x ^ (x - 1)); the pointer for the next round comes from the same
+  // vector, not from a second chain behind the grant.
+  assign both = {req_i, req_i & above_q};
+  if (N <= 8) begin : g_prefix_or
+    // Few requesters: a prefix OR in LUTs. The carry chain below sits in a fixed column of
+    // the die, and the placer pulled the render mux's four queues' heads across it and back
+    // (7.6 of 10.3 ns was wire in the default top); a 2N <= 16-input prefix is two or three
+    // LUT levels that the placer can put beside the queues. Same function: bit i is set
+    // while no request is set below it.
+    always_comb begin
+      logic seen;
+      seen = 1'b0;
+      for (int unsigned i = 0; i < 2*N; i++) begin
+        below_incl[i] = !seen;
+        seen          = seen | both[i];
+      end
+    end
+  end else begin : g_carry_chain
+    assign below_incl = both ^ (both - 1'b1);
+  end
   assign lowest     = both & below_incl;
   assign gnt        = lowest[N-1:0] | lowest[2*N-1:N];
   assign above_pick = below_incl[N] ? ~below_incl[2*N-1:N] : ~below_incl[N-1:0];
