@@ -174,3 +174,31 @@ def test_store_pack_round_trip():
     back = CS.unpack(CS.pack(recs))
     assert back[0]["psnr"] == pytest.approx(41.123, abs=1e-3) and "ssim" not in back[0]
     assert back[1] == recs[1]
+
+
+def test_family_signatures_follow_behaviour_not_source(tmp_path, monkeypatch):
+    """A record is kept while its family computes the same on the probe frame: a change to one
+    method's output changes that method's families' signatures and no other; the same code
+    gives the same signatures in a new process (the memo is cleared here)."""
+    import numpy as np
+    from msr_eval import dacs as D
+    from msr_eval import fingerprint as FP
+    cfg = S.SweepConfig(96, 64, (1, 8), False, False, tmp_path)
+    monkeypatch.setattr(S, "_SIGNATURES", {})
+    before = cfg.family_signatures()
+    monkeypatch.setattr(S, "_SIGNATURES", {})
+    assert cfg.family_signatures() == before
+    real = D.dacs
+
+    def changed(renderer, w, h, **kw):          # one pixel of every DACS frame differs
+        res = real(renderer, w, h, **kw)
+        res.frame[0, 0, 0] ^= 1
+        return res
+    monkeypatch.setattr(D, "dacs", changed)
+    monkeypatch.setattr(S, "_SIGNATURES", {})
+    after = cfg.family_signatures()
+    assert {f for f in before if before[f] != after[f]} == {f for f in before if f.startswith("dacs")}
+    # the probe has partial tiles on both axes and G-buffer edges for the G-buffer rule
+    ref, conv, (prim, mat, depth) = FP.probe()
+    assert FP.PROBE_W % 32 and FP.PROBE_H % 32 and ref.shape == conv.shape
+    assert len(np.unique(mat)) >= 3 and not np.array_equal(ref, conv)

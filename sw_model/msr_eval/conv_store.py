@@ -10,8 +10,9 @@ provably the same computation:
   it (the same renderer, scene, view and size: the renderer is deterministic) and its sample
   count and seed are the ones asked for;
 - a record, when also its family's signature (msr_eval.sweep.SweepConfig.family_signatures:
-  the family's settings, the code that computes its records and the scoring set-up) is the
-  same, so a new family (a new rule) is computed alone and the rest is kept.
+  the family's settings, what its code computes on a probe frame (msr_eval.fingerprint) and
+  the scoring set-up) is the same, so a new family (a new rule) or a changed one is computed
+  alone, and a refactor that changes no output keeps everything.
 
 Anything else is rendered or computed again and overwritten.
 """

@@ -23,6 +23,7 @@ from msr_model import ImageRenderer, Params, load_rgb, save_png, spec
 from msr_model.testimage import test_image
 
 from . import conv_store as CS
+from . import fingerprint as FP
 from . import gbuffer_rule as G
 from . import methods as M
 from . import reference as REF
@@ -62,17 +63,11 @@ CONV_FAMILIES = ("full", "checkerboard", "multi_L3_T16", "multi_L3_T32", "multi_
 # FLIP in the full run only for these (the quick run: all key families)
 FLIP_FAMILIES_FULL = ("grid2", "checkerboard", "single_borrowed", "multi_L3_T16", "multi_L3_T16_dilate",
                       "multi_L3_T16_lindilate", "dacs", "vrs_T8", "vrs_T16")
-# The code every record depends on: a change to any of these invalidates every cached record.
-# Bump RECORD_VERSION when this file changes what a record holds or how it is computed.
+# A record's validity rests on its family's behaviour on a probe frame (msr_eval.fingerprint),
+# not on the source of the code. Bump RECORD_VERSION when this file changes what a record holds
+# or how it is computed (task_record is not on the probe), or when a method changes in a way
+# the probe cannot show.
 RECORD_VERSION = 2
-COMMON_CODE = ("sw_model/msr_model/spec.py", "sw_model/msr_eval/methods.py", "sw_model/msr_eval/metrics.py",
-               "sw_model/msr_eval/reference.py")
-# ... and the code of each kind of family (by name prefix); a rule family also hashes the source
-# of its rule function and of the rule helpers it calls (rule_source), so a new rule added to
-# msr_model.rules leaves the other rules' records valid.
-FAMILY_CODE = (("multi_", ("sw_model/msr_model/golden.py", "sw_model/msr_model/passview.py")),
-               ("dacs", ("sw_model/msr_eval/dacs.py",)),
-               ("vrs_", ("sw_model/msr_eval/vrs.py",)))
 
 # The peers (issue 17): DACS (msr_eval.dacs) over its variance threshold, the VRS-like baseline
 # (msr_eval.vrs) over its contrast scale, per 8x8 and 16x16 tile.
@@ -240,40 +235,14 @@ def settings(width, height, scales, quick) -> list[Setting]:
     return out
 
 
-def family_code(family: str) -> tuple:
-    for prefix, files in FAMILY_CODE:
-        if family.startswith(prefix):
-            return files
-    return ()
-
-
-def rule_source(name: str) -> str:
-    """The source of a decision rule and of every function of the msr_ packages it calls,
-    transitively (by the names its code refers to): what a rule family's records depend on."""
-    import inspect
-    import types
-    from .rules import rule_function
-    seen, out, todo = set(), [], [rule_function(name)]
-    while todo:
-        fn = todo.pop()
-        if id(fn) in seen:
-            continue
-        seen.add(id(fn))
-        out.append(inspect.getsource(fn))
-        if callable(getattr(fn, "interpolate", None)):        # the rule's own reconstruction
-            todo.append(fn.interpolate)
-        for n in fn.__code__.co_names:
-            g = fn.__globals__.get(n)
-            if isinstance(g, types.FunctionType) and g.__module__.startswith("msr_"):
-                todo.append(g)
-    return "\n".join(sorted(out))
-
-
 def find_setting(sweep: list[Setting], rec: dict) -> Setting:
     for s in sweep:
         if s.family == rec["family"] and s.label == rec["label"]:
             return s
     raise KeyError(rec["family"], rec["label"])
+
+
+_SIGNATURES: dict = {}     # family signatures per sweep set-up (the probe runs once a process)
 
 
 @dataclass(frozen=True)
@@ -307,28 +276,25 @@ class SweepConfig:
         return out
 
     def family_signatures(self) -> dict:
-        """Per family: a hash of its settings, the code that computes its records and the
-        scoring set-up. A record whose family's signature is unchanged is still valid."""
-        common = hashlib.sha1()
-        for f in COMMON_CODE:
-            common.update((REPO / f).read_bytes())
-        common.update(repr((RECORD_VERSION, self.all_metrics, KEY_FAMILIES, FLIP_FAMILIES_FULL,
-                            TARGETS_DB)).encode())
-        common.update(self.conv_signature())
-        sigs = {}
-        for st in self.sweep:
-            h = sigs.get(st.family)
-            if h is None:
-                h = sigs[st.family] = common.copy()
-                for f in family_code(st.family):
-                    h.update((REPO / f).read_bytes())
-                if st.method == "multi_level":
-                    h.update(rule_source(st.kwargs.get("rule", "patent")).encode())
-                elif G.needs_gbuffer(st):
-                    h.update((REPO / "sw_model/msr_eval/gbuffer_rule.py").read_bytes())
-                    h.update(rule_source("patent").encode() + rule_source("lindilate").encode())
-            h.update(f"{st.label}|{sorted(st.setting.items())}".encode())
-        return {f: h.hexdigest()[:10] for f, h in sigs.items()}
+        """Per family: a hash of its settings' outputs on the probe frame (msr_eval.fingerprint),
+        the scoring code's outputs there and the scoring set-up. A record whose family's
+        signature is unchanged is still valid."""
+        key = (self.width, self.height, tuple(self.scales), self.quick, self.all_metrics,
+               self.conv_signature())
+        if key not in _SIGNATURES:
+            sweep = self.sweep
+            common = hashlib.sha1(FP.scoring_fingerprint())
+            common.update(repr((RECORD_VERSION, self.all_metrics, KEY_FAMILIES, FLIP_FAMILIES_FULL,
+                                TARGETS_DB)).encode())
+            common.update(key[-1])
+            sigs = {}
+            for fam, probe in FP.family_fingerprints(sweep).items():
+                h = sigs[fam] = common.copy()
+                h.update(probe)
+            for st in sweep:
+                sigs[st.family].update(f"{st.label}|{sorted(st.setting.items())}".encode())
+            _SIGNATURES[key] = {f: h.hexdigest()[:10] for f, h in sigs.items()}
+        return dict(_SIGNATURES[key])
 
     def signature(self) -> str:
         """Changes whenever the sweep or the code that computes a record changes."""
