@@ -171,6 +171,32 @@ extern "C" {
 #define MSR_REGS__WATCHDOG__CYCLES_bw 32
 #define MSR_REGS__WATCHDOG__CYCLES_reset 0x0
 
+// reg - msr_regs::BUDGET
+#define MSR_REGS__BUDGET__PIXELS_bm 0xffffff
+#define MSR_REGS__BUDGET__PIXELS_bp 0
+#define MSR_REGS__BUDGET__PIXELS_bw 24
+#define MSR_REGS__BUDGET__PIXELS_reset 0x0
+
+// reg - msr_regs::BUDGET_CTRL
+#define MSR_REGS__BUDGET_CTRL__SCALE_INIT_bm 0x7ff
+#define MSR_REGS__BUDGET_CTRL__SCALE_INIT_bp 0
+#define MSR_REGS__BUDGET_CTRL__SCALE_INIT_bw 11
+#define MSR_REGS__BUDGET_CTRL__SCALE_INIT_reset 0x100
+#define MSR_REGS__BUDGET_CTRL__PRIOR_SHIFT_bm 0x7000
+#define MSR_REGS__BUDGET_CTRL__PRIOR_SHIFT_bp 12
+#define MSR_REGS__BUDGET_CTRL__PRIOR_SHIFT_bw 3
+#define MSR_REGS__BUDGET_CTRL__PRIOR_SHIFT_reset 0x6
+#define MSR_REGS__BUDGET_CTRL__SEEDED_bm 0x8000
+#define MSR_REGS__BUDGET_CTRL__SEEDED_bp 15
+#define MSR_REGS__BUDGET_CTRL__SEEDED_bw 1
+#define MSR_REGS__BUDGET_CTRL__SEEDED_reset 0x0
+#define MSR_REGS__BUDGET_CTRL__SCALE_OUT_bm 0x7ff0000
+#define MSR_REGS__BUDGET_CTRL__SCALE_OUT_bp 16
+#define MSR_REGS__BUDGET_CTRL__SCALE_OUT_bw 11
+#define MSR_REGS__BUDGET_CTRL__SCALE_OUT_VALID_bm 0x8000000
+#define MSR_REGS__BUDGET_CTRL__SCALE_OUT_VALID_bp 27
+#define MSR_REGS__BUDGET_CTRL__SCALE_OUT_VALID_bw 1
+
 // addrmap - msr_regs
 typedef struct __attribute__ ((__packed__)) {
     uint32_t CTRL;
@@ -194,10 +220,12 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t MEM_ERR_ADDR;
     uint32_t RSP_DROP;
     uint32_t WATCHDOG;
+    uint32_t BUDGET;
+    uint32_t BUDGET_CTRL;
 } msr_regs_t;
 
 
-static_assert(sizeof(msr_regs_t) == 0x78, "Packing error");
+static_assert(sizeof(msr_regs_t) == 0x80, "Packing error");
 
 #ifdef __cplusplus
 }

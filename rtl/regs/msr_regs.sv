@@ -96,6 +96,8 @@ module msr_regs (
         logic MEM_ERR_ADDR;
         logic RSP_DROP;
         logic WATCHDOG;
+        logic BUDGET;
+        logic BUDGET_CTRL;
     } decoded_reg_strb_t;
     decoded_reg_strb_t decoded_reg_strb;
     logic decoded_err;
@@ -154,6 +156,10 @@ module msr_regs (
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h70);
         decoded_reg_strb.WATCHDOG = cpuif_req_masked & (cpuif_addr == 7'h74);
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h74);
+        decoded_reg_strb.BUDGET = cpuif_req_masked & (cpuif_addr == 7'h78);
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h78);
+        decoded_reg_strb.BUDGET_CTRL = cpuif_req_masked & (cpuif_addr == 7'h7c);
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h7c);
         decoded_err = ~is_valid_addr & decoded_req;
     end
 
@@ -280,6 +286,26 @@ module msr_regs (
                 logic load_next;
             } CYCLES;
         } WATCHDOG;
+        struct {
+            struct {
+                logic [23:0] next;
+                logic load_next;
+            } PIXELS;
+        } BUDGET;
+        struct {
+            struct {
+                logic [10:0] next;
+                logic load_next;
+            } SCALE_INIT;
+            struct {
+                logic [2:0] next;
+                logic load_next;
+            } PRIOR_SHIFT;
+            struct {
+                logic next;
+                logic load_next;
+            } SEEDED;
+        } BUDGET_CTRL;
     } field_combo_t;
     field_combo_t field_combo;
 
@@ -374,6 +400,22 @@ module msr_regs (
                 logic [31:0] value;
             } CYCLES;
         } WATCHDOG;
+        struct {
+            struct {
+                logic [23:0] value;
+            } PIXELS;
+        } BUDGET;
+        struct {
+            struct {
+                logic [10:0] value;
+            } SCALE_INIT;
+            struct {
+                logic [2:0] value;
+            } PRIOR_SHIFT;
+            struct {
+                logic value;
+            } SEEDED;
+        } BUDGET_CTRL;
     } field_storage_t;
     field_storage_t field_storage;
 
@@ -907,6 +949,98 @@ module msr_regs (
         end
     end
     assign hwif_out.WATCHDOG.CYCLES.value = field_storage.WATCHDOG.CYCLES.value;
+    // Field: msr_regs.BUDGET.PIXELS
+    always_comb begin
+        automatic logic [23:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.BUDGET.PIXELS.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.BUDGET && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.BUDGET.PIXELS.value & ~decoded_wr_biten[23:0]) | (decoded_wr_data[23:0] & decoded_wr_biten[23:0]);
+            load_next_c = '1;
+        end
+        field_combo.BUDGET.PIXELS.next = next_c;
+        field_combo.BUDGET.PIXELS.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.BUDGET.PIXELS.value <= 24'h0;
+        end else begin
+            if(field_combo.BUDGET.PIXELS.load_next) begin
+                field_storage.BUDGET.PIXELS.value <= field_combo.BUDGET.PIXELS.next;
+            end
+        end
+    end
+    assign hwif_out.BUDGET.PIXELS.value = field_storage.BUDGET.PIXELS.value;
+    // Field: msr_regs.BUDGET_CTRL.SCALE_INIT
+    always_comb begin
+        automatic logic [10:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.BUDGET_CTRL.SCALE_INIT.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.BUDGET_CTRL && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.BUDGET_CTRL.SCALE_INIT.value & ~decoded_wr_biten[10:0]) | (decoded_wr_data[10:0] & decoded_wr_biten[10:0]);
+            load_next_c = '1;
+        end
+        field_combo.BUDGET_CTRL.SCALE_INIT.next = next_c;
+        field_combo.BUDGET_CTRL.SCALE_INIT.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.BUDGET_CTRL.SCALE_INIT.value <= 11'h100;
+        end else begin
+            if(field_combo.BUDGET_CTRL.SCALE_INIT.load_next) begin
+                field_storage.BUDGET_CTRL.SCALE_INIT.value <= field_combo.BUDGET_CTRL.SCALE_INIT.next;
+            end
+        end
+    end
+    assign hwif_out.BUDGET_CTRL.SCALE_INIT.value = field_storage.BUDGET_CTRL.SCALE_INIT.value;
+    // Field: msr_regs.BUDGET_CTRL.PRIOR_SHIFT
+    always_comb begin
+        automatic logic [2:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.BUDGET_CTRL.PRIOR_SHIFT.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.BUDGET_CTRL && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.BUDGET_CTRL.PRIOR_SHIFT.value & ~decoded_wr_biten[14:12]) | (decoded_wr_data[14:12] & decoded_wr_biten[14:12]);
+            load_next_c = '1;
+        end
+        field_combo.BUDGET_CTRL.PRIOR_SHIFT.next = next_c;
+        field_combo.BUDGET_CTRL.PRIOR_SHIFT.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.BUDGET_CTRL.PRIOR_SHIFT.value <= 3'h6;
+        end else begin
+            if(field_combo.BUDGET_CTRL.PRIOR_SHIFT.load_next) begin
+                field_storage.BUDGET_CTRL.PRIOR_SHIFT.value <= field_combo.BUDGET_CTRL.PRIOR_SHIFT.next;
+            end
+        end
+    end
+    assign hwif_out.BUDGET_CTRL.PRIOR_SHIFT.value = field_storage.BUDGET_CTRL.PRIOR_SHIFT.value;
+    // Field: msr_regs.BUDGET_CTRL.SEEDED
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.BUDGET_CTRL.SEEDED.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.BUDGET_CTRL && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.BUDGET_CTRL.SEEDED.value & ~decoded_wr_biten[15:15]) | (decoded_wr_data[15:15] & decoded_wr_biten[15:15]);
+            load_next_c = '1;
+        end
+        field_combo.BUDGET_CTRL.SEEDED.next = next_c;
+        field_combo.BUDGET_CTRL.SEEDED.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.BUDGET_CTRL.SEEDED.value <= 1'h0;
+        end else begin
+            if(field_combo.BUDGET_CTRL.SEEDED.load_next) begin
+                field_storage.BUDGET_CTRL.SEEDED.value <= field_combo.BUDGET_CTRL.SEEDED.next;
+            end
+        end
+    end
+    assign hwif_out.BUDGET_CTRL.SEEDED.value = field_storage.BUDGET_CTRL.SEEDED.value;
 
     //--------------------------------------------------------------------------
     // Write response
@@ -1011,6 +1145,16 @@ module msr_regs (
         end
         if(ad_low(rd_mux_addr) == ad_low(7'h74)) begin
             readback_data_var[ad_hi(7'h74)][31:0] = field_storage.WATCHDOG.CYCLES.value;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(7'h78)) begin
+            readback_data_var[ad_hi(7'h78)][23:0] = field_storage.BUDGET.PIXELS.value;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(7'h7c)) begin
+            readback_data_var[ad_hi(7'h7c)][10:0] = field_storage.BUDGET_CTRL.SCALE_INIT.value;
+            readback_data_var[ad_hi(7'h7c)][14:12] = field_storage.BUDGET_CTRL.PRIOR_SHIFT.value;
+            readback_data_var[ad_hi(7'h7c)][15] = field_storage.BUDGET_CTRL.SEEDED.value;
+            readback_data_var[ad_hi(7'h7c)][26:16] = hwif_in.BUDGET_CTRL.SCALE_OUT.next;
+            readback_data_var[ad_hi(7'h7c)][27] = hwif_in.BUDGET_CTRL.SCALE_OUT_VALID.next;
         end
         readback_data_rt_c = readback_data_var;
     end

@@ -5,7 +5,7 @@ package msr_regs_pkg;
 
     localparam MSR_REGS_DATA_WIDTH = 32;
     localparam MSR_REGS_MIN_ADDR_WIDTH = 7;
-    localparam MSR_REGS_SIZE = 'h78;
+    localparam MSR_REGS_SIZE = 'h80;
 
     typedef struct {
         logic next;
@@ -108,6 +108,19 @@ package msr_regs_pkg;
     } msr_regs__RSP_DROP__in_t;
 
     typedef struct {
+        logic [10:0] next;
+    } msr_regs__BUDGET_CTRL__SCALE_OUT__in_t;
+
+    typedef struct {
+        logic next;
+    } msr_regs__BUDGET_CTRL__SCALE_OUT_VALID__in_t;
+
+    typedef struct {
+        msr_regs__BUDGET_CTRL__SCALE_OUT__in_t SCALE_OUT;
+        msr_regs__BUDGET_CTRL__SCALE_OUT_VALID__in_t SCALE_OUT_VALID;
+    } msr_regs__BUDGET_CTRL__in_t;
+
+    typedef struct {
         msr_regs__STATUS__in_t STATUS;
         msr_regs__perf_t_desc_b53721d4_name_d3240659__in_t PERF_CYCLES;
         msr_regs__perf_t_desc_27f9d57d_name_25c29ae3__in_t PERF_TRACED[4];
@@ -117,6 +130,7 @@ package msr_regs_pkg;
         msr_regs__MEM_ERR__in_t MEM_ERR;
         msr_regs__MEM_ERR_ADDR__in_t MEM_ERR_ADDR;
         msr_regs__RSP_DROP__in_t RSP_DROP;
+        msr_regs__BUDGET_CTRL__in_t BUDGET_CTRL;
     } msr_regs__in_t;
 
     typedef struct {
@@ -266,6 +280,32 @@ package msr_regs_pkg;
     } msr_regs__WATCHDOG__out_t;
 
     typedef struct {
+        logic [23:0] value;
+    } msr_regs__BUDGET__PIXELS__out_t;
+
+    typedef struct {
+        msr_regs__BUDGET__PIXELS__out_t PIXELS;
+    } msr_regs__BUDGET__out_t;
+
+    typedef struct {
+        logic [10:0] value;
+    } msr_regs__BUDGET_CTRL__SCALE_INIT__out_t;
+
+    typedef struct {
+        logic [2:0] value;
+    } msr_regs__BUDGET_CTRL__PRIOR_SHIFT__out_t;
+
+    typedef struct {
+        logic value;
+    } msr_regs__BUDGET_CTRL__SEEDED__out_t;
+
+    typedef struct {
+        msr_regs__BUDGET_CTRL__SCALE_INIT__out_t SCALE_INIT;
+        msr_regs__BUDGET_CTRL__PRIOR_SHIFT__out_t PRIOR_SHIFT;
+        msr_regs__BUDGET_CTRL__SEEDED__out_t SEEDED;
+    } msr_regs__BUDGET_CTRL__out_t;
+
+    typedef struct {
         msr_regs__CTRL__out_t CTRL;
         msr_regs__STATUS__out_t STATUS;
         msr_regs__FRAME_SIZE__out_t FRAME_SIZE;
@@ -278,5 +318,7 @@ package msr_regs_pkg;
         msr_regs__SRC_STRIDE__out_t SRC_STRIDE;
         msr_regs__SRC_CTRL__out_t SRC_CTRL;
         msr_regs__WATCHDOG__out_t WATCHDOG;
+        msr_regs__BUDGET__out_t BUDGET;
+        msr_regs__BUDGET_CTRL__out_t BUDGET_CTRL;
     } msr_regs__out_t;
 endpackage

@@ -6,7 +6,10 @@
 // accumulator in 8-bit segments (a carry goes one segment per clock; 6 more clocks settle
 // it), so a plane that wraps past 4 GiB is seen; then whether the two ranges [base, end)
 // overlap, compared segment by segment from the least significant one; the rule encoding
-// (CONFIG.RULE 2 or 3, or 1 in a top built without it, LINDILATE 0: code 13). The first
+// (CONFIG.RULE 2 or 3, or 1 in a top built without it, LINDILATE 0: code 13); with a ray
+// budget (BUDGET non-zero), the budget controller's own check, run beside these from the
+// sampled registers (codes 14 and 15; a top built without it, BUDGET_EN 0, refuses any
+// budget with 14). The first
 // failing check in the order of the error codes wins: the configuration is latched and the
 // frame starts, or the error is reported
 // (STATUS.ERROR, STATUS.CFG_ERR and the interrupt) and the accelerator stays idle (no render
@@ -34,7 +37,8 @@
 module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES   = 4,      // tile engines (tile-done inputs)
   parameter int unsigned DRAIN_TIMEOUT = 16384,  // drain bound without progress when WATCHDOG is 0
-  parameter int unsigned LINDILATE     = 1       // 0: patent-only engines, CONFIG.RULE 1 refused
+  parameter int unsigned LINDILATE     = 1,      // 0: patent-only engines, CONFIG.RULE 1 refused
+  parameter bit          BUDGET_EN     = 1'b0    // the ray-budget controller is built in
 ) (
   input  logic                   clk_i,          // clock
   input  logic                   rst_ni,         // asynchronous reset, active low
@@ -71,7 +75,14 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   input  logic [NUM_ENGINES-1:0] rsp_drop_i,     // engine i dropped a render response
   input  logic                   bad_eid_i,      // the render mux dropped one (no such engine)
   input  logic                   moved_i,        // a handshake on the ports (watchdog progress)
-  input  logic                   rsp_taken_i     // a render response taken (progress in RUN)
+  input  logic                   rsp_taken_i,    // a render response taken (progress in RUN)
+  // Ray budget controller (BUDGET_EN).
+  output cfg_raw_t               raw_o,          // the sampled registers, from bud_check_o on
+  output logic                   bud_check_o,    // pulse: check the sampled budget registers
+  input  logic                   bud_done_i,     // its check is done (within 20 clocks) ...
+  input  logic                   bud_err_budget_i,   // ... BUDGET below the initial grid
+  input  logic                   bud_err_profile_i,  // ... SEEDED without a matching memory
+  input  logic                   bud_busy_i      // a budget frame's rows are not all accounted
 );
   if (NUM_ENGINES > 30) begin : g_check_engines
     $fatal(1, "msr_cfg_ctrl: NUM_ENGINES must be 1..30 (5-bit drop count), got %0d", NUM_ENGINES);
@@ -273,14 +284,27 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   end
 
   // The first failing check, in the order of the codes (code k + 1 for flag k).
-  function automatic err_e first_err(logic [NCHK-1:0] chk, logic overlap, logic rule_bad);
+  function automatic err_e first_err(logic [NCHK-1:0] chk, logic overlap, logic rule_bad,
+                                     logic [1:0] bud_bad);
     for (int unsigned k = 0; k < NCHK; k++) begin
       if (chk[k]) return err_e'(k + 1);
     end
     if (overlap) return ERR_OVERLAP;
     if (rule_bad) return ERR_RULE;
+    if (bud_bad[0]) return ERR_BUDGET;
+    if (bud_bad[1]) return ERR_PROFILE;
     return ERR_NONE;
   endfunction
+
+  // The budget's check, read when CHECK decides: off (0) always passes; a top without the
+  // controller refuses any budget; an unfinished check (the controller takes at most 20 of
+  // CHECK's 27 clocks: asserted below) would refuse rather than start unchecked.
+  logic       bud_on;
+  logic [1:0] bud_bad;
+  assign bud_on  = raw_q.bud.pixels != '0;
+  assign bud_bad = !bud_on ? 2'b00 :
+                   (!BUDGET_EN || !bud_done_i || bud_err_budget_i) ? 2'b01 :
+                   {bud_err_profile_i, 1'b0};
 
   always_comb begin
     n_done = '0;
@@ -291,7 +315,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   logic overlap;
   assign overlap = raw_q.fb.src_en && lt_q[0] && lt_q[1];
   assign accept  = (state_q == ST_CHECK) && (step_q == STEP_END[4:0]) && (chk_q == '0) &&
-                   !overlap && !rule_chk_q;
+                   !overlap && !rule_chk_q && bud_bad == '0;
 
   always_comb begin
     state_d = state_q;
@@ -301,7 +325,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       ST_SAMPLE: state_d = ST_CHECK;
       ST_CHECK: begin
         if (step_q == STEP_END[4:0]) begin
-          err_d   = first_err(chk_q, overlap, rule_chk_q);
+          err_d   = first_err(chk_q, overlap, rule_chk_q, bud_bad);
           state_d = accept ? ST_RUN : ST_IDLE;
         end
       end
@@ -378,7 +402,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       refused_q    <= (state_q == ST_CHECK) && (step_q == STEP_END[4:0]) && !accept &&
                       state_d == ST_IDLE;
       frame_done_q <= (state_q == ST_RUN) && !start_q && tg_done_i && tif_q == '0 && !desc_fire_q &&
-                      wr_idle_q && !frame_done_q;
+                      wr_idle_q && !bud_busy_i && !frame_done_q;
       step_q       <= (state_q == ST_CHECK) ? step_q + 1'b1 : '0;
       if (state_q == ST_IDLE && start_i) raw_q <= raw_i;
       if (state_q == ST_CHECK && step_q == STEP_CMP[4:0]) begin
@@ -396,6 +420,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
         cfg_q.thr        <= raw_q.thr;
         cfg_q.fov_gain   <= raw_q.fov_gain;
         cfg_q.fb         <= raw_q.fb;
+        cfg_q.bud        <= BUDGET_EN ? raw_q.bud : '0;
       end
       // Counted in RUN and DRAIN only: the units clear a clock after ST_CLEAR (clear_q), and a
       // tile finishing in that clock is not in flight.
@@ -439,6 +464,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     .inc_i   (rsp_drop_n),
     .count_o (err_counts_o.rsp_drop_cnt)
   );
+  assign raw_o          = raw_q;
+  assign bud_check_o    = (state_q == ST_SAMPLE);
   assign start_o        = start_q;
   assign run_o          = (state_q == ST_RUN);
   assign drain_o        = (state_q == ST_DRAIN) || (state_q == ST_CLEAR);
@@ -461,10 +488,15 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   `MSR_COVER(c_refused, refused_q)
   `MSR_COVER(c_overlap_refused, refused_q && err_q == ERR_OVERLAP)
   `MSR_COVER(c_rule_refused, refused_q && err_q == ERR_RULE)
+
   `MSR_COVER(c_drain_with_mem_err, state_q == ST_CLEAR && err_q == ERR_AXI_WRITE)
   `MSR_ASSERT(a_wd_lo_ones, wd_lo_ones_q == (wd_q[15:0] == 16'hFFFF))
   `MSR_COVER(c_wdog_run, wd_fire && state_q == ST_RUN)
   `MSR_COVER(c_wdog_drain, wd_fire && state_q == ST_DRAIN)
+  if (BUDGET_EN) begin : g_bud_chk
+    `MSR_ASSERT(a_bud_check_in_time,
+                state_q == ST_CHECK && step_q == STEP_END[4:0] && bud_on |-> bud_done_i)
+  end
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_cfg_ctrl

@@ -33,6 +33,14 @@ package msr_sys_pkg;
     err_counts_t      err;          // MEM_ERR, MEM_ERR_ADDR, RSP_DROP
   } readback_t;
 
+  // Ray budget registers (docs/budget.md): BUDGET.PIXELS and BUDGET_CTRL.
+  typedef struct packed {
+    logic [23:0] pixels;      // 0 = off
+    logic [10:0] scale_init;  // u_0, 1.0 = 256 (0 reads as 256)
+    logic [2:0]  prior_shift;
+    logic        seeded;
+  } bud_cfg_t;
+
   // Frame configuration as the registers hold it (sampled at START, checked, then latched).
   typedef struct packed {
     dim_t                  width;
@@ -44,6 +52,7 @@ package msr_sys_pkg;
     thr_t [MAX_LEVELS-1:0] thr;
     logic [7:0]            fov_gain;
     fb_cfg_t               fb;
+    bud_cfg_t              bud;
   } cfg_raw_t;
 
   // The checked configuration the units run a frame with.
@@ -57,6 +66,7 @@ package msr_sys_pkg;
     thr_t [MAX_LEVELS-1:0] thr;
     logic [7:0]            fov_gain;
     fb_cfg_t               fb;
+    bud_cfg_t              bud;
   } cfg_t;
 
   // STATUS.ERROR codes (rtl/regs/msr_regs.rdl).
@@ -74,7 +84,9 @@ package msr_sys_pkg;
     ERR_SRC_WRAP   = 4'd10,
     ERR_OVERLAP    = 4'd11,
     ERR_WATCHDOG   = 4'd12,  // no progress for WATCHDOG cycles: frame or drain ended by force
-    ERR_RULE       = 4'd13   // CONFIG.RULE not 0 (patent) or 1 (lindilate)
+    ERR_RULE       = 4'd13,  // CONFIG.RULE not 0 (patent) or 1 (lindilate)
+    ERR_BUDGET     = 4'd14,  // 0 < BUDGET < the initial grid, or a budget in a top without it
+    ERR_PROFILE    = 4'd15   // SEEDED without an activity memory of this tile-row count
   } err_e;
 
 endpackage : msr_sys_pkg

@@ -12,10 +12,18 @@
 // thr + that, saturated at 255. The walker fills the pipeline while a descriptor waits, so
 // after the first tiles an engine that asks is served at once; the engines take a tile per
 // 64 or more clocks.
+//
+// Ray budget (BUDGET_EN, docs/budget.md): the walker starts a tile row only when the budget
+// controller knows its scale (row_ok_i for row_idx_o), every tile carries its row's threshold
+// multiplier m down the pipeline, and S6 scales the thresholds, thr'' = min(255, (thr' * m +
+// 128) >> 8). With bud_en_i low the frame's descriptors are those of a top without it; a top
+// built without it (BUDGET_EN = 0) has no S6 and no wait at all.
 `include "msr_assert.svh"
 
 module msr_tile_gen import msr_pkg::*; #(
-  parameter int unsigned NUM_ENGINES = 4
+  parameter int unsigned NUM_ENGINES = 4,
+  parameter bit          BUDGET_EN   = 1'b0,                 // the ray-budget stage and row wait
+  localparam int unsigned TROW_W     = COORD_W - 2          // tile row index (as the walker's)
 ) (
   input  logic                   clk_i,         // clock
   input  logic                   rst_ni,        // asynchronous reset, active low
@@ -30,6 +38,11 @@ module msr_tile_gen import msr_pkg::*; #(
   input  rule_e                  rule_i,        // decision rule
   input  thr_t [MAX_LEVELS-1:0]  thr_i,         // base thresholds, thr_i[k-1] for level k
   input  logic [7:0]             fov_gain_i,    // foveation gain, 0 = uniform
+  // Ray budget (BUDGET_EN): the controller's scale of the row the walker is in.
+  input  logic                   bud_en_i,      // this frame holds a budget
+  output logic [TROW_W-1:0]      row_idx_o,     // the tile row the walker is in
+  input  logic                   row_ok_i,      // its scale is known (this clock)
+  input  logic [12:0]            row_m_i,       // its threshold multiplier m (1.0 = 256)
   // Descriptor to the engines: valid goes to exactly one engine that is ready.
   output logic [NUM_ENGINES-1:0] desc_valid_o,  // offer to engine i
   input  logic [NUM_ENGINES-1:0] desc_ready_i,  // engine i can take a tile
@@ -42,6 +55,7 @@ module msr_tile_gen import msr_pkg::*; #(
   end
 
   localparam int unsigned TIDX_W = COORD_W - 2;     // tile index, up to 4096/8 = 512 tiles
+  localparam int unsigned NST    = BUDGET_EN ? 6 : 5;   // pipeline stages
   localparam int unsigned R2_W   = TIDX_W + 1;      // |2t - (n-1)| < 1024
   localparam int unsigned PROD_W = R2_W + 8;        // gain * r2 < 2^18
 
@@ -53,7 +67,7 @@ module msr_tile_gen import msr_pkg::*; #(
     logic              run;                         // the walker has tiles left
     logic              done;                        // every tile handed out
     logic [TIDX_W-1:0] tx, ty;                      // the walker's next tile
-    logic [4:0]        v, last;                     // stage k valid / holds the frame's last tile
+    logic [NST-1:0]    v, last;                     // stage k valid / holds the frame's last tile
   } ctl_t;
   ctl_t              ctl_q, ctl_d;
 
@@ -138,7 +152,10 @@ module msr_tile_gen import msr_pkg::*; #(
   logic [HI_W-1:0]   prod_hi;
   thr_t              fov_d;
 
-  assign en        = !ctl_q.v[4] || taken;
+  logic              walk_go;                       // the walker hands a tile into S1
+  assign en        = !ctl_q.v[NST-1] || taken;
+  assign walk_go   = ctl_q.run && (!BUDGET_EN || !bud_en_i || row_ok_i);
+  assign row_idx_o = ctl_q.ty;
   assign walk_last = ({1'b0, ctl_q.tx} + 1'b1 == ntx_q) && ({1'b0, ctl_q.ty} + 1'b1 == nty_q);
 
   // The frame's tile grid, latched at START (a clear leaves it: only a START reads it).
@@ -162,11 +179,11 @@ module msr_tile_gen import msr_pkg::*; #(
       ctl_d.tx   = '0;
       ctl_d.ty   = '0;
     end else begin
-      if (taken && ctl_q.last[4]) ctl_d.done = 1'b1;
+      if (taken && ctl_q.last[NST-1]) ctl_d.done = 1'b1;
       if (en) begin
-        ctl_d.v    = {ctl_q.v[3:0], ctl_q.run};
-        ctl_d.last = {ctl_q.last[3:0], ctl_q.run && walk_last};
-        if (ctl_q.run) begin
+        ctl_d.v    = {ctl_q.v[NST-2:0], walk_go};
+        ctl_d.last = {ctl_q.last[NST-2:0], walk_go && walk_last};
+        if (walk_go) begin
           if (walk_last) ctl_d.run = 1'b0;
           if ({1'b0, ctl_q.tx} + 1'b1 == ntx_q) begin
             ctl_d.tx = '0;
@@ -249,12 +266,36 @@ module msr_tile_gen import msr_pkg::*; #(
     end
   end
 
+  // ---- S6 (BUDGET_EN): the row's threshold multiplier ---------------------------------------
+  if (BUDGET_EN) begin : g_budget
+    logic [4:0][12:0] m_q;                          // m of the tile in S1..S5
+    tile_desc_t       desc6_q, desc6_d;
+    always_comb begin
+      desc6_d = desc_q;
+      for (int k = 0; k < MAX_LEVELS; k++) begin
+        logic [THR_W+13-1:0] p;
+        p = (THR_W+13)'(desc_q.thr[k]) * (THR_W+13)'(m_q[4]) + (THR_W+13)'(128);
+        desc6_d.thr[k] = (p[THR_W+13-1:THR_W+8] != '0) ? thr_t'(255) : thr_t'(p[THR_W+8-1:8]);
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (en) begin
+        m_q     <= {m_q[3:0], bud_en_i ? row_m_i : 13'd256};
+        desc6_q <= desc6_d;
+      end
+    end
+    assign desc_o = desc6_q;
+  end else begin : g_no_budget
+    logic unused_budget;
+    assign unused_budget = ^{bud_en_i, row_ok_i, row_m_i};
+    assign desc_o        = desc_q;
+  end
+
   // ---- Dispatch: the lowest-numbered ready engine takes the offered tile --------------------
   logic [NUM_ENGINES-1:0] pick;
   assign pick         = desc_ready_i & (~desc_ready_i + 1'b1);
-  assign desc_valid_o = ctl_q.v[4] ? pick : '0;
+  assign desc_valid_o = ctl_q.v[NST-1] ? pick : '0;
   assign taken        = |desc_valid_o;
-  assign desc_o       = desc_q;
   assign busy_o       = ctl_q.run || (ctl_q.v != '0);
   assign done_o       = ctl_q.done;
 

@@ -20,6 +20,9 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   // 0 patent only (no third tile-buffer port: 2 DP16KD fewer per context; CONFIG.RULE 1 is
   // refused at START with STATUS.ERROR 13).
   parameter int unsigned LINDILATE       = 1,
+  // The ray-budget controller (docs/budget.md; BUDGET and BUDGET_CTRL): 1 built in; 0 not (a
+  // non-zero BUDGET is refused at START with STATUS.ERROR 14).
+  parameter bit          BUDGET_EN       = 1'b0,
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned ETAG_W = $clog2(MAX_OUTSTANDING),
   localparam int unsigned RTAG_W = EID_W + ETAG_W
@@ -121,7 +124,11 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
                   fb_stride:  hwif_out.FB_STRIDE.STRIDE.value,
                   src_en:     hwif_out.SRC_CTRL.ENABLE.value,
                   src_base:   hwif_out.SRC_BASE.ADDR.value,
-                  src_stride: hwif_out.SRC_STRIDE.STRIDE.value}
+                  src_stride: hwif_out.SRC_STRIDE.STRIDE.value},
+    bud:        '{pixels:      hwif_out.BUDGET.PIXELS.value,
+                  scale_init:  hwif_out.BUDGET_CTRL.SCALE_INIT.value,
+                  prior_shift: hwif_out.BUDGET_CTRL.PRIOR_SHIFT.value,
+                  seeded:      hwif_out.BUDGET_CTRL.SEEDED.value}
   };
 
   // ---- Configuration check and control ----------------------------------------------------------
@@ -135,7 +142,10 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   logic  [NUM_ENGINES-1:0] eng_rsp_drop, eng_clear;
   logic  [NUM_ENGINES-1:0] eng_desc_valid, eng_desc_ready, eng_busy, wr_tile_done;
 
-  msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES), .LINDILATE(LINDILATE)) u_ctrl (
+  cfg_raw_t raw_q;                 // the registers as the check samples them
+  logic     bud_check, bud_done, bud_err_budget, bud_err_profile, bud_busy;
+
+  msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES), .LINDILATE(LINDILATE), .BUDGET_EN(BUDGET_EN)) u_ctrl (
     .clk_i          (clk_i),
     .rst_ni         (rst_ni),
     .start_i        (hwif_out.CTRL.START.value),
@@ -170,7 +180,13 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .rsp_drop_i     (eng_rsp_drop),
     .bad_eid_i      (bad_eid),
     .moved_i        (moved),
-    .rsp_taken_i    (rnd_rsp_valid_i && rnd_rsp_ready_o)
+    .rsp_taken_i    (rnd_rsp_valid_i && rnd_rsp_ready_o),
+    .raw_o          (raw_q),
+    .bud_check_o    (bud_check),
+    .bud_done_i     (bud_done),
+    .bud_err_budget_i  (bud_err_budget),
+    .bud_err_profile_i (bud_err_profile),
+    .bud_busy_i     (bud_busy)
   );
 
   assign hwif_in.STATUS.BUSY.next  = busy;
@@ -185,7 +201,11 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   tile_desc_t desc;
   logic [NUM_ENGINES-1:0] desc_sp_ready;
 
-  msr_tile_gen #(.NUM_ENGINES(NUM_ENGINES)) u_tile_gen (
+  logic [COORD_W-3:0] tg_row;
+  logic               tg_row_ok;
+  logic [12:0]        tg_row_m;
+
+  msr_tile_gen #(.NUM_ENGINES(NUM_ENGINES), .BUDGET_EN(BUDGET_EN)) u_tile_gen (
     .clk_i        (clk_i),
     .rst_ni       (rst_ni),
     .clear_i      (drain),
@@ -198,6 +218,10 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .rule_i       (cfg.rule),
     .thr_i        (cfg.thr),
     .fov_gain_i   (cfg.fov_gain),
+    .bud_en_i     (cfg.bud.pixels != '0),
+    .row_idx_o    (tg_row),
+    .row_ok_i     (tg_row_ok),
+    .row_m_i      (tg_row_m),
     .desc_valid_o (eng_desc_valid),
     .desc_ready_i (desc_sp_ready & {NUM_ENGINES{run}}),
     .desc_o       (desc),
@@ -437,6 +461,43 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .bresp_addr_o   (bresp_addr),
     .b_unexpected_o (b_unexpected)
   );
+
+  // ---- Ray budget ----------------------------------------------------------------------------------
+  if (BUDGET_EN) begin : g_budget
+    msr_budget #(.NUM_IN(NUM_ENGINES)) u_budget (
+      .clk_i             (clk_i),
+      .rst_ni            (rst_ni),
+      .clear_i           (clear),
+      .check_i           (bud_check),
+      .raw_i             (raw_q),
+      .check_done_o      (bud_done),
+      .err_budget_o      (bud_err_budget),
+      .err_profile_o     (bud_err_profile),
+      .start_i           (start),
+      .cfg_i             (cfg),
+      .busy_o            (bud_busy),
+      .row_idx_i         (tg_row),
+      .row_ok_o          (tg_row_ok),
+      .row_m_o           (tg_row_m),
+      .pix_fire_i        (wr_pix_valid & wr_pix_ready),
+      .pix_y_i           (wr_pix_y),
+      .pix_src_i         (wr_pix_src),
+      .pix_last_i        (wr_pix_last),
+      .scale_out_o       (hwif_in.BUDGET_CTRL.SCALE_OUT.next),
+      .scale_out_valid_o (hwif_in.BUDGET_CTRL.SCALE_OUT_VALID.next)
+    );
+  end else begin : g_no_budget
+    assign bud_done        = 1'b0;
+    assign bud_err_budget  = 1'b0;
+    assign bud_err_profile = 1'b0;
+    assign bud_busy        = 1'b0;
+    assign tg_row_ok       = 1'b0;
+    assign tg_row_m        = 13'd256;
+    assign hwif_in.BUDGET_CTRL.SCALE_OUT.next       = '0;
+    assign hwif_in.BUDGET_CTRL.SCALE_OUT_VALID.next = 1'b0;
+    logic unused_budget;
+    assign unused_budget = ^{bud_check, raw_q, tg_row};
+  end
 
   // ---- Watchdog progress -------------------------------------------------------------------------
   // Render requests and finished pixels, the write channels, and B responses the writer expected

@@ -11,7 +11,7 @@ HERE = Path(__file__).resolve().parent
 
 import cocotb  # noqa: E402
 from cocotb.clock import Clock  # noqa: E402
-from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly, Timer  # noqa: E402
+from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge, ReadOnly, Timer  # noqa: E402
 from msr_funcov import partial, record  # noqa: E402
 from msr_tb import seeded_rng  # noqa: E402
 
@@ -82,15 +82,7 @@ async def test_frames(dut):
     rng = seeded_rng(dut, 1234 + n_eng)
     # Reset (and every input) before the first clock edge: with a random initial state
     # (MSR_RAND_RESET=1, +verilator+rand+reset+2) an edge before it would see random state.
-    dut.rst_ni.value = 0
-    dut.clear_i.value = 0
-    dut.start_i.value = 0
-    dut.desc_ready_i.value = 0
-    await Timer(1, unit="ns")
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    await ClockCycles(dut.clk_i, 2)
-    dut.rst_ni.value = 1
-    await RisingEdge(dut.clk_i)
+    await reset(dut)
     # The last field is the rule: the descriptors carry it (their MSB), patent then lindilate
     # back to back so a stale rule would show.
     cases = [(1, 1, 8, 1, 0, (0, 0, 0), 0, 1.0, 1),            # a single pixel
@@ -121,9 +113,89 @@ async def test_frames(dut):
     await run_frame(dut, n_eng, rng, 40, 24, 8, 2, 0, (8, 16, 32), 40, 0.5, 1)
 
 
-@pytest.mark.parametrize("engines", [1, 3, 4])
-def test_tile_gen(engines):
+async def reset(dut):
+    dut.rst_ni.value = 0
+    dut.clear_i.value = 0
+    dut.start_i.value = 0
+    dut.desc_ready_i.value = 0
+    dut.bud_en_i.value = 0
+    dut.row_ok_i.value = 0
+    dut.row_m_i.value = 256
+    await Timer(1, unit="ns")
+    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
+    await ClockCycles(dut.clk_i, 2)
+    dut.rst_ni.value = 1
+    await RisingEdge(dut.clk_i)
+
+
+@cocotb.test()
+async def test_budget_rows(dut):
+    """BUDGET_EN: the walker starts a tile row only once its scale is known (row_ok_i for
+    row_idx_o), and every tile's thresholds are its row's, scaled as docs/budget.md section 1
+    (msr_model.budget.scale_threshold) on top of the foveation."""
+    if not int(dut.BUDGET_EN.value):
+        return                                  # a top without the stage: test_frames covers it
+    from msr_model.budget import scale_threshold
+    n_eng = int(dut.NUM_ENGINES.value)
+    rng = seeded_rng(dut, 777 + n_eng)
+    await reset(dut)
+    for W, H, T, L, gain, gap in ((100, 70, 16, 3, 40, 150), (37, 90, 8, 2, 0, 60), (300, 64, 32, 3, 255, 0)):
+        thr = tuple(rng.randint(0, 255) for _ in range(3))
+        nty = (H + T - 1) // T
+        m = [rng.choice((8, 255, 256, 257, 8190, rng.randint(8, 8190))) for _ in range(nty)]
+        released = [2]
+        now = [0]
+
+        async def controller():
+            # the controller's answer for the row the walker is in, settled before the next edge
+            while True:
+                await FallingEdge(dut.clk_i)
+                now[0] += 1
+                if gap and now[0] % gap == 0:
+                    released[0] += 1
+                elif not gap:
+                    released[0] = nty
+                idx = int(dut.row_idx_o.value)
+                dut.row_ok_i.value = int(idx < released[0])
+                dut.row_m_i.value = m[idx] if idx < nty else 256
+        task = cocotb.start_soon(controller())
+        dut.width_i.value, dut.height_i.value, dut.tile_i.value = W, H, TILE_ENC[T]
+        dut.levels_i.value, dut.metric_i.value, dut.rule_i.value = L, 0, 0
+        dut.thr_i.value = thr[0] | (thr[1] << 8) | (thr[2] << 16)
+        dut.fov_gain_i.value = gain
+        dut.bud_en_i.value = 1
+        dut.start_i.value = 1
+        await RisingEdge(dut.clk_i)
+        dut.start_i.value = 0
+        got = []
+        for _ in range(100000):
+            dut.desc_ready_i.value = (1 << n_eng) - 1 if rng.random() < 0.5 else 0
+            await ReadOnly()
+            if int(dut.desc_valid_o.value):
+                d = unpack_desc(int(dut.desc_o.value))
+                assert d["y0"] // T < released[0], f"row {d['y0'] // T} handed out before its scale"
+                got.append(d)
+            if int(dut.done_o.value):
+                break
+            await RisingEdge(dut.clk_i)
+        else:
+            raise AssertionError("budget frame never done")
+        task.cancel()
+        want = expected_tiles(W, H, T, L, 0, thr, gain, 0)
+        for w in want:
+            w["thr"] = tuple(scale_threshold(t, m[w["y0"] // T]) for t in w["thr"])
+        assert got == want
+        if gap:
+            assert now[0] >= gap * (nty - 2), "the walker did not wait for the rows' scales"
+        await RisingEdge(dut.clk_i)
+        dut.desc_ready_i.value = 0
+        dut.bud_en_i.value = 0
+
+
+@pytest.mark.parametrize("engines,budget", [(1, 0), (3, 0), (4, 0), (4, 1)])
+def test_tile_gen(engines, budget):
     from msr_runner import RTL, run_cocotb
-    run_cocotb("msr_tile_gen", "test_tile_gen", HERE, {"NUM_ENGINES": engines}, f"e{engines}",
+    run_cocotb("msr_tile_gen", "test_tile_gen", HERE, {"NUM_ENGINES": engines, "BUDGET_EN": budget},
+               f"e{engines}" + ("_budget" if budget else ""),
                sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_clr_reg.sv",
                         RTL / "system/msr_tile_gen.sv"])

@@ -1,0 +1,149 @@
+// Ray budget (docs/budget.md): the row counters at the writer's inputs (msr_budget_rows) and
+// the controller that turns each finished row into the scale of the row two below it
+// (msr_budget_ctrl), with what ties them to the tile generator and the configuration check.
+//
+// The tile generator asks for the scale of the row its walker is in (row_idx_i) and starts
+// the row only on row_ok_o. The answer is taken a clock after the question (the controller's
+// read-back is registered) and only while it answers the same row, and not in the first
+// clocks of a frame, when the controller is still setting rows 0 and 1 to the seed: so a row
+// never starts on another row's or another frame's scale.
+module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
+  parameter int unsigned NUM_IN = 4,                       // pixel streams (engines)
+  localparam int unsigned TROW_W = COORD_W - 2
+) (
+  input  logic                     clk_i,            // clock
+  input  logic                     rst_ni,           // asynchronous reset, active low
+  input  logic                     clear_i,          // synchronous clear
+  // The configuration check (msr_cfg_ctrl), from the sampled registers.
+  input  logic                     check_i,          // pulse: check raw_i
+  input  cfg_raw_t                 raw_i,            // stable from check_i through CHECK
+  output logic                     check_done_o,     // the check below is valid
+  output logic                     err_budget_o,     // 0 < BUDGET < the initial grid
+  output logic                     err_profile_o,    // SEEDED without a matching memory
+  // The frame.
+  input  logic                     start_i,          // pulse: an accepted frame starts with cfg_i
+  input  cfg_t                     cfg_i,            // its configuration (bud.pixels 0 = off)
+  output logic                     busy_o,           // a budget frame's rows are not all accounted
+  // Tile generator.
+  input  logic [TROW_W-1:0]        row_idx_i,        // the row the walker is in
+  output logic                     row_ok_o,         // its scale is known
+  output logic [12:0]              row_m_o,          // its threshold multiplier
+  // Finished pixels at the writer's inputs.
+  input  logic [NUM_IN-1:0]        pix_fire_i,
+  input  coord_t [NUM_IN-1:0]      pix_y_i,
+  input  src_t [NUM_IN-1:0]        pix_src_i,
+  input  logic [NUM_IN-1:0]        pix_last_i,
+  // Read-back (BUDGET_CTRL.SCALE_OUT, SCALE_OUT_VALID).
+  output logic [10:0]              scale_out_o,
+  output logic                     scale_out_valid_o
+);
+  logic bud_start, on_q;
+  assign bud_start = start_i && cfg_i.bud.pixels != '0;
+
+  // ---- Rows ----------------------------------------------------------------------------------
+  logic                 row_valid, row_ready, rows_busy;
+  logic [TROW_W-1:0]    row_idx;
+  logic [17:0]          row_traced;
+  logic [NUM_IN-1:0]    traced;
+  for (genvar i = 0; i < NUM_IN; i++) begin : g_traced
+    assign traced[i] = pix_src_i[i] < src_t'(16);
+  end
+
+  msr_budget_rows #(.NUM_IN(NUM_IN)) u_rows (
+    .clk_i        (clk_i),
+    .rst_ni       (rst_ni),
+    .clear_i      (clear_i),
+    .start_i      (bud_start),
+    .width_i      (cfg_i.width),
+    .height_i     (cfg_i.height),
+    .tile_i       (cfg_i.tile),
+    .pix_fire_i   (pix_fire_i),
+    .pix_y_i      (pix_y_i),
+    .pix_traced_i (traced),
+    .pix_last_i   (pix_last_i),
+    .row_valid_o  (row_valid),
+    .row_ready_i  (row_ready),
+    .row_idx_o    (row_idx),
+    .row_traced_o (row_traced),
+    .busy_o       (rows_busy)
+  );
+
+  // ---- Controller ------------------------------------------------------------------------------
+  logic [2:0]  raw_lg, cfg_lg;
+  logic        ctl_row_ready, ctl_row_ok, ctl_frame_done;
+  logic [12:0] ctl_row_m;
+
+  function automatic logic [2:0] lg_raw(logic [5:0] t);
+    return (t == 6'd8) ? 3'd3 : (t == 6'd32) ? 3'd5 : 3'd4;
+  endfunction
+  function automatic logic [2:0] lg_cfg(tile_size_e t);
+    return (t == TILE_8) ? 3'd3 : (t == TILE_32) ? 3'd5 : 3'd4;
+  endfunction
+  assign raw_lg = lg_raw(raw_i.tile);
+  assign cfg_lg = lg_cfg(cfg_i.tile);
+
+  // The check reads the sampled registers, the frame its checked configuration: the same
+  // values (the check passed), so the controller sees one configuration from check_i on.
+  logic  checking_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni)       checking_q <= 1'b0;
+    else if (check_i)  checking_q <= 1'b1;
+    else if (start_i)  checking_q <= 1'b0;
+  end
+
+  msr_budget_ctrl u_ctrl (
+    .clk_i             (clk_i),
+    .rst_ni            (rst_ni),
+    .clear_i           (clear_i),
+    .width_i           (checking_q ? raw_i.width   : cfg_i.width),
+    .height_i          (checking_q ? raw_i.height  : cfg_i.height),
+    .tile_log2_i       (checking_q ? raw_lg        : cfg_lg),
+    .levels_i          (checking_q ? raw_i.levels  : cfg_i.levels),
+    .budget_i          (checking_q ? raw_i.bud.pixels      : cfg_i.bud.pixels),
+    .scale_init_i      (checking_q ? raw_i.bud.scale_init  : cfg_i.bud.scale_init),
+    .prior_shift_i     (checking_q ? raw_i.bud.prior_shift : cfg_i.bud.prior_shift),
+    .seeded_i          (checking_q ? raw_i.bud.seeded      : cfg_i.bud.seeded),
+    .check_i           (check_i),
+    .check_done_o      (check_done_o),
+    .err_budget_o      (err_budget_o),
+    .err_profile_o     (err_profile_o),
+    .start_i           (bud_start),
+    .row_done_i        (row_valid && ctl_row_ready),
+    .row_traced_i      (row_traced),
+    .row_ready_o       (ctl_row_ready),
+    .row_idx_i         (row_idx_i),
+    .row_ok_o          (ctl_row_ok),
+    .row_m_o           (ctl_row_m),
+    .scale_out_o       (scale_out_o),
+    .scale_out_valid_o (scale_out_valid_o),
+    .frame_done_o      (ctl_frame_done)
+  );
+  assign row_ready = ctl_row_ready;
+
+  // ---- The tile generator's answer ---------------------------------------------------------------
+  logic [TROW_W-1:0] asked_q;
+  logic [2:0]        settle_q;            // clocks since the frame started, saturating at 4
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      asked_q  <= '0;
+      settle_q <= '0;
+      on_q     <= 1'b0;
+    end else if (clear_i) begin
+      settle_q <= '0;
+      on_q     <= 1'b0;
+    end else begin
+      asked_q  <= row_idx_i;
+      if (bud_start)              settle_q <= '0;
+      else if (settle_q != 3'd4)  settle_q <= settle_q + 1'b1;
+      if (bud_start)              on_q <= 1'b1;
+      else if (ctl_frame_done)    on_q <= 1'b0;
+    end
+  end
+  assign row_ok_o = ctl_row_ok && asked_q == row_idx_i && settle_q == 3'd4 && on_q;
+  assign row_m_o  = ctl_row_m;
+  assign busy_o   = on_q || rows_busy;
+
+  logic unused;
+  assign unused = ^row_idx;
+
+endmodule : msr_budget

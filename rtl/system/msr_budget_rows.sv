@@ -1,0 +1,146 @@
+// Ray budget, the counting side (docs/budget.md section 3): per tile row, the traced pixels
+// (source code < 16) of the finished pixels at the frame-buffer writer's inputs, and the row's
+// results handed to the budget controller in row order.
+//
+// A row is finished when the last pixel of each of its ntx tiles has arrived: an engine emits
+// a tile's pixels in order and ends with the one flagged last, so by then every pixel of the
+// row has been counted (the same moment as "its pixel count reaches W * h", without a product).
+// At most three rows are open (the controller's row r-2 gates the tile generator's row r), so
+// three counter pairs indexed by row mod 3 suffice; a slot is cleared when the controller takes
+// its row, and its next row (three on) cannot have a pixel before then.
+//
+// Timing: S1 registers each input's slot (row mod 3, from the row's distance to the oldest open
+// row), traced and last flags; S2 adds the per-slot counts (0..NUM_IN each) into the counters.
+`include "msr_assert.svh"
+
+module msr_budget_rows import msr_pkg::*; #(
+  parameter int unsigned NUM_IN = 4,                       // pixel streams (engines)
+  localparam int unsigned TROW_W = COORD_W - 2,           // tile row / column count width
+  localparam int unsigned CNT_W  = 18                     // traced in a row: <= 4096 * 32
+) (
+  input  logic                     clk_i,         // clock
+  input  logic                     rst_ni,        // asynchronous reset, active low
+  input  logic                     clear_i,       // synchronous clear
+  input  logic                     start_i,       // pulse: a budget frame begins (cfg below)
+  input  dim_t                     width_i,       // W, stable for the frame
+  input  dim_t                     height_i,      // H
+  input  tile_size_e               tile_i,        // T
+  // Finished pixels, as the writer takes them.
+  input  logic [NUM_IN-1:0]        pix_fire_i,    // input i's pixel is taken this clock
+  input  coord_t [NUM_IN-1:0]      pix_y_i,       // its row
+  input  logic [NUM_IN-1:0]        pix_traced_i,  // its source code is < 16
+  input  logic [NUM_IN-1:0]        pix_last_i,    // the last pixel of its tile
+  // The next row's result, in row order, to the controller.
+  output logic                     row_valid_o,   // row row_idx_o is finished
+  input  logic                     row_ready_i,   // the controller takes it
+  output logic [TROW_W-1:0]        row_idx_o,     // the oldest open row
+  output logic [CNT_W-1:0]         row_traced_o,  // its traced pixels
+  output logic                     busy_o         // a budget frame's rows are not all handed on
+);
+  typedef logic [1:0] slot_t;                            // row mod 3
+
+  logic [2:0]              lg_q;                          // log2 T
+  logic [TROW_W-1:0]       ntx_q, nty_q;                  // tiles per row, rows
+  logic                    act_q;                         // rows left to hand on
+  logic [TROW_W-1:0]       head_q;                        // the oldest open row
+  slot_t                   hslot_q;                       // its slot
+  logic [2:0][CNT_W-1:0]   traced_q;
+  logic [2:0][TROW_W-1:0]  tiles_q;                       // tiles of the row whose last pixel came
+  // S1
+  logic [NUM_IN-1:0]       s1_v_q, s1_tr_q, s1_last_q;
+  slot_t [NUM_IN-1:0]      s1_slot_q;
+
+  function automatic logic [2:0] lg_of(tile_size_e t);
+    unique case (t)
+      TILE_8:  return 3'd3;
+      TILE_32: return 3'd5;
+      default: return 3'd4;
+    endcase
+  endfunction
+
+  // ceil(n / 2^lg)
+  function automatic logic [TROW_W-1:0] tiles_of(dim_t n, logic [2:0] lg);
+    return TROW_W'(n >> lg) + TROW_W'((n & ((dim_t'(1) << lg) - 1'b1)) != '0);
+  endfunction
+
+  function automatic slot_t slot_add(slot_t s, logic [1:0] d);
+    logic [2:0] t;
+    t = 3'(s) + 3'(d);
+    return (t >= 3'd3) ? slot_t'(t - 3'd3) : slot_t'(t);
+  endfunction
+
+  logic take;
+  assign row_valid_o  = act_q && (tiles_q[hslot_q] == ntx_q);
+  assign take         = row_valid_o && row_ready_i;
+  assign row_idx_o    = head_q;
+  assign row_traced_o = traced_q[hslot_q];
+  assign busy_o       = act_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      act_q    <= 1'b0;
+      s1_v_q   <= '0;
+      head_q   <= '0;
+      hslot_q  <= '0;
+      traced_q <= '0;
+      tiles_q  <= '0;
+    end else if (clear_i) begin
+      act_q    <= 1'b0;
+      s1_v_q   <= '0;
+    end else if (start_i) begin
+      act_q    <= 1'b1;
+      s1_v_q   <= '0;
+      head_q   <= '0;
+      hslot_q  <= '0;
+      traced_q <= '0;
+      tiles_q  <= '0;
+    end else begin
+      s1_v_q <= pix_fire_i & {NUM_IN{act_q}};
+      for (int unsigned s = 0; s < 3; s++) begin
+        logic [CNT_W-1:0]  tr;
+        logic [TROW_W-1:0] la;
+        tr = (take && slot_t'(s) == hslot_q) ? '0 : traced_q[s];
+        la = (take && slot_t'(s) == hslot_q) ? '0 : tiles_q[s];
+        for (int unsigned i = 0; i < NUM_IN; i++) begin
+          if (s1_v_q[i] && s1_slot_q[i] == slot_t'(s)) begin
+            tr = tr + CNT_W'(s1_tr_q[i]);
+            la = la + TROW_W'(s1_last_q[i]);
+          end
+        end
+        traced_q[s] <= tr;
+        tiles_q[s]  <= la;
+      end
+      if (take) begin
+        head_q  <= head_q + 1'b1;
+        hslot_q <= slot_add(hslot_q, 2'd1);
+        if (head_q + 1'b1 == nty_q) act_q <= 1'b0;
+      end
+    end
+  end
+
+  // S1: the row's slot from its distance to the oldest open row (0..2). head_q and hslot_q move
+  // together, so the slot is the same whether S1 saw the old or the new head.
+  always_ff @(posedge clk_i) begin
+    for (int unsigned i = 0; i < NUM_IN; i++) begin
+      logic [TROW_W-1:0] row;
+      row          = TROW_W'(pix_y_i[i] >> lg_q);
+      s1_slot_q[i] <= slot_add(hslot_q, 2'(row - head_q));
+      s1_tr_q[i]   <= pix_traced_i[i];
+      s1_last_q[i] <= pix_last_i[i];
+    end
+    if (start_i) begin
+      lg_q  <= lg_of(tile_i);
+      ntx_q <= tiles_of(width_i, lg_of(tile_i));
+      nty_q <= tiles_of(height_i, lg_of(tile_i));
+    end
+  end
+
+  /* verilator lint_off SYNCASYNCNET */
+  // Every pixel belongs to one of the three open rows.
+  for (genvar i = 0; i < NUM_IN; i++) begin : g_chk
+    `MSR_ASSERT(a_row_open, pix_fire_i[i] && act_q |->
+                TROW_W'(pix_y_i[i] >> lg_q) - head_q < TROW_W'(3), clk_i, !rst_ni || clear_i)
+  end
+  /* verilator lint_on SYNCASYNCNET */
+
+endmodule : msr_budget_rows
