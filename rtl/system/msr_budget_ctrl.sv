@@ -1,0 +1,572 @@
+// Ray budget controller, the arithmetic (docs/budget.md sections 1-4 and 6; golden model
+// sw_model/msr_model/budget.py, class Controller, bit for bit).
+//
+// Why sequential: a tile row lasts thousands of clocks and the law runs once per row, so one
+// shift-add multiplier (up to 36 x 25 bits, one multiplier bit per clock, stopping when the
+// multiplier's remaining bits are zero) and one restoring divider (11 quotient bits, one per
+// clock, the quotient saturated at U_MAX + 1 by a first test num >= den << 11) do every
+// product and quotient of the frame; the only fast path is the read-back of a row's m.
+//
+// Sequences (one state machine, clear_i > start_i > check_i > row_done_i):
+//   check_i: the grid constants line(W), line(H) from shifts and adds, G = line(W) * line(H)
+//     on the multiplier (<= 13 clocks), the two checks: check_done_o <= 15 clocks after the
+//     pulse. check_done_o and the flags hold until the next check_i or clear_i.
+//   start_i: G again, W * H, g of the last row, p of the last row, N0 = ((B' - G) * u0) >>
+//     PRIOR_SHIFT (B' = min(B, W * H)), m0 = (u0 * u0 + 128) >> 8: <= 70 clocks, then rows
+//     0 and 1 are known (row_ok_o) and row_ready_o rises. Atot is the N the last finished
+//     frame ended with (the sum of the words it wrote into the activity memory).
+//   row_done_i: a_j = (c_j - g_j) * u_j, the sums, the memory word, then the law of section 4
+//     (first frame: two products and a quotient; seeded: a quotient), the slew limit and the
+//     clamp, and m of row j + 2: <= 100 clocks (measured by the bench), row_ready_o low.
+//
+// Scales: three slots (u, m) for the rows j, j + 1, j + 2 around rows_done (slot of row
+// rows_done = base_q, the next ones follow modulo 3). row_ok_o answers row_idx_i: its scale is
+// known and held, i.e. rows_done <= row_idx_i <= rows_done + 1 < nty + 1 (row r >= 2 becomes
+// ok when the update of row r - 2 ends; the walker never asks a row below rows_done: a row is
+// counted only after every one of its tiles left). row_ok_o and row_m_o are registered: they
+// answer the row_idx_i of the clock before; a start or clear drops row_ok_o at once.
+//
+// Activity memory: 512 x 28 bits, one synchronous read and one write port (one ECP5 EBR), no
+// reset; row j's word is read when its row result arrives and written a few clocks later. It
+// is valid, with the row count of the frame that wrote it, once a budget frame has finished
+// every row; a start invalidates it (it is being rewritten); a clear keeps a finished frame's
+// memory.
+//
+// Widths (W, H <= 4096, so W * H <= 2^24; u <= 1448 < 2^10.5):
+//   p_r <= 32 * 4096 = 2^17, c_j - g_j < 2^18; a_j <= 2^17 * 1448 < 2^27.5   (28 bits)
+//   N, Atot, Ad <= (W * H - G) * 1448 < 2^34.5; N0 <= 2^24 * 1448 < 2^34.5;
+//   N + N0 < 2^35.5                                                          (36 bits)
+//   C, P, Gd, G, W * H, B' <= 2^24 (25 bits); P + P0 <= 2^25 (26 bits);
+//   X = B' + Gd - C - G in (-2^25, 2^25) (27 bits signed; used only when > 0: 25 bits)
+//   numerator (N + N0) * (W * H - P) < 2^35.5 * 2^24 = 2^59.5; the multiplier's 61-bit
+//   accumulator (36 + 25 bits) holds any product of its operands.
+//   denominator (P + P0) * X < 2^26 * 2^25 = 2^51 (51 bits); den << 11 < 2^62 (62-bit compare)
+`include "msr_assert.svh"
+
+module msr_budget_ctrl import msr_pkg::*; #(
+  localparam int unsigned ROW_W = COORD_W - 2           // tile row index (as the walker's)
+) (
+  input  logic             clk_i,              // clock
+  input  logic             rst_ni,             // asynchronous reset, active low
+  input  logic             clear_i,            // synchronous clear: forget the frame
+  // Frame configuration, stable from check_i to the end of the frame.
+  input  dim_t             width_i,            // W, 1..4096
+  input  dim_t             height_i,           // H, 1..4096
+  input  logic [2:0]       tile_log2_i,        // log2 T: 3, 4 or 5
+  input  level_t           levels_i,           // L, 1..3 (S = 2^L)
+  input  logic [23:0]      budget_i,           // B, 0 = off
+  input  logic [10:0]      scale_init_i,       // u0 (0 reads as 256; clamped to [45, 1448])
+  input  logic [2:0]       prior_shift_i,      // PRIOR_SHIFT
+  input  logic             seeded_i,           // the seeded law
+  // The configuration check.
+  input  logic             check_i,            // pulse
+  output logic             check_done_o,       // the flags below are valid (held)
+  output logic             err_budget_o,       // 0 < B < G
+  output logic             err_profile_o,      // seeded without a matching memory
+  // The frame.
+  input  logic             start_i,            // pulse: an accepted budget frame starts
+  input  logic             row_done_i,         // pulse: the next row in order is finished ...
+  input  logic [17:0]      row_traced_i,       // ... with this many traced pixels (c_j)
+  output logic             row_ready_o,        // a row result can be taken
+  input  logic [ROW_W-1:0] row_idx_i,          // the row the tile generator asks about
+  output logic             row_ok_o,           // its scale is known (registered)
+  output logic [12:0]      row_m_o,            // its m = (u * u + 128) >> 8 (registered)
+  output logic [10:0]      scale_out_o,        // SCALE_OUT
+  output logic             scale_out_valid_o,  // SCALE_OUT is from a finished budget frame
+  output logic             frame_done_o,       // pulse: the last row's update is done
+  output logic             busy_o              // a sequence runs (status)
+);
+
+  localparam logic [10:0] U_MIN = 11'd45;
+  localparam logic [10:0] U_MAX = 11'd1448;
+  localparam logic [10:0] Q_SAT = 11'd1449;      // U_MAX + 1: "no budget left" / saturated
+
+  localparam int unsigned WH_W   = 25;           // W * H and every pixel count of the frame
+  localparam int unsigned ACT_W  = 36;           // N, N0, Atot, Ad
+  localparam int unsigned MEM_W  = 28;           // a_j
+  localparam int unsigned MC_W   = 36;           // multiplicand
+  localparam int unsigned MP_W   = 25;           // multiplier
+  localparam int unsigned PROD_W = MC_W + MP_W;  // 61
+  localparam int unsigned REM_W  = PROD_W + 1;   // 62: holds den << 11
+  localparam int unsigned MEM_DEPTH = 512;
+
+  // ---- Grid constants (closed forms of docs/budget.md "Terms"; no multiplier) -------------
+  // n0(n) = ceil(n / S) + ((n - 1) mod S != 0), for n in 0..32 (0 for n = 0).
+  function automatic logic [5:0] grid_axis(logic [5:0] n, level_t l);
+    logic [5:0] s1;
+    s1 = 6'((7'd1 << l) - 7'd1);
+    if (n == '0) return '0;
+    return 6'((n + s1) >> l) + 6'(((n - 6'd1) & s1) != '0);
+  endfunction
+
+  // line(N) = floor(N / T) * n0(T) + n0(N mod T); n0(T) = T / S + 1 as T >= 8 >= S.
+  function automatic logic [12:0] grid_line(dim_t n, logic [2:0] tl, level_t l);
+    logic [12:0] full;
+    logic [5:0]  rest;
+    full = 13'(n >> tl);
+    rest = 6'(n & ((dim_t'(1) << tl) - dim_t'(1)));
+    return (full << (tl - {1'b0, l})) + full + 13'(grid_axis(rest, l));
+  endfunction
+
+  function automatic logic [10:0] clamp_u(logic [10:0] v);
+    return (v > U_MAX) ? U_MAX : (v < U_MIN) ? U_MIN : v;
+  endfunction
+
+  function automatic logic [1:0] inc3(logic [1:0] s);
+    return (s == 2'd2) ? 2'd0 : s + 2'd1;
+  endfunction
+
+  logic [5:0]       tile_sz, h_rest, h_last;
+  logic [12:0]      line_w, line_h;
+  logic [ROW_W-1:0] nty;
+  logic [17:0]      g_full, p_full;
+  logic [10:0]      u0;
+  assign tile_sz = 6'(7'd1 << tile_log2_i);
+  assign h_rest  = 6'(height_i & (dim_t'(tile_sz) - dim_t'(1)));
+  assign h_last  = (h_rest == '0) ? tile_sz : h_rest;
+  assign line_w  = grid_line(width_i, tile_log2_i, levels_i);
+  assign line_h  = grid_line(height_i, tile_log2_i, levels_i);
+  assign nty     = ROW_W'((14'(height_i) + 14'(tile_sz) - 14'd1) >> tile_log2_i);
+  assign g_full  = 18'((19'(line_w) << (tile_log2_i - {1'b0, levels_i})) + 19'(line_w));
+  assign p_full  = 18'(width_i) << tile_log2_i;
+  assign u0      = clamp_u((scale_init_i == '0) ? 11'd256 : scale_init_i);
+
+  // ---- State ---------------------------------------------------------------------------------
+  typedef enum logic [4:0] {
+    ST_IDLE,
+    ST_G,        // G = line(W) * line(H) (check and start)
+    ST_WH,       // W * H
+    ST_GL,       // g of the last row = line(W) * n0(h_last)
+    ST_PL,       // p of the last row = W * h_last
+    ST_N0,       // (B' - G) * u0
+    ST_M0,       // u0 * u0
+    ST_ACT,      // a_j = (c_j - g_j) * u_j
+    ST_ACC,      // the sums and the memory word
+    ST_LAW,      // which law
+    ST_NUM,      // (N + N0) * (W * H - P)
+    ST_DEN,      // (P + P0) * X
+    ST_DIV0,     // saturation test
+    ST_DIV,      // 11 quotient bits
+    ST_SLEW,     // u_{j+2}
+    ST_SQ,       // m_{j+2}
+    ST_FIN       // SCALE_OUT, the memory's tag
+  } state_e;
+
+  state_e            state_q, state_d;
+  logic              checking_q;           // the G sequence answers a check (not a start)
+  logic              act_q;                // a budget frame is on and rows 0, 1 are known
+  logic              seeded_q;
+  logic [12:0]       line_w_q;
+  logic [ROW_W-1:0]  nty_q, rows_done_q;
+  logic [5:0]        h_last_q;
+  logic [17:0]       g_full_q, p_full_q, g_last_q, p_last_q;
+  logic [WH_W-1:0]   grid_q, wh_q, bud_q, spare_q, p0_q;
+  logic [WH_W-1:0]   c_sum_q, p_sum_q, g_sum_q;
+  logic [ACT_W-1:0]  n_q, n0_q, atot_q, ad_q, mem_sum_q;
+  logic [10:0]       u0_q;
+  logic [17:0]       c_q, g_row_q, p_row_q;
+  logic [MP_W-1:0]   x_q;                  // X when > 0 (< 2^25)
+  logic [10:0]       u_q [3];
+  logic [12:0]       m_q [3];
+  logic [1:0]        base_q;               // slot of row rows_done_q
+  logic              mem_valid_q;
+  logic [ROW_W-1:0]  mem_rows_q;
+  logic              check_done_q, err_budget_q, err_profile_q;
+  logic [10:0]       scale_out_q;
+  logic              scale_out_valid_q, frame_done_q;
+  logic              row_ok_q;
+  logic [12:0]       row_m_q;
+
+  // ---- Multiplier: acc += mc while shifting mc left and mp right, until mp is zero ---------
+  logic              mul_load;
+  logic [MC_W-1:0]   mul_a;
+  logic [MP_W-1:0]   mul_b;
+  logic [PROD_W-1:0] mul_mc_q, mul_acc_q;
+  logic [MP_W-1:0]   mul_mp_q;
+  logic              mul_done;
+  assign mul_done = (mul_mp_q == '0);
+
+  // The multiplier's first operands of a check or a start: G = line(W) * line(H). Loaded
+  // here, not in the state machine, as the pulse may come in any state.
+  logic              seq_load;
+  logic [MC_W-1:0]   seq_a;
+  logic [MP_W-1:0]   seq_b;
+  assign seq_load = !clear_i && (start_i || check_i);
+  assign seq_a    = MC_W'(line_w);
+  assign seq_b    = MP_W'(line_h);
+
+  // mul_load of the state machine is overridden by a new sequence (one driver per flop).
+  logic              mload;
+  logic [MC_W-1:0]   ma;
+  logic [MP_W-1:0]   mb;
+  assign mload = seq_load || (mul_load && !start_i && !check_i);
+  assign ma    = seq_load ? seq_a : mul_a;
+  assign mb    = seq_load ? seq_b : mul_b;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      mul_mc_q  <= '0;
+      mul_mp_q  <= '0;
+      mul_acc_q <= '0;
+    end else if (clear_i) begin
+      mul_mp_q  <= '0;
+    end else if (mload) begin
+      mul_mc_q  <= PROD_W'(ma);
+      mul_mp_q  <= mb;
+      mul_acc_q <= '0;
+    end else if (!mul_done) begin
+      if (mul_mp_q[0]) mul_acc_q <= mul_acc_q + mul_mc_q;
+      mul_mc_q <= mul_mc_q << 1;
+      mul_mp_q <= mul_mp_q >> 1;
+    end
+  end
+
+  // ---- Divider: restoring, quotient bits 10..0 -------------------------------------------------
+  logic [REM_W-1:0] div_rem_q, div_den_q;   // remainder; the divisor shifted to the next bit
+  logic [10:0]      div_quo_q;
+  logic [3:0]       div_cnt_q;
+  logic [REM_W-1:0] div_num_in, div_den_in;
+
+  // ---- Activity memory ---------------------------------------------------------------------
+  (* no_rw_check *)
+  logic [MEM_W-1:0] mem_q [MEM_DEPTH];
+  logic [MEM_W-1:0] mem_rdata_q;
+  logic             mem_re, mem_we;
+  logic [8:0]       mem_addr;
+  assign mem_addr = rows_done_q[8:0];
+
+  always_ff @(posedge clk_i) begin
+    if (mem_we) mem_q[mem_addr] <= MEM_W'(mul_acc_q);
+  end
+  always_ff @(posedge clk_i) begin
+    if (mem_re) mem_rdata_q <= mem_q[mem_addr];
+  end
+
+  // ---- Row quantities ------------------------------------------------------------------------
+  logic             row_last, row_new;    // row rows_done is the last; it sets a new scale
+  logic [1:0]       slot1, slot2;
+  logic [17:0]      g_sel, p_sel, c_minus_g;
+  logic [WH_W-1:0]  pp0;
+  logic [ACT_W-1:0] nn0, a_left;
+  logic signed [26:0] x_new;
+  logic [10:0]      slew, u_new;
+  assign row_last  = (rows_done_q == nty_q - ROW_W'(1));
+  assign row_new   = (ROW_W'(rows_done_q + ROW_W'(2)) < nty_q) && (rows_done_q < nty_q);
+  assign slot1     = inc3(base_q);
+  assign slot2     = inc3(slot1);
+  assign g_sel     = row_last ? g_last_q : g_full_q;
+  assign p_sel     = row_last ? p_last_q : p_full_q;
+  assign c_minus_g = (row_traced_i > g_sel) ? row_traced_i - g_sel : '0;
+  assign pp0       = p_sum_q + p0_q;
+  assign nn0       = n_q + n0_q;
+  assign a_left    = (atot_q > ad_q) ? atot_q - ad_q : '0;
+  assign x_new     = $signed({2'b00, bud_q}) + $signed({2'b00, g_sum_q})
+                   - $signed({2'b00, c_sum_q}) - $signed({2'b00, grid_q});
+  assign slew      = u_q[slot1] >> 1;
+  assign u_new     = clamp_u((div_quo_q > slew) ? div_quo_q : slew);
+
+  always_comb begin
+    state_d    = state_q;
+    mul_load   = 1'b0;
+    mul_a      = '0;
+    mul_b      = '0;
+    mem_re     = 1'b0;
+    mem_we     = 1'b0;
+    div_num_in = '0;
+    div_den_in = '0;
+    unique case (state_q)
+      ST_IDLE: begin
+        if (act_q && row_done_i) begin
+          mem_re   = 1'b1;
+          mul_load = 1'b1;
+          mul_a    = MC_W'(c_minus_g);
+          mul_b    = MP_W'(u_q[base_q]);
+          state_d  = ST_ACT;
+        end
+      end
+      ST_G: if (mul_done) begin
+        if (checking_q) begin
+          state_d = ST_IDLE;
+        end else begin
+          mul_load = 1'b1;
+          mul_a    = MC_W'(width_i);
+          mul_b    = MP_W'(height_i);
+          state_d  = ST_WH;
+        end
+      end
+      ST_WH: if (mul_done) begin
+        mul_load = 1'b1;
+        mul_a    = MC_W'(line_w_q);
+        mul_b    = MP_W'(grid_axis(h_last_q, levels_i));
+        state_d  = ST_GL;
+      end
+      ST_GL: if (mul_done) begin
+        mul_load = 1'b1;
+        mul_a    = MC_W'(width_i);
+        mul_b    = MP_W'(h_last_q);
+        state_d  = ST_PL;
+      end
+      ST_PL: if (mul_done) begin
+        mul_load = 1'b1;
+        mul_a    = MC_W'(spare_q);
+        mul_b    = MP_W'(u0_q);
+        state_d  = ST_N0;
+      end
+      ST_N0: if (mul_done) begin
+        mul_load = 1'b1;
+        mul_a    = MC_W'(u0_q);
+        mul_b    = MP_W'(u0_q);
+        state_d  = ST_M0;
+      end
+      ST_M0: if (mul_done) state_d = ST_IDLE;
+      ST_ACT: if (mul_done) begin
+        mem_we  = 1'b1;
+        state_d = ST_ACC;
+      end
+      ST_ACC: state_d = ST_LAW;
+      ST_LAW: begin
+        if (row_last) begin
+          div_num_in = REM_W'(n_q);
+          div_den_in = REM_W'(spare_q);
+          state_d    = (spare_q == '0) ? ST_FIN : ST_DIV0;
+        end else if (!row_new) begin
+          state_d = ST_SQ;                       // no new scale: just the row count
+        end else if (x_new <= 0) begin
+          state_d = ST_SLEW;                     // q = U_MAX + 1 (set below)
+        end else if (seeded_q) begin
+          div_num_in = REM_W'(a_left);
+          div_den_in = REM_W'(x_new);
+          state_d    = ST_DIV0;
+        end else begin
+          mul_load = 1'b1;
+          mul_a    = MC_W'(nn0);
+          mul_b    = MP_W'(wh_q - p_sum_q);
+          state_d  = ST_NUM;
+        end
+      end
+      ST_NUM: if (mul_done) begin
+        mul_load = 1'b1;
+        mul_a    = MC_W'(pp0);
+        mul_b    = MP_W'(x_q);
+        state_d  = ST_DEN;
+      end
+      ST_DEN: if (mul_done) state_d = ST_DIV0;
+      ST_DIV0: state_d = (div_rem_q >= (div_den_q << 11)) ? (row_last ? ST_FIN : ST_SLEW) : ST_DIV;
+      ST_DIV: if (div_cnt_q == 4'd1) state_d = row_last ? ST_FIN : ST_SLEW;
+      ST_SLEW: begin
+        mul_load = 1'b1;
+        mul_a    = MC_W'(u_new);
+        mul_b    = MP_W'(u_new);
+        state_d  = ST_SQ;
+      end
+      ST_SQ: if (mul_done) state_d = ST_IDLE;
+      ST_FIN: state_d = ST_IDLE;
+      default: state_d = ST_IDLE;
+    endcase
+  end
+
+  // ---- Registers ---------------------------------------------------------------------------
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      state_q           <= ST_IDLE;
+      checking_q        <= 1'b0;
+      act_q             <= 1'b0;
+      seeded_q          <= 1'b0;
+      line_w_q          <= '0;
+      nty_q             <= '0;
+      rows_done_q       <= '0;
+      h_last_q          <= '0;
+      g_full_q          <= '0;
+      p_full_q          <= '0;
+      g_last_q          <= '0;
+      p_last_q          <= '0;
+      grid_q            <= '0;
+      wh_q              <= '0;
+      bud_q             <= '0;
+      spare_q           <= '0;
+      p0_q              <= '0;
+      c_sum_q           <= '0;
+      p_sum_q           <= '0;
+      g_sum_q           <= '0;
+      n_q               <= '0;
+      n0_q              <= '0;
+      atot_q            <= '0;
+      ad_q              <= '0;
+      mem_sum_q         <= '0;
+      u0_q              <= '0;
+      c_q               <= '0;
+      g_row_q           <= '0;
+      p_row_q           <= '0;
+      x_q               <= '0;
+      u_q               <= '{default: '0};
+      m_q               <= '{default: '0};
+      base_q            <= '0;
+      mem_valid_q       <= 1'b0;
+      mem_rows_q        <= '0;
+      check_done_q      <= 1'b0;
+      err_budget_q      <= 1'b0;
+      err_profile_q     <= 1'b0;
+      scale_out_q       <= '0;
+      scale_out_valid_q <= 1'b0;
+      frame_done_q      <= 1'b0;
+      div_rem_q         <= '0;
+      div_den_q         <= '0;
+      div_quo_q         <= '0;
+      div_cnt_q         <= '0;
+      row_ok_q          <= 1'b0;
+      row_m_q           <= '0;
+    end else if (clear_i) begin
+      state_q      <= ST_IDLE;
+      act_q        <= 1'b0;
+      check_done_q <= 1'b0;
+      err_budget_q <= 1'b0;
+      err_profile_q <= 1'b0;
+      frame_done_q <= 1'b0;
+      row_ok_q     <= 1'b0;
+    end else begin
+      frame_done_q <= 1'b0;
+      // Read-back of the row the walker asks about: known rows are rows_done and the next.
+      row_ok_q <= act_q && row_idx_i >= rows_done_q && row_idx_i <= rows_done_q + ROW_W'(1)
+                  && row_idx_i < nty_q;
+      row_m_q  <= m_q[(row_idx_i == rows_done_q) ? base_q : slot1];
+
+      if (start_i || check_i) begin
+        // Both begin with the grid constants and G (the multiplier is loaded below).
+        state_q     <= ST_G;
+        checking_q  <= !start_i;
+        act_q       <= 1'b0;
+        row_ok_q    <= 1'b0;
+        line_w_q    <= line_w;
+        nty_q       <= nty;
+        h_last_q    <= h_last;
+        g_full_q    <= g_full;
+        p_full_q    <= p_full;
+        u0_q        <= u0;
+        seeded_q    <= seeded_i;
+        if (check_i && !start_i) check_done_q <= 1'b0;
+        if (start_i) begin
+          n_q               <= '0;
+          c_sum_q           <= '0;
+          p_sum_q           <= '0;
+          g_sum_q           <= '0;
+          ad_q              <= '0;
+          rows_done_q       <= '0;
+          base_q            <= '0;
+          atot_q            <= mem_sum_q;
+          mem_valid_q       <= 1'b0;
+          scale_out_valid_q <= 1'b0;
+          u_q[0]            <= u0;
+          u_q[1]            <= u0;
+        end
+      end else begin
+        state_q <= state_d;
+        unique case (state_q)
+          ST_G: if (mul_done) begin
+            grid_q <= WH_W'(mul_acc_q);
+            if (checking_q) begin
+              check_done_q  <= 1'b1;
+              err_budget_q  <= budget_i != '0 && WH_W'(budget_i) < WH_W'(mul_acc_q);
+              err_profile_q <= seeded_i && !(mem_valid_q && mem_rows_q == nty_q);
+            end
+          end
+          ST_WH: if (mul_done) begin
+            wh_q  <= WH_W'(mul_acc_q);
+            bud_q <= (WH_W'(budget_i) < WH_W'(mul_acc_q)) ? WH_W'(budget_i) : WH_W'(mul_acc_q);
+            p0_q  <= WH_W'(mul_acc_q) >> prior_shift_i;
+          end
+          ST_GL: if (mul_done) begin
+            g_last_q <= 18'(mul_acc_q);
+            spare_q  <= (bud_q > grid_q) ? bud_q - grid_q : '0;
+          end
+          ST_PL: if (mul_done) p_last_q <= 18'(mul_acc_q);
+          ST_N0: if (mul_done) n0_q <= ACT_W'(mul_acc_q >> prior_shift_i);
+          ST_M0: if (mul_done) begin
+            m_q[0] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
+            m_q[1] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
+            act_q  <= 1'b1;
+          end
+          ST_IDLE: if (act_q && row_done_i) begin
+            c_q     <= row_traced_i;
+            g_row_q <= g_sel;
+            p_row_q <= p_sel;
+          end
+          ST_ACT: ;
+          ST_ACC: begin
+            n_q     <= n_q + ACT_W'(mul_acc_q);
+            c_sum_q <= c_sum_q + WH_W'(c_q);
+            p_sum_q <= p_sum_q + WH_W'(p_row_q);
+            g_sum_q <= g_sum_q + WH_W'(g_row_q);
+            if (seeded_q) ad_q <= ad_q + ACT_W'(mem_rdata_q);
+          end
+          ST_LAW: begin
+            x_q       <= MP_W'(x_new);
+            div_quo_q <= Q_SAT;
+            div_rem_q <= div_num_in;
+            div_den_q <= div_den_in;
+            if (row_last && spare_q == '0) scale_out_q <= U_MAX;
+          end
+          ST_NUM: if (mul_done) div_rem_q <= REM_W'(mul_acc_q);
+          ST_DEN: if (mul_done) div_den_q <= REM_W'(mul_acc_q);
+          ST_DIV0: begin
+            div_cnt_q <= 4'd11;
+            div_den_q <= div_den_q << 10;
+            if (div_rem_q < (div_den_q << 11)) div_quo_q <= '0;
+            else if (row_last) scale_out_q <= U_MAX;  // clamp(U_MAX + 1)
+          end
+          ST_DIV: begin
+            div_cnt_q <= div_cnt_q - 4'd1;
+            div_den_q <= div_den_q >> 1;
+            if (div_rem_q >= div_den_q) begin
+              div_rem_q <= div_rem_q - div_den_q;
+              div_quo_q <= {div_quo_q[9:0], 1'b1};
+              if (div_cnt_q == 4'd1 && row_last) scale_out_q <= clamp_u({div_quo_q[9:0], 1'b1});
+            end else begin
+              div_quo_q <= {div_quo_q[9:0], 1'b0};
+              if (div_cnt_q == 4'd1 && row_last) scale_out_q <= clamp_u({div_quo_q[9:0], 1'b0});
+            end
+          end
+          ST_SLEW: u_q[slot2] <= u_new;
+          ST_SQ: if (mul_done) begin
+            if (row_new) m_q[slot2] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
+            rows_done_q <= rows_done_q + ROW_W'(1);
+            base_q      <= slot1;
+          end
+          ST_FIN: begin
+            rows_done_q       <= rows_done_q + ROW_W'(1);
+            base_q            <= slot1;
+            act_q             <= 1'b0;
+            scale_out_valid_q <= 1'b1;
+            frame_done_q      <= 1'b1;
+            mem_valid_q       <= 1'b1;
+            mem_rows_q        <= nty_q;
+            mem_sum_q         <= n_q;
+          end
+          default: ;
+        endcase
+      end
+    end
+  end
+
+  assign check_done_o      = check_done_q;
+  assign err_budget_o      = err_budget_q;
+  assign err_profile_o     = err_profile_q;
+  assign row_ready_o       = act_q && state_q == ST_IDLE;
+  assign row_ok_o          = row_ok_q;
+  assign row_m_o           = row_m_q;
+  assign scale_out_o       = scale_out_q;
+  assign scale_out_valid_o = scale_out_valid_q;
+  assign frame_done_o      = frame_done_q;
+  assign busy_o            = state_q != ST_IDLE;
+
+  // ---- Invariants ----------------------------------------------------------------------------
+  /* verilator lint_off SYNCASYNCNET */
+  `MSR_ASSERT(a_row_when_ready, row_done_i |-> row_ready_o || start_i || check_i || clear_i)
+  `MSR_ASSERT(a_start_budget_on, start_i |-> budget_i != '0)
+  `MSR_ASSERT(a_row_traced_range, state_q == ST_ACC |-> c_q >= g_row_q && c_q <= p_row_q)
+  `MSR_ASSERT(a_div_den_nonzero, state_q == ST_DIV0 |-> div_den_q != '0)
+  `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= U_MIN && u_q[base_q] <= U_MAX)
+  `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < nty_q)
+  `MSR_ASSERT(a_num_fits, state_q == ST_NUM && mul_done |-> mul_acc_q[PROD_W-1] == 1'b0)
+  /* verilator lint_on SYNCASYNCNET */
+
+endmodule : msr_budget_ctrl
