@@ -54,9 +54,6 @@ module msr_fbw_w import msr_fbw_pkg::*; #(
   logic [2:0]            wq_count;
   maddr_t [NUM_IN-1:0]   raddr_q;   // per input: only that input's memories hang on its copy
 
-  wburst_t         fq_data;
-  logic            fq_valid, fq_ready;
-
   msr_fifo #(.WIDTH($bits(wburst_t)), .DEPTH(4)) u_burst_fifo (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
@@ -64,24 +61,10 @@ module msr_fbw_w import msr_fbw_pkg::*; #(
     .valid_i (wb_push_i),
     .ready_o (wb_room_o),
     .data_i  (wb_i),
-    .valid_o (fq_valid),
-    .ready_i (fq_ready),
-    .data_o  (fq_data),
-    .count_o (wq_count)
-  );
-  // The head burst in a spill register: its length and byte range (WLAST, the strobes) come
-  // from flip-flops beside the W side, not from the queue's LUT-RAM read, which the placer
-  // put elsewhere on the die (that read into w1_strb_q was the top's critical path on a seed).
-  msr_spill_reg #(.WIDTH($bits(wburst_t))) u_burst_head (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .valid_i (fq_valid),
-    .ready_o (fq_ready),
-    .data_i  (fq_data),
     .valid_o (wq_valid),
     .ready_i (wq_pop),
-    .data_o  (wq_data)
+    .data_o  (wq_data),
+    .count_o (wq_count)
   );
 
   logic                  w1_v_q, w1_last_q, w1_src_q, w1_row_last_q, w2_load;
@@ -182,7 +165,7 @@ module msr_fbw_w import msr_fbw_pkg::*; #(
   assign m_axi_wstrb  = wstrb_q;
   assign m_axi_wlast  = wlast_q;
 
-  assign idle_o = !fq_valid && !wq_valid && !w1_v_q && !wv_q;
+  assign idle_o = !wq_valid && !w1_v_q && !wv_q;
 
   logic unused;
   assign unused = ^wq_count;
