@@ -73,8 +73,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
   output logic [12:0]      row_m_o,            // its m = (u * u + 128) >> 8 (registered)
   output logic [10:0]      scale_out_o,        // SCALE_OUT
   output logic             scale_out_valid_o,  // SCALE_OUT is from a finished budget frame
-  output logic             frame_done_o,       // pulse: the last row's update is done
-  output logic             busy_o              // a sequence runs (status)
+  output logic             frame_done_o        // pulse: the last row's update is done
 );
 
   localparam logic [10:0] U_MIN = 11'd45;
@@ -246,7 +245,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
   logic             row_last, row_new;    // row rows_done is the last; it sets a new scale
   logic [1:0]       slot1, slot2;
   logic [17:0]      g_sel, p_sel, c_minus_g;
-  logic [WH_W-1:0]  pp0;
+  logic [WH_W:0]    pp0;                  // P + P0 <= 2^25: 26 bits
   logic [ACT_W-1:0] nn0, a_left;
   logic signed [26:0] x_new;
   logic [10:0]      slew, u_new;
@@ -257,7 +256,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
   assign g_sel     = row_last ? g_last_q : g_full_q;
   assign p_sel     = row_last ? p_last_q : p_full_q;
   assign c_minus_g = (row_traced_i > g_sel) ? row_traced_i - g_sel : '0;
-  assign pp0       = p_sum_q + p0_q;
+  assign pp0       = (WH_W + 1)'(p_sum_q) + (WH_W + 1)'(p0_q);
   assign nn0       = n_q + n0_q;
   assign a_left    = (atot_q > ad_q) ? atot_q - ad_q : '0;
   assign x_new     = $signed({2'b00, bud_q}) + $signed({2'b00, g_sum_q})
@@ -556,7 +555,6 @@ module msr_budget_ctrl import msr_pkg::*; #(
   assign scale_out_o       = scale_out_q;
   assign scale_out_valid_o = scale_out_valid_q;
   assign frame_done_o      = frame_done_q;
-  assign busy_o            = state_q != ST_IDLE;
 
   // ---- Invariants ----------------------------------------------------------------------------
   /* verilator lint_off SYNCASYNCNET */

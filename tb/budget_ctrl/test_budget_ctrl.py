@@ -56,6 +56,7 @@ class Bench:
         self.frames = self.rows = self.probes_ok = 0
         self.max_update = self.max_check = self.max_start = 0
         self.seen_window = set()
+        self.law = {}             # which branch of the law each new scale took (model side)
 
     async def reset(self):
         dut = self.dut
@@ -216,6 +217,7 @@ class Bench:
             await self.clock(row=c)
             self.ctl.finish_row(c)
             self.rows += 1
+            self.classify(j)
             t0 = 0
             while self.pending:
                 await self.clock()
@@ -234,11 +236,28 @@ class Bench:
             assert int(d.row_ok_o.value) == 0 and int(d.scale_out_valid_o.value) == 1
         return self.ctl
 
+    def classify(self, j):
+        """The branch of the law row j's update took, from the model's state after it."""
+        BG, _ = model()
+        ctl = self.ctl
+        if j == self.nty - 1:
+            k = "out_max" if ctl.scale_out == BG.U_MAX else "out_min" if ctl.scale_out == BG.U_MIN else "out_mid"
+        elif j + 2 >= self.nty:
+            k = "none"
+        else:
+            x = ctl.budget - ctl.traced - (ctl.grid - ctl.grid_done)
+            q, slew = ctl.quotient(), ctl.scales[j + 1] >> 1
+            law = "seeded" if ctl.profile is not None else "first"
+            k = ("x<=0" if x <= 0 else f"{law}_sat" if q > BG.U_MAX else f"{law}_slew" if q < slew
+                 else f"{law}_min" if q < BG.U_MIN else f"{law}_mid")
+        self.law[k] = self.law.get(k, 0) + 1
+
     def summary(self):
         self.dut._log.info("%d frames, %d rows, %d ok read-backs checked (windows %s); longest check "
                            "%d clocks, start %d clocks, update %d clocks", self.frames, self.rows,
                            self.probes_ok, sorted(self.seen_window), self.max_check, self.max_start,
                            self.max_update)
+        self.dut._log.info("law branches: %s", dict(sorted(self.law.items())))
 
 
 def scene(rng, nty, kind=None):
@@ -391,11 +410,16 @@ async def test_random_frames(dut):
     rng = seeded_rng(dut, 707)
     b = Bench(dut, rng)
     await b.reset()
-    for i in range(40):
-        W, H = (rng.randint(1, 300), rng.randint(1, 200)) if i % 3 else (rng.randint(1, 40), rng.randint(1, 70))
+    for i in range(150):
+        W, H = ((rng.randint(1, 40), rng.randint(1, 70)) if i % 3 == 0 else
+                (rng.randint(1, 300), rng.randint(1, 300)) if i % 3 == 1 else
+                (rng.randint(100, 1920), rng.randint(100, 1080)))
         await random_sequence(b, rng, W, H, rng.choice((8, 16, 32)), rng.randint(1, 3), rng.randint(2, 3),
                               gap=rng.choice(((0, 0), (0, 3), (0, 20))))
     b.summary()
+    for k in ("first_mid", "first_slew", "first_sat", "first_min", "seeded_mid", "seeded_slew",
+              "seeded_sat", "x<=0", "none", "out_mid", "out_max", "out_min"):
+        assert b.law.get(k, 0) > 0, f"law branch {k} never taken: {b.law}"
 
 
 @cocotb.test()
