@@ -29,6 +29,9 @@ rtl/system/msr_axil_cpuif.sv
 rtl/system/msr_reg_if.sv
 rtl/system/msr_cfg_ctrl.sv
 rtl/system/msr_tile_gen.sv
+rtl/system/msr_budget_rows.sv
+rtl/system/msr_budget_ctrl.sv
+rtl/system/msr_budget.sv
 rtl/system/msr_render_mux.sv
 rtl/system/msr_fbw_pkg.sv
 rtl/system/msr_fbw_rowbuf.sv

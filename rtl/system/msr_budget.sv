@@ -143,7 +143,9 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
   assign row_m_o  = ctl_row_m;
   assign busy_o   = on_q || rows_busy;
 
+  // only the frame's geometry and budget fields are read (the rest is the writer's and engines')
   logic unused;
-  assign unused = ^row_idx;
+  assign unused = ^{row_idx, raw_i.rule, raw_i.metric, raw_i.thr, raw_i.fov_gain, raw_i.fb,
+                    cfg_i.rule, cfg_i.metric, cfg_i.thr, cfg_i.fov_gain, cfg_i.fb};
 
 endmodule : msr_budget

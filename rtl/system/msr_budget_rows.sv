@@ -76,6 +76,22 @@ module msr_budget_rows import msr_pkg::*; #(
   assign row_traced_o = traced_q[hslot_q];
   assign busy_o       = act_q;
 
+  // S2: each slot's counts plus this clock's pixels of its row; the taken row's slot restarts.
+  logic [2:0][CNT_W-1:0]  traced_d;
+  logic [2:0][TROW_W-1:0] tiles_d;
+  always_comb begin
+    for (int unsigned s = 0; s < 3; s++) begin
+      traced_d[s] = (take && slot_t'(s) == hslot_q) ? '0 : traced_q[s];
+      tiles_d[s]  = (take && slot_t'(s) == hslot_q) ? '0 : tiles_q[s];
+      for (int unsigned i = 0; i < NUM_IN; i++) begin
+        if (s1_v_q[i] && s1_slot_q[i] == slot_t'(s)) begin
+          traced_d[s] = traced_d[s] + CNT_W'(s1_tr_q[i]);
+          tiles_d[s]  = tiles_d[s] + TROW_W'(s1_last_q[i]);
+        end
+      end
+    end
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       act_q    <= 1'b0;
@@ -95,21 +111,9 @@ module msr_budget_rows import msr_pkg::*; #(
       traced_q <= '0;
       tiles_q  <= '0;
     end else begin
-      s1_v_q <= pix_fire_i & {NUM_IN{act_q}};
-      for (int unsigned s = 0; s < 3; s++) begin
-        logic [CNT_W-1:0]  tr;
-        logic [TROW_W-1:0] la;
-        tr = (take && slot_t'(s) == hslot_q) ? '0 : traced_q[s];
-        la = (take && slot_t'(s) == hslot_q) ? '0 : tiles_q[s];
-        for (int unsigned i = 0; i < NUM_IN; i++) begin
-          if (s1_v_q[i] && s1_slot_q[i] == slot_t'(s)) begin
-            tr = tr + CNT_W'(s1_tr_q[i]);
-            la = la + TROW_W'(s1_last_q[i]);
-          end
-        end
-        traced_q[s] <= tr;
-        tiles_q[s]  <= la;
-      end
+      s1_v_q   <= pix_fire_i & {NUM_IN{act_q}};
+      traced_q <= traced_d;
+      tiles_q  <= tiles_d;
       if (take) begin
         head_q  <= head_q + 1'b1;
         hslot_q <= slot_add(hslot_q, 2'd1);
@@ -120,14 +124,17 @@ module msr_budget_rows import msr_pkg::*; #(
 
   // S1: the row's slot from its distance to the oldest open row (0..2). head_q and hslot_q move
   // together, so the slot is the same whether S1 saw the old or the new head.
-  always_ff @(posedge clk_i) begin
+  slot_t [NUM_IN-1:0] s1_slot_d;
+  always_comb begin
     for (int unsigned i = 0; i < NUM_IN; i++) begin
-      logic [TROW_W-1:0] row;
-      row          = TROW_W'(pix_y_i[i] >> lg_q);
-      s1_slot_q[i] <= slot_add(hslot_q, 2'(row - head_q));
-      s1_tr_q[i]   <= pix_traced_i[i];
-      s1_last_q[i] <= pix_last_i[i];
+      s1_slot_d[i] = slot_add(hslot_q, 2'(TROW_W'(pix_y_i[i] >> lg_q) - head_q));
     end
+  end
+
+  always_ff @(posedge clk_i) begin
+    s1_slot_q <= s1_slot_d;
+    s1_tr_q   <= pix_traced_i;
+    s1_last_q <= pix_last_i;
     if (start_i) begin
       lg_q  <= lg_of(tile_i);
       ntx_q <= tiles_of(width_i, lg_of(tile_i));
