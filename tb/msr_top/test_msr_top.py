@@ -35,9 +35,12 @@ ERR_FB_STRIDE, ERR_FB_BASE, ERR_SRC_STRIDE, ERR_SRC_BASE = 4, 5, 6, 7
 ERR_FB_WRAP, ERR_SRC_WRAP, ERR_OVERLAP = 9, 10, 11
 ERR_WATCHDOG = 12
 ERR_RULE = 13
+ERR_BUDGET, ERR_PROFILE = 14, 15
 RULES = ("patent", "lindilate")   # CONFIG.RULE 0, 1 (2, 3 are refused with ERR_RULE)
 # msr_top's LINDILATE of this build (the rules it carries): 0 = patent only, RULE 1 refused too
 LINDILATE = int(os.environ.get("LINDILATE", "1"))
+# msr_top's BUDGET_EN of this build: 0 = no ray-budget controller, a non-zero BUDGET refused
+BUDGET_EN = int(os.environ.get("BUDGET_EN", "0"))
 DRAIN_TIMEOUT = 16384      # msr_cfg_ctrl: a soft reset's wait without progress, WATCHDOG 0
 
 
@@ -202,16 +205,21 @@ class Env:
         return dict(img=img, W=W, H=H, tile=tile, levels=levels, metric=metric, thr=list(thr), gain=gain,
                     src_en=src_en, fb_stride=fb_stride, src_stride=src_stride, rule=rule)
 
-    def check_memory(self, f, exact=True):
+    def check_memory(self, f, exact=True, budget=None):
         """The frame's pixels and source codes bit-exact with the golden model (exact=False: a
         frame cut short, not checked), and not one byte written outside them (padding of the
-        strides included). Returns the golden result."""
+        strides included). `budget`: the frame's msr_model.budget.BudgetConfig (the golden
+        model's select_budget). Returns the golden result."""
         from msr_model import ImageRenderer, Params, select
+        from msr_model.budget import select_budget
 
         W, H, thr = f["W"], f["H"], f["thr"]
         params = Params(tile=f["tile"], levels=f["levels"], thr=tuple(thr), metric=("max", "sum")[f["metric"]],
                         fov_gain=f["gain"])
-        gold = select(ImageRenderer(f["img"]), W, H, params, rule=RULES[f.get("rule", 0)])
+        if budget is None:
+            gold = select(ImageRenderer(f["img"]), W, H, params, rule=RULES[f.get("rule", 0)])
+        else:
+            gold = select_budget(ImageRenderer(f["img"]), W, H, params, budget, rule=RULES[f.get("rule", 0)])
         fb_stride, src_stride = f["fb_stride"], f["src_stride"]
         mem = self.ram.read(0, MEM)
         fb = np.frombuffer(mem[FB_BASE:FB_BASE + fb_stride * H], dtype="<u4").reshape(H, fb_stride // 4)[:, :W]
@@ -924,6 +932,73 @@ async def test_soak(dut):
     dut._log.info("SOAK_FRAMES %d SOFT_RESETS %d", frames, resets)
 
 
+async def program_budget(env, pixels, scale_init=256, prior_shift=6, seeded=0):
+    await env.wr(R.BUDGET, pixels)
+    await env.wr(R.BUDGET_CTRL, (scale_init << R.BUDGET_CTRL_SCALE_INIT_LSB)
+                 | (prior_shift << R.BUDGET_CTRL_PRIOR_SHIFT_LSB) | (seeded << R.BUDGET_CTRL_SEEDED_LSB))
+
+
+@cocotb.test()
+async def test_budget(dut):
+    """The ray budget (docs/budget.md) through the registers: a sequence of frames, the first
+    with the first-frame law, each later one seeded as a driver would (SCALE_INIT = SCALE_OUT,
+    SEEDED = 1), bit-exact with msr_model.budget.select_budget (pixels, source map, render
+    requests) and SCALE_OUT its; a budget below the initial grid refused (14), a seeded frame
+    after a frame of another tile-row count refused (15), BUDGET 0 the frame of algorithm.md.
+    In a top built without the controller any budget is refused with 14."""
+    from msr_model import Params
+    from msr_model.budget import BudgetConfig, grid_count
+    env, rng = await setup(dut, 31)
+    env.set_pauses(0.1)
+    if not BUDGET_EN:
+        env.ram.write(0, bytes([FILL]) * MEM)
+        await env.program(24, 24, 8, 2, 0, [8, 16], 0)
+        await program_budget(env, 300)
+        await expect_refused(dut, env, ERR_BUDGET, "a budget in a top without the controller")
+        return
+    for W, H, tile, levels, thr, gain, frac in ((48, 72, 8, 2, [6, 12], 0, 0.35), (40, 40, 8, 3, [8, 16, 32], 60, 0.2)):
+        params = Params(tile=tile, levels=levels, thr=tuple(thr), fov_gain=gain)
+        G = grid_count(W, H, params)
+        budget = G + int((W * H - G) * frac)
+        cfg = BudgetConfig(budget=budget)
+        for k in range(3):
+            env.render.ready_p = rng.choice((1.0, 0.5))
+            env.render.max_lat = rng.choice((1, 30))
+            await program_budget(env, budget, cfg.scale_init, cfg.prior_shift, int(cfg.profile is not None))
+            f = await env.start_frame(W, H, tile, levels, 0, thr, gain)
+            st = await env.wait_idle()
+            assert st & R.STATUS_DONE_MASK and (st & R.STATUS_ERROR_MASK) == 0, f"budget frame {k}: STATUS {st:#x}"
+            gold = env.check_memory(f, budget=cfg)
+            bc = gold.stats["budget_control"]
+            assert len(env.render.requests) == gold.stats["traced"]
+            ctrl = await env.rd(R.BUDGET_CTRL)
+            scale_out = (ctrl & R.BUDGET_CTRL_SCALE_OUT_MASK) >> R.BUDGET_CTRL_SCALE_OUT_LSB
+            assert ctrl & R.BUDGET_CTRL_SCALE_OUT_VALID_MASK, f"BUDGET_CTRL {ctrl:#x}: SCALE_OUT not valid"
+            assert scale_out == bc["scale_out"], f"SCALE_OUT {scale_out}, golden {bc['scale_out']}"
+            dut._log.info("budget %d (%dx%d T%d L%d) frame %d: traced %d, scales %s, SCALE_OUT %d: bit-exact",
+                          budget, W, H, tile, levels, k, gold.stats["traced"], bc["scale_per_row"], scale_out)
+            cfg = BudgetConfig(budget=budget, scale_init=scale_out, profile=tuple(bc["activity_per_row"]))
+            await env.wr(R.STATUS, R.STATUS_DONE_MASK)
+    # refused: below the grid; seeded after a frame with another number of tile rows
+    env.ram.write(0, bytes([FILL]) * MEM)
+    env.render.requests = []
+    await env.program(24, 24, 8, 2, 0, [8, 16], 0)
+    G = grid_count(24, 24, Params(tile=8, levels=2, thr=(8, 16)))
+    await program_budget(env, G - 1)
+    await expect_refused(dut, env, ERR_BUDGET, "a budget one below the initial grid")
+    await program_budget(env, G, seeded=1)
+    await expect_refused(dut, env, ERR_PROFILE, "seeded after a frame of 5 tile rows, this one has 3")
+    # the grid itself is accepted (first-frame law)
+    await program_budget(env, G)
+    f = await env.start_frame(24, 24, 8, 2, 0, [8, 16], 0)
+    st = await env.wait_idle()
+    assert st & R.STATUS_DONE_MASK and (st & R.STATUS_ERROR_MASK) == 0, f"budget = grid: STATUS {st:#x}"
+    env.check_memory(f, budget=BudgetConfig(budget=G))
+    # budget off again: the frame of algorithm.md
+    await program_budget(env, 0)
+    await env.frame(30, 20, 16, 2, 0, [8, 16], 0)
+
+
 @pytest.mark.parametrize("engines,outstanding,ctx,width", [(4, 16, 8, 256), (3, 4, 3, 64)])
 def test_msr_top(engines, outstanding, ctx, width):
     from msr_runner import ROOT, rtl_entries, rtl_sources, run_cocotb
@@ -945,3 +1020,13 @@ def test_msr_top_patent_only():
                {"NUM_ENGINES": 2, "MAX_OUTSTANDING": 16, "NUM_CTX": 3, "AXI_DATA_W": 256, "LINDILATE": 0},
                "patent_only", extra_env={"NUM_ENGINES": "2", "LINDILATE": "0"}, sources=rtl_sources(),
                testcase="test_rule")
+
+
+def test_msr_top_budget():
+    """msr_top built with the ray-budget controller (BUDGET_EN 1): test_budget's sequences and
+    refusals, and random frames with the budget off bit-exact as without it."""
+    from msr_runner import rtl_sources, run_cocotb
+    run_cocotb("msr_top", "test_msr_top", HERE,
+               {"NUM_ENGINES": 3, "MAX_OUTSTANDING": 16, "NUM_CTX": 3, "AXI_DATA_W": 64, "BUDGET_EN": 1},
+               "budget", extra_env={"NUM_ENGINES": "3", "BUDGET_EN": "1"}, sources=rtl_sources(),
+               testcase="test_budget,test_random_frames")
