@@ -9,15 +9,16 @@
 //
 // Sequences (one state machine, clear_i > start_i > check_i > row_done_i):
 //   check_i: the grid constants line(W), line(H) from shifts and adds, G = line(W) * line(H)
-//     on the multiplier (<= 13 clocks), the two checks: check_done_o <= 15 clocks after the
-//     pulse. check_done_o and the flags hold until the next check_i or clear_i.
+//     on the multiplier (<= 13 clocks), the two checks: check_done_o at most 14 clocks after
+//     the pulse. check_done_o and the flags hold until the next check_i or clear_i.
 //   start_i: G again, W * H, g of the last row, p of the last row, N0 = ((B' - G) * u0) >>
-//     PRIOR_SHIFT (B' = min(B, W * H)), m0 = (u0 * u0 + 128) >> 8: <= 70 clocks, then rows
+//     PRIOR_SHIFT (B' = min(B, W * H)), m0 = (u0 * u0 + 128) >> 8: <= 65 clocks, then rows
 //     0 and 1 are known (row_ok_o) and row_ready_o rises. Atot is the N the last finished
 //     frame ended with (the sum of the words it wrote into the activity memory).
 //   row_done_i: a_j = (c_j - g_j) * u_j, the sums, the memory word, then the law of section 4
 //     (first frame: two products and a quotient; seeded: a quotient), the slew limit and the
-//     clamp, and m of row j + 2: <= 100 clocks (measured by the bench), row_ready_o low.
+//     clamp, and m of row j + 2, row_ready_o low: at most 1 + 12 (a_j) + 2 + 26 + 26 (the two
+//     products, multipliers of 25 bits) + 12 (division) + 1 + 12 (m) = 92 clocks.
 //
 // Scales: three slots (u, m) for the rows j, j + 1, j + 2 around rows_done (slot of row
 // rows_done = base_q, the next ones follow modulo 3). row_ok_o answers row_idx_i: its scale is
