@@ -2,7 +2,12 @@
 # and the golden model; see ../shared/spec/contracts.md "Full simulation" and docs/system.md.
 # The harness is built without tracing; WAVES=1 builds a second one with FST tracing.
 SIM_WAVES_ON := $(filter 1 yes true,$(WAVES))
-SIM_BUILD    := build/sim/$(if $(SIM_WAVES_ON),waves,fast)
+# BUDGET=N or BUDGET=P% (docs/budget.md): the frame holds a ray budget of N traced pixels (P % of
+# the frame); the harness is then a build of msr_top with the budget controller (BUDGET_EN 1),
+# in its own folder. Without BUDGET the harness is the default top, as before.
+BUDGET       ?=
+SIM_BUDGET_ON := $(strip $(BUDGET))
+SIM_BUILD    := build/sim/$(if $(SIM_WAVES_ON),waves,fast)$(if $(SIM_BUDGET_ON),_budget)
 SIM_BIN      := $(SIM_BUILD)/Vmsr_sim_top
 SIM_RTL      := $(MSR_RTL_FILES) sim/render_dpi.sv sim/msr_sim_top.sv
 SIM_CPP      := sim/harness.cpp sim/msr_dpi.cpp
@@ -25,7 +30,7 @@ SIM_VFLAGS := --cc --exe --build -j 2 -O3 --x-assign fast --x-initial fast --noa
     -CFLAGS "-O2 -I$(CURDIR)/sim -I$(CURDIR)/sw_model/renderer/include" \
     -LDFLAGS "-L$(CURDIR)/build/renderer -lmsr_render -Wl,-rpath,$(CURDIR)/build/renderer" \
     -MAKEFLAGS "OPT_FAST=-O2 OPT_SLOW=-O1 OPT_GLOBAL=-O2 PYTHON3=python3 CFG_CXXFLAGS_PCH_I=-include" \
-    $(if $(SIM_WAVES_ON),--trace-fst --trace-structs)
+    $(if $(SIM_WAVES_ON),--trace-fst --trace-structs) $(if $(SIM_BUDGET_ON),-GBUDGET_EN=1)
 
 $(SIM_BIN): $(SIM_RTL) $(SIM_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f mk/sim.mk build/renderer/libmsr_render.so
 	@mkdir -p $(SIM_BUILD)
@@ -66,7 +71,7 @@ TEST_DEPS += build/sim/fast/Vmsr_sim_top
 sim: setup renderer $(SIM_BIN)
 	@$(ENV) python scripts/run_sim.py --harness $(SIM_BIN) --scene "$(SCENE)" --width "$(WIDTH)" \
 	    --height "$(HEIGHT)" --tile "$(TILE)" --levels "$(LEVELS)" --thr "$(THR)" --metric "$(METRIC)" \
-	    --fov-gain "$(FOV_GAIN)" --rule "$(RULE)" --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
+	    --fov-gain "$(FOV_GAIN)" --rule "$(RULE)" --budget "$(BUDGET)" --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
 	    $(if $(WAVE_TILE),--wave-tile $(WAVE_TILE)) $(if $(WAVE_CYCLES),--wave-cycles $(WAVE_CYCLES))
 
 # make waves / waves-shot: the run named by OUT=, else the last make sim WAVES=1 (its folder is

@@ -45,6 +45,8 @@ def parse(argv):
     ap.add_argument("--metric", default="max")
     ap.add_argument("--fov-gain", default="0")
     ap.add_argument("--rule", default="", help="decision rule (default patent; RULE= of make sim)")
+    ap.add_argument("--budget", default="", help="ray budget: N traced pixels or P%% of the frame "
+                    "(docs/budget.md; BUDGET= of make sim; empty or 0: off)")
     ap.add_argument("--out", default="")
     ap.add_argument("--quality", default="fast")
     ap.add_argument("--camera", default="", help="EX,EY,EZ,TX,TY,TZ,FOV (model units, degrees); empty: the scene's view")
@@ -78,6 +80,27 @@ def rule_of(a) -> str:
     return rule
 
 
+def budget_of(a, width: int, height: int, params: Params):
+    """The frame's budget registers (msr_model.budget.BudgetConfig: first frame, SCALE_INIT 1.0),
+    or None without a budget; a budget below the frame's initial grid is refused here, as START
+    would refuse it (STATUS.ERROR 14)."""
+    from msr_model import budget as BG
+    if not str(a.budget).strip():
+        return None
+    try:
+        pixels = BG.budget_pixels(BG.parse_budget(a.budget), width, height)
+    except ValueError as e:
+        raise UsageError(f"BUDGET={a.budget}: {e}") from None
+    if pixels == 0:
+        return None
+    cfg = BG.BudgetConfig(budget=pixels)
+    try:
+        BG.Controller(width, height, params, cfg)
+    except BG.BudgetRefused as e:
+        raise UsageError(f"BUDGET={a.budget}: {e}") from None
+    return cfg
+
+
 def scene_label(scene: str) -> str:
     p = Path(scene)
     return p.stem if (p.suffix or os.sep in scene) else scene
@@ -86,6 +109,7 @@ def scene_label(scene: str) -> str:
 def run(a) -> int:
     W, H, params = params_of(a)
     rule = rule_of(a)
+    budget = budget_of(a, W, H, params)
     harness = Path(a.harness)
     if not harness.is_file():
         raise UsageError(f"harness {harness} not built (run make sim)")
@@ -107,11 +131,11 @@ def run(a) -> int:
                   else ["--wave-tile", a.wave_tile or f"{ntx // 2},{nty // 2}"])
     # The RTL runs in its own process while this one renders the reference and the golden frame.
     sim = HarnessRun(harness, a.scene, W, H, params, rule=rule, quality=a.quality, camera=a.camera or None,
-                     latency=a.rnd_latency, jitter=a.rnd_jitter, extra=extra).start()
+                     latency=a.rnd_latency, jitter=a.rnd_jitter, budget=budget, extra=extra).start()
     try:
         golden_frames = GoldenFrames(a.scene, W, H, renderer=renderer)
         t_ref = time.perf_counter() - t0
-        golden = golden_frames.frame(params, rule)
+        golden = golden_frames.frame(params, rule, budget)
     finally:
         rtl = sim.wait()
     reference = golden_frames.reference
@@ -131,6 +155,9 @@ def run(a) -> int:
     written = rtl.stats.get("params", {}).get("rule")
     if written is not None and written != RTL_RULES.index(rule):
         raise RunFailed(f"the harness wrote CONFIG.RULE = {written}, not {RTL_RULES.index(rule)} ({rule})")
+    if budget is not None and not rtl.build.get("budget_en"):
+        raise RunFailed(f"BUDGET={a.budget}: the harness {harness} is a top without the budget controller "
+                        f"(build it with make sim BUDGET=...)")
     verdict = compare(rtl, golden)
     from skimage.metrics import peak_signal_noise_ratio, structural_similarity
     psnr = (float(peak_signal_noise_ratio(reference, frame, data_range=255))
@@ -173,12 +200,24 @@ def run(a) -> int:
         "render_latency": a.rnd_latency,
         "render_jitter": a.rnd_jitter,
         "num_engines": rtl.build["num_engines"],         # from the harness build (its stats file)
+        "budget": 0 if budget is None else budget.budget,
     }
+    if budget is not None:
+        bc, hw = golden.stats["budget_control"], st.get("budget", {})
+        report["budget_control"] = {
+            **{k: bc[k] for k in ("scale_init", "prior_shift", "seeded", "grid", "scale_per_row",
+                                  "thr_multiplier_per_row", "traced_per_row", "scale_out")},
+            "budget_error": (traced - budget.budget) / budget.budget,
+            "scale_out_rtl": hw.get("scale_out") if hw.get("scale_out_valid") else None,
+            "scale_out_equal": bool(hw.get("scale_out_valid")) and hw.get("scale_out") == bc["scale_out"],
+        }
     (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
     from msr_model.overview import RunInfo, write_summary
     write_summary(out / "summary.png", frame, reference, source,
                   RunInfo(scene=scene_label(a.scene), params=params, rule=rule, psnr_db=report["psnr_db"], ssim=ssim,
-                          cycles=st["cycles"], bit_exact=report["bit_exact"]))
+                          cycles=st["cycles"], bit_exact=report["bit_exact"],
+                          budget=0 if budget is None else budget.budget,
+                          scale_per_row=None if budget is None else report["budget_control"]["scale_per_row"]))
 
     p = params
     print(f"make sim: {a.scene} {W}x{H}, tile {p.tile}, levels {p.levels}, thr {','.join(map(str, p.thr))}, "
@@ -186,6 +225,10 @@ def run(a) -> int:
     print(f"  bit exact vs golden model : {'yes' if report['bit_exact'] else 'NO'}"
           f" (frame {'=' if verdict['frame_equal'] else '!='}, source map {'=' if verdict['source_map_equal'] else '!='})")
     print(f"  traced                    : {traced} of {pixels} pixels ({traced / pixels:.1%})")
+    if budget is not None:
+        bc = report["budget_control"]
+        print(f"  ray budget                : {budget.budget} pixels, traced {bc['budget_error']:+.2%} off it; "
+              f"SCALE_OUT {bc['scale_out_rtl']} (golden {bc['scale_out']})")
     print(f"  quality vs full render    : PSNR {'inf' if not np.isfinite(psnr) else f'{psnr:.2f}'} dB, SSIM {ssim:.4f}")
     print(f"  RTL cycles                : {st['cycles']} ({st['cycles'] / pixels:.3f} cycles/pixel)")
     print(f"  simulation speed          : {st['sim_cycles_per_second'] / 1e6:.2f} Mcycles/s, "
@@ -194,6 +237,9 @@ def run(a) -> int:
         print(f"  waves                     : {out / 'waves.fst'} (make waves)")
     print(f"  summary picture           : {out / 'summary.png'}")
     print(f"  outputs                   : {out}/", flush=True)
+    if budget is not None and not report["budget_control"]["scale_out_equal"]:
+        raise RunFailed(f"SCALE_OUT {report['budget_control']['scale_out_rtl']} read from the RTL, the golden "
+                        f"model's is {report['budget_control']['scale_out']}")
     if not report["bit_exact"]:
         raise RunFailed(f"not bit exact: {verdict['mismatched_pixels']} pixels and {verdict['mismatched_codes']} "
                         f"source codes differ from the golden model (report: {out / 'report.json'})")

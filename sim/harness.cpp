@@ -3,6 +3,7 @@
 //
 //   Vmsr_sim_top --width W --height H [--tile T] [--levels L] [--thr a,b,c] [--metric max|sum]
 //       [--fov-gain G] [--rule patent|lindilate|N] [--frame OUT.ppm] [--source OUT.pgm] [--stats OUT.json]
+//       [--budget PIXELS] [--scale-init U] [--prior-shift P] [--seeded 0|1]   (docs/budget.md)
 //       [--timeout CYCLES] [--mem-pause PERCENT] [--seed N] [--quiet]
 //       [--fb-base ADDR]   (override FB_BASE; memory stays where it is: error-path tests)
 //       (--rule N: CONFIG.RULE written as is, 0..3; 2 and 3 are refused by the hardware, ERROR 13)
@@ -47,6 +48,8 @@ constexpr int kExitOk = 0, kExitFail = 1, kExitUsage = 2;
 struct Options {
   int width = 320, height = 240, tile = 16, levels = 2, metric = 0, fov_gain = 0;
   int rule = 0;  // CONFIG.RULE: 0 patent, 1 lindilate (docs/rules.md)
+  // Ray budget (docs/budget.md): BUDGET.PIXELS (0 = off) and BUDGET_CTRL, written as given.
+  long budget = 0, scale_init = 256, prior_shift = 6, seeded = 0;
   int thr[3] = {8, 16, 32};
   std::string frame_out, source_out, stats_out, waves;
   uint64_t timeout = 0;  // 0: derived from the frame size
@@ -103,6 +106,14 @@ Options parse(int argc, char **argv) {
       else if (r == "lindilate") o.rule = 1;
       else if (r.size() == 1 && r[0] >= '0' && r[0] <= '3') o.rule = r[0] - '0';
       else usage("--rule must be patent, lindilate or a CONFIG.RULE value 0..3, got '" + r + "'");
+    } else if (a == "--budget") {
+      o.budget = to_int(next("--budget"), "--budget");
+    } else if (a == "--scale-init") {
+      o.scale_init = to_int(next("--scale-init"), "--scale-init");
+    } else if (a == "--prior-shift") {
+      o.prior_shift = to_int(next("--prior-shift"), "--prior-shift");
+    } else if (a == "--seeded") {
+      o.seeded = to_int(next("--seeded"), "--seeded");
     } else if (a == "--thr") {
       std::string s = next("--thr");
       int k = 0;
@@ -502,6 +513,16 @@ int main(int argc, char **argv) {
     sim.write_reg(REG(SRC_BASE), sim.src_base());
     sim.write_reg(REG(SRC_STRIDE), sim.src_stride());
     sim.write_reg(REG(SRC_CTRL), MSR_REGS__SRC_CTRL__ENABLE_bm);
+    // Field values outside the register's bits are masked off as a bus write would cut them;
+    // the hardware checks what arrives (a budget below the grid: STATUS.ERROR 14).
+    sim.write_reg(REG(BUDGET), uint32_t(o.budget) & MSR_REGS__BUDGET__PIXELS_bm);
+    sim.write_reg(REG(BUDGET_CTRL),
+                  ((uint32_t(o.scale_init) << MSR_REGS__BUDGET_CTRL__SCALE_INIT_bp) &
+                   MSR_REGS__BUDGET_CTRL__SCALE_INIT_bm) |
+                      ((uint32_t(o.prior_shift) << MSR_REGS__BUDGET_CTRL__PRIOR_SHIFT_bp) &
+                       MSR_REGS__BUDGET_CTRL__PRIOR_SHIFT_bm) |
+                      ((uint32_t(o.seeded) << MSR_REGS__BUDGET_CTRL__SEEDED_bp) &
+                       MSR_REGS__BUDGET_CTRL__SEEDED_bm));
     sim.write_reg(REG(CTRL), MSR_REGS__CTRL__START_bm | MSR_REGS__CTRL__IRQ_EN_bm);
 
     const uint64_t pixels = uint64_t(o.width) * o.height;
@@ -540,6 +561,10 @@ int main(int argc, char **argv) {
     for (int k = 0; k < 4; ++k) traced[k] = sim.read_reg(REG(PERF_TRACED) + 4 * k);
     for (int k = 0; k < 3; ++k) interp[k] = sim.read_reg(REG(PERF_INTERP) + 4 * k);
     uint32_t rstall = sim.read_reg(REG(PERF_RENDER_STALL)), mstall = sim.read_reg(REG(PERF_MEM_STALL));
+    const uint32_t bctrl = sim.read_reg(REG(BUDGET_CTRL));
+    const unsigned scale_out =
+        (bctrl & MSR_REGS__BUDGET_CTRL__SCALE_OUT_bm) >> MSR_REGS__BUDGET_CTRL__SCALE_OUT_bp;
+    const bool scale_out_valid = bctrl & MSR_REGS__BUDGET_CTRL__SCALE_OUT_VALID_bm;
     cycles_run = sim.cycle();
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -570,16 +595,19 @@ int main(int argc, char **argv) {
                      "\"traced_initial\": %u, \"traced_level1\": %u, \"traced_level2\": %u, "
                      "\"traced_level3\": %u, \"interpolated_level1\": %u, \"interpolated_level2\": %u, "
                      "\"interpolated_level3\": %u, \"render_stall_cycles\": %u, \"memory_stall_cycles\": %u,\n"
+                     " \"budget\": {\"pixels\": %ld, \"scale_init\": %ld, \"prior_shift\": %ld, \"seeded\": %ld, "
+                     "\"scale_out\": %u, \"scale_out_valid\": %s},\n"
                      " \"build\": {\"num_engines\": %u, \"max_outstanding\": %u, \"num_ctx\": %u, "
-                     "\"axi_beat_bytes\": %u},\n"
+                     "\"budget_en\": %u, \"axi_beat_bytes\": %u},\n"
                      " \"layout\": {\"fb_base\": %lld, \"fb_stride\": %u, \"src_base\": %u, \"src_stride\": %u},\n"
                      " \"params\": {\"width\": %d, \"height\": %d, \"tile\": %d, \"levels\": %d, "
                      "\"thr\": [%d, %d, %d], \"metric\": \"%s\", \"fov_gain\": %d, \"rule\": %d}}\n",
                      perf_cycles, (unsigned long long)cycles_run, secs, cycles_run / secs, status, err,
                      traced[0], traced[1], traced[2], traced[3], interp[0], interp[1], interp[2], rstall,
-                     mstall, unsigned(Root::msr_sim_top__DOT__NUM_ENGINES),
+                     mstall, o.budget, o.scale_init, o.prior_shift, o.seeded, scale_out,
+                     scale_out_valid ? "true" : "false", unsigned(Root::msr_sim_top__DOT__NUM_ENGINES),
                      unsigned(Root::msr_sim_top__DOT__MAX_OUTSTANDING), unsigned(Root::msr_sim_top__DOT__NUM_CTX),
-                     kBeatBytes, o.fb_base >= 0 ? o.fb_base : (long long)sim.fb_base(), sim.fb_stride(),
+                     unsigned(Root::msr_sim_top__DOT__BUDGET_EN), kBeatBytes, o.fb_base >= 0 ? o.fb_base : (long long)sim.fb_base(), sim.fb_stride(),
                      sim.src_base(), sim.src_stride(), o.width, o.height, o.tile, o.levels, o.thr[0], o.thr[1],
                      o.thr[2], o.metric ? "sum" : "max", o.fov_gain, o.rule);
         std::fclose(f);

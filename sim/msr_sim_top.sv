@@ -6,6 +6,7 @@ module msr_sim_top import msr_pkg::*; #(
   parameter int unsigned NUM_ENGINES     = 4,
   parameter int unsigned MAX_OUTSTANDING = 64,
   parameter int unsigned NUM_CTX         = 7,    // msr_top's default
+  parameter bit          BUDGET_EN       = 1'b0, // the ray-budget controller (make sim BUDGET=)
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned RTAG_W = EID_W + $clog2(MAX_OUTSTANDING)
 ) (
@@ -51,7 +52,8 @@ module msr_sim_top import msr_pkg::*; #(
   msr_top #(
     .NUM_ENGINES     (NUM_ENGINES),
     .MAX_OUTSTANDING (MAX_OUTSTANDING),
-    .NUM_CTX         (NUM_CTX)
+    .NUM_CTX         (NUM_CTX),
+    .BUDGET_EN       (BUDGET_EN)
   ) u_top (
     .clk_i, .rst_ni,
     .s_axil_awvalid, .s_axil_awready, .s_axil_awaddr, .s_axil_awprot (3'b000),

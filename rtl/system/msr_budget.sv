@@ -84,25 +84,26 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
 
   // The check reads the sampled registers, the frame its checked configuration: the same
   // values (the check passed), so the controller sees one configuration from check_i on.
-  logic  checking_q;
+  logic  checking_q, checking;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni)       checking_q <= 1'b0;
     else if (check_i)  checking_q <= 1'b1;
     else if (start_i)  checking_q <= 1'b0;
   end
+  assign checking = check_i || checking_q;
 
   msr_budget_ctrl u_ctrl (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),
     .clear_i           (clear_i),
-    .width_i           (checking_q ? raw_i.width   : cfg_i.width),
-    .height_i          (checking_q ? raw_i.height  : cfg_i.height),
-    .tile_log2_i       (checking_q ? raw_lg        : cfg_lg),
-    .levels_i          (checking_q ? raw_i.levels  : cfg_i.levels),
-    .budget_i          (checking_q ? raw_i.bud.pixels      : cfg_i.bud.pixels),
-    .scale_init_i      (checking_q ? raw_i.bud.scale_init  : cfg_i.bud.scale_init),
-    .prior_shift_i     (checking_q ? raw_i.bud.prior_shift : cfg_i.bud.prior_shift),
-    .seeded_i          (checking_q ? raw_i.bud.seeded      : cfg_i.bud.seeded),
+    .width_i           (checking ? raw_i.width   : cfg_i.width),
+    .height_i          (checking ? raw_i.height  : cfg_i.height),
+    .tile_log2_i       (checking ? raw_lg        : cfg_lg),
+    .levels_i          (checking ? raw_i.levels  : cfg_i.levels),
+    .budget_i          (checking ? raw_i.bud.pixels      : cfg_i.bud.pixels),
+    .scale_init_i      (checking ? raw_i.bud.scale_init  : cfg_i.bud.scale_init),
+    .prior_shift_i     (checking ? raw_i.bud.prior_shift : cfg_i.bud.prior_shift),
+    .seeded_i          (checking ? raw_i.bud.seeded      : cfg_i.bud.seeded),
     .check_i           (check_i),
     .check_done_o      (check_done_o),
     .err_budget_o      (err_budget_o),

@@ -52,6 +52,39 @@ ERR_BUDGET = 14                    # STATUS.ERROR: budget below the frame's init
 ERR_PROFILE = 15                   # STATUS.ERROR: seeded from a profile of another tile-row count
 
 
+def parse_budget(text) -> tuple[str, object]:
+    """A budget as a user writes it: `N` (pixels) or `P%` (of the frame, P a decimal number
+    0..100): ('px', N) or ('pct', P as a Fraction). ValueError with the reason otherwise."""
+    from fractions import Fraction
+    t = str(text).strip()
+    try:
+        if t.endswith("%"):
+            pct = Fraction(t[:-1].strip())
+            if not 0 <= pct <= 100:
+                raise ValueError(f"budget {text}: a percentage must be 0..100")
+            return ("pct", pct)
+        n = int(t, 10)
+    except ZeroDivisionError:
+        raise ValueError(f"budget must be a pixel count or a percentage like 10%, got {text!r}") from None
+    except ValueError as e:
+        if "percentage must" in str(e):
+            raise
+        raise ValueError(f"budget must be a pixel count or a percentage like 10%, got {text!r}") from None
+    if not 0 <= n <= BUDGET_MAX:
+        raise ValueError(f"budget {n} outside 0..{BUDGET_MAX}")
+    return ("px", n)
+
+
+def budget_pixels(parsed, width: int, height: int) -> int:
+    """The BUDGET register value of a parsed budget for a W x H frame (a percentage rounds
+    down); ValueError when a pixel count is more than the frame."""
+    kind, v = parsed
+    pixels = int(v * width * height // 100) if kind == "pct" else int(v)
+    if kind == "px" and pixels > width * height:
+        raise ValueError(f"budget {pixels} is more than the frame's {width * height} pixels")
+    return pixels
+
+
 class BudgetRefused(spec.SpecError):
     """START refuses a budget below the frame's initial grid (it cannot be met)."""
 

@@ -17,7 +17,6 @@ from __future__ import annotations
 import argparse
 import json
 import time
-from fractions import Fraction
 
 import numpy as np
 
@@ -73,29 +72,19 @@ def _add_select_flags(p):
 
 
 def _budget_arg(text):
-    """`N` (pixels) or `P%` (of the frame, P a decimal number 0..100): ('px', N) or ('pct', P)."""
-    t = str(text).strip()
+    """`N` (pixels) or `P%` (of the frame): budget.parse_budget, as an argparse type."""
     try:
-        if t.endswith("%"):
-            pct = Fraction(t[:-1].strip())
-            if not 0 <= pct <= 100:
-                raise argparse.ArgumentTypeError(f"--budget {text}: a percentage must be 0..100")
-            return ("pct", pct)
-        n = int(t, 10)
-    except (ValueError, ZeroDivisionError):
-        raise argparse.ArgumentTypeError(f"--budget must be a pixel count or a percentage like 10%, "
-                                         f"got {text!r}") from None
-    if not 0 <= n <= BG.BUDGET_MAX:
-        raise argparse.ArgumentTypeError(f"--budget {n} outside 0..{BG.BUDGET_MAX}")
-    return ("px", n)
+        return BG.parse_budget(text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(f"--{e}") from None
 
 
 def _budget_config(args, width: int, height: int) -> BG.BudgetConfig:
     """The budget registers for a W x H frame from the flags (pixels; a percentage rounds down)."""
-    kind, v = args.budget if args.budget is not None else ("px", 0)
-    pixels = int(v * width * height // 100) if kind == "pct" else v
-    if kind == "px" and pixels > width * height:
-        raise UsageError(f"--budget {pixels} is more than the frame's {width * height} pixels")
+    try:
+        pixels = BG.budget_pixels(args.budget if args.budget is not None else ("px", 0), width, height)
+    except ValueError as e:
+        raise UsageError(f"--{e}") from None
     scale_init, profile = args.scale_init, None
     if args.budget_prev is not None:
         prev = _read_prev(args.budget_prev)

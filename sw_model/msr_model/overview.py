@@ -38,6 +38,8 @@ class RunInfo:
     cycles: int | None = None
     bit_exact: bool | None = None
     frame_label: str = "RTL frame"
+    budget: int = 0                       # ray budget in pixels (docs/budget.md); 0 = off
+    scale_per_row: list | None = None     # with a budget: the scale u of every tile row (1.0 = 256)
 
 
 @dataclass
@@ -61,9 +63,10 @@ class Layout:
 PANELS = ("frame", "reference", "error", "source", "traced")
 TITLE_SIZE, TEXT_SIZE, CAPTION_SIZE = 20, 15, 16
 MARGIN, GAP, BAR_W, BAR_ROOM, LEGEND_ROOM = 16, 24, 18, 96, 320
+STRIP_W = 120                 # the budget's scale-per-row strip beside the traced map
 
 
-def layout(width: int, height: int) -> Layout:
+def layout(width: int, height: int, strip: bool = False) -> Layout:
     down = math.ceil(width / MAX_PANEL_W) if width > MAX_PANEL_W else 1
     up = max(1, MIN_PANEL_W // width) if down == 1 else 1
     pw = -(-width // down) * up
@@ -82,8 +85,16 @@ def layout(width: int, height: int) -> Layout:
         x0, y0, x1, y1 = boxes[name]
         boxes[name + "_bar"] = (x1 + 12, y0, x1 + 12 + BAR_W, y1)
     lx0 = MARGIN + 2 * (cell_w + GAP)
+    extra = 0
+    if strip:
+        # the scale per tile row, rows at the traced map's heights, between it and the legend
+        x0, y0, _, y1 = boxes["traced_bar"]
+        sx0 = x0 + BAR_ROOM - 12
+        boxes["scale"] = (sx0, y0, sx0 + STRIP_W - GAP, y1)
+        extra = max(0, sx0 + STRIP_W - lx0)
+        lx0 += extra
     boxes["legend"] = (lx0, boxes["traced"][1], lx0 + cell_w, boxes["traced"][3])
-    w = MARGIN + 3 * cell_w + 2 * GAP + MARGIN
+    w = MARGIN + 3 * cell_w + 2 * GAP + MARGIN + extra
     h = MARGIN + title_h + 2 * row_h - GAP + MARGIN
     h = max(h, boxes["legend"][1] + LEGEND_ROOM)     # a flat frame still has room for the legend
     return Layout(width, height, down, up, (pw, ph), (max(w, 900), h), boxes, MARGIN)
@@ -173,7 +184,28 @@ def title_lines(info: RunInfo, width: int, height: int, traced_fraction: float) 
         parts.append(f"{info.cycles:,} cycles ({info.cycles / (width * height):.3f}/pixel)".replace(",", " "))
     if info.bit_exact is not None:
         parts.append("bit exact with the golden model" if info.bit_exact else "NOT bit exact with the golden model")
+    if info.budget:
+        traced = traced_fraction * width * height
+        parts.insert(1, f"budget {info.budget} ({100 * info.budget / (width * height):.1f} %, "
+                        f"{100 * (traced - info.budget) / info.budget:+.2f} %)")
     return first, "   ".join(parts)
+
+
+def _scale_strip(draw, box, lay: Layout, tile: int, scales, f):
+    """The budget's scale u of each tile row as a bar from the 1.0 line (log scale, 1/5.7 .. 5.7),
+    at the height of the row in the traced map."""
+    x0, y0, x1, y1 = box
+    lo, hi = math.log(45 / 256), math.log(1448 / 256)
+    xs = lambda u: x0 + round((math.log(u / 256) - lo) / (hi - lo) * (x1 - x0))   # noqa: E731
+    draw.rectangle((x0 - 1, y0 - 1, x1, y1), outline=INK)
+    for r, u in enumerate(scales):
+        ya = y0 + round(r * tile / lay.height * (y1 - y0))
+        yb = max(y0 + round(min((r + 1) * tile, lay.height) / lay.height * (y1 - y0)) - 1, ya)
+        a, b = sorted((xs(256), xs(u)))
+        draw.rectangle((a, ya, max(b, a + 1), yb), fill=(68, 1, 84) if u >= 256 else (53, 183, 121))
+    draw.line((xs(256), y0, xs(256), y1), fill=INK)
+    for u, text in ((45, "/5.7"), (256, "1"), (1448, "x5.7")):
+        draw.text((xs(u), y1 + 4), text, fill=INK, font=f, anchor="mt")
 
 
 def _colour_bar(im, draw, box, cmap, labels, f):
@@ -204,7 +236,7 @@ def summary_image(frame, reference, source, info: RunInfo):
     if frame.shape != (H, W, 3) or reference.shape != (H, W, 3):
         raise spec.SpecError(f"summary: frame {frame.shape}, reference {reference.shape} and source map "
                              f"{source.shape} differ in size")
-    lay = layout(W, H)
+    lay = layout(W, H, strip=info.scale_per_row is not None)
     im = Image.new("RGB", lay.size, BG)
     d = ImageDraw.Draw(im)
     f_title, f_cap, f_text = font(TITLE_SIZE), font(CAPTION_SIZE), font(TEXT_SIZE)
@@ -242,6 +274,10 @@ def summary_image(frame, reference, source, info: RunInfo):
         ticks.append((1.0, str(vmax)))
     _colour_bar(im, d, lay.boxes["error_bar"], ERROR_CMAP, ticks, f_text)
     _colour_bar(im, d, lay.boxes["traced_bar"], TRACED_CMAP, [(v / 4, f"{25 * v} %") for v in range(5)], f_text)
+    if info.scale_per_row is not None:
+        _scale_strip(d, lay.boxes["scale"], lay, info.params.tile, info.scale_per_row, f_text)
+        sx0, sy0 = lay.boxes["scale"][:2]
+        d.text((sx0, sy0 - 6), "scale u / row", fill=INK, font=f_cap, anchor="ld")
 
     entries = legend_entries(info.params.levels, source)
     lx0, ly0, _, _ = lay.boxes["legend"]

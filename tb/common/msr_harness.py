@@ -114,6 +114,7 @@ class HarnessRun:
     latency: int = 4
     jitter: int = 8
     quiet: bool = False
+    budget: object = None                               # msr_model.budget.BudgetConfig, or None: off
     extra: list[str] = field(default_factory=list)     # e.g. --waves FILE --wave-tile TX,TY
     _proc: subprocess.Popen | None = None
     _dir: tempfile.TemporaryDirectory | None = None
@@ -132,6 +133,10 @@ class HarnessRun:
                f"+scene={self.scene}", f"+width={self.width}", f"+height={self.height}",
                f"+quality={0 if self.quality == 'fast' else 1}",
                f"+rnd_latency={self.latency}", f"+rnd_jitter={self.jitter}"]
+        if self.budget is not None and self.budget.budget:
+            b = self.budget
+            cmd += ["--budget", str(b.budget), "--scale-init", str(b.scale_init), "--prior-shift",
+                    str(b.prior_shift), "--seeded", str(int(b.profile is not None))]
         if self.camera:
             cmd.append(f"+camera={self.camera}")  # read by sim/msr_dpi.cpp, passed to the library unchanged
         if self.quiet:
@@ -187,10 +192,14 @@ class GoldenFrames:
         self.width, self.height = width, height
         self._cache: dict = {}
 
-    def frame(self, params: Params, rule: str = "patent"):
-        key = (params, rule)
+    def frame(self, params: Params, rule: str = "patent", budget=None):
+        """golden.select, or with `budget` (a msr_model.budget.BudgetConfig) select_budget."""
+        from msr_model.budget import select_budget
+        key = (params, rule, budget)
         if key not in self._cache:
-            self._cache[key] = select(ImageRenderer(self.reference), self.width, self.height, params, rule=rule)
+            r = ImageRenderer(self.reference)
+            self._cache[key] = (select(r, self.width, self.height, params, rule=rule) if budget is None else
+                                select_budget(r, self.width, self.height, params, budget, rule=rule))
         return self._cache[key]
 
 
