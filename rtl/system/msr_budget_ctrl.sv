@@ -145,8 +145,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
     ST_LAW,      // which law
     ST_NUM,      // (N + N0) * (W * H - P)
     ST_DEN,      // (P + P0) * X
-    ST_DIV0,     // saturation test
-    ST_DIV,      // 11 quotient bits
+    ST_DIV,      // the saturation test, then 11 quotient bits
     ST_SLEW,     // u_{j+2}
     ST_SQ,       // m_{j+2}
     ST_FIN       // SCALE_OUT, the memory's tag
@@ -161,11 +160,12 @@ module msr_budget_ctrl import msr_pkg::*; #(
   logic [5:0]        h_last_q;
   logic [17:0]       g_full_q, p_full_q, g_last_q, p_last_q;
   logic [WH_W-1:0]   grid_q, wh_q, bud_q, spare_q, p0_q;
-  logic [WH_W-1:0]   c_sum_q, p_sum_q, g_sum_q;
+  logic [WH_W-1:0]   p_sum_q;
+  logic signed [26:0] x_rem_q;             // X = (B' - G) + Gd - C, kept as a running sum
+  logic              row_last_q, row_new_q; // row rows_done is the last; it sets a new scale
   logic [ACT_W-1:0]  n_q, n0_q, atot_q, ad_q, mem_sum_q;
   logic [10:0]       u0_q;
   logic [17:0]       c_q, g_row_q, p_row_q;
-  logic [MP_W-1:0]   x_q;                  // X when > 0 (< 2^25)
   logic [10:0]       u_q [3];
   logic [12:0]       m_q [3];
   logic [1:0]        base_q;               // slot of row rows_done_q
@@ -226,6 +226,10 @@ module msr_budget_ctrl import msr_pkg::*; #(
   logic [10:0]      div_quo_q;
   logic [3:0]       div_cnt_q;
   logic [REM_W-1:0] div_num_in, div_den_in;
+  logic [REM_W:0]   div_diff;               // remainder - divisor: its borrow is the compare
+  logic             div_ge;
+  assign div_diff = {1'b0, div_rem_q} - {1'b0, div_den_q};
+  assign div_ge   = !div_diff[REM_W];
 
   // ---- Activity memory ---------------------------------------------------------------------
   (* no_rw_check *)
@@ -243,15 +247,15 @@ module msr_budget_ctrl import msr_pkg::*; #(
   end
 
   // ---- Row quantities ------------------------------------------------------------------------
-  logic             row_last, row_new;    // row rows_done is the last; it sets a new scale
+  logic             row_last, row_new, x_pos;
   logic [1:0]       slot1, slot2;
   logic [17:0]      g_sel, p_sel, c_minus_g;
   logic [WH_W:0]    pp0;                  // P + P0 <= 2^25: 26 bits
   logic [ACT_W-1:0] nn0, a_left;
-  logic signed [26:0] x_new;
   logic [10:0]      slew, u_new;
-  assign row_last  = (rows_done_q == nty_q - ROW_W'(1));
-  assign row_new   = (ROW_W'(rows_done_q + ROW_W'(2)) < nty_q) && (rows_done_q < nty_q);
+  assign row_last  = row_last_q;
+  assign row_new   = row_new_q;
+  assign x_pos     = !x_rem_q[26] && x_rem_q != '0;
   assign slot1     = inc3(base_q);
   assign slot2     = inc3(slot1);
   assign g_sel     = row_last ? g_last_q : g_full_q;
@@ -260,8 +264,6 @@ module msr_budget_ctrl import msr_pkg::*; #(
   assign pp0       = (WH_W + 1)'(p_sum_q) + (WH_W + 1)'(p0_q);
   assign nn0       = n_q + n0_q;
   assign a_left    = (atot_q > ad_q) ? atot_q - ad_q : '0;
-  assign x_new     = $signed({2'b00, bud_q}) + $signed({2'b00, g_sum_q})
-                   - $signed({2'b00, c_sum_q}) - $signed({2'b00, grid_q});
   assign slew      = u_q[slot1] >> 1;
   assign u_new     = clamp_u((div_quo_q > slew) ? div_quo_q : slew);
 
@@ -327,16 +329,16 @@ module msr_budget_ctrl import msr_pkg::*; #(
       ST_LAW: begin
         if (row_last) begin
           div_num_in = REM_W'(n_q);
-          div_den_in = REM_W'(spare_q);
-          state_d    = (spare_q == '0) ? ST_FIN : ST_DIV0;
+          div_den_in = REM_W'(spare_q) << 11;
+          state_d    = (spare_q == '0) ? ST_FIN : ST_DIV;
         end else if (!row_new) begin
           state_d = ST_SQ;                       // no new scale: just the row count
-        end else if (x_new <= 0) begin
+        end else if (!x_pos) begin
           state_d = ST_SLEW;                     // q = U_MAX + 1 (set below)
         end else if (seeded_q) begin
           div_num_in = REM_W'(a_left);
-          div_den_in = REM_W'(x_new);
-          state_d    = ST_DIV0;
+          div_den_in = REM_W'(x_rem_q[MP_W-1:0]) << 11;
+          state_d    = ST_DIV;
         end else begin
           mul_load = 1'b1;
           mul_a    = MC_W'(nn0);
@@ -347,12 +349,13 @@ module msr_budget_ctrl import msr_pkg::*; #(
       ST_NUM: if (mul_done) begin
         mul_load = 1'b1;
         mul_a    = MC_W'(pp0);
-        mul_b    = MP_W'(x_q);
+        mul_b    = x_rem_q[MP_W-1:0];
         state_d  = ST_DEN;
       end
-      ST_DEN: if (mul_done) state_d = ST_DIV0;
-      ST_DIV0: state_d = (div_rem_q >= (div_den_q << 11)) ? (row_last ? ST_FIN : ST_SLEW) : ST_DIV;
-      ST_DIV: if (div_cnt_q == 4'd1) state_d = row_last ? ST_FIN : ST_SLEW;
+      ST_DEN: if (mul_done) state_d = ST_DIV;
+      ST_DIV: if (div_cnt_q == 4'd1 || (div_cnt_q == 4'd12 && div_ge)) begin
+        state_d = row_last ? ST_FIN : ST_SLEW;
+      end
       ST_SLEW: begin
         mul_load = 1'b1;
         mul_a    = MC_W'(u_new);
@@ -385,9 +388,10 @@ module msr_budget_ctrl import msr_pkg::*; #(
       bud_q             <= '0;
       spare_q           <= '0;
       p0_q              <= '0;
-      c_sum_q           <= '0;
       p_sum_q           <= '0;
-      g_sum_q           <= '0;
+      x_rem_q           <= '0;
+      row_last_q        <= 1'b0;
+      row_new_q         <= 1'b0;
       n_q               <= '0;
       n0_q              <= '0;
       atot_q            <= '0;
@@ -397,7 +401,6 @@ module msr_budget_ctrl import msr_pkg::*; #(
       c_q               <= '0;
       g_row_q           <= '0;
       p_row_q           <= '0;
-      x_q               <= '0;
       u_q               <= '{default: '0};
       m_q               <= '{default: '0};
       base_q            <= '0;
@@ -446,9 +449,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
         if (check_i && !start_i) check_done_q <= 1'b0;
         if (start_i) begin
           n_q               <= '0;
-          c_sum_q           <= '0;
           p_sum_q           <= '0;
-          g_sum_q           <= '0;
           ad_q              <= '0;
           rows_done_q       <= '0;
           base_q            <= '0;
@@ -478,12 +479,17 @@ module msr_budget_ctrl import msr_pkg::*; #(
             g_last_q <= 18'(mul_acc_q);
             spare_q  <= (bud_q > grid_q) ? bud_q - grid_q : '0;
           end
-          ST_PL: if (mul_done) p_last_q <= 18'(mul_acc_q);
+          ST_PL: if (mul_done) begin
+            p_last_q <= 18'(mul_acc_q);
+            x_rem_q  <= $signed({2'b00, spare_q});
+          end
           ST_N0: if (mul_done) n0_q <= ACT_W'(mul_acc_q >> prior_shift_i);
           ST_M0: if (mul_done) begin
             m_q[0] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
             m_q[1] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
-            act_q  <= 1'b1;
+            act_q      <= 1'b1;
+            row_last_q <= nty_q == ROW_W'(1);
+            row_new_q  <= nty_q > ROW_W'(2);
           end
           ST_IDLE: if (act_q && row_done_i) begin
             c_q     <= row_traced_i;
@@ -493,42 +499,41 @@ module msr_budget_ctrl import msr_pkg::*; #(
           ST_ACT: ;
           ST_ACC: begin
             n_q     <= n_q + ACT_W'(mul_acc_q);
-            c_sum_q <= c_sum_q + WH_W'(c_q);
             p_sum_q <= p_sum_q + WH_W'(p_row_q);
-            g_sum_q <= g_sum_q + WH_W'(g_row_q);
+            x_rem_q <= x_rem_q - $signed({9'd0, c_q}) + $signed({9'd0, g_row_q});
             if (seeded_q) ad_q <= ad_q + ACT_W'(mem_rdata_q);
           end
           ST_LAW: begin
-            x_q       <= MP_W'(x_new);
-            div_quo_q <= Q_SAT;
+            div_quo_q <= row_new && !x_pos ? Q_SAT : 11'd0;
+            div_cnt_q <= 4'd12;
             div_rem_q <= div_num_in;
             div_den_q <= div_den_in;
             if (row_last && spare_q == '0) scale_out_q <= U_MAX;
           end
           ST_NUM: if (mul_done) div_rem_q <= REM_W'(mul_acc_q);
-          ST_DEN: if (mul_done) div_den_q <= REM_W'(mul_acc_q);
-          ST_DIV0: begin
-            div_cnt_q <= 4'd11;
-            div_den_q <= div_den_q << 10;
-            if (div_rem_q < (div_den_q << 11)) div_quo_q <= '0;
-            else if (row_last) scale_out_q <= U_MAX;  // clamp(U_MAX + 1)
-          end
+          ST_DEN: if (mul_done) div_den_q <= REM_W'(mul_acc_q) << 11;
+          // Step 12 compares with den << 11: a quotient >= 2^11 saturates at U_MAX + 1 (it
+          // clamps to U_MAX either way). Steps 11..1 give the quotient bits 10..0.
           ST_DIV: begin
             div_cnt_q <= div_cnt_q - 4'd1;
             div_den_q <= div_den_q >> 1;
-            if (div_rem_q >= div_den_q) begin
-              div_rem_q <= div_rem_q - div_den_q;
-              div_quo_q <= {div_quo_q[9:0], 1'b1};
-              if (div_cnt_q == 4'd1 && row_last) scale_out_q <= clamp_u({div_quo_q[9:0], 1'b1});
+            if (div_cnt_q == 4'd12) begin
+              if (div_ge) begin
+                div_quo_q <= Q_SAT;
+                if (row_last) scale_out_q <= U_MAX;
+              end
             end else begin
-              div_quo_q <= {div_quo_q[9:0], 1'b0};
-              if (div_cnt_q == 4'd1 && row_last) scale_out_q <= clamp_u({div_quo_q[9:0], 1'b0});
+              if (div_ge) div_rem_q <= div_diff[REM_W-1:0];
+              div_quo_q <= {div_quo_q[9:0], div_ge};
+              if (div_cnt_q == 4'd1 && row_last) scale_out_q <= clamp_u({div_quo_q[9:0], div_ge});
             end
           end
           ST_SLEW: u_q[slot2] <= u_new;
           ST_SQ: if (mul_done) begin
             if (row_new) m_q[slot2] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
             rows_done_q <= rows_done_q + ROW_W'(1);
+            row_last_q  <= rows_done_q + ROW_W'(2) == nty_q;
+            row_new_q   <= rows_done_q + ROW_W'(3) < nty_q;
             base_q      <= slot1;
           end
           ST_FIN: begin
@@ -562,7 +567,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
   `MSR_ASSERT(a_row_when_ready, row_done_i |-> row_ready_o || start_i || check_i || clear_i)
   `MSR_ASSERT(a_start_budget_on, start_i |-> budget_i != '0)
   `MSR_ASSERT(a_row_traced_range, state_q == ST_ACC |-> c_q >= g_row_q && c_q <= p_row_q)
-  `MSR_ASSERT(a_div_den_nonzero, state_q == ST_DIV0 |-> div_den_q != '0)
+  `MSR_ASSERT(a_div_den_nonzero, state_q == ST_DIV && div_cnt_q == 4'd12 |-> div_den_q != '0)
   `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= U_MIN && u_q[base_q] <= U_MAX)
   `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < nty_q)
   `MSR_ASSERT(a_num_fits, state_q == ST_NUM && mul_done |-> mul_acc_q[PROD_W-1] == 1'b0)
