@@ -4,8 +4,9 @@
 // at most N-1 grants to others are taken before its own; with LOCK, an offered grant that is
 // not taken stays while its request stays.
 module msr_rr_arb_fv #(
-  parameter int unsigned N    = 4,
-  parameter bit          LOCK = 1'b0
+  parameter int unsigned N      = 4,
+  parameter bit          LOCK   = 1'b0,
+  parameter bit          PREFIX = 1'b0     // the LUT prefix choice instead of the carry chain
 ) (
   input logic                 clk_i,
   input logic                 rst_ni,
@@ -20,7 +21,7 @@ module msr_rr_arb_fv #(
   logic [IDX_W-1:0] idx_o;
   logic             valid_o;
 
-  msr_rr_arb #(.N(N), .LOCK(LOCK)) dut (
+  msr_rr_arb #(.N(N), .LOCK(LOCK), .PREFIX(PREFIX)) dut (
     .clk_i, .rst_ni, .clear_i, .req_i, .gnt_o, .idx_o, .valid_o, .ready_i
   );
 

@@ -6,13 +6,14 @@
 //
 // Timing: the "requests above the last winner" mask is a register (a thermometer code), and
 // the grant and the next mask both come from the lowest set bit of {requests, requests above
-// the last winner}: a prefix OR in LUTs for N <= 8, one 2N-bit carry chain above that, so the
+// the last winner}: one 2N-bit carry chain (or, with PREFIX, a prefix OR in LUTs), so the
 // grant is a handful of LUT levels for any N.
 `include "msr_assert.svh"
 
 module msr_rr_arb #(
   parameter int unsigned N     = 4,                      // requesters, >= 1
   parameter bit          LOCK  = 1'b0,                   // hold an offered, untaken grant
+  parameter bit          PREFIX = 1'b0,                  // the choice in LUTs, not a carry chain
   parameter int unsigned IDX_W = (N > 1) ? $clog2(N) : 1
 ) (
   input  logic             clk_i,     // clock
@@ -39,12 +40,13 @@ module msr_rr_arb #(
   // the lowest set one (x ^ (x - 1)); the pointer for the next round comes from the same
   // vector, not from a second chain behind the grant.
   assign both = {req_i, req_i & above_q};
-  if (N <= 8) begin : g_prefix_or
-    // Few requesters: a prefix OR in LUTs. The carry chain below sits in a fixed column of
-    // the die, and the placer pulled the render mux's four queues' heads across it and back
-    // (7.6 of 10.3 ns was wire in the default top); a 2N <= 16-input prefix is two or three
-    // LUT levels that the placer can put beside the queues. Same function: bit i is set
-    // while no request is set below it.
+  if (PREFIX) begin : g_prefix_or
+    // A prefix OR in LUTs, for an arbiter whose requesters are spread over the die: a carry
+    // chain sits in one column, and the placer pulled the render mux's four queue heads across
+    // to it and back (7.6 of 10.3 ns was wire in the default top); LUTs can sit beside the
+    // queues. Where the requesters are close, the carry chain is the faster (the writer's
+    // input arbiter lost about 4 MHz on the top with this). Same function: bit i is set while
+    // no request is set below it.
     always_comb begin
       logic seen;
       seen = 1'b0;

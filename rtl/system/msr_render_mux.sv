@@ -103,7 +103,8 @@ module msr_render_mux import msr_pkg::*; #(
   logic                   arb_valid, sp_ready;
   rreq_t                  req_out;
 
-  msr_rr_arb #(.N(NUM_ENGINES), .LOCK(1'b0), .IDX_W(EID_W)) u_req_arb (
+  // PREFIX: the engines' queue heads are spread over the die (see msr_rr_arb)
+  msr_rr_arb #(.N(NUM_ENGINES), .LOCK(1'b0), .PREFIX(1'b1), .IDX_W(EID_W)) u_req_arb (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
     .clear_i (clear_i),
