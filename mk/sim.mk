@@ -29,14 +29,15 @@ SIM_VFLAGS := --cc --exe --build -j 2 -O3 --x-assign fast --x-initial fast --noa
     --top-module msr_sim_top --threads $(SIM_THREADS) --public-params \
     -CFLAGS "-O2 -I$(CURDIR)/sim -I$(CURDIR)/sw_model/renderer/include" \
     -LDFLAGS "-L$(CURDIR)/build/renderer -lmsr_render -Wl,-rpath,$(CURDIR)/build/renderer" \
-    -MAKEFLAGS "OPT_FAST=-O2 OPT_SLOW=-O1 OPT_GLOBAL=-O2 PYTHON3=python3 CFG_CXXFLAGS_PCH_I=-include" \
-    $(if $(SIM_WAVES_ON),--trace-fst --trace-structs) $(if $(SIM_BUDGET_ON),-GBUDGET_EN=1)
+    -MAKEFLAGS "OPT_FAST=-O2 OPT_SLOW=-O1 OPT_GLOBAL=-O2 PYTHON3=python3 CFG_CXXFLAGS_PCH_I=-include"
 
-$(SIM_BIN): $(SIM_RTL) $(SIM_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f mk/sim.mk build/renderer/libmsr_render.so
-	@mkdir -p $(SIM_BUILD)
-	@echo "make sim: building the Verilator harness into $(SIM_BUILD) (log: $(SIM_BUILD)/build.log)"
-	@$(ENV) verilator $(SIM_VFLAGS) -Mdir $(SIM_BUILD) -o Vmsr_sim_top $(MSR_RTL_OPTS) $(SIM_RTL) $(SIM_CPP) > $(SIM_BUILD)/build.log 2>&1 || \
-	    { tail -40 $(SIM_BUILD)/build.log; exit 1; }
+# build/sim/{fast,waves}[_budget]/: the folder names the build (tracing; the budget controller).
+build/sim/%/Vmsr_sim_top: $(SIM_RTL) $(SIM_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f mk/sim.mk build/renderer/libmsr_render.so
+	@mkdir -p $(@D)
+	@echo "make sim: building the Verilator harness into $(@D) (log: $(@D)/build.log)"
+	@$(ENV) verilator $(SIM_VFLAGS) $(if $(findstring waves,$*),--trace-fst --trace-structs) \
+	    $(if $(findstring budget,$*),-GBUDGET_EN=1) -Mdir $(@D) -o Vmsr_sim_top $(MSR_RTL_OPTS) $(SIM_RTL) \
+	    $(SIM_CPP) > $(@D)/build.log 2>&1 || { tail -40 $(@D)/build.log; exit 1; }
 
 .PHONY: sim-build
 sim-build: setup renderer $(SIM_BIN)
@@ -66,7 +67,7 @@ TEST_DEPS += $(SIM_ASSERT_BIN)
 
 # tb/msr_sim runs the harness: it is built before pytest starts, not inside a pytest worker
 # next to the cocotb builds (two 2-3 GB compilers at once on a 2-core machine).
-TEST_DEPS += build/sim/fast/Vmsr_sim_top
+TEST_DEPS += build/sim/fast/Vmsr_sim_top build/sim/fast_budget/Vmsr_sim_top
 
 sim: setup renderer $(SIM_BIN)
 	@$(ENV) python scripts/run_sim.py --harness $(SIM_BIN) --scene "$(SCENE)" --width "$(WIDTH)" \

@@ -7,18 +7,21 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-# The make target of each harness and what it builds (mk/sim.mk).
+# Each harness: the make command line that builds it and what it builds (mk/sim.mk).
 HARNESSES = {
-    "sim-build": ROOT / "build" / "sim" / "fast" / "Vmsr_sim_top",           # make sim
-    "sim-assert-build": ROOT / "build" / "sim" / "assert" / "Vmsr_sim_top",  # --assert, checkers bound
+    "sim-build": (["sim-build"], ROOT / "build" / "sim" / "fast" / "Vmsr_sim_top"),           # make sim
+    "sim-assert-build": (["sim-assert-build"], ROOT / "build" / "sim" / "assert" / "Vmsr_sim_top"),
+    # make sim BUDGET=...: msr_top with the ray-budget controller (BUDGET_EN 1)
+    "sim-budget-build": (["sim-build", "BUDGET=1"], ROOT / "build" / "sim" / "fast_budget" / "Vmsr_sim_top"),
 }
 
 
-def build_harness(target: str) -> Path:
-    """`make -s <target>` and the harness it builds. make test builds the harnesses before
-    pytest starts (TEST_DEPS), so there this only checks they are up to date."""
-    subprocess.run(["make", "-s", target], cwd=ROOT, check=True)
-    return HARNESSES[target]
+def build_harness(name: str) -> Path:
+    """Build a harness of HARNESSES through make and return its path. make test builds the
+    harnesses before pytest starts (TEST_DEPS), so there this only checks they are up to date."""
+    args, path = HARNESSES[name]
+    subprocess.run(["make", "-s", *args], cwd=ROOT, check=True)
+    return path
 
 
 def run_sim(harness: Path, out: Path, *args: str, **kwargs) -> subprocess.CompletedProcess:

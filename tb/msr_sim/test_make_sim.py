@@ -86,3 +86,33 @@ def test_lindilate(harness, tmp_path):
     rep = check_outputs(tmp_path)
     assert rep["rule"] == "lindilate"
     assert r.returncode == 0 and rep["bit_exact"], r.stdout + r.stderr
+
+
+@pytest.fixture(scope="module")
+def budget_harness():
+    return build_harness("sim-budget-build")
+
+
+def test_budget(budget_harness, harness, tmp_path):
+    """make sim BUDGET= (contracts.md, third round): the frame through a top with the budget
+    controller, bit exact with select_budget, report.json's budget fields, SCALE_OUT read from
+    the RTL equal to the golden model's; a percentage budget; a budget below the initial grid
+    refused before anything runs (exit 2); a budget given to a harness without the controller
+    is a failure, not a silent frame without it."""
+    r = run_sim(budget_harness, tmp_path / "a", "--width", "96", "--height", "64", "--levels", "3",
+                "--thr", "8,16,32", "--budget", "1200")
+    assert r.returncode == 0, r.stdout + r.stderr
+    rep = check_outputs(tmp_path / "a")
+    bc = rep["budget_control"]
+    assert rep["bit_exact"] and rep["budget"] == 1200 and bc["scale_out_equal"]
+    assert len(bc["scale_per_row"]) == 4 and sum(bc["traced_per_row"]) == rep["traced"]
+    assert bc["budget_error"] == pytest.approx((rep["traced"] - 1200) / 1200)
+    r = run_sim(budget_harness, tmp_path / "b", "--width", "96", "--height", "64", "--levels", "3",
+                "--budget", "25%")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert json.loads((tmp_path / "b" / "report.json").read_text())["budget"] == 96 * 64 // 4
+    r = run_sim(budget_harness, tmp_path / "c", "--width", "96", "--height", "64", "--levels", "3",
+                "--budget", "10")
+    assert r.returncode == 2 and "initial grid" in r.stderr, r.stderr
+    r = run_sim(harness, tmp_path / "d", "--width", "96", "--height", "64", "--levels", "3", "--budget", "1200")
+    assert r.returncode == 1 and "STATUS.ERROR = 14" in (r.stdout + r.stderr)
