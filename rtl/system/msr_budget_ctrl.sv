@@ -18,7 +18,7 @@
 //   row_done_i: a_j = (c_j - g_j) * u_j, the sums, the memory word, then the law of section 4
 //     (first frame: two products and a quotient; seeded: a quotient), the slew limit and the
 //     clamp, and m of row j + 2, row_ready_o low: at most 1 + 12 (a_j) + 2 + 26 + 26 (the two
-//     products, multipliers of 25 bits) + 12 (division) + 1 + 12 (m) = 92 clocks.
+//     products, multipliers of 25 bits) + 12 (division) + 2 + 12 (m) = 93 clocks.
 //
 // Scales: three slots (u, m) for the rows j, j + 1, j + 2 around rows_done (slot of row
 // rows_done = base_q, the next ones follow modulo 3). row_ok_o answers row_idx_i: its scale is
@@ -147,6 +147,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
     ST_DEN,      // (P + P0) * X
     ST_DIV,      // the saturation test, then 11 quotient bits
     ST_SLEW,     // u_{j+2}
+    ST_SQ0,      // u_{j+2} * u_{j+2} loaded
     ST_SQ,       // m_{j+2}
     ST_FIN       // SCALE_OUT, the memory's tag
   } state_e;
@@ -225,6 +226,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
   logic [REM_W-1:0] div_rem_q, div_den_q;   // remainder; the divisor shifted to the next bit
   logic [10:0]      div_quo_q;
   logic [3:0]       div_cnt_q;
+  logic             div_sat_q;              // the quotient is >= 2^11
   logic [REM_W-1:0] div_num_in, div_den_in;
   logic [REM_W:0]   div_diff;               // remainder - divisor: its borrow is the compare
   logic             div_ge;
@@ -250,6 +252,8 @@ module msr_budget_ctrl import msr_pkg::*; #(
   logic             row_last, row_new, x_pos;
   logic [1:0]       slot1, slot2;
   logic [17:0]      g_sel, p_sel, c_minus_g;
+  logic [18:0]      c_diff;                // c - g and its borrow (one carry chain)
+  logic [ACT_W:0]   a_diff;                // Atot - Ad and its borrow
   logic [WH_W:0]    pp0;                  // P + P0 <= 2^25: 26 bits
   logic [ACT_W-1:0] nn0, a_left;
   logic [10:0]      slew, u_new;
@@ -260,10 +264,12 @@ module msr_budget_ctrl import msr_pkg::*; #(
   assign slot2     = inc3(slot1);
   assign g_sel     = row_last ? g_last_q : g_full_q;
   assign p_sel     = row_last ? p_last_q : p_full_q;
-  assign c_minus_g = (row_traced_i > g_sel) ? row_traced_i - g_sel : '0;
+  assign c_diff    = {1'b0, row_traced_i} - {1'b0, g_sel};
+  assign c_minus_g = c_diff[18] ? '0 : c_diff[17:0];
   assign pp0       = (WH_W + 1)'(p_sum_q) + (WH_W + 1)'(p0_q);
   assign nn0       = n_q + n0_q;
-  assign a_left    = (atot_q > ad_q) ? atot_q - ad_q : '0;
+  assign a_diff    = {1'b0, atot_q} - {1'b0, ad_q};
+  assign a_left    = a_diff[ACT_W] ? '0 : a_diff[ACT_W-1:0];
   assign slew      = u_q[slot1] >> 1;
   assign u_new     = clamp_u((div_quo_q > slew) ? div_quo_q : slew);
 
@@ -353,13 +359,12 @@ module msr_budget_ctrl import msr_pkg::*; #(
         state_d  = ST_DEN;
       end
       ST_DEN: if (mul_done) state_d = ST_DIV;
-      ST_DIV: if (div_cnt_q == 4'd1 || (div_cnt_q == 4'd12 && div_ge)) begin
-        state_d = row_last ? ST_FIN : ST_SLEW;
-      end
-      ST_SLEW: begin
+      ST_DIV: if (div_cnt_q == 4'd1) state_d = row_last ? ST_FIN : ST_SLEW;
+      ST_SLEW: state_d = ST_SQ0;
+      ST_SQ0: begin
         mul_load = 1'b1;
-        mul_a    = MC_W'(u_new);
-        mul_b    = MP_W'(u_new);
+        mul_a    = MC_W'(u_q[slot2]);
+        mul_b    = MP_W'(u_q[slot2]);
         state_d  = ST_SQ;
       end
       ST_SQ: if (mul_done) state_d = ST_IDLE;
@@ -416,6 +421,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
       div_den_q         <= '0;
       div_quo_q         <= '0;
       div_cnt_q         <= '0;
+      div_sat_q         <= 1'b0;
       row_ok_q          <= 1'b0;
       row_m_q           <= '0;
     end else if (clear_i) begin
@@ -504,28 +510,26 @@ module msr_budget_ctrl import msr_pkg::*; #(
             if (seeded_q) ad_q <= ad_q + ACT_W'(mem_rdata_q);
           end
           ST_LAW: begin
-            div_quo_q <= row_new && !x_pos ? Q_SAT : 11'd0;
+            // q = U_MAX + 1 without a division: X <= 0, or the last row with B' = G
+            div_quo_q <= (row_last ? spare_q == '0 : row_new && !x_pos) ? Q_SAT : 11'd0;
+            div_sat_q <= 1'b0;
             div_cnt_q <= 4'd12;
             div_rem_q <= div_num_in;
             div_den_q <= div_den_in;
-            if (row_last && spare_q == '0) scale_out_q <= U_MAX;
           end
           ST_NUM: if (mul_done) div_rem_q <= REM_W'(mul_acc_q);
           ST_DEN: if (mul_done) div_den_q <= REM_W'(mul_acc_q) << 11;
           // Step 12 compares with den << 11: a quotient >= 2^11 saturates at U_MAX + 1 (it
-          // clamps to U_MAX either way). Steps 11..1 give the quotient bits 10..0.
+          // clamps to U_MAX either way; the steps still run, so the step count does not
+          // depend on the compare). Steps 11..1 give the quotient bits 10..0.
           ST_DIV: begin
             div_cnt_q <= div_cnt_q - 4'd1;
             div_den_q <= div_den_q >> 1;
             if (div_cnt_q == 4'd12) begin
-              if (div_ge) begin
-                div_quo_q <= Q_SAT;
-                if (row_last) scale_out_q <= U_MAX;
-              end
+              div_sat_q <= div_ge;
             end else begin
               if (div_ge) div_rem_q <= div_diff[REM_W-1:0];
-              div_quo_q <= {div_quo_q[9:0], div_ge};
-              if (div_cnt_q == 4'd1 && row_last) scale_out_q <= clamp_u({div_quo_q[9:0], div_ge});
+              div_quo_q <= (div_cnt_q == 4'd1 && div_sat_q) ? Q_SAT : {div_quo_q[9:0], div_ge};
             end
           end
           ST_SLEW: u_q[slot2] <= u_new;
@@ -537,6 +541,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
             base_q      <= slot1;
           end
           ST_FIN: begin
+            scale_out_q       <= clamp_u(div_quo_q);
             rows_done_q       <= rows_done_q + ROW_W'(1);
             base_q            <= slot1;
             act_q             <= 1'b0;
