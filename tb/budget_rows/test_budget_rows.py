@@ -12,9 +12,8 @@ import pytest
 HERE = Path(__file__).resolve().parent
 
 import cocotb  # noqa: E402
-from cocotb.clock import Clock  # noqa: E402
-from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge, Timer  # noqa: E402
-from msr_tb import seeded_rng  # noqa: E402
+from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge  # noqa: E402
+from msr_tb import seeded_rng, start_clock_and_reset  # noqa: E402
 
 TILE_ENC = {8: 0, 16: 1, 32: 2}
 
@@ -73,15 +72,7 @@ async def run_frame(dut, rng, W, H, T, p_traced, p_ready):
 @cocotb.test()
 async def test_rows(dut):
     rng = seeded_rng(dut, 4242)
-    dut.rst_ni.value = 0
-    dut.clear_i.value = 0
-    dut.start_i.value = 0
-    dut.pix_fire_i.value = 0
-    dut.row_ready_i.value = 0
-    await Timer(1, unit="ns")
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    await ClockCycles(dut.clk_i, 2)
-    dut.rst_ni.value = 1
+    await start_clock_and_reset(dut, {"clear_i": 0, "start_i": 0, "pix_fire_i": 0, "row_ready_i": 0})
     await RisingEdge(dut.clk_i)
     cases = [(1, 1, 8, 1.0, 1.0), (70, 50, 16, 0.3, 0.5), (33, 100, 8, 0.0, 0.2),
              (64, 64, 32, 1.0, 0.9), (130, 9, 16, 0.5, 0.05)]

@@ -10,10 +10,9 @@ import pytest
 HERE = Path(__file__).resolve().parent
 
 import cocotb  # noqa: E402
-from cocotb.clock import Clock  # noqa: E402
-from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge, ReadOnly, Timer  # noqa: E402
+from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge, ReadOnly  # noqa: E402
 from msr_funcov import partial, record  # noqa: E402
-from msr_tb import seeded_rng  # noqa: E402
+from msr_tb import seeded_rng, start_clock_and_reset  # noqa: E402
 
 TILE_ENC = {8: 0, 16: 1, 32: 2}
 
@@ -114,17 +113,8 @@ async def test_frames(dut):
 
 
 async def reset(dut):
-    dut.rst_ni.value = 0
-    dut.clear_i.value = 0
-    dut.start_i.value = 0
-    dut.desc_ready_i.value = 0
-    dut.bud_en_i.value = 0
-    dut.row_ok_i.value = 0
-    dut.row_m_i.value = 256
-    await Timer(1, unit="ns")
-    cocotb.start_soon(Clock(dut.clk_i, 10, unit="ns").start())
-    await ClockCycles(dut.clk_i, 2)
-    dut.rst_ni.value = 1
+    await start_clock_and_reset(dut, {"clear_i": 0, "start_i": 0, "desc_ready_i": 0, "bud_en_i": 0,
+                                      "row_ok_i": 0, "row_m_i": 256})
     await RisingEdge(dut.clk_i)
 
 
