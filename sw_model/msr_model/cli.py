@@ -3,8 +3,8 @@
     python -m msr_model select IMAGE.png --tile 16 --levels 2 --thr 8,16 [--metric max|sum]
         [--fov-gain 0] [--rule patent|lindilate|lindilate2d] --out OUT.png --source-map MAP.png --stats STATS.json
         [--overview SUMMARY.png] [--budget N|P%] [--scale-init U] [--prior-shift S] [--budget-prev STATS.json]
-    python -m msr_model select --scene SCENE --width W --height H [--camera ...] [the same flags]
-    python -m msr_model render --scene SCENE --width W --height H [--camera ...] --out REF.png
+    python -m msr_model select --scene SCENE --width W --height H [--camera ... | --path FILE --frame K] [the same flags]
+    python -m msr_model render --scene SCENE --width W --height H [--camera ... | --path FILE --frame K] --out REF.png
 
 Any bad argument, unreadable or unsuitable input (over 4096 x 4096, 16-bit channels) or
 output path that cannot be written (unknown suffix, the same file twice, a folder that cannot
@@ -121,6 +121,10 @@ def _add_scene_flags(p, required):
     p.add_argument("--quality", default="fast", help="renderer quality mode (fast|heavy)")
     p.add_argument("--camera", default=None, metavar="EX,EY,EZ,TX,TY,TZ,FOV",
                    help="view: eye, target (model units), vertical field of view in degrees; up is +Y")
+    p.add_argument("--path", default=None, metavar="FILE",
+                   help="camera path (JSON keys, contracts.md): the view of frame --frame")
+    p.add_argument("--frame", type=_int_in(0, 1 << 30, "--frame"), default=None, metavar="K",
+                   help="frame number on --path (default 0)")
 
 
 def build_parser():
@@ -144,12 +148,25 @@ def _params(args) -> spec.Params:
                        fov_gain=args.fov_gain)
 
 
+def _camera(args) -> str | None:
+    """The view: --camera, or frame --frame of the camera path --path (msr_model.camera_path)."""
+    path, frame, camera = getattr(args, "path", None), getattr(args, "frame", None), getattr(args, "camera", None)
+    if frame is not None and path is None:
+        raise UsageError("--frame needs --path")
+    if path is None:
+        return camera
+    if camera is not None:
+        raise UsageError("give either --camera or --path, not both")
+    from .camera_path import load_path
+    return load_path(path).camera(frame or 0)
+
+
 def _open_scene(args):
     if args.width is None or args.height is None:
         raise UsageError("--scene needs --width and --height")
+    camera = _camera(args)
     from .embree import open_renderer  # the Embree rendering unit (C++ library through ctypes)
-    return open_renderer(args.scene, args.width, args.height, quality=args.quality,
-                         camera=getattr(args, "camera", None))
+    return open_renderer(args.scene, args.width, args.height, quality=args.quality, camera=camera)
 
 
 def _close(renderer):
@@ -162,6 +179,8 @@ def cmd_select(args) -> int:
     params = _params(args)
     if (args.image is None) == (args.scene is None):
         raise UsageError("give either IMAGE.png or --scene SCENE")
+    if args.image is not None and (args.path is not None or args.camera is not None):
+        raise UsageError("--camera and --path are views of a --scene, not of IMAGE.png")
     check_outputs({"--out": (args.out, (".png",)), "--source-map": (args.source_map, (".png",)),
                    "--stats": (args.stats, (".json",)), "--overview": (args.overview, (".png",))},
                   inputs=[args.image])
@@ -186,6 +205,8 @@ def cmd_select(args) -> int:
     stats.setdefault("budget", 0)
     stats["seconds"] = round(time.perf_counter() - t0, 4)
     stats["source"] = args.image if args.image is not None else args.scene
+    if args.path is not None:
+        stats["camera_path"] = {"file": args.path, "frame": args.frame or 0, "camera": _camera(args)}
     # All computed: only now write, all or nothing.
     with OutputSet() as out:
         out.write(args.out, lambda t: save_png(t, result.frame, format="PNG"))
