@@ -6,6 +6,11 @@ SIM_WAVES_ON := $(filter 1 yes true,$(WAVES))
 # the frame); the harness is then a build of msr_top with the budget controller (BUDGET_EN 1),
 # in its own folder. Without BUDGET the harness is the default top, as before.
 BUDGET       ?=
+# FRAMES=N [CAMERA_PATH=file]: a sequence of N frames through the RTL in one harness run, the
+# camera moving along the path (default: sim/paths/cornell_orbit.json around the default scene);
+# OUT gets sequence.json, frame_KKKK.png, sequence.webp / .gif, summary_strip.png.
+FRAMES       ?=
+CAMERA_PATH  ?=
 SIM_BUDGET_ON := $(strip $(BUDGET))
 SIM_BUILD    := build/sim/$(if $(SIM_WAVES_ON),waves,fast)$(if $(SIM_BUDGET_ON),_budget)
 SIM_BIN      := $(SIM_BUILD)/Vmsr_sim_top
@@ -72,7 +77,7 @@ TEST_DEPS += build/sim/fast/Vmsr_sim_top build/sim/fast_budget/Vmsr_sim_top
 sim: setup renderer $(SIM_BIN)
 	@$(ENV) python scripts/run_sim.py --harness $(SIM_BIN) --scene "$(SCENE)" --width "$(WIDTH)" \
 	    --height "$(HEIGHT)" --tile "$(TILE)" --levels "$(LEVELS)" --thr "$(THR)" --metric "$(METRIC)" \
-	    --fov-gain "$(FOV_GAIN)" --rule "$(RULE)" --budget "$(BUDGET)" --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
+	    --fov-gain "$(FOV_GAIN)" --rule "$(RULE)" --budget "$(BUDGET)" --frames "$(FRAMES)" --camera-path "$(CAMERA_PATH)" --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
 	    $(if $(WAVE_TILE),--wave-tile $(WAVE_TILE)) $(if $(WAVE_CYCLES),--wave-cycles $(WAVE_CYCLES))
 
 # make waves / waves-shot: the run named by OUT=, else the last make sim WAVES=1 (its folder is

@@ -47,6 +47,9 @@ def parse(argv):
     ap.add_argument("--rule", default="", help="decision rule (default patent; RULE= of make sim)")
     ap.add_argument("--budget", default="", help="ray budget: N traced pixels or P%% of the frame "
                     "(docs/budget.md; BUDGET= of make sim; empty or 0: off)")
+    ap.add_argument("--frames", default="", help="a sequence of N frames in one harness run (FRAMES= of make sim)")
+    ap.add_argument("--camera-path", default="", help="camera path file of the sequence (CAMERA_PATH=; default: "
+                    "the built-in orbit of the default scene)")
     ap.add_argument("--out", default="")
     ap.add_argument("--quality", default="fast")
     ap.add_argument("--camera", default="", help="EX,EY,EZ,TX,TY,TZ,FOV (model units, degrees); empty: the scene's view")
@@ -116,6 +119,9 @@ def run(a) -> int:
     out = Path(a.out or ROOT / "out" / "sim" / scene_label(a.scene))
     if out.exists() and not out.is_dir():
         raise UsageError(f"OUT {out} is not a folder")
+    if str(a.frames).strip() or str(a.camera_path).strip():
+        from run_sim_sequence import run_sequence
+        return run_sequence(a, W, H, params, rule, budget, harness, out)
 
     # The scene must open in Python before anything runs: a bad model file is exit status 2.
     from msr_model.embree import open_renderer

@@ -4,6 +4,10 @@
 //   Vmsr_sim_top --width W --height H [--tile T] [--levels L] [--thr a,b,c] [--metric max|sum]
 //       [--fov-gain G] [--rule patent|lindilate|N] [--frame OUT.ppm] [--source OUT.pgm] [--stats OUT.json]
 //       [--budget PIXELS] [--scale-init U] [--prior-shift P] [--seeded 0|1]   (docs/budget.md)
+//       [--frames N [--cameras FILE]]   (a sequence: N frames in this one run, the registers
+//       reprogrammed between frames as a driver would; FILE has one camera line per frame; with
+//       a budget each frame after the first is seeded with the last SCALE_OUT; --frame and
+//       --source are then printf patterns of the frame number, --stats gets one line per frame)
 //       [--timeout CYCLES] [--mem-pause PERCENT] [--seed N] [--quiet]
 //       [--fb-base ADDR]   (override FB_BASE; memory stays where it is: error-path tests)
 //       (--rule N: CONFIG.RULE written as is, 0..3; 2 and 3 are refused by the hardware, ERROR 13)
@@ -19,6 +23,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <deque>
+#include <fstream>
 #include <memory>
 #include <random>
 #include <string>
@@ -28,6 +33,7 @@
 
 #include "Vmsr_sim_top.h"
 #include "Vmsr_sim_top___024root.h"  // the build's parameters (verilator --public-params, mk/sim.mk)
+#include "msr_dpi.h"
 #include "msr_regs.h"
 #include "verilated.h"
 
@@ -50,6 +56,8 @@ struct Options {
   int rule = 0;  // CONFIG.RULE: 0 patent, 1 lindilate (docs/rules.md)
   // Ray budget (docs/budget.md): BUDGET.PIXELS (0 = off) and BUDGET_CTRL, written as given.
   long budget = 0, scale_init = 256, prior_shift = 6, seeded = 0;
+  long frames = 1;                  // a sequence of frames in one run
+  std::vector<std::string> cameras; // --cameras: the view of each frame
   int thr[3] = {8, 16, 32};
   std::string frame_out, source_out, stats_out, waves;
   uint64_t timeout = 0;  // 0: derived from the frame size
@@ -114,6 +122,15 @@ Options parse(int argc, char **argv) {
       o.prior_shift = to_int(next("--prior-shift"), "--prior-shift");
     } else if (a == "--seeded") {
       o.seeded = to_int(next("--seeded"), "--seeded");
+    } else if (a == "--frames") {
+      o.frames = to_int(next("--frames"), "--frames");
+      if (o.frames < 1 || o.frames > 100000) usage("--frames must be 1..100000");
+    } else if (a == "--cameras") {
+      const char *f = next("--cameras");
+      std::ifstream in(f);
+      if (!in) usage(std::string("cannot read --cameras ") + f);
+      for (std::string line; std::getline(in, line);)
+        if (!line.empty()) o.cameras.push_back(line);
     } else if (a == "--thr") {
       std::string s = next("--thr");
       int k = 0;
@@ -138,6 +155,9 @@ Options parse(int argc, char **argv) {
       usage("unknown option " + a);
     }
   }
+  if (!o.cameras.empty() && static_cast<long>(o.cameras.size()) != o.frames)
+    usage("--cameras has " + std::to_string(o.cameras.size()) + " lines for " + std::to_string(o.frames) +
+          " frames");
   // Register values are NOT checked here: the hardware checks them (STATUS.ERROR).
   return o;
 }
@@ -449,6 +469,15 @@ class Sim {
   bool mem_awready_ = true, mem_wready_ = true;
 };
 
+// Frame k's file of a sequence: the path is a printf pattern of the frame number (one frame:
+// the path as given).
+std::string frame_file(const std::string &pattern, long frames, long k) {
+  if (frames == 1 || pattern.empty()) return pattern;
+  char buf[4096];
+  std::snprintf(buf, sizeof buf, pattern.c_str(), k);
+  return buf;
+}
+
 bool write_ppm(const std::string &path, const Sim &s, int w, int h) {
   FILE *f = std::fopen(path.c_str(), "wb");
   if (!f) return false;
@@ -496,7 +525,19 @@ int main(int argc, char **argv) {
     sim.open_waves();
     sim.reset();
 
-    // Program the frame as a driver would, then start and poll.
+    uint32_t scale_prev = 0;   // the last frame's SCALE_OUT (a budget sequence)
+    for (long k = 0; k < o.frames && rc == kExitOk; ++k) {
+    if (!o.cameras.empty()) {
+      char err[512] = {0};
+      if (!msr_dpi_set_view(o.cameras[k].c_str(), err, sizeof err)) {
+        std::fprintf(stderr, "harness: error: frame %ld: %s\n", k, err);
+        return kExitFail;
+      }
+    }
+    // Program the frame as a driver would, then start and poll. In a budget sequence each
+    // frame after the first starts from the last SCALE_OUT with the seeded law.
+    const long scale_init = (k > 0 && o.budget) ? long(scale_prev) : o.scale_init;
+    const long seeded = (k > 0 && o.budget) ? 1 : o.seeded;
     sim.write_reg(REG(FRAME_SIZE),
                   (uint32_t(o.width) << MSR_REGS__FRAME_SIZE__WIDTH_bp) |
                       (uint32_t(o.height) << MSR_REGS__FRAME_SIZE__HEIGHT_bp));
@@ -517,11 +558,11 @@ int main(int argc, char **argv) {
     // the hardware checks what arrives (a budget below the grid: STATUS.ERROR 14).
     sim.write_reg(REG(BUDGET), uint32_t(o.budget) & MSR_REGS__BUDGET__PIXELS_bm);
     sim.write_reg(REG(BUDGET_CTRL),
-                  ((uint32_t(o.scale_init) << MSR_REGS__BUDGET_CTRL__SCALE_INIT_bp) &
+                  ((uint32_t(scale_init) << MSR_REGS__BUDGET_CTRL__SCALE_INIT_bp) &
                    MSR_REGS__BUDGET_CTRL__SCALE_INIT_bm) |
                       ((uint32_t(o.prior_shift) << MSR_REGS__BUDGET_CTRL__PRIOR_SHIFT_bp) &
                        MSR_REGS__BUDGET_CTRL__PRIOR_SHIFT_bm) |
-                      ((uint32_t(o.seeded) << MSR_REGS__BUDGET_CTRL__SEEDED_bp) &
+                      ((uint32_t(seeded) << MSR_REGS__BUDGET_CTRL__SEEDED_bp) &
                        MSR_REGS__BUDGET_CTRL__SEEDED_bm));
     sim.write_reg(REG(CTRL), MSR_REGS__CTRL__START_bm | MSR_REGS__CTRL__IRQ_EN_bm);
 
@@ -565,6 +606,9 @@ int main(int argc, char **argv) {
     const unsigned scale_out =
         (bctrl & MSR_REGS__BUDGET_CTRL__SCALE_OUT_bm) >> MSR_REGS__BUDGET_CTRL__SCALE_OUT_bp;
     const bool scale_out_valid = bctrl & MSR_REGS__BUDGET_CTRL__SCALE_OUT_VALID_bm;
+    scale_prev = scale_out;
+    // DONE is write-1-to-clear, as a driver acknowledges a frame before the next START.
+    sim.write_reg(REG(STATUS), MSR_REGS__STATUS__DONE_bm);
     cycles_run = sim.cycle();
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -572,16 +616,18 @@ int main(int argc, char **argv) {
       std::fprintf(stderr, "harness: error: STATUS.ERROR = %u\n", err);
       rc = kExitFail;
     }
-    if (!o.frame_out.empty() && !write_ppm(o.frame_out, sim, o.width, o.height)) {
-      std::fprintf(stderr, "harness: error: cannot write %s\n", o.frame_out.c_str());
+    const std::string frame_out = frame_file(o.frame_out, o.frames, k);
+    const std::string source_out = frame_file(o.source_out, o.frames, k);
+    if (!frame_out.empty() && !write_ppm(frame_out, sim, o.width, o.height)) {
+      std::fprintf(stderr, "harness: error: cannot write %s\n", frame_out.c_str());
       rc = kExitFail;
     }
-    if (!o.source_out.empty() && !write_pgm(o.source_out, sim, o.width, o.height)) {
-      std::fprintf(stderr, "harness: error: cannot write %s\n", o.source_out.c_str());
+    if (!source_out.empty() && !write_pgm(source_out, sim, o.width, o.height)) {
+      std::fprintf(stderr, "harness: error: cannot write %s\n", source_out.c_str());
       rc = kExitFail;
     }
     if (!o.stats_out.empty()) {
-      FILE *f = std::fopen(o.stats_out.c_str(), "w");
+      FILE *f = std::fopen(o.stats_out.c_str(), k == 0 ? "w" : "a");
       if (!f) {
         std::fprintf(stderr, "harness: error: cannot write %s\n", o.stats_out.c_str());
         rc = kExitFail;
@@ -590,7 +636,7 @@ int main(int argc, char **argv) {
         // parameters, the memory layout this harness programmed, the frame's register values.
         using Root = Vmsr_sim_top___024root;
         std::fprintf(f,
-                     "{\"cycles\": %u, \"sim_cycles_total\": %llu, \"sim_seconds\": %.4f, "
+                     "{\"frame\": %ld, \"cycles\": %u, \"sim_cycles_total\": %llu, \"sim_seconds\": %.4f, "
                      "\"sim_cycles_per_second\": %.1f, \"status\": %u, \"error\": %u, "
                      "\"traced_initial\": %u, \"traced_level1\": %u, \"traced_level2\": %u, "
                      "\"traced_level3\": %u, \"interpolated_level1\": %u, \"interpolated_level2\": %u, "
@@ -602,9 +648,9 @@ int main(int argc, char **argv) {
                      " \"layout\": {\"fb_base\": %lld, \"fb_stride\": %u, \"src_base\": %u, \"src_stride\": %u},\n"
                      " \"params\": {\"width\": %d, \"height\": %d, \"tile\": %d, \"levels\": %d, "
                      "\"thr\": [%d, %d, %d], \"metric\": \"%s\", \"fov_gain\": %d, \"rule\": %d}}\n",
-                     perf_cycles, (unsigned long long)cycles_run, secs, cycles_run / secs, status, err,
+                     k, perf_cycles, (unsigned long long)cycles_run, secs, cycles_run / secs, status, err,
                      traced[0], traced[1], traced[2], traced[3], interp[0], interp[1], interp[2], rstall,
-                     mstall, o.budget, o.scale_init, o.prior_shift, o.seeded, scale_out,
+                     mstall, o.budget, scale_init, o.prior_shift, seeded, scale_out,
                      scale_out_valid ? "true" : "false", unsigned(Root::msr_sim_top__DOT__NUM_ENGINES),
                      unsigned(Root::msr_sim_top__DOT__MAX_OUTSTANDING), unsigned(Root::msr_sim_top__DOT__NUM_CTX),
                      unsigned(Root::msr_sim_top__DOT__BUDGET_EN), kBeatBytes, o.fb_base >= 0 ? o.fb_base : (long long)sim.fb_base(), sim.fb_stride(),
@@ -621,6 +667,7 @@ int main(int argc, char **argv) {
       std::fprintf(stderr, "harness: error: the memory answered a write with SLVERR\n");
       rc = kExitFail;
     }
+    }  // frames
   }
   return rc;
 }

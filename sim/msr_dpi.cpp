@@ -19,7 +19,11 @@ struct DpiCtx {
   std::vector<uint8_t> image;        // a PPM picture (image-as-renderer)
   int width = 0;
   int height = 0;
+  std::string scene;                 // what it was opened on (msr_dpi_set_view reopens it)
+  int quality = 0;
 };
+
+DpiCtx *g_last = nullptr;            // the context msr_dpi_set_view moves (one renderer per sim)
 
 bool ends_with(const std::string &s, const char *suffix) {
   const size_t n = std::strlen(suffix);
@@ -84,7 +88,24 @@ extern "C" void *msr_dpi_open(const char *scene, int width, int height, int qual
     delete ctx;
     return nullptr;
   }
+  ctx->scene = s;
+  ctx->quality = quality;
+  g_last = ctx;
   return ctx;
+}
+
+extern "C" int msr_dpi_set_view(const char *camera, char *err, int err_len) {
+  DpiCtx *ctx = g_last;
+  if (ctx == nullptr || ctx->render == nullptr) {
+    std::snprintf(err, err_len, "no scene to move the camera in (a picture scene has no view)");
+    return 0;
+  }
+  msr_render_ctx *next = msr_render_create_view(ctx->scene.c_str(), camera, ctx->width, ctx->height,
+                                                ctx->quality, err, static_cast<size_t>(err_len));
+  if (next == nullptr) return 0;
+  msr_render_destroy(ctx->render);
+  ctx->render = next;
+  return 1;
 }
 
 extern "C" int msr_dpi_render(void *handle, int x, int y) {
@@ -102,6 +123,7 @@ extern "C" int msr_dpi_render(void *handle, int x, int y) {
 extern "C" void msr_dpi_close(void *handle) {
   auto *ctx = static_cast<DpiCtx *>(handle);
   if (ctx == nullptr) return;
+  if (g_last == ctx) g_last = nullptr;
   msr_render_destroy(ctx->render);
   delete ctx;
 }

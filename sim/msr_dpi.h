@@ -19,6 +19,11 @@ void *msr_dpi_open(const char *scene, int width, int height, int quality);
 /* Colour of pixel (x, y) as 0x00RRGGBB. */
 int msr_dpi_render(void *ctx, int x, int y);
 
+/* Not a DPI function: the C++ harness's. The view of the last opened context becomes `camera`
+ * ("EX,EY,EZ,TX,TY,TZ,FOV", as +camera=) for the frames that follow (a sequence in one run).
+ * Returns 1, or 0 with the reason in err (a picture scene has no view; a bad camera). */
+int msr_dpi_set_view(const char *camera, char *err, int err_len);
+
 /* Free the context (NULL is fine). */
 void msr_dpi_close(void *ctx);
 

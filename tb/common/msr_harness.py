@@ -115,6 +115,7 @@ class HarnessRun:
     jitter: int = 8
     quiet: bool = False
     budget: object = None                               # msr_model.budget.BudgetConfig, or None: off
+    cameras: list[str] | None = None                    # a sequence: one view per frame (one run)
     extra: list[str] = field(default_factory=list)     # e.g. --waves FILE --wave-tile TX,TY
     _proc: subprocess.Popen | None = None
     _dir: tempfile.TemporaryDirectory | None = None
@@ -125,10 +126,11 @@ class HarnessRun:
         if self.rule not in RTL_RULES:
             raise spec.SpecError(f"rule {self.rule!r}: the RTL implements {', '.join(RTL_RULES)}")
         thr3 = list(p.thr) + [0] * (3 - p.levels)      # explicit: the harness has no defaults of its own
+        seq = "_%04d" if self.cameras else ""
         cmd = [str(self.harness), "--width", str(self.width), "--height", str(self.height),
                "--tile", str(p.tile), "--levels", str(p.levels), "--thr", ",".join(map(str, thr3)),
                "--metric", p.metric, "--fov-gain", str(p.fov_gain), "--rule", self.rule,
-               "--frame", str(workdir / "rtl_frame.ppm"), "--source", str(workdir / "rtl_source.pgm"),
+               "--frame", str(workdir / f"rtl_frame{seq}.ppm"), "--source", str(workdir / f"rtl_source{seq}.pgm"),
                "--stats", str(workdir / "rtl_stats.json"),
                f"+scene={self.scene}", f"+width={self.width}", f"+height={self.height}",
                f"+quality={0 if self.quality == 'fast' else 1}",
@@ -137,6 +139,8 @@ class HarnessRun:
             b = self.budget
             cmd += ["--budget", str(b.budget), "--scale-init", str(b.scale_init), "--prior-shift",
                     str(b.prior_shift), "--seeded", str(int(b.profile is not None))]
+        if self.cameras:
+            cmd += ["--frames", str(len(self.cameras)), "--cameras", str(workdir / "cameras.txt")]
         if self.camera:
             cmd.append(f"+camera={self.camera}")  # read by sim/msr_dpi.cpp, passed to the library unchanged
         if self.quiet:
@@ -149,13 +153,16 @@ class HarnessRun:
         if not Path(self.harness).is_file():
             raise spec.SpecError(f"harness {self.harness} not built")
         self._dir = tempfile.TemporaryDirectory(prefix="msr_harness_")
+        if self.cameras:
+            Path(self._dir.name, "cameras.txt").write_text("".join(c + "\n" for c in self.cameras))
         self._t0 = time.perf_counter()
         self._proc = subprocess.Popen(self.command(Path(self._dir.name)), stderr=subprocess.PIPE if self.quiet
                                       else None, text=True)
         return self
 
-    def wait(self) -> RtlFrame:
-        """The frame, source map and stats; RunFailed (with the harness's last line) if it failed."""
+    def wait(self):
+        """The frame, source map and stats (a list of them for a sequence); RunFailed (with the
+        harness's last line) if it failed."""
         import time
         assert self._proc is not None and self._dir is not None, "start() first"
         try:
@@ -166,8 +173,18 @@ class HarnessRun:
                 last = (err or "").strip().splitlines()[-1:] or ["see its output above"]
                 raise RunFailed(f"the RTL simulation failed (harness exit status {rc}): {last[0]}")
             d = Path(self._dir.name)
-            return RtlFrame(read_pnm(d / "rtl_frame.ppm"), read_pnm(d / "rtl_source.pgm"),
-                            json.loads((d / "rtl_stats.json").read_text()), round(wall, 3))
+            if not self.cameras:
+                return RtlFrame(read_pnm(d / "rtl_frame.ppm"), read_pnm(d / "rtl_source.pgm"),
+                                json.loads((d / "rtl_stats.json").read_text()), round(wall, 3))
+            # a sequence: the stats file holds one JSON object per frame, one after the other
+            text, dec, pos, stats = (d / "rtl_stats.json").read_text(), json.JSONDecoder(), 0, []
+            while text[pos:].strip():
+                obj, pos = dec.raw_decode(text, pos + (len(text[pos:]) - len(text[pos:].lstrip())))
+                stats.append(obj)
+            if len(stats) != len(self.cameras):
+                raise RunFailed(f"the harness wrote {len(stats)} frames of {len(self.cameras)}")
+            return [RtlFrame(read_pnm(d / f"rtl_frame_{k:04d}.ppm"), read_pnm(d / f"rtl_source_{k:04d}.pgm"),
+                             st, round(wall / len(stats), 3)) for k, st in enumerate(stats)]
         finally:
             self._dir.cleanup()
             self._proc = self._dir = None

@@ -116,3 +116,38 @@ def test_budget(budget_harness, harness, tmp_path):
     assert r.returncode == 2 and "initial grid" in r.stderr, r.stderr
     r = run_sim(harness, tmp_path / "d", "--width", "96", "--height", "64", "--levels", "3", "--budget", "1200")
     assert r.returncode == 1 and "STATUS.ERROR = 14" in (r.stdout + r.stderr)
+
+
+def test_sequence(harness, budget_harness, tmp_path):
+    """make sim FRAMES=N (contracts.md, third round): N frames in one harness run along the
+    built-in orbit, each bit exact with the golden model on its own view; sequence.json's
+    frames, the frames and source maps, a playable animation and the strip; with a budget the
+    harness seeds each frame with the last SCALE_OUT as a driver would, and the golden model's
+    seeded frames agree; a bad path file or a path-less scene other than the default is refused
+    (exit 2) before anything runs."""
+    from PIL import Image
+    out = tmp_path / "seq"
+    r = run_sim(harness, out, "--width", "48", "--height", "32", "--frames", "3")
+    assert r.returncode == 0, r.stdout + r.stderr
+    seq = json.loads((out / "sequence.json").read_text())
+    assert seq["bit_exact"] and seq["num_frames"] == 3 and [e["frame"] for e in seq["frames"]] == [0, 1, 2]
+    for e in seq["frames"]:
+        assert e["bit_exact"] and 0 < e["traced_fraction"] <= 1 and "psnr_db" in e
+        assert (out / f"frame_{e['frame']:04d}.png").is_file() and (out / f"source_map_{e['frame']:04d}.png").is_file()
+    assert len({e["camera"] for e in seq["frames"]}) == 3                     # the camera moved
+    for pic in ("sequence.webp", "sequence.gif"):
+        with Image.open(out / pic) as im:
+            assert getattr(im, "n_frames", 1) == 3, pic
+    assert (out / "summary_strip.png").is_file()
+    r = run_sim(budget_harness, tmp_path / "b", "--width", "64", "--height", "48", "--levels", "3",
+                "--frames", "2", "--budget", "20%")
+    assert r.returncode == 0, r.stdout + r.stderr
+    fr = json.loads((tmp_path / "b" / "sequence.json").read_text())["frames"]
+    assert all(e["bit_exact"] and e["scale_out_equal"] for e in fr)
+    assert fr[1]["scale_init"] == fr[0]["scale_out"]                          # seeded from frame 0
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"keys": [{"frame": 0, "eye": [0, 0, 1], "target": [0, 0, 1], "fov": 40}]}')
+    r = run_sim(harness, tmp_path / "c", "--width", "48", "--height", "32", "--frames", "2", "--camera-path", str(bad))
+    assert r.returncode == 2 and "same point" in r.stderr and not (tmp_path / "c").exists()
+    r = run_sim(harness, tmp_path / "d", "--scene", "bunny", "--width", "48", "--height", "32", "--frames", "2")
+    assert r.returncode == 2 and "CAMERA_PATH" in r.stderr
