@@ -122,12 +122,12 @@ def run_sequence(a, W: int, H: int, params, rule: str, budget, harness: Path, ou
         raise RunFailed(f"BUDGET={a.budget}: the harness {harness} is a top without the budget controller")
     entries, frames = [], []
     for k, (r, g, ref) in enumerate(zip(rtl, goldens, refs)):
-        from skimage.metrics import structural_similarity
+        from msr_model.overview import ssim_of
         v = compare(r, g)
         traced = int((r.source < spec.SRC_INTERP_BASE).sum())
         e = {"frame": k, "bit_exact": v["bit_exact"], "traced_fraction": traced / (W * H), "traced": traced,
              "psnr_db": _psnr(ref, r.frame),
-             "ssim": float(structural_similarity(ref, r.frame, channel_axis=2, data_range=255)),
+             "ssim": ssim_of(ref, r.frame),
              "cycles": r.stats["cycles"], "camera": cams[k],
              "mismatched_pixels": v["mismatched_pixels"], "mismatched_codes": v["mismatched_codes"]}
         if budget is not None:

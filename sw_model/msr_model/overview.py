@@ -138,12 +138,23 @@ def abs_error(frame: np.ndarray, reference: np.ndarray) -> np.ndarray:
     return np.abs(frame.astype(np.int16) - reference.astype(np.int16)).max(axis=2).astype(np.uint8)
 
 
-def psnr_ssim(reference: np.ndarray, frame: np.ndarray) -> tuple[float | None, float]:
-    """PSNR in dB (None for identical frames) and SSIM of frame against reference."""
+SSIM_WIN = 7      # skimage's default window: SSIM is not defined on a frame smaller than it
+
+
+def ssim_of(reference: np.ndarray, frame: np.ndarray) -> float | None:
+    """SSIM of frame against reference (skimage, 7x7 window); None for a frame narrower or
+    lower than the window, where SSIM is not defined (reports carry null, not a made-up value)."""
     from skimage.metrics import structural_similarity
+    if min(reference.shape[:2]) < SSIM_WIN:
+        return None
+    return float(structural_similarity(reference, frame, channel_axis=2, data_range=255))
+
+
+def psnr_ssim(reference: np.ndarray, frame: np.ndarray) -> tuple[float | None, float | None]:
+    """PSNR in dB (None for identical frames) and SSIM of frame against reference (ssim_of)."""
     mse = float(np.mean((reference.astype(np.float64) - frame.astype(np.float64)) ** 2))
     psnr = None if mse == 0 else 10 * math.log10(255.0 ** 2 / mse)
-    return psnr, float(structural_similarity(reference, frame, channel_axis=2, data_range=255))
+    return psnr, ssim_of(reference, frame)
 
 
 def error_scale(err: np.ndarray) -> int:

@@ -151,3 +151,13 @@ def test_sequence(harness, budget_harness, tmp_path):
     assert r.returncode == 2 and "same point" in r.stderr and not (tmp_path / "c").exists()
     r = run_sim(harness, tmp_path / "d", "--scene", "bunny", "--width", "48", "--height", "32", "--frames", "2")
     assert r.returncode == 2 and "CAMERA_PATH" in r.stderr
+
+
+@pytest.mark.parametrize("w,h", [(1, 1), (6, 40), (5, 3)])
+def test_smallest_frames(harness, tmp_path, w, h):
+    """Every size the bounds accept finishes: below SSIM's 7x7 window report.json's ssim is null
+    (not defined there), and the run passes bit exact."""
+    r = run_sim(harness, tmp_path, "--width", str(w), "--height", str(h))
+    assert r.returncode == 0, r.stdout + r.stderr
+    rep = check_outputs(tmp_path)
+    assert rep["bit_exact"] and rep["ssim"] is None and (tmp_path / "summary.png").is_file()
