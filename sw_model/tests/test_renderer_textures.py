@@ -339,3 +339,61 @@ def test_gbuffer_follows_the_camera():
         _, _, depth = r.gbuffer_full()
     # Looking straight at the back wall's centre through the open front: 800 + 559.2 mm.
     assert abs(float(depth[12, 16]) - 1359.2) < 1e-2
+
+
+def test_texture_found_by_file_name_with_a_warning(tmp_path):
+    """An OBJ whose map_Kd is a Windows path from another machine, with another letter case:
+    the picture beside the model is used (by file name, ignoring case), and the warning says
+    what was substituted."""
+    obj, mtl = tmp_path / "box.obj", tmp_path / "box.mtl"
+    mtl.write_text("newmtl paint\nKd 1 1 1\nmap_Kd C:\\Work\\Assets\\TEX\\Checker.PNG\n")
+    (tmp_path / "checker.png").write_bytes(png_bytes(checker()))
+    v = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
+    lines = ["mtllib box.mtl", "usemtl paint"] + [f"v {x} {y} {z}" for x, y, z in v]
+    lines += ["vt 0 0", "vt 1 0", "vt 1 1", "vt 0 1"]
+    lines += ["f " + " ".join(f"{i}/{k + 1}" for k, i in enumerate(f)) for f in faces]
+    obj.write_text("\n".join(lines) + "\n")
+    out = tmp_path / "box.png"
+    r = cli("render", "--scene", obj, "--width", 96, "--height", 72, "--out", out)
+    assert r.returncode == 0, r.stderr
+    assert "Checker.PNG" in r.stderr and "checker.png" in r.stderr and "not where it says" in r.stderr
+    red, blue = shares(np.asarray(Image.open(out).convert("RGB")))
+    assert red > 0.03 and blue > 0.03                      # the checker, not the white material
+
+
+def md2_bytes():
+    """A minimal Quake II model (MD2) without skins: one frame, a quad of two triangles. Its
+    loader names the diffuse map by the format's placeholder, `$texture_dummy.bmp`."""
+    verts = [(0, 0, 0), (255, 0, 0), (255, 255, 0), (0, 255, 0)]
+    st = [(0, 0), (63, 0), (63, 63), (0, 63)]
+    tris = [((0, 1, 2), (0, 1, 2)), ((0, 2, 3), (0, 2, 3))]
+    nv, nst, nt = len(verts), len(st), len(tris)
+    framesize = 40 + 4 * nv
+    ofs_st = 68
+    ofs_tris = ofs_st + 4 * nst
+    ofs_frames = ofs_tris + 12 * nt
+    ofs_end = ofs_frames + framesize
+    head = struct.pack("<4s16i", b"IDP2", 8, 64, 64, framesize, 0, nv, nst, nt, 0, 1,
+                       68, ofs_st, ofs_tris, ofs_frames, ofs_end, ofs_end)
+    body = b"".join(struct.pack("<2h", *p) for p in st)
+    body += b"".join(struct.pack("<3h3h", *v, *t) for v, t in tris)
+    body += struct.pack("<3f3f16s", 1 / 255, 1 / 255, 1 / 255, 0, 0, 0, b"frame0")
+    body += b"".join(struct.pack("<4B", *v, 0) for v in verts)
+    return head + body + bytes(64)     # the loader wants every section to end before the file does
+
+
+def test_skin_placeholder_resolved_by_the_model_name(tmp_path):
+    """A format's placeholder skin name resolves to a picture with the model's name beside it,
+    with a warning; without one the material colour stays and the warning says so."""
+    md2 = tmp_path / "Ogre.md2"
+    md2.write_bytes(md2_bytes())
+    r = cli("render", "--scene", md2, "--width", 64, "--height", 64, "--out", tmp_path / "bare.png")
+    assert r.returncode == 0, r.stderr
+    assert "placeholder" in r.stderr and "no picture named Ogre" in r.stderr
+    (tmp_path / "ogre.PNG").write_bytes(png_bytes(checker()))
+    r = cli("render", "--scene", md2, "--width", 64, "--height", 64, "--out", tmp_path / "skin.png")
+    assert r.returncode == 0, r.stderr
+    assert "placeholder" in r.stderr and "ogre.PNG" in r.stderr
+    red, blue = shares(np.asarray(Image.open(tmp_path / "skin.png").convert("RGB")))
+    assert red > 0.03 and blue > 0.03

@@ -2,6 +2,7 @@
 
 #include "detmath.h"
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
@@ -179,11 +180,33 @@ std::shared_ptr<const Texture> load_texture(const aiScene *sc, const aiMaterial 
     if (emb) {
         key = "embedded:" + name;
     } else {
-        std::string dir = std::filesystem::path(model_path).parent_path().string();
-        key = find_texture_file(dir.empty() ? "." : dir, name);
-        if (key.empty()) {
-            warnings.push_back("texture '" + name + "' of " + model_path + " not found; using the material colour");
-            return nullptr;
+        namespace fs = std::filesystem;
+        std::string dir = fs::path(model_path).parent_path().string();
+        if (dir.empty()) dir = ".";
+        if (name.rfind("$texture", 0) == 0) {
+            // A format's placeholder for a skin it does not name (MD2, MDL: "$texture_dummy.bmp"):
+            // a picture with the model's own name next to it, as model viewers look for one.
+            key = find_skin_file(dir, fs::path(model_path).stem().string());
+            if (key.empty()) {
+                warnings.push_back("texture '" + name + "' of " + model_path + " is the format's placeholder and no picture named " +
+                                   fs::path(model_path).stem().string() + ".* is beside it; using the material colour");
+                return nullptr;
+            }
+            warnings.push_back("texture '" + name + "' of " + model_path + " is the format's placeholder: using " + key +
+                               " (the model's name)");
+        } else {
+            key = find_texture_file(dir, name);
+            if (key.empty()) {
+                warnings.push_back("texture '" + name + "' of " + model_path + " not found; using the material colour");
+                return nullptr;
+            }
+            // Found elsewhere than written (another separator, another letter case, a path from
+            // another machine): say what was substituted.
+            std::error_code ec;
+            const fs::path literal = fs::path(name).is_absolute() ? fs::path(name) : fs::path(dir) / name;
+            if (!fs::equivalent(literal, fs::path(key), ec))
+                warnings.push_back("texture '" + name + "' of " + model_path + " is not where it says: using " + key +
+                                   " (by file name in the model's folder, ignoring case)");
         }
     }
     const std::string ckey = key + "|" + std::to_string(int(wu)) + std::to_string(int(wv));
@@ -291,6 +314,22 @@ std::vector<PointLight> convert_lights(const aiScene *sc, bool gltf) {
 }
 
 }  // namespace
+
+std::string find_skin_file(const std::string &model_dir, const std::string &stem) {
+    namespace fs = std::filesystem;
+    static const char *const kExt[] = {".png", ".jpg", ".jpeg", ".tga", ".bmp", ".pcx", ".gif"};
+    std::error_code ec;
+    std::vector<fs::path> found;
+    for (fs::directory_iterator it(model_dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const fs::path &p = it->path();
+        if (lower(p.stem().string()) != lower(stem) || !fs::is_regular_file(p, ec)) continue;
+        for (const char *e : kExt)
+            if (lower(p.extension().string()) == e) found.push_back(p);
+    }
+    if (found.empty()) return "";
+    std::sort(found.begin(), found.end());      // the same choice on every machine
+    return found.front().lexically_normal().string();
+}
 
 std::string find_texture_file(const std::string &model_dir, const std::string &written) {
     namespace fs = std::filesystem;

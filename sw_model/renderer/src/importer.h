@@ -40,5 +40,8 @@ void add_model(Scene &scene, const Model &model, Vec3 pivot, float scale, float 
 // component matched without regard to case; finally the bare file name in the model's
 // folder. Returns "" when nothing matches.
 std::string find_texture_file(const std::string &model_dir, const std::string &written);
+// A skin for a format's placeholder name: a picture named `stem` (any case, a common image
+// extension) in model_dir; "" if none.
+std::string find_skin_file(const std::string &model_dir, const std::string &stem);
 
 }  // namespace msr
