@@ -36,6 +36,18 @@ from msr_eval.scenes import MODEL_FILES, scene_id
 REPO = Path(__file__).resolve().parents[1]
 
 
+def run_temporal(a, executor, full: bool, W: int, H: int, out: Path) -> dict:
+    """The sequences of the temporal section (msr_eval.temporal): the set's five scenes, 60
+    frames at 960x540 in the full run; two scenes, 6 frames at the quick size otherwise."""
+    from msr_eval import temporal as T
+    scenes = [s for s in (T.SEQ_SCENES if full else T.QUICK_SCENES) if "/" not in s or Path(s).is_file()]
+    frames = a.temporal_frames or (60 if full else 6)
+    tw, th = (960, 540) if full else (W, H)
+    res = T.run(scenes, frames, tw, th, executor, log=lambda m: print(m, flush=True))
+    T.plot(res, out / "temporal.png")
+    return res
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--full", action="store_true", help="1920x1080, every scene, fast and heavy")
@@ -78,11 +90,29 @@ def main(argv=None):
                          "docs/converged with --full, none in the quick run; 'none' for none)")
     ap.add_argument("--refs-only", action="store_true",
                     help="stop after the full renders and converged references")
+    ap.add_argument("--temporal-frames", type=int, default=None, metavar="N",
+                    help="frames of each sequence of the temporal section (default 60 with --full at 960x540, "
+                         "6 in the quick run at its size; msr_eval.temporal)")
+    ap.add_argument("--no-temporal", action="store_true", help="no sequences (temporal section)")
+    ap.add_argument("--temporal-only", action="store_true",
+                    help="only the sequences: added to an existing OUT/results.json, then the docs rewritten")
     ap.add_argument("--heldout", action="store_true",
                     help="held-out scenes (with --scenes): write the head-to-head to "
                          "docs/converged/heldout_WxH.json for the results page, not the page itself")
     a = ap.parse_args(argv)
 
+    if a.temporal_only:
+        result = json.loads((Path(a.out) / "results.json").read_text())
+        ex = make_executor(a.scheduler, a.workers)
+        try:
+            result["temporal"] = run_temporal(a, ex, result["config"]["full"], result["config"]["width"],
+                                              result["config"]["height"], Path(a.out))
+        finally:
+            ex.close()
+        (Path(a.out) / "results.json").write_text(json.dumps(result, indent=1))
+        if a.docs:
+            R.write_docs(result, Path(a.out), Path(a.docs_dir))
+        return result
     if a.report_only:
         result = json.loads((Path(a.out) / "results.json").read_text())
         if any("psnr_conv" in r and r["mode"] == "heavy" for r in result["records"]):
@@ -129,6 +159,8 @@ def main(argv=None):
         log(f"eval: tasks on {executor.name}")
         records, refs, infos = S.run_sweep(backend, scenes, modes, cfg, executor, log=log,
                                            show_progress=not a.no_progress)
+        temporal = (run_temporal(a, executor, full, W, H, out)
+                    if backend.embree and not a.no_temporal and not a.refs_only else None)
     finally:
         executor.close()
     if a.refs_only:
@@ -223,6 +255,7 @@ def main(argv=None):
         "head_to_head_references": conv_info,
         "speedup": speed,
         "examples": examples,
+        "temporal": temporal,
     }
     (out / "results.json").write_text(json.dumps(result, indent=1))
     if a.heldout and head_to_head:

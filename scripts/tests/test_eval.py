@@ -202,3 +202,31 @@ def test_family_signatures_follow_behaviour_not_source(tmp_path, monkeypatch):
     ref, conv, (prim, mat, depth) = FP.probe()
     assert FP.PROBE_W % 32 and FP.PROBE_H % 32 and ref.shape == conv.shape
     assert len(np.unique(mat)) >= 3 and not np.array_equal(ref, conv)
+
+
+def test_temporal_sequences():
+    """msr_eval.temporal: the orbit keeps the eye's distance to the target and swings ORBIT_DEG
+    from the first frame to the last; every setting has a PSNR and traced fraction per frame and
+    a flicker per frame change; a method that traces everything has no error and no flicker."""
+    import math
+    import numpy as np
+    from msr_eval import temporal as T
+    from msr_model.embree import open_renderer
+    with open_renderer("cornell", 48, 32) as r:
+        view = r.view()
+    p = T.orbit_path(view, 11)
+    (e0, t0, _), (e1, _, _) = p.at(0), p.at(10)
+    d0 = math.dist(e0, t0)
+    assert math.dist(e1, t0) == pytest.approx(d0, rel=1e-9)
+    v0, v1 = np.subtract(e0, t0)[[0, 2]], np.subtract(e1, t0)[[0, 2]]
+    ang = math.degrees(math.acos(np.dot(v0, v1) / (np.linalg.norm(v0) * np.linalg.norm(v1))))
+    assert ang == pytest.approx(T.ORBIT_DEG, abs=1e-6)
+    res = T.run(("cornell",), 3, 48, 32, log=lambda m: None)
+    ms = res["scenes"]["cornell"]["methods"]
+    assert len(ms) == len(T.settings())
+    for m in ms.values():
+        assert len(m["psnr"]) == 3 and len(m["traced"]) == 3 and len(m["flicker"]) == 2
+        assert all(0 < t <= 1 for t in m["traced"]) and m["flicker_mean"] >= 0
+    a = np.zeros((4, 4, 3), np.int16)
+    assert T._flicker(a, a) == 0 and T._flicker(a, a + 2) == pytest.approx(2.0)
+    assert "Sequences" in T.markdown(res, "x.png")

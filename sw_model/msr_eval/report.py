@@ -191,6 +191,12 @@ def write_docs(result: dict, out: Path, docs: Path):
               f"{s['speedup']:.2f}x | {s['bit_equal_to_cached_run']} |")
         w("")
 
+    if result.get("temporal"):
+        from .temporal import markdown
+        src = out / "temporal.png"
+        if src.is_file():
+            small_png(src, img / "eval_temporal.png", 1100)
+        w(markdown(result["temporal"], "img/eval_temporal.png"))
     w("## Figures\n")
     for kind, mode, path in figs:
         what = "Mean over the scene set (Pareto front)" if kind == "pareto" else "Per scene"

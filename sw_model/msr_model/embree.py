@@ -80,6 +80,8 @@ def _load():
                                            ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p]
         lib.msr_render_rays.restype = ctypes.c_uint64
         lib.msr_render_rays.argtypes = [ctypes.c_void_p]
+        lib.msr_render_view.restype = ctypes.c_int
+        lib.msr_render_view.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_double)]
         _lib = lib
         return lib
 
@@ -270,6 +272,15 @@ class EmbreeRenderer:
         h, w = self.height, self.width
         ys, xs = np.divmod(np.arange(h * w, dtype=np.int32), np.int32(w))
         return tuple(a.reshape(h, w) for a in self.gbuffer(xs, ys))
+
+    def view(self) -> tuple[tuple, tuple, float]:
+        """(eye, target, vertical field of view in degrees) of this renderer, in model units: the
+        scene's own framing or the camera it was opened with (a camera path starts from it)."""
+        out = (ctypes.c_double * 7)()
+        if not self._ctx or not self._lib.msr_render_view(self._ctx, out):
+            raise spec.SpecError("the renderer is closed")
+        v = list(out)
+        return tuple(v[0:3]), tuple(v[3:6]), v[6]
 
     @property
     def rays(self) -> int:

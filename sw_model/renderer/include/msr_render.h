@@ -74,6 +74,11 @@ const char *msr_render_scene_names(void);
  * calls on ctx so far. */
 uint64_t msr_render_rays(const msr_render_ctx *ctx);
 
+/* Extension for camera paths: the context's view as a camera string would give it: eye and
+ * target in model units (the inverse of the model's placement) and the vertical field of view
+ * in degrees. Returns 1, or 0 for a NULL context. */
+int msr_render_view(const msr_render_ctx *ctx, double view[7]);
+
 #ifdef __cplusplus
 }
 #endif

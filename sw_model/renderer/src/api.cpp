@@ -3,7 +3,9 @@
 
 #include <xmmintrin.h>
 
+#include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -189,5 +191,29 @@ void msr_render_destroy(msr_render_ctx *ctx) { delete ctx; }
 const char *msr_render_scene_names(void) { return msr::builtin_scene_names(); }
 
 uint64_t msr_render_rays(const msr_render_ctx *ctx) { return ctx ? ctx->rays.load(std::memory_order_relaxed) : 0; }
+
+int msr_render_view(const msr_render_ctx *ctx, double view[7]) {
+    if (!ctx || !ctx->renderer || !view) return 0;
+    const msr::Scene &s = ctx->renderer->scene();
+    const msr::Placement &pl = s.model_placement;
+    // Placement::point inverted: p = R_yaw^-1 ((p' - offset) / scale) + pivot
+    auto model = [&](msr::Vec3 q) {
+        const double x = (double(q.x) - pl.offset.x) / pl.scale, y = (double(q.y) - pl.offset.y) / pl.scale,
+                     z = (double(q.z) - pl.offset.z) / pl.scale;
+        return std::array<double, 3>{pl.cos_yaw * x - pl.sin_yaw * z + pl.pivot.x, y + pl.pivot.y,
+                                     pl.sin_yaw * x + pl.cos_yaw * z + pl.pivot.z};
+    };
+    const auto e = model(s.camera.eye), t = model(s.camera.target);
+    double tan_v = s.camera.tan_half;  // across the shorter side unless vertical
+    const int w = ctx->renderer->width(), h = ctx->renderer->height();
+    if (!s.camera.vertical && w < h) tan_v *= double(h) / double(w);
+    const double fov = 2.0 * std::atan(tan_v) * 180.0 / 3.14159265358979323846;
+    for (int i = 0; i < 3; ++i) {
+        view[i] = e[i];
+        view[3 + i] = t[i];
+    }
+    view[6] = fov;
+    return 1;
+}
 
 }  // extern "C"
