@@ -256,7 +256,8 @@ module msr_budget_ctrl import msr_pkg::*; #(
   logic [ACT_W:0]   a_diff;                // Atot - Ad and its borrow
   logic [WH_W:0]    pp0;                  // P + P0 <= 2^25: 26 bits
   logic [ACT_W-1:0] nn0, a_left;
-  logic [10:0]      slew, u_new;
+  logic [10:0]      u_new;
+  logic [10:0]      slew_q, u_mx_q;        // u_{j+1} >> 1; max(q, u_{j+1} >> 1)
   assign row_last  = row_last_q;
   assign row_new   = row_new_q;
   assign x_pos     = !x_rem_q[26] && x_rem_q != '0;
@@ -270,8 +271,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
   assign nn0       = n_q + n0_q;
   assign a_diff    = {1'b0, atot_q} - {1'b0, ad_q};
   assign a_left    = a_diff[ACT_W] ? '0 : a_diff[ACT_W-1:0];
-  assign slew      = u_q[slot1] >> 1;
-  assign u_new     = clamp_u((div_quo_q > slew) ? div_quo_q : slew);
+  assign u_new     = clamp_u(u_mx_q);
 
   always_comb begin
     state_d    = state_q;
@@ -363,8 +363,8 @@ module msr_budget_ctrl import msr_pkg::*; #(
       ST_SLEW: state_d = ST_SQ0;
       ST_SQ0: begin
         mul_load = 1'b1;
-        mul_a    = MC_W'(u_q[slot2]);
-        mul_b    = MP_W'(u_q[slot2]);
+        mul_a    = MC_W'(u_new);
+        mul_b    = MP_W'(u_new);
         state_d  = ST_SQ;
       end
       ST_SQ: if (mul_done) state_d = ST_IDLE;
@@ -422,6 +422,8 @@ module msr_budget_ctrl import msr_pkg::*; #(
       div_quo_q         <= '0;
       div_cnt_q         <= '0;
       div_sat_q         <= 1'b0;
+      slew_q            <= '0;
+      u_mx_q            <= '0;
       row_ok_q          <= 1'b0;
       row_m_q           <= '0;
     end else if (clear_i) begin
@@ -514,6 +516,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
             div_quo_q <= (row_last ? spare_q == '0 : row_new && !x_pos) ? Q_SAT : 11'd0;
             div_sat_q <= 1'b0;
             div_cnt_q <= 4'd12;
+            slew_q    <= u_q[slot1] >> 1;
             div_rem_q <= div_num_in;
             div_den_q <= div_den_in;
           end
@@ -532,7 +535,8 @@ module msr_budget_ctrl import msr_pkg::*; #(
               div_quo_q <= (div_cnt_q == 4'd1 && div_sat_q) ? Q_SAT : {div_quo_q[9:0], div_ge};
             end
           end
-          ST_SLEW: u_q[slot2] <= u_new;
+          ST_SLEW: u_mx_q <= (div_quo_q > slew_q) ? div_quo_q : slew_q;
+          ST_SQ0: u_q[slot2] <= u_new;
           ST_SQ: if (mul_done) begin
             if (row_new) m_q[slot2] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
             rows_done_q <= rows_done_q + ROW_W'(1);
