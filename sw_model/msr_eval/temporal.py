@@ -175,7 +175,8 @@ def markdown(result: dict, img_rel: str) -> str:
              "",
              f"{len(result['scenes'])} scenes, {result['frames']} frames each at {result['width']}x{result['height']}, "
              f"the camera swung {result['orbit_deg']:.0f} degrees about each scene's target "
-             f"(`msr_eval.temporal`, `scripts/eval.py --temporal`, {result['seconds']:.0f} s). Per method and setting: "
+             f"(`msr_eval.temporal`, part of `make eval`; `scripts/eval.py --temporal-only` adds it to a run; "
+             f"{result['seconds']:.0f} s). Per method and setting: "
              "mean traced fraction, mean and worst frame PSNR against the frame's full render, and flicker, the rms "
              "frame-to-frame change of the error in 8-bit units (mean and worst over the frames): what a method "
              "adds to the motion that the full render has.",
