@@ -96,7 +96,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
     logic [5:0] s1;
     s1 = 6'((7'd1 << l) - 7'd1);
     if (n == '0) return '0;
-    return 6'((n + s1) >> l) + 6'(((n - 6'd1) & s1) != '0);
+    return ((n + s1) >> l) + 6'(((n - 6'd1) & s1) != '0);
   endfunction
 
   // line(N) = floor(N / T) * n0(T) + n0(N mod T); n0(T) = T / S + 1 as T >= 8 >= S.
@@ -347,8 +347,8 @@ module msr_budget_ctrl import msr_pkg::*; #(
           state_d    = ST_DIV;
         end else begin
           mul_load = 1'b1;
-          mul_a    = MC_W'(nn0);
-          mul_b    = MP_W'(wh_q - p_sum_q);
+          mul_a    = nn0;
+          mul_b    = wh_q - p_sum_q;
           state_d  = ST_NUM;
         end
       end
