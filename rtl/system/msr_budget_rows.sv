@@ -79,16 +79,22 @@ module msr_budget_rows import msr_pkg::*; #(
   // S2: each slot's counts plus this clock's pixels of its row; the taken row's slot restarts.
   logic [2:0][CNT_W-1:0]  traced_d;
   logic [2:0][TROW_W-1:0] tiles_d;
+  // Per slot the clock's counts first (a small popcount of the inputs), then one add: not a
+  // chain of NUM_IN wide adders (that chain was 36 levels, 51 MHz on its own).
+  localparam int unsigned INC_W = $clog2(NUM_IN + 1);
+  logic [2:0][INC_W-1:0] inc_tr, inc_la;
   always_comb begin
     for (int unsigned s = 0; s < 3; s++) begin
-      traced_d[s] = (take && slot_t'(s) == hslot_q) ? '0 : traced_q[s];
-      tiles_d[s]  = (take && slot_t'(s) == hslot_q) ? '0 : tiles_q[s];
+      inc_tr[s] = '0;
+      inc_la[s] = '0;
       for (int unsigned i = 0; i < NUM_IN; i++) begin
         if (s1_v_q[i] && s1_slot_q[i] == slot_t'(s)) begin
-          traced_d[s] = traced_d[s] + CNT_W'(s1_tr_q[i]);
-          tiles_d[s]  = tiles_d[s] + TROW_W'(s1_last_q[i]);
+          inc_tr[s] = inc_tr[s] + INC_W'(s1_tr_q[i]);
+          inc_la[s] = inc_la[s] + INC_W'(s1_last_q[i]);
         end
       end
+      traced_d[s] = ((take && slot_t'(s) == hslot_q) ? '0 : traced_q[s]) + CNT_W'(inc_tr[s]);
+      tiles_d[s]  = ((take && slot_t'(s) == hslot_q) ? '0 : tiles_q[s]) + TROW_W'(inc_la[s]);
     end
   end
 
