@@ -47,6 +47,15 @@ package msr_pkg;
     TILE_32 = 2'd2
   } tile_size_e;
 
+  // log2 T of a tile size (the encoding's shift); an unused encoding reads as 16.
+  function automatic logic [2:0] tile_log2(tile_size_e t);
+    unique case (t)
+      TILE_8:  return 3'd3;
+      TILE_32: return 3'd5;
+      default: return 3'd4;
+    endcase
+  endfunction
+
   typedef enum logic {
     METRIC_MAX = 1'b0,   // max(|dR|, |dG|, |dB|)
     METRIC_SUM = 1'b1    // |dR| + |dG| + |dB|

@@ -76,11 +76,8 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
   function automatic logic [2:0] lg_raw(logic [5:0] t);
     return (t == 6'd8) ? 3'd3 : (t == 6'd32) ? 3'd5 : 3'd4;
   endfunction
-  function automatic logic [2:0] lg_cfg(tile_size_e t);
-    return (t == TILE_8) ? 3'd3 : (t == TILE_32) ? 3'd5 : 3'd4;
-  endfunction
   assign raw_lg = lg_raw(raw_i.tile);
-  assign cfg_lg = lg_cfg(cfg_i.tile);
+  assign cfg_lg = tile_log2(cfg_i.tile);
 
   // The check reads the sampled registers, the frame its checked configuration: the same
   // values (the check passed), so the controller sees one configuration from check_i on.

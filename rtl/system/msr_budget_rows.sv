@@ -50,14 +50,6 @@ module msr_budget_rows import msr_pkg::*; #(
   logic [NUM_IN-1:0]       s1_v_q, s1_tr_q, s1_last_q;
   slot_t [NUM_IN-1:0]      s1_slot_q;
 
-  function automatic logic [2:0] lg_of(tile_size_e t);
-    unique case (t)
-      TILE_8:  return 3'd3;
-      TILE_32: return 3'd5;
-      default: return 3'd4;
-    endcase
-  endfunction
-
   // ceil(n / 2^lg)
   function automatic logic [TROW_W-1:0] tiles_of(dim_t n, logic [2:0] lg);
     return TROW_W'(n >> lg) + TROW_W'((n & ((dim_t'(1) << lg) - 1'b1)) != '0);
@@ -142,9 +134,9 @@ module msr_budget_rows import msr_pkg::*; #(
     s1_tr_q   <= pix_traced_i;
     s1_last_q <= pix_last_i;
     if (start_i) begin
-      lg_q  <= lg_of(tile_i);
-      ntx_q <= tiles_of(width_i, lg_of(tile_i));
-      nty_q <= tiles_of(height_i, lg_of(tile_i));
+      lg_q  <= tile_log2(tile_i);
+      ntx_q <= tiles_of(width_i, tile_log2(tile_i));
+      nty_q <= tiles_of(height_i, tile_log2(tile_i));
     end
   end
 
