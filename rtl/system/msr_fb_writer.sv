@@ -19,7 +19,8 @@
 // source plane starts on a 32-bit lane too) and written one word per four pixels. Codes keep
 // their low 5 bits in the buffer (the codes of algorithm.md section 4 are 0..19).
 //
-// Four units, wired here:
+// An input slice per input (here: the writer's end of the wire from the engines, with the
+// row-end test), then four units, wired here:
 //   msr_fbw_rowbuf  per input a ring of three row buffers: pixels and codes in, lane by lane;
 //   msr_fbw_addr    the address pipeline, one row per clock: pick (round robin over the inputs
 //                   with a complete row) -> y, x0, length -> each plane's row address, base +
@@ -35,6 +36,7 @@
 // Throughput: a 16-pixel row with its codes takes 2 + 1 beats of 256 bits when the frame
 // buffer is 32-byte aligned, so four engines at one pixel per clock each fit with room (5.3
 // pixels per clock); 128 bits would cap the writer at 3.2 pixels per clock.
+`include "msr_assert.svh"
 `include "../system/msr_fbw_types.svh"
 
 module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
@@ -120,6 +122,35 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
                       last: pix_last_i[i]};
   end
 
+  // ---- Input slices: the writer's end of the wire from the engines -------------------------
+  // A pixel's row-end test (x mod T == T-1 or x == W-1) is taken on the way in and travels with
+  // it as a registered bit: the row buffers' flags then see a register, not a comparator behind
+  // the wire (that decode set the default top's clock on ECP5, issue 31). The frame's last
+  // column is registered (width_i settles long before the frame's first pixel, a_width_stable).
+  lcoord_t                tmask;
+  dim_t                   last_x_q;
+  logic      [NUM_IN-1:0] sl_valid, sl_ready, sl_end;
+  pix_word_t [NUM_IN-1:0] sl_pix;
+  assign tmask = tile_mask(tile_i);
+  always_ff @(posedge clk_i) last_x_q <= width_i - 1'b1;
+
+  for (genvar i = 0; i < NUM_IN; i++) begin : g_in_slice
+    logic in_end;
+    assign in_end = ((pix[i].x[LCOORD_W-1:0] & tmask) == tmask)
+                 || (dim_t'(pix[i].x) == last_x_q);
+    msr_spill_reg #(.WIDTH($bits(pix_word_t) + 1)) u_in_slice (
+      .clk_i   (clk_i),
+      .rst_ni  (rst_ni),
+      .clear_i (clear_i),
+      .valid_i (pix_valid_i[i]),
+      .ready_o (pix_ready_o[i]),
+      .data_i  ({in_end, pix[i]}),
+      .valid_o (sl_valid[i]),
+      .ready_i (sl_ready[i]),
+      .data_o  ({sl_end[i], sl_pix[i]})
+    );
+  end
+
   // Row buffers <-> address pipeline: complete rows, their take, their metadata.
   logic [NUM_IN-1:0] row_pend, take;
   buf_t [NUM_IN-1:0] pick;
@@ -146,12 +177,12 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
     .clk_i        (clk_i),
     .rst_ni       (rst_ni),
     .clear_i      (clear_i),
-    .width_i      (width_i),
     .tile_i       (tile_i),
     .fb_i         (fb),
-    .pix_valid_i  (pix_valid_i),
-    .pix_ready_o  (pix_ready_o),
-    .pix_i        (pix),
+    .pix_valid_i  (sl_valid),
+    .pix_ready_o  (sl_ready),
+    .pix_i        (sl_pix),
+    .pix_row_end_i (sl_end),
     .tile_done_o  (tile_done_o),
     .row_ready_o  (row_pend),
     .pick_o       (pick),
@@ -246,6 +277,10 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
     .idle_o       (idle_w)
   );
 
-  assign idle_o = idle_rb && idle_addr && idle_aw && idle_w;
+  assign idle_o = (sl_valid == '0) && idle_rb && idle_addr && idle_aw && idle_w;
+
+  /* verilator lint_off SYNCASYNCNET */
+  `MSR_ASSERT(a_width_stable, pix_valid_i != '0 |-> $stable(width_i))
+  /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_fb_writer

@@ -36,6 +36,15 @@ package msr_fbw_pkg;
     return (b == buf_t'(NBUF - 1)) ? '0 : b + 1'b1;
   endfunction
 
+  // T - 1, the mask of a tile-local coordinate.
+  function automatic lcoord_t tile_mask(tile_size_e t);
+    unique case (t)
+      TILE_8:  return lcoord_t'(7);
+      TILE_32: return lcoord_t'(31);
+      default: return lcoord_t'(15);
+    endcase
+  endfunction
+
   // First beat of buffer b (0..2) in a memory of n beats per buffer: b * n, for the pixel
   // memory and the code memory; n is a constant, so this is a 3-way mux.
   function automatic int unsigned buf_base(buf_t b, int unsigned n);

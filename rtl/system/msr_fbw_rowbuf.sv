@@ -2,9 +2,10 @@
 // input's pixels and codes, lane by lane, for the W side to read a whole bus beat per clock.
 //
 // Each input's stream is row-contiguous by itself; a row ends at the tile's right edge or the
-// frame's (x mod T == T-1 or x == W-1), derived here from x. The lane of a pixel in its bus beat
-// depends only on the low bits of its row address, and those follow from y's low bits (x0 is a
-// multiple of 8, so 4*x0 is a multiple of the 32-byte beat):
+// frame's (x mod T == T-1 or x == W-1): the writer's input slice tests that and hands the bit
+// in with the pixel (pix_row_end_i), so the flags here see no comparator. The lane of a pixel
+// in its bus beat depends only on the low bits of its row address, and those follow from y's
+// low bits (x0 is a multiple of 8, so 4*x0 is a multiple of the 32-byte beat):
 //   pixel word w = ow + l, ow = (FB_BASE/4 + y*FB_STRIDE/4) mod WPB, l = x mod T,
 // so every pixel is written straight into lane (w mod WPB), beat (w / WPB) of its row buffer:
 // one memory per lane, one lane written per clock, a whole beat read per clock, and no
@@ -29,13 +30,13 @@ module msr_fbw_rowbuf import msr_pkg::*; import msr_fbw_pkg::*; #(
   input  logic              rst_ni,          // asynchronous reset, active low
   input  logic              clear_i,         // synchronous clear
   // Frame configuration, stable during a frame.
-  input  dim_t              width_i,         // W (stable a clock before a pixel comes)
   input  tile_size_e        tile_i,          // T
   input  fb_cfg_t           fb_i,            // frame-buffer settings (bases and strides)
   // Pixel streams in.
   input  logic      [NUM_IN-1:0] pix_valid_i,  // a finished pixel
   output logic      [NUM_IN-1:0] pix_ready_o,  // room for it
   input  pix_word_t [NUM_IN-1:0] pix_i,        // the pixel
+  input  logic      [NUM_IN-1:0] pix_row_end_i,  // it ends its row (x mod T == T-1 or x == W-1)
   output logic      [NUM_IN-1:0] tile_done_o,  // pulse: the last pixel of a tile taken
   // Complete rows to the address side.
   output logic      [NUM_IN-1:0] row_ready_o,  // the input's next row is complete (registered)
@@ -76,15 +77,8 @@ module msr_fbw_rowbuf import msr_pkg::*; import msr_fbw_pkg::*; #(
     return r;
   endfunction
 
-  logic [LCOORD_W-1:0] tmask;      // T - 1
-  always_comb begin
-    unique case (tile_i)
-      TILE_8:  tmask = LCOORD_W'(7);
-      TILE_16: tmask = LCOORD_W'(15);
-      TILE_32: tmask = LCOORD_W'(31);
-      default: tmask = LCOORD_W'(15);
-    endcase
-  end
+  lcoord_t tmask;      // T - 1
+  assign tmask = tile_mask(tile_i);
 
   // Lane offsets of a row's first pixel word / first code word in its first beat.
   logic [LANE_W-1:0] lane_mask;
@@ -115,18 +109,12 @@ module msr_fbw_rowbuf import msr_pkg::*; import msr_fbw_pkg::*; #(
   logic [NUM_IN-1:0][WPB-1:0][4*CODE_W-1:0] srd;
   logic [NUM_IN-1:0] wr2_busy;       // a memory write is pending in stage 2
 
-  // The frame's last column, registered: the row-end test is an equality on the incoming x,
-  // with no adder between the input slice and the buffer flags (width_i is the frame's
-  // configuration: it settles long before the frame's first pixel, a_width_stable).
-  dim_t last_x_q;
-  always_ff @(posedge clk_i) last_x_q <= width_i - 1'b1;
-
   for (genvar i = 0; i < NUM_IN; i++) begin : g_in
     logic [NBUF-1:0] full_d, picked_d;
     buf_t            col_d, pick_d;
 
     assign lpos[i]        = pix_i[i].x[LCOORD_W-1:0] & tmask;
-    assign row_end[i]     = (lpos[i] == tmask) || (dim_t'(pix_i[i].x) == last_x_q);
+    assign row_end[i]     = pix_row_end_i[i];
     assign pix_ready_o[i] = !full_q[i][col_q[i]];
     assign pix_hs[i]      = pix_valid_i[i] && pix_ready_o[i];
     assign tile_done_o[i] = pix_hs[i] && pix_i[i].last;
@@ -278,7 +266,6 @@ module msr_fbw_rowbuf import msr_pkg::*; import msr_fbw_pkg::*; #(
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_code_fits, code_big == '0)
   `MSR_ASSERT(a_row_ready_late, (row_ready_q & ~row_ready) == '0)
-  `MSR_ASSERT(a_width_stable, pix_valid_i != '0 |-> $stable(width_i))
   `MSR_ASSERT(a_take_ready, (take_i & ~row_ready_q) == '0)
   /* verilator lint_on SYNCASYNCNET */
 

@@ -366,14 +366,12 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
 
   // ---- Pixel path: every engine has its own writer input (no arbitration) -----------------
   // Two register slices per engine, one at each end of the wire: the engines sit across the
-  // die from the writer, whose input decodes a pixel's row end, lane and buffer address
-  // straight from x and y into its buffer flags. With one slice the placer put it by its
-  // engine, and the wire plus that decode set the flat top's clock (11.1 ns); the second slice
-  // (cleared with the writer) gives the wire a clock of its own. Soft reset: finished pixels
-  // are dropped behind the slices.
-  logic      [NUM_ENGINES-1:0] ep_pix_valid, ep_pix_ready;
-  logic      [NUM_ENGINES-1:0] sl_pix_valid, sl_pix_ready, wr_pix_valid, wr_pix_ready;
-  pix_word_t [NUM_ENGINES-1:0] ep_pix, sl_pix;
+  // die from the writer. This one, by its engine, is cleared with the engine; the writer's
+  // input slice (msr_fbw_rowbuf, cleared with the writer) is the other end, and takes the
+  // pixel's row-end test on the way in so that its buffer flags see a register, not a
+  // comparator behind the wire. Soft reset: finished pixels are dropped between the two.
+  logic      [NUM_ENGINES-1:0] ep_pix_valid, ep_pix_ready, wr_pix_valid, wr_pix_ready;
+  pix_word_t [NUM_ENGINES-1:0] ep_pix;
   coord_t    [NUM_ENGINES-1:0] wr_pix_x, wr_pix_y;
   rgb_t      [NUM_ENGINES-1:0] wr_pix_rgb;
   src_t      [NUM_ENGINES-1:0] wr_pix_src;
@@ -392,26 +390,15 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .ready_i (ep_pix_ready[i]),
       .data_o  (ep_pix[i])
     );
-    msr_spill_reg #(.WIDTH($bits(pix_word_t))) u_pix_slice_wr (
-      .clk_i   (clk_i),
-      .rst_ni  (rst_ni),
-      .clear_i (clear),
-      .valid_i (ep_pix_valid[i]),
-      .ready_o (ep_pix_ready[i]),
-      .data_i  (ep_pix[i]),
-      .valid_o (sl_pix_valid[i]),
-      .ready_i (sl_pix_ready[i]),
-      .data_o  (sl_pix[i])
-    );
-    assign wr_pix_x[i]    = sl_pix[i].x;
-    assign wr_pix_y[i]    = sl_pix[i].y;
-    assign wr_pix_rgb[i]  = sl_pix[i].rgb;
-    assign wr_pix_src[i]  = sl_pix[i].src;
-    assign wr_pix_last[i] = sl_pix[i].last;
+    assign wr_pix_x[i]    = ep_pix[i].x;
+    assign wr_pix_y[i]    = ep_pix[i].y;
+    assign wr_pix_rgb[i]  = ep_pix[i].rgb;
+    assign wr_pix_src[i]  = ep_pix[i].src;
+    assign wr_pix_last[i] = ep_pix[i].last;
   end
 
-  assign wr_pix_valid = drain ? '0 : sl_pix_valid;
-  assign sl_pix_ready = drain ? '1 : wr_pix_ready;
+  assign wr_pix_valid = drain ? '0 : ep_pix_valid;
+  assign ep_pix_ready = drain ? '1 : wr_pix_ready;
 
   // ---- Frame-buffer writer ----------------------------------------------------------------------
   msr_fb_writer #(

@@ -188,6 +188,12 @@ def test_combine_seeds_median_best_worst():
     assert [x["seed"] for x in r["fmax_seeds"]] == [1, 2, 3]
     r = synth.combine_seeds(rows[:2] + [{"seed": 3, "error": "router gave up"}])
     assert r["fmax_mhz"] == 99.5 and r["fmax_seeds"][2]["error"] == "router gave up"
+    assert r["fmax_worst"] == {"seed": 3, "fmax_mhz": None, "error": "router gave up"}
+    # a failed seed ranks below every routed one: with two of three failed there is no median
+    r = synth.combine_seeds(rows[:1] + [{"seed": 2, "error": "did not route"}, {"seed": 3, "error": "x"}])
+    assert "error" in r
+    r = synth.combine_seeds([rows[1], rows[2], rows[0], {"seed": 4, "error": "did not route"}])
+    assert r["fmax_median"] == {"seed": 1, "fmax_mhz": 99.5}
     assert "error" in synth.combine_seeds([{"seed": 1, "error": "x"}])
 
 
@@ -273,7 +279,7 @@ def test_plan_of_the_whole_design():
     assert by_key[("net", "msr_top")].deps == (("net", "msr_top_glue"), ("net", synth.ENGINE))
     for seed in (1, 2, 3):
         j = by_key[("ecp5", f"msr_top@{seed}")]
-        assert j.fn is synth.ecp5_place and j.deps == (("net", "msr_top"),) and j.args[1:] == (seed, True)
+        assert j.fn is synth.ecp5_place and j.deps == (("net", "msr_top"),) and j.args[1:] == (seed, True, synth.ECP5_SEED_TIMEOUT_S)
     assert by_key[("ecp5", "msr_top_glue")].deps == (("net", "msr_top_glue_cut"),)
     assert {m for (kind, m) in by_key if kind == "ecp5"} >= set(synth.ECP5_UNITS)
     generic = {w for (kind, w) in by_key if kind == "generic"}

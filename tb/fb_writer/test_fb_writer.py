@@ -94,10 +94,12 @@ async def run_frame(dut, ram, rng, n_in, W, H, T, fb_base, fb_stride, src_en, sr
         assert idle < 5000, "no pixel taken for 5000 cycles"
     dut.pix_valid_i.value = 0
     for _ in range(20000):
-        await RisingEdge(dut.clk_i)
         await ReadOnly()
+        # the last pixels reach the row buffers through the input slice after the last offer
+        tiles_done += bin(int(dut.tile_done_o.value)).count("1")
         if int(dut.idle_o.value):
             break
+        await RisingEdge(dut.clk_i)
     else:
         raise AssertionError("writer never idle")
     await RisingEdge(dut.clk_i)

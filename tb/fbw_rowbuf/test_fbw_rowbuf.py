@@ -67,7 +67,7 @@ async def test_rows(dut):
     wpb = len(dut.rd_pix_o) // 24
     pb, sb = (32 + 2 * wpb - 2) // wpb, (8 + 2 * wpb - 2) // wpb
     await start_clock_and_reset(dut, {"clear_i": 0, "pix_valid_i": 0, "take_i": 0, "free_valid_i": 0,
-                                      "width_i": 1, "tile_i": 0, "fb_i": 0, "pix_i": 0, "raddr_i": 0,
+                                      "pix_row_end_i": 0, "tile_i": 0, "fb_i": 0, "pix_i": 0, "raddr_i": 0,
                                       "rd_in_i": 0, "meta_in_i": 0, "meta_buf_i": 0, "free_in_i": 0,
                                       "free_buf_i": 0})
     frames = [(40, 17, 8, 0x0FE4, 4 * 40 + 12, 0x80FFC, 44, 0.0, 0.0), (1, 1, 8, 0x4, 4, 0x3FFC, 4, 0.0, 0.0)]
@@ -79,7 +79,6 @@ async def test_rows(dut):
     col = [0] * n_in                      # the buffer that collects
     for W, H, T, fb_base, fb_stride, src_base, src_stride, gap_p, slow_p in frames:
         await FallingEdge(dut.clk_i)
-        dut.width_i.value = W
         dut.tile_i.value = TILE_ENC[T]
         dut.fb_i.value = fb_cfg(fb_base, fb_stride, 1, src_base, src_stride)
         await FallingEdge(dut.clk_i)
@@ -103,16 +102,19 @@ async def test_rows(dut):
                 assert not (row_ready >> i) & 1 or any(e[0] == "full" for e in held[i]), \
                     f"input {i}: a row offered with none complete and untaken"
             # pixels offered
-            valid, words, offer = 0, [0] * n_in, [None] * n_in
+            valid, ends, words, offer = 0, 0, [0] * n_in, [None] * n_in
             for i in range(n_in):
                 r, p = pos[i]
                 if r < len(rows[i]) and rng.random() >= gap_p:
                     y, x0, pix = rows[i][r]
                     x, rgb, code, last = pix[p]
                     valid |= 1 << i
+                    # the writer's input slice tests the row end (x mod T == T-1 or x == W-1)
+                    ends |= int(x % T == T - 1 or x == W - 1) << i
                     words[i] = pix_word(x, y, rgb, code, last)
                     offer[i] = (r, p)
             dut.pix_valid_i.value = valid
+            dut.pix_row_end_i.value = ends
             dut.pix_i.value = pack(words, 57)
             # take one offered row (the oldest complete, untaken one of a random input)
             take = 0
