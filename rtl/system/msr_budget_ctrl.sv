@@ -9,10 +9,10 @@
 //
 // Sequences (one state machine, clear_i > start_i > check_i > row_done_i):
 //   check_i: the grid constants line(W), line(H) from shifts and adds, G = line(W) * line(H)
-//     on the multiplier (<= 13 clocks), the two checks: check_done_o at most 14 clocks after
-//     the pulse. check_done_o and the flags hold until the next check_i or clear_i.
+//     on the multiplier (<= 13 clocks), the two checks: check_done_o at most 16 clocks after
+//     the pulse (two of them register the configuration and the constants). check_done_o and the flags hold until the next check_i or clear_i.
 //   start_i: G again, W * H, g of the last row, p of the last row, N0 = ((B' - G) * u0) >>
-//     PRIOR_SHIFT (B' = min(B, W * H)), m0 = (u0 * u0 + 128) >> 8: <= 65 clocks, then rows
+//     PRIOR_SHIFT (B' = min(B, W * H)), m0 = (u0 * u0 + 128) >> 8: <= 67 clocks, then rows
 //     0 and 1 are known (row_ok_o) and row_ready_o rises. Atot is the N the last finished
 //     frame ended with (the sum of the words it wrote into the activity memory).
 //   row_done_i: a_j = (c_j - g_j) * u_j, the sums, the memory word, then the law of section 4
@@ -90,6 +90,46 @@ module msr_budget_ctrl import msr_pkg::*; #(
   localparam int unsigned REM_W  = PROD_W + 1;   // 62: holds den << 11
   localparam int unsigned MEM_DEPTH = 512;
 
+  // ---- Configuration in: registered, and the grid constants from it registered again -------
+  // The constants load the multiplier at a check or start pulse; computed straight from the
+  // inputs (behind msr_budget's check/frame mux and the tile-size decode) they were the unit's
+  // worst path (62.5 MHz alone on ECP5). So the pulses are delayed two clocks to meet them
+  // (check_p, start_p): the configuration must hold from the pulse on, as before. A clear drops
+  // a pulse in flight; the check's flags and the row read-back drop at the input pulse itself.
+  dim_t        width_r, height_r;
+  logic [2:0]  tile_log2_r, prior_shift_r;
+  level_t      levels_r;
+  logic [23:0] budget_r;
+  logic [10:0] scale_init_r;
+  logic        seeded_r;
+  always_ff @(posedge clk_i) begin
+    width_r       <= width_i;
+    height_r      <= height_i;
+    tile_log2_r   <= tile_log2_i;
+    levels_r      <= levels_i;
+    budget_r      <= budget_i;
+    scale_init_r  <= scale_init_i;
+    prior_shift_r <= prior_shift_i;
+    seeded_r      <= seeded_i;
+  end
+
+  logic [1:0] check_dly_q, start_dly_q;
+  logic       check_p, start_p;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      check_dly_q <= '0;
+      start_dly_q <= '0;
+    end else if (clear_i) begin
+      check_dly_q <= '0;
+      start_dly_q <= '0;
+    end else begin
+      check_dly_q <= {check_dly_q[0], check_i};
+      start_dly_q <= {start_dly_q[0], start_i};
+    end
+  end
+  assign check_p = check_dly_q[1];
+  assign start_p = start_dly_q[1];
+
   // ---- Grid constants (closed forms of docs/budget.md "Terms"; no multiplier) -------------
   // n0(n) = ceil(n / S) + ((n - 1) mod S != 0), for n in 0..32 (0 for n = 0).
   function automatic logic [5:0] grid_axis(logic [5:0] n, level_t l);
@@ -116,20 +156,24 @@ module msr_budget_ctrl import msr_pkg::*; #(
     return (s == 2'd2) ? 2'd0 : s + 2'd1;
   endfunction
 
-  logic [5:0]       tile_sz, h_rest, h_last;
-  logic [12:0]      line_w, line_h;
-  logic [ROW_W-1:0] nty;
-  logic [17:0]      g_full, p_full;
-  logic [10:0]      u0;
-  assign tile_sz = 6'(7'd1 << tile_log2_i);
-  assign h_rest  = 6'(height_i & (dim_t'(tile_sz) - dim_t'(1)));
-  assign h_last  = (h_rest == '0) ? tile_sz : h_rest;
-  assign line_w  = grid_line(width_i, tile_log2_i, levels_i);
-  assign line_h  = grid_line(height_i, tile_log2_i, levels_i);
-  assign nty     = ROW_W'((14'(height_i) + 14'(tile_sz) - 14'd1) >> tile_log2_i);
-  assign g_full  = 18'((19'(line_w) << (tile_log2_i - {1'b0, levels_i})) + 19'(line_w));
-  assign p_full  = 18'(width_i) << tile_log2_i;
-  assign u0      = clamp_u((scale_init_i == '0) ? 11'd256 : scale_init_i);
+  logic [5:0]       tile_sz, h_rest, h_last_c, h_last;
+  logic [12:0]      line_w_c, line_h_c, line_w, line_h;
+  logic [ROW_W-1:0] nty_c, nty;
+  logic [17:0]      g_full_c, p_full_c, g_full, p_full;
+  logic [10:0]      u0_c, u0;
+  assign tile_sz  = 6'(7'd1 << tile_log2_r);
+  assign h_rest   = 6'(height_r & (dim_t'(tile_sz) - dim_t'(1)));
+  assign h_last_c = (h_rest == '0) ? tile_sz : h_rest;
+  assign line_w_c = grid_line(width_r, tile_log2_r, levels_r);
+  assign line_h_c = grid_line(height_r, tile_log2_r, levels_r);
+  assign nty_c    = ROW_W'((14'(height_r) + 14'(tile_sz) - 14'd1) >> tile_log2_r);
+  assign g_full_c = 18'((19'(line_w_c) << (tile_log2_r - {1'b0, levels_r})) + 19'(line_w_c));
+  assign p_full_c = 18'(width_r) << tile_log2_r;
+  assign u0_c     = clamp_u((scale_init_r == '0) ? 11'd256 : scale_init_r);
+  always_ff @(posedge clk_i) begin
+    {h_last, line_w, line_h, nty, g_full, p_full, u0} <=
+        {h_last_c, line_w_c, line_h_c, nty_c, g_full_c, p_full_c, u0_c};
+  end
 
   // ---- State ---------------------------------------------------------------------------------
   typedef enum logic [4:0] {
@@ -192,7 +236,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
   logic              seq_load;
   logic [MC_W-1:0]   seq_a;
   logic [MP_W-1:0]   seq_b;
-  assign seq_load = !clear_i && (start_i || check_i);
+  assign seq_load = !clear_i && (start_p || check_p);
   assign seq_a    = MC_W'(line_w);
   assign seq_b    = MP_W'(line_h);
 
@@ -200,7 +244,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
   logic              mload;
   logic [MC_W-1:0]   ma;
   logic [MP_W-1:0]   mb;
-  assign mload = seq_load || (mul_load && !start_i && !check_i);
+  assign mload = seq_load || (mul_load && !start_p && !check_p);
   assign ma    = seq_load ? seq_a : mul_a;
   assign mb    = seq_load ? seq_b : mul_b;
 
@@ -297,20 +341,20 @@ module msr_budget_ctrl import msr_pkg::*; #(
           state_d = ST_IDLE;
         end else begin
           mul_load = 1'b1;
-          mul_a    = MC_W'(width_i);
-          mul_b    = MP_W'(height_i);
+          mul_a    = MC_W'(width_r);
+          mul_b    = MP_W'(height_r);
           state_d  = ST_WH;
         end
       end
       ST_WH: if (mul_done) begin
         mul_load = 1'b1;
         mul_a    = MC_W'(line_w_q);
-        mul_b    = MP_W'(grid_axis(h_last_q, levels_i));
+        mul_b    = MP_W'(grid_axis(h_last_q, levels_r));
         state_d  = ST_GL;
       end
       ST_GL: if (mul_done) begin
         mul_load = 1'b1;
-        mul_a    = MC_W'(width_i);
+        mul_a    = MC_W'(width_r);
         mul_b    = MP_W'(h_last_q);
         state_d  = ST_PL;
       end
@@ -441,10 +485,16 @@ module msr_budget_ctrl import msr_pkg::*; #(
                   && row_idx_i < nty_q;
       row_m_q  <= m_q[(row_idx_i == rows_done_q) ? base_q : slot1];
 
-      if (start_i || check_i) begin
+      // The input pulses drop the old answers at once (the sequence starts two clocks later).
+      if (check_i) check_done_q <= 1'b0;
+      if (start_i) begin
+        act_q    <= 1'b0;
+        row_ok_q <= 1'b0;
+      end
+      if (start_p || check_p) begin
         // Both begin with the grid constants and G (the multiplier is loaded below).
         state_q     <= ST_G;
-        checking_q  <= !start_i;
+        checking_q  <= !start_p;
         act_q       <= 1'b0;
         row_ok_q    <= 1'b0;
         line_w_q    <= line_w;
@@ -453,9 +503,9 @@ module msr_budget_ctrl import msr_pkg::*; #(
         g_full_q    <= g_full;
         p_full_q    <= p_full;
         u0_q        <= u0;
-        seeded_q    <= seeded_i;
-        if (check_i && !start_i) check_done_q <= 1'b0;
-        if (start_i) begin
+        seeded_q    <= seeded_r;
+        if (check_p && !start_p) check_done_q <= 1'b0;
+        if (start_p) begin
           n_q               <= '0;
           p_sum_q           <= '0;
           ad_q              <= '0;
@@ -474,14 +524,14 @@ module msr_budget_ctrl import msr_pkg::*; #(
             grid_q <= WH_W'(mul_acc_q);
             if (checking_q) begin
               check_done_q  <= 1'b1;
-              err_budget_q  <= budget_i != '0 && WH_W'(budget_i) < WH_W'(mul_acc_q);
-              err_profile_q <= seeded_i && !(mem_valid_q && mem_rows_q == nty_q);
+              err_budget_q  <= budget_r != '0 && WH_W'(budget_r) < WH_W'(mul_acc_q);
+              err_profile_q <= seeded_r && !(mem_valid_q && mem_rows_q == nty_q);
             end
           end
           ST_WH: if (mul_done) begin
             wh_q  <= WH_W'(mul_acc_q);
-            bud_q <= (WH_W'(budget_i) < WH_W'(mul_acc_q)) ? WH_W'(budget_i) : WH_W'(mul_acc_q);
-            p0_q  <= WH_W'(mul_acc_q) >> prior_shift_i;
+            bud_q <= (WH_W'(budget_r) < WH_W'(mul_acc_q)) ? WH_W'(budget_r) : WH_W'(mul_acc_q);
+            p0_q  <= WH_W'(mul_acc_q) >> prior_shift_r;
           end
           ST_GL: if (mul_done) begin
             g_last_q <= 18'(mul_acc_q);
@@ -491,7 +541,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
             p_last_q <= 18'(mul_acc_q);
             x_rem_q  <= $signed({2'b00, spare_q});
           end
-          ST_N0: if (mul_done) n0_q <= ACT_W'(mul_acc_q >> prior_shift_i);
+          ST_N0: if (mul_done) n0_q <= ACT_W'(mul_acc_q >> prior_shift_r);
           ST_M0: if (mul_done) begin
             m_q[0] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
             m_q[1] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
@@ -573,8 +623,8 @@ module msr_budget_ctrl import msr_pkg::*; #(
 
   // ---- Invariants ----------------------------------------------------------------------------
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_row_when_ready, row_done_i |-> row_ready_o || start_i || check_i || clear_i)
-  `MSR_ASSERT(a_start_budget_on, start_i |-> budget_i != '0)
+  `MSR_ASSERT(a_row_when_ready, row_done_i |-> row_ready_o || start_p || check_p || clear_i)
+  `MSR_ASSERT(a_start_budget_on, start_p |-> budget_r != '0)
   `MSR_ASSERT(a_row_traced_range, state_q == ST_ACC |-> c_q >= g_row_q && c_q <= p_row_q)
   `MSR_ASSERT(a_div_den_nonzero, state_q == ST_DIV && div_cnt_q == 4'd12 |-> div_den_q != '0)
   `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= U_MIN && u_q[base_q] <= U_MAX)
