@@ -9,6 +9,7 @@ rtl/prim/msr_sat_counter.sv
 rtl/prim/msr_rr_arb.sv
 rtl/prim/msr_fifo.sv
 rtl/prim/msr_spill_reg.sv
+rtl/prim/msr_shift_add_mul.sv
 rtl/prim/msr_tile_sram.sv
 rtl/engine/msr_base_decision.sv
 rtl/engine/msr_decision_pipe.sv
@@ -29,7 +30,9 @@ rtl/system/msr_axil_cpuif.sv
 rtl/system/msr_reg_if.sv
 rtl/system/msr_cfg_ctrl.sv
 rtl/system/msr_tile_gen.sv
+rtl/system/msr_budget_pkg.sv
 rtl/system/msr_budget_rows.sv
+rtl/system/msr_budget_grid.sv
 rtl/system/msr_budget_ctrl.sv
 rtl/system/msr_budget.sv
 rtl/system/msr_render_mux.sv

@@ -44,7 +44,7 @@
 //   denominator (P + P0) * X < 2^26 * 2^25 = 2^51 (51 bits); den << 11 < 2^62 (62-bit compare)
 `include "msr_assert.svh"
 
-module msr_budget_ctrl import msr_pkg::*; #(
+module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   localparam int unsigned ROW_W = COORD_W - 2           // tile row index (as the walker's)
 ) (
   input  logic             clk_i,              // clock
@@ -77,9 +77,6 @@ module msr_budget_ctrl import msr_pkg::*; #(
   output logic             frame_done_o        // pulse: the last row's update is done
 );
 
-  localparam logic [10:0] U_MIN = 11'd45;
-  localparam logic [10:0] U_MAX = 11'd1448;
-  localparam logic [10:0] Q_SAT = 11'd1449;      // U_MAX + 1: "no budget left" / saturated
 
   localparam int unsigned WH_W   = 25;           // W * H and every pixel count of the frame
   localparam int unsigned ACT_W  = 36;           // N, N0, Atot, Ad
@@ -90,90 +87,53 @@ module msr_budget_ctrl import msr_pkg::*; #(
   localparam int unsigned REM_W  = PROD_W + 1;   // 62: holds den << 11
   localparam int unsigned MEM_DEPTH = 512;
 
-  // ---- Configuration in: registered, and the grid constants from it registered again -------
-  // The constants load the multiplier at a check or start pulse; computed straight from the
-  // inputs (behind msr_budget's check/frame mux and the tile-size decode) they were the unit's
-  // worst path (62.5 MHz alone on ECP5). So the pulses are delayed two clocks to meet them
-  // (check_p, start_p): the configuration must hold from the pulse on, as before. A clear drops
-  // a pulse in flight; the check's flags and the row read-back drop at the input pulse itself.
-  dim_t        width_r, height_r;
-  logic [2:0]  tile_log2_r, prior_shift_r;
-  level_t      levels_r;
-  logic [23:0] budget_r;
-  logic [10:0] scale_init_r;
-  logic        seeded_r;
-  always_ff @(posedge clk_i) begin
-    width_r       <= width_i;
-    height_r      <= height_i;
-    tile_log2_r   <= tile_log2_i;
-    levels_r      <= levels_i;
-    budget_r      <= budget_i;
-    scale_init_r  <= scale_init_i;
-    prior_shift_r <= prior_shift_i;
-    seeded_r      <= seeded_i;
-  end
-
-  logic [1:0] check_dly_q, start_dly_q;
-  logic       check_p, start_p;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      check_dly_q <= '0;
-      start_dly_q <= '0;
-    end else if (clear_i) begin
-      check_dly_q <= '0;
-      start_dly_q <= '0;
-    end else begin
-      check_dly_q <= {check_dly_q[0], check_i};
-      start_dly_q <= {start_dly_q[0], start_i};
-    end
-  end
-  assign check_p = check_dly_q[1];
-  assign start_p = start_dly_q[1];
-
-  // ---- Grid constants (closed forms of docs/budget.md "Terms"; no multiplier) -------------
-  // n0(n) = ceil(n / S) + ((n - 1) mod S != 0), for n in 0..32 (0 for n = 0).
-  function automatic logic [5:0] grid_axis(logic [5:0] n, level_t l);
-    logic [5:0] s1;
-    s1 = 6'((7'd1 << l) - 7'd1);
-    if (n == '0) return '0;
-    return ((n + s1) >> l) + 6'(((n - 6'd1) & s1) != '0);
-  endfunction
-
-  // line(N) = floor(N / T) * n0(T) + n0(N mod T); n0(T) = T / S + 1 as T >= 8 >= S.
-  function automatic logic [12:0] grid_line(dim_t n, logic [2:0] tl, level_t l);
-    logic [12:0] full;
-    logic [5:0]  rest;
-    full = 13'(n >> tl);
-    rest = 6'(n & ((dim_t'(1) << tl) - dim_t'(1)));
-    return (full << (tl - {1'b0, l})) + full + 13'(grid_axis(rest, l));
-  endfunction
-
-  function automatic logic [10:0] clamp_u(logic [10:0] v);
-    return (v > U_MAX) ? U_MAX : (v < U_MIN) ? U_MIN : v;
-  endfunction
+  // ---- The configuration and the grid constants, two clocks after the pulses --------------
+  // The check's flags and the row read-back drop at the input pulse itself (below).
+  logic             check_p, start_p;
+  dim_t             width_r, height_r;
+  level_t           levels_r;
+  logic [23:0]      budget_r;
+  logic [2:0]       prior_shift_r;
+  logic             seeded_r;
+  logic [5:0]       h_last;
+  logic [12:0]      line_w, line_h;
+  logic [ROW_W-1:0] nty;
+  logic [17:0]      g_full, p_full;
+  logic [10:0]      u0;
+  msr_budget_grid u_grid (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .width_i,
+    .height_i,
+    .tile_log2_i,
+    .levels_i,
+    .budget_i,
+    .scale_init_i,
+    .prior_shift_i,
+    .seeded_i,
+    .check_i,
+    .start_i,
+    .check_o       (check_p),
+    .start_o       (start_p),
+    .width_o       (width_r),
+    .height_o      (height_r),
+    .levels_o      (levels_r),
+    .budget_o      (budget_r),
+    .prior_shift_o (prior_shift_r),
+    .seeded_o      (seeded_r),
+    .h_last_o      (h_last),
+    .line_w_o      (line_w),
+    .line_h_o      (line_h),
+    .nty_o         (nty),
+    .g_full_o      (g_full),
+    .p_full_o      (p_full),
+    .u0_o          (u0)
+  );
 
   function automatic logic [1:0] inc3(logic [1:0] s);
     return (s == 2'd2) ? 2'd0 : s + 2'd1;
   endfunction
-
-  logic [5:0]       tile_sz, h_rest, h_last_c, h_last;
-  logic [12:0]      line_w_c, line_h_c, line_w, line_h;
-  logic [ROW_W-1:0] nty_c, nty;
-  logic [17:0]      g_full_c, p_full_c, g_full, p_full;
-  logic [10:0]      u0_c, u0;
-  assign tile_sz  = 6'(7'd1 << tile_log2_r);
-  assign h_rest   = 6'(height_r & (dim_t'(tile_sz) - dim_t'(1)));
-  assign h_last_c = (h_rest == '0) ? tile_sz : h_rest;
-  assign line_w_c = grid_line(width_r, tile_log2_r, levels_r);
-  assign line_h_c = grid_line(height_r, tile_log2_r, levels_r);
-  assign nty_c    = ROW_W'((14'(height_r) + 14'(tile_sz) - 14'd1) >> tile_log2_r);
-  assign g_full_c = 18'((19'(line_w_c) << (tile_log2_r - {1'b0, levels_r})) + 19'(line_w_c));
-  assign p_full_c = 18'(width_r) << tile_log2_r;
-  assign u0_c     = clamp_u((scale_init_r == '0) ? 11'd256 : scale_init_r);
-  always_ff @(posedge clk_i) begin
-    {h_last, line_w, line_h, nty, g_full, p_full, u0} <=
-        {h_last_c, line_w_c, line_h_c, nty_c, g_full_c, p_full_c, u0_c};
-  end
 
   // ---- State ---------------------------------------------------------------------------------
   typedef enum logic [4:0] {
@@ -222,14 +182,12 @@ module msr_budget_ctrl import msr_pkg::*; #(
   logic              row_ok_q;
   logic [12:0]       row_m_q;
 
-  // ---- Multiplier: acc += mc while shifting mc left and mp right, until mp is zero ---------
+  // ---- Multiplier (msr_shift_add_mul): one multiplier bit per clock -------------------------
   logic              mul_load;
   logic [MC_W-1:0]   mul_a;
   logic [MP_W-1:0]   mul_b;
-  logic [PROD_W-1:0] mul_mc_q, mul_acc_q;
-  logic [MP_W-1:0]   mul_mp_q;
+  logic [PROD_W-1:0] mul_prod;
   logic              mul_done;
-  assign mul_done = (mul_mp_q == '0);
 
   // The multiplier's first operands of a check or a start: G = line(W) * line(H). Loaded
   // here, not in the state machine, as the pulse may come in any state.
@@ -248,23 +206,16 @@ module msr_budget_ctrl import msr_pkg::*; #(
   assign ma    = seq_load ? seq_a : mul_a;
   assign mb    = seq_load ? seq_b : mul_b;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      mul_mc_q  <= '0;
-      mul_mp_q  <= '0;
-      mul_acc_q <= '0;
-    end else if (clear_i) begin
-      mul_mp_q  <= '0;
-    end else if (mload) begin
-      mul_mc_q  <= PROD_W'(ma);
-      mul_mp_q  <= mb;
-      mul_acc_q <= '0;
-    end else if (!mul_done) begin
-      if (mul_mp_q[0]) mul_acc_q <= mul_acc_q + mul_mc_q;
-      mul_mc_q <= mul_mc_q << 1;
-      mul_mp_q <= mul_mp_q >> 1;
-    end
-  end
+  msr_shift_add_mul #(.A_W(MC_W), .B_W(MP_W)) u_mul (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .load_i (mload),
+    .a_i    (ma),
+    .b_i    (mb),
+    .done_o (mul_done),
+    .prod_o (mul_prod)
+  );
 
   // ---- Divider: restoring, quotient bits 10..0 -------------------------------------------------
   logic [REM_W-1:0] div_rem_q, div_den_q;   // remainder; the divisor shifted to the next bit
@@ -286,7 +237,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
   assign mem_addr = rows_done_q[8:0];
 
   always_ff @(posedge clk_i) begin
-    if (mem_we) mem_q[mem_addr] <= MEM_W'(mul_acc_q);
+    if (mem_we) mem_q[mem_addr] <= MEM_W'(mul_prod);
   end
   always_ff @(posedge clk_i) begin
     if (mem_re) mem_rdata_q <= mem_q[mem_addr];
@@ -521,30 +472,30 @@ module msr_budget_ctrl import msr_pkg::*; #(
         state_q <= state_d;
         unique case (state_q)
           ST_G: if (mul_done) begin
-            grid_q <= WH_W'(mul_acc_q);
+            grid_q <= WH_W'(mul_prod);
             if (checking_q) begin
               check_done_q  <= 1'b1;
-              err_budget_q  <= budget_r != '0 && WH_W'(budget_r) < WH_W'(mul_acc_q);
+              err_budget_q  <= budget_r != '0 && WH_W'(budget_r) < WH_W'(mul_prod);
               err_profile_q <= seeded_r && !(mem_valid_q && mem_rows_q == nty_q);
             end
           end
           ST_WH: if (mul_done) begin
-            wh_q  <= WH_W'(mul_acc_q);
-            bud_q <= (WH_W'(budget_r) < WH_W'(mul_acc_q)) ? WH_W'(budget_r) : WH_W'(mul_acc_q);
-            p0_q  <= WH_W'(mul_acc_q) >> prior_shift_r;
+            wh_q  <= WH_W'(mul_prod);
+            bud_q <= (WH_W'(budget_r) < WH_W'(mul_prod)) ? WH_W'(budget_r) : WH_W'(mul_prod);
+            p0_q  <= WH_W'(mul_prod) >> prior_shift_r;
           end
           ST_GL: if (mul_done) begin
-            g_last_q <= 18'(mul_acc_q);
+            g_last_q <= 18'(mul_prod);
             spare_q  <= (bud_q > grid_q) ? bud_q - grid_q : '0;
           end
           ST_PL: if (mul_done) begin
-            p_last_q <= 18'(mul_acc_q);
+            p_last_q <= 18'(mul_prod);
             x_rem_q  <= $signed({2'b00, spare_q});
           end
-          ST_N0: if (mul_done) n0_q <= ACT_W'(mul_acc_q >> prior_shift_r);
+          ST_N0: if (mul_done) n0_q <= ACT_W'(mul_prod >> prior_shift_r);
           ST_M0: if (mul_done) begin
-            m_q[0] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
-            m_q[1] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
+            m_q[0] <= 13'((mul_prod + PROD_W'(128)) >> 8);
+            m_q[1] <= 13'((mul_prod + PROD_W'(128)) >> 8);
             act_q      <= 1'b1;
             row_last_q <= nty_q == ROW_W'(1);
             row_new_q  <= nty_q > ROW_W'(2);
@@ -556,7 +507,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
           end
           ST_ACT: ;
           ST_ACC: begin
-            n_q     <= n_q + ACT_W'(mul_acc_q);
+            n_q     <= n_q + ACT_W'(mul_prod);
             p_sum_q <= p_sum_q + WH_W'(p_row_q);
             x_rem_q <= x_rem_q - $signed({9'd0, c_q}) + $signed({9'd0, g_row_q});
             if (seeded_q) ad_q <= ad_q + ACT_W'(mem_rdata_q);
@@ -570,8 +521,8 @@ module msr_budget_ctrl import msr_pkg::*; #(
             div_rem_q <= div_num_in;
             div_den_q <= div_den_in;
           end
-          ST_NUM: if (mul_done) div_rem_q <= REM_W'(mul_acc_q);
-          ST_DEN: if (mul_done) div_den_q <= REM_W'(mul_acc_q) << 11;
+          ST_NUM: if (mul_done) div_rem_q <= REM_W'(mul_prod);
+          ST_DEN: if (mul_done) div_den_q <= REM_W'(mul_prod) << 11;
           // Step 12 compares with den << 11: a quotient >= 2^11 saturates at U_MAX + 1 (it
           // clamps to U_MAX either way; the steps still run, so the step count does not
           // depend on the compare). Steps 11..1 give the quotient bits 10..0.
@@ -588,7 +539,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
           ST_SLEW: u_mx_q <= (div_quo_q > slew_q) ? div_quo_q : slew_q;
           ST_SQ0: u_q[slot2] <= u_new;
           ST_SQ: if (mul_done) begin
-            if (row_new) m_q[slot2] <= 13'((mul_acc_q + PROD_W'(128)) >> 8);
+            if (row_new) m_q[slot2] <= 13'((mul_prod + PROD_W'(128)) >> 8);
             rows_done_q <= rows_done_q + ROW_W'(1);
             row_last_q  <= rows_done_q + ROW_W'(2) == nty_q;
             row_new_q   <= rows_done_q + ROW_W'(3) < nty_q;
@@ -629,7 +580,7 @@ module msr_budget_ctrl import msr_pkg::*; #(
   `MSR_ASSERT(a_div_den_nonzero, state_q == ST_DIV && div_cnt_q == 4'd12 |-> div_den_q != '0)
   `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= U_MIN && u_q[base_q] <= U_MAX)
   `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < nty_q)
-  `MSR_ASSERT(a_num_fits, state_q == ST_NUM && mul_done |-> mul_acc_q[PROD_W-1] == 1'b0)
+  `MSR_ASSERT(a_num_fits, state_q == ST_NUM && mul_done |-> mul_prod[PROD_W-1] == 1'b0)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_budget_ctrl

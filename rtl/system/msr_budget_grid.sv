@@ -1,0 +1,103 @@
+// Ray budget: the frame's configuration and its grid constants, registered for the controller
+// (msr_budget_ctrl; docs/budget.md "Terms", closed forms without a multiplier).
+//
+// The constants load the controller's multiplier at a check or a start; computed straight from
+// the configuration (behind msr_budget's check/frame mux and the tile-size decode) they were
+// the budget unit's worst path (62.5 MHz alone on ECP5). So the configuration is registered,
+// the constants from it registered again, and the pulses come out two clocks late with them
+// (check_o, start_o): the configuration must hold from the input pulse on. A clear drops a
+// pulse in flight.
+module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
+  localparam int unsigned ROW_W = COORD_W - 2           // tile row index (as the walker's)
+) (
+  input  logic             clk_i,              // clock
+  input  logic             rst_ni,             // asynchronous reset, active low
+  input  logic             clear_i,            // synchronous clear: drop pulses in flight
+  // The configuration, from the pulse on.
+  input  dim_t             width_i,            // W, 1..4096
+  input  dim_t             height_i,           // H, 1..4096
+  input  logic [2:0]       tile_log2_i,        // log2 T: 3, 4 or 5
+  input  level_t           levels_i,           // L, 1..3 (S = 2^L)
+  input  logic [23:0]      budget_i,           // B
+  input  logic [10:0]      scale_init_i,       // u0 (0 reads as 256)
+  input  logic [2:0]       prior_shift_i,      // PRIOR_SHIFT
+  input  logic             seeded_i,           // the seeded law
+  input  logic             check_i,            // pulse
+  input  logic             start_i,            // pulse
+  // Two clocks later: the pulses, with the configuration and the constants.
+  output logic             check_o,
+  output logic             start_o,
+  output dim_t             width_o,
+  output dim_t             height_o,
+  output level_t           levels_o,
+  output logic [23:0]      budget_o,
+  output logic [2:0]       prior_shift_o,
+  output logic             seeded_o,
+  output logic [5:0]       h_last_o,           // h of the last tile row (1..T)
+  output logic [12:0]      line_w_o,           // line(W): grid pixels of a tile row's row
+  output logic [12:0]      line_h_o,           // line(H)
+  output logic [ROW_W-1:0] nty_o,              // tile rows
+  output logic [17:0]      g_full_o,           // grid pixels of a full tile row
+  output logic [17:0]      p_full_o,           // pixels of a full tile row, W * T
+  output logic [10:0]      u0_o                // u0, clamped
+);
+  // Stage 1: the configuration.
+  dim_t        width_q, height_q;
+  logic [2:0]  tile_log2_q, prior_shift_q;
+  level_t      levels_q;
+  logic [23:0] budget_q;
+  logic [10:0] scale_init_q;
+  logic        seeded_q;
+  always_ff @(posedge clk_i) begin
+    width_q       <= width_i;
+    height_q      <= height_i;
+    tile_log2_q   <= tile_log2_i;
+    levels_q      <= levels_i;
+    budget_q      <= budget_i;
+    scale_init_q  <= scale_init_i;
+    prior_shift_q <= prior_shift_i;
+    seeded_q      <= seeded_i;
+  end
+
+  // Stage 2: the constants. The configuration goes out from stage 1: it holds from the input
+  // pulse on, so stage 1 has it when the pulse comes out.
+  logic [5:0]       tile_sz, h_rest, h_last, h_last_q;
+  logic [12:0]      line_w, line_h, line_w_q, line_h_q;
+  logic [ROW_W-1:0] nty, nty_q;
+  logic [17:0]      g_full, p_full, g_full_q, p_full_q;
+  logic [10:0]      u0, u0_q;
+  assign tile_sz = 6'(7'd1 << tile_log2_q);
+  assign h_rest  = 6'(height_q & (dim_t'(tile_sz) - dim_t'(1)));
+  assign h_last  = (h_rest == '0) ? tile_sz : h_rest;
+  assign line_w  = grid_line(width_q, tile_log2_q, levels_q);
+  assign line_h  = grid_line(height_q, tile_log2_q, levels_q);
+  assign nty     = ROW_W'((14'(height_q) + 14'(tile_sz) - 14'd1) >> tile_log2_q);
+  assign g_full  = 18'((19'(line_w) << (tile_log2_q - {1'b0, levels_q})) + 19'(line_w));
+  assign p_full  = 18'(width_q) << tile_log2_q;
+  assign u0      = clamp_u((scale_init_q == '0) ? 11'd256 : scale_init_q);
+  always_ff @(posedge clk_i) begin
+    {h_last_q, line_w_q, line_h_q, nty_q, g_full_q, p_full_q, u0_q} <=
+        {h_last, line_w, line_h, nty, g_full, p_full, u0};
+  end
+  assign {h_last_o, line_w_o, line_h_o, nty_o, g_full_o, p_full_o, u0_o} =
+      {h_last_q, line_w_q, line_h_q, nty_q, g_full_q, p_full_q, u0_q};
+  assign {width_o, height_o, levels_o, budget_o, prior_shift_o, seeded_o} =
+      {width_q, height_q, levels_q, budget_q, prior_shift_q, seeded_q};
+
+  logic [1:0] check_q, start_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      check_q <= '0;
+      start_q <= '0;
+    end else if (clear_i) begin
+      check_q <= '0;
+      start_q <= '0;
+    end else begin
+      check_q <= {check_q[0], check_i};
+      start_q <= {start_q[0], start_i};
+    end
+  end
+  assign check_o = check_q[1];
+  assign start_o = start_q[1];
+
+endmodule : msr_budget_grid
