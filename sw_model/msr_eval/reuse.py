@@ -315,9 +315,10 @@ def _scaled(scale: float) -> tuple[int, ...]:
     return tuple(max(0, min(255, int(round(t * scale)))) for t in BASE_THR)
 
 
-def task_scene(scene: str, width: int, height: int, frames: int, log=print) -> dict:
+def task_scene(scene: str, width: int, height: int, frames: int, log=print,
+               sweep=SWEEP_SCALES, reuse_scales=REUSE_SCALES) -> dict:
     """One scene's sequence (temporal.orbit_path): per frame the full render, every rule alone
-    over the threshold sweep, and rule + reuse at REUSE_SCALES."""
+    over the threshold sweep, and rule + reuse at `reuse_scales`."""
     from msr_model import ImageRenderer
     from msr_model.embree import open_renderer
     from .temporal import _flicker, _psnr, orbit_path
@@ -328,9 +329,9 @@ def task_scene(scene: str, width: int, height: int, frames: int, log=print) -> d
     cams = [path.camera(k) for k in range(frames)]
     runs = {}
     for rule in RULE_NAMES:
-        for s in SWEEP_SCALES:
+        for s in sweep:
             runs[(rule, "alone", s)] = None
-        for s in REUSE_SCALES:
+        for s in reuse_scales:
             runs[(rule, "reuse", s)] = None
     per = {key: {"psnr": [], "traced": [], "flicker": [], "saved": [], "reused": []} for key in runs}
     state = {key: None for key in runs}      # PrevFrame of each run
@@ -361,6 +362,10 @@ def task_scene(scene: str, width: int, height: int, frames: int, log=print) -> d
             "runs": {f"{r}|{m}|{s}": v for (r, m, s), v in per.items()}}
 
 
+def _sweep(sc: dict, rule: str) -> list[float]:
+    return sorted({float(k.split("|")[2]) for k in sc["runs"] if k.startswith(f"{rule}|alone|")})
+
+
 def equal_quality(sc: dict, rule: str, scale: float, skip: int = 1) -> dict:
     """Rule + reuse at `scale` against the rule alone swept over thresholds, frames from `skip`
     on (frame 0 has no previous frame): the rule alone's traced fraction interpolated at the
@@ -369,7 +374,7 @@ def equal_quality(sc: dict, rule: str, scale: float, skip: int = 1) -> dict:
     p_reuse = float(np.mean(ru["psnr"][skip:]))
     t_reuse = float(np.mean(ru["traced"][skip:]))
     pts = sorted((float(np.mean(sc["runs"][f"{rule}|alone|{s}"]["psnr"][skip:])),
-                  float(np.mean(sc["runs"][f"{rule}|alone|{s}"]["traced"][skip:]))) for s in SWEEP_SCALES)
+                  float(np.mean(sc["runs"][f"{rule}|alone|{s}"]["traced"][skip:]))) for s in _sweep(sc, rule))
     ps, ts = [p for p, _ in pts], [t for _, t in pts]
     inside = ps[0] <= p_reuse <= ps[-1]
     t_alone = float(np.interp(p_reuse, ps, ts)) if inside else float("nan")
@@ -389,7 +394,7 @@ def equal_quality(sc: dict, rule: str, scale: float, skip: int = 1) -> dict:
 
 def _interp_flicker(sc, rule, p, skip):
     pts = sorted((float(np.mean(sc["runs"][f"{rule}|alone|{s}"]["psnr"][skip:])),
-                  float(np.mean(sc["runs"][f"{rule}|alone|{s}"]["flicker"][skip:]))) for s in SWEEP_SCALES)
+                  float(np.mean(sc["runs"][f"{rule}|alone|{s}"]["flicker"][skip:]))) for s in _sweep(sc, rule))
     ps = [a for a, _ in pts]
     if not ps[0] <= p <= ps[-1]:
         return float("nan")
@@ -424,8 +429,9 @@ def plot(result: dict, out_dir: Path) -> list[Path]:
         ax = axes[0][j]
         runs = result["scenes"][scene]["runs"]
         for rule in RULE_NAMES:
-            p = [np.mean(runs[f"{rule}|alone|{s}"]["psnr"][1:]) for s in SWEEP_SCALES]
-            t = [100 * np.mean(runs[f"{rule}|alone|{s}"]["traced"][1:]) for s in SWEEP_SCALES]
+            sw = _sweep(result["scenes"][scene], rule)
+            p = [np.mean(runs[f"{rule}|alone|{s}"]["psnr"][1:]) for s in sw]
+            t = [100 * np.mean(runs[f"{rule}|alone|{s}"]["traced"][1:]) for s in sw]
             ax.plot(p, t, "-o", ms=3, color=colours[rule], label=f"{rule} alone")
             p = [np.mean(runs[f"{rule}|reuse|{s}"]["psnr"][1:]) for s in REUSE_SCALES]
             t = [100 * np.mean(runs[f"{rule}|reuse|{s}"]["traced"][1:]) for s in REUSE_SCALES]
@@ -497,11 +503,19 @@ def main(argv=None) -> int:
     ap.add_argument("--img", type=Path, default=None, help="where the plots go (default: --out)")
     ap.add_argument("--merge", nargs="+", type=Path, default=None,
                     help="no run: merge these reuse.json files (one scene each, run in parallel) into --out")
+    ap.add_argument("--add-scales", nargs="+", type=float, default=None,
+                    help="with --merge: run the rules alone at these further threshold scales and add them")
     a = ap.parse_args(argv)
     if a.merge:
         parts = [json.loads(p.read_text()) for p in a.merge]
         res = {**parts[0], "scenes": {k: v for p in parts for k, v in p["scenes"].items()},
                "seconds": max(p["seconds"] for p in parts)}
+        for scene, sc in res["scenes"].items() if a.add_scales else ():
+            more = task_scene(scene, res["width"], res["height"], res["frames"], sweep=tuple(a.add_scales),
+                              reuse_scales=())
+            sc["runs"].update(more["runs"])
+            sc["equal_quality"] = [equal_quality(sc, r, s) for r in RULE_NAMES for s in res["reuse_scales"]]
+            res["sweep_scales"] = sorted(set(res["sweep_scales"]) | set(a.add_scales))
     else:
         res = run(a.scenes, a.frames, a.width, a.height)
     print(_report(res, a.out, a.img))
