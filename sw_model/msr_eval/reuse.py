@@ -30,7 +30,10 @@ selective renderer would trace may take that colour instead, if it passes checks
    (new pixel m between the samples A at a and B at b, gap g, level k, the tile's thr_k'), the
    reprojected colour R, from a valid source, is accepted when it passes the rule's own
    interpolation test against A or against B: d(R, A) n_k < thr_k' g or d(R, B) n_k < thr_k' g
-   (the spec's colour metric and gap weighting).
+   (the spec's colour metric and gap weighting), and the bilinear taps it was read from agree
+   among themselves within the same test (their colour range, largest channel: no edge of
+   the previous frame under the read, whose blend or misplaced side could pass the one-sided
+   test; measured, this lifts the smooth scenes by 2 to 6 dB at the same rays).
 
    Why this test: the rule traces a gap because A and B differ by more than the threshold,
    i.e. an edge lies between them, and the true colour of m is then close to one of the two
@@ -151,13 +154,14 @@ class PrevFrame:
     camera: Camera
 
 
-def gather(prev: PrevFrame, cur: Camera, xs, ys, depth, depth_tol: float = DEPTH_TOL):
+def gather(prev: PrevFrame, cur: Camera, xs, ys, depth, depth_tol: float = DEPTH_TOL, spread: bool = False):
     """The previous frame at the point current pixels (xs, ys) see at `depth` (module
     docstring, 1): (colour uint8 (..., 3), valid bool (...), fx, fy in the previous frame).
     Valid: in front of the previous camera, every bilinear tap of non-zero weight in the
     frame and sky exactly where the point is, and the taps' inverse depth interpolated
     bilinearly (exact on a plane) at the point's within depth_tol: otherwise the point was
-    hidden or out of view in the previous frame (disoccluded)."""
+    hidden or out of view in the previous frame (disoccluded). spread: also return the
+    colour range of the taps of non-zero weight (largest channel, max - min)."""
     pts, finite = cur.unproject(xs, ys, depth)
     fx, fy, z, front = prev.camera.project(pts, finite)
     h, w = prev.depth.shape
@@ -169,6 +173,8 @@ def gather(prev: PrevFrame, cur: Camera, xs, ys, depth, depth_tol: float = DEPTH
     valid = np.asarray(front, bool).copy()
     acc = np.zeros(np.shape(u) + (3,))
     inv = np.zeros(np.shape(u))                 # inverse depth of the taps, bilinear
+    hi = np.zeros(np.shape(u) + (3,))
+    lo = np.full(np.shape(u) + (3,), 255.0)
     for dx, dy, wt in ((0, 0, (1 - wx) * (1 - wy)), (1, 0, wx * (1 - wy)), (0, 1, (1 - wx) * wy), (1, 1, wx * wy)):
         xi, yi = x0 + dx, y0 + dy
         used = wt > 1e-9
@@ -178,9 +184,13 @@ def gather(prev: PrevFrame, cur: Camera, xs, ys, depth, depth_tol: float = DEPTH
         valid &= ~used | (inside & (np.isinf(zp) == ~finite))
         inv += np.where(used, wt, 0.0) / zp
         acc += np.where(used, wt, 0.0)[..., None] * prev.colour[yc, xc]
+        if spread:
+            hi = np.where(used[..., None], np.maximum(hi, prev.colour[yc, xc]), hi)
+            lo = np.where(used[..., None], np.minimum(lo, prev.colour[yc, xc]), lo)
     with np.errstate(invalid="ignore", divide="ignore"):
         valid &= ~finite | (np.abs(inv * z - 1.0) <= depth_tol)
-    return np.clip(np.floor(acc + 0.5), 0, 255).astype(np.uint8), valid, fx, fy
+    out = np.clip(np.floor(acc + 0.5), 0, 255).astype(np.uint8), valid, fx, fy
+    return (*out, np.maximum(hi - lo, 0).max(axis=-1).astype(np.int32)) if spread else out
 
 
 def placement_unit(scene: str, view) -> float:
@@ -246,12 +256,14 @@ def _lerp_depth(zA, zB, a, b, m):
 
 def select_reuse(renderer, width: int, height: int, params: Params, rule: str = "patent",
                  depth=None, prev: PrevFrame | None = None, camera: Camera | None = None,
-                 depth_tol: float = DEPTH_TOL, only_traced: bool = False) -> ReuseResult:
+                 depth_tol: float = DEPTH_TOL, only_traced: bool = False, no_edge: bool = True) -> ReuseResult:
     """golden.select_region's passes with reuse: `renderer` gives colours of traced pixels,
     `depth` (H, W) the current frame's true depth (what the renderer returns with a traced
     colour; read only at traced pixels), `prev` the previous frame and `camera` the current
     one (prev None: the rule alone, as on a sequence's first frame). only_traced: reuse only
-    where the rule traces (False: also in place of the rule's interpolations)."""
+    where the rule traces (False: also in place of the rule's interpolations). no_edge: the
+    taps must also agree among themselves within the rule's test (no edge under the bilinear
+    read: module docstring, 2); False is the first design of docs/reuse.md."""
     from .methods import CountingRenderer
     spec.check_frame_size(width, height)
     decide = rule_function(rule)
@@ -284,7 +296,9 @@ def select_reuse(renderer, width: int, height: int, params: Params, rule: str = 
             zv = _lerp_depth(zA, zB, v.a, v.b, v.m)
             if prev is not None:
                 one_sky = np.isinf(zA) != np.isinf(zB)            # a silhouette against the sky
-                R, valid, _, _ = gather(prev, camera, tx, ty, zv, depth_tol)
+                R, valid, _, _, rng = gather(prev, camera, tx, ty, zv, depth_tol, spread=True)
+                if no_edge:
+                    valid = valid & v.below_threshold(rng)
                 take = reuse_ok(v, R, valid & ~one_sky)
                 if only_traced:
                     take &= ~interp
@@ -316,7 +330,7 @@ def _scaled(scale: float) -> tuple[int, ...]:
 
 
 def task_scene(scene: str, width: int, height: int, frames: int, log=print,
-               sweep=SWEEP_SCALES, reuse_scales=REUSE_SCALES) -> dict:
+               sweep=SWEEP_SCALES, reuse_scales=REUSE_SCALES, no_edge: bool = True) -> dict:
     """One scene's sequence (temporal.orbit_path): per frame the full render, every rule alone
     over the threshold sweep, and rule + reuse at `reuse_scales`."""
     from msr_model import ImageRenderer
@@ -346,7 +360,8 @@ def task_scene(scene: str, width: int, height: int, frames: int, log=print,
             rule, mode, s = key
             params = Params(tile=16, levels=3, thr=_scaled(s))
             prev = state[key] if mode == "reuse" else None
-            res = select_reuse(ImageRenderer(full), width, height, params, rule, true_z, prev, cam)
+            res = select_reuse(ImageRenderer(full), width, height, params, rule, true_z, prev, cam,
+                               no_edge=no_edge and mode == "reuse")
             state[key] = PrevFrame(res.frame, res.depth, cam)
             err = res.frame.astype(np.int16) - full.astype(np.int16)
             m = per[key]
@@ -401,13 +416,19 @@ def _interp_flicker(sc, rule, p, skip):
     return float(np.interp(p, ps, [b for _, b in pts]))
 
 
-def run(scenes, frames: int, width: int, height: int, log=print) -> dict:
+def run(scenes, frames: int, width: int, height: int, log=print, no_edge: bool = True, alone_from=None) -> dict:
+    """The study; alone_from: a finished result of the same sequences whose rule-alone runs
+    are taken instead of rerunning them (they do not depend on reuse)."""
     t0 = time.perf_counter()
-    out = {"width": width, "height": height, "frames": frames, "depth_tol": DEPTH_TOL,
+    out = {"width": width, "height": height, "frames": frames, "depth_tol": DEPTH_TOL, "no_edge": no_edge,
            "base_thr": list(BASE_THR), "sweep_scales": list(SWEEP_SCALES), "reuse_scales": list(REUSE_SCALES),
            "scenes": {}}
     for scene in scenes:
-        sc = task_scene(scene, width, height, frames, log)
+        if alone_from is not None:
+            sc = task_scene(scene, width, height, frames, log, sweep=(), no_edge=no_edge)
+            sc["runs"].update({k: v for k, v in alone_from["scenes"][scene]["runs"].items() if "|alone|" in k})
+        else:
+            sc = task_scene(scene, width, height, frames, log, no_edge=no_edge)
         sc["equal_quality"] = [equal_quality(sc, r, s) for r in RULE_NAMES for s in REUSE_SCALES]
         out["scenes"][scene] = sc
     out["seconds"] = round(time.perf_counter() - t0, 1)
@@ -503,6 +524,10 @@ def main(argv=None) -> int:
     ap.add_argument("--img", type=Path, default=None, help="where the plots go (default: --out)")
     ap.add_argument("--merge", nargs="+", type=Path, default=None,
                     help="no run: merge these reuse.json files (one scene each, run in parallel) into --out")
+    ap.add_argument("--edge-ok", action="store_true",
+                    help="the first design: the bilinear taps need not agree among themselves")
+    ap.add_argument("--alone-from", type=Path, default=None,
+                    help="take the rules-alone runs from this finished reuse.json (same scenes, frames, size)")
     ap.add_argument("--add-scales", nargs="+", type=float, default=None,
                     help="with --merge: run the rules alone at these further threshold scales and add them")
     a = ap.parse_args(argv)
@@ -517,7 +542,8 @@ def main(argv=None) -> int:
             sc["equal_quality"] = [equal_quality(sc, r, s) for r in RULE_NAMES for s in res["reuse_scales"]]
             res["sweep_scales"] = sorted(set(res["sweep_scales"]) | set(a.add_scales))
     else:
-        res = run(a.scenes, a.frames, a.width, a.height)
+        res = run(a.scenes, a.frames, a.width, a.height, no_edge=not a.edge_ok,
+                  alone_from=json.loads(a.alone_from.read_text()) if a.alone_from else None)
     print(_report(res, a.out, a.img))
     print(f"{res['seconds']:.0f} s")
     return 0

@@ -167,3 +167,23 @@ def test_camera_matches_renderer(scene):
     assert valid.mean() > 0.8
     err = np.abs(R.astype(int) - frames[1][0].astype(int)).max(axis=-1)[valid]
     assert np.median(err) <= 2 and np.mean(err) < 6
+
+
+def test_tap_spread_marks_an_edge_under_the_read():
+    """Half a pixel of motion: the bilinear read of a pixel next to an edge of the previous
+    frame spans both sides, and its tap range (what no_edge tests) says so; elsewhere 0."""
+    c0 = cam()
+    _, _, right, _, s = c0.basis()
+    D = 10.0
+    c1 = cam(eye=tuple(right * 0.5 * D * s))
+    prev = np.zeros((H, W, 3), np.uint8)
+    prev[:, 20:] = 200
+    ys, xs = np.mgrid[0:H, 0:W]
+    R, valid, fx, _, rng = gather(PrevFrame(prev, np.full((H, W), D), c0), c1, xs, ys, np.full((H, W), D),
+                                  spread=True)
+    np.testing.assert_allclose(fx, xs + 1.0, atol=1e-6)
+    assert (rng[:, 19] == 200).all() and (R[:, 19] == 100).all()
+    others = np.ones(W, bool)
+    others[19] = False
+    others[W - 1] = False                      # its second tap is outside the frame: not valid
+    assert (rng[:, others] == 0).all() and valid[:, others].all() and not valid[:, W - 1].any()
