@@ -33,7 +33,8 @@ selective renderer would trace may take that colour instead, if it passes checks
    (the spec's colour metric and gap weighting), and the bilinear taps it was read from agree
    among themselves within the same test (their colour range, largest channel: no edge of
    the previous frame under the read, whose blend or misplaced side could pass the one-sided
-   test; measured, this lifts the smooth scenes by 2 to 6 dB at the same rays).
+   test; measured, this lifts the smooth scenes by 1 to 6 dB for at most one point more
+   rays, docs/reuse.md).
 
    Why this test: the rule traces a gap because A and B differ by more than the threshold,
    i.e. an edge lies between them, and the true colour of m is then close to one of the two
