@@ -153,6 +153,7 @@ class PrevFrame:
     colour: np.ndarray     # (H, W, 3) uint8: the previous frame as output
     depth: np.ndarray      # (H, W) its depth as the accelerator held it (inf: sky)
     camera: Camera
+    age: np.ndarray | None = None   # (H, W) frames since a pixel's colour was made fresh (None: all 0)
 
 
 def gather(prev: PrevFrame, cur: Camera, xs, ys, depth, depth_tol: float = DEPTH_TOL, spread: bool = False):
@@ -176,6 +177,7 @@ def gather(prev: PrevFrame, cur: Camera, xs, ys, depth, depth_tol: float = DEPTH
     inv = np.zeros(np.shape(u))                 # inverse depth of the taps, bilinear
     hi = np.zeros(np.shape(u) + (3,))
     lo = np.full(np.shape(u) + (3,), 255.0)
+    age = np.zeros(np.shape(u), np.int32)
     for dx, dy, wt in ((0, 0, (1 - wx) * (1 - wy)), (1, 0, wx * (1 - wy)), (0, 1, (1 - wx) * wy), (1, 1, wx * wy)):
         xi, yi = x0 + dx, y0 + dy
         used = wt > 1e-9
@@ -185,12 +187,15 @@ def gather(prev: PrevFrame, cur: Camera, xs, ys, depth, depth_tol: float = DEPTH
         valid &= ~used | (inside & (np.isinf(zp) == ~finite))
         inv += np.where(used, wt, 0.0) / zp
         acc += np.where(used, wt, 0.0)[..., None] * prev.colour[yc, xc]
+        if prev.age is not None:
+            age = np.where(used, np.maximum(age, prev.age[yc, xc]), age)
         if spread:
             hi = np.where(used[..., None], np.maximum(hi, prev.colour[yc, xc]), hi)
             lo = np.where(used[..., None], np.minimum(lo, prev.colour[yc, xc]), lo)
     with np.errstate(invalid="ignore", divide="ignore"):
         valid &= ~finite | (np.abs(inv * z - 1.0) <= depth_tol)
     out = np.clip(np.floor(acc + 0.5), 0, 255).astype(np.uint8), valid, fx, fy
+    gather.last_age = age          # the oldest tap of each read (select_reuse's age bound)
     return (*out, np.maximum(hi - lo, 0).max(axis=-1).astype(np.int32)) if spread else out
 
 
@@ -232,6 +237,7 @@ class ReuseResult:
     saved: int                   # decisions the rule traced and reuse took
     reused: int                  # pixels reused (saved ones and ones the rule interpolated)
     per_level: dict = field(default_factory=dict)
+    age: np.ndarray | None = None  # (H, W) reuses in a row behind each pixel (0: traced or interpolated)
 
     @property
     def traced_fraction(self) -> float:
@@ -257,14 +263,17 @@ def _lerp_depth(zA, zB, a, b, m):
 
 def select_reuse(renderer, width: int, height: int, params: Params, rule: str = "patent",
                  depth=None, prev: PrevFrame | None = None, camera: Camera | None = None,
-                 depth_tol: float = DEPTH_TOL, only_traced: bool = False, no_edge: bool = True) -> ReuseResult:
+                 depth_tol: float = DEPTH_TOL, only_traced: bool = False, no_edge: bool = True,
+                 max_age: int | None = None) -> ReuseResult:
     """golden.select_region's passes with reuse: `renderer` gives colours of traced pixels,
     `depth` (H, W) the current frame's true depth (what the renderer returns with a traced
     colour; read only at traced pixels), `prev` the previous frame and `camera` the current
     one (prev None: the rule alone, as on a sequence's first frame). only_traced: reuse only
     where the rule traces (False: also in place of the rule's interpolations). no_edge: the
     taps must also agree among themselves within the rule's test (no edge under the bilinear
-    read: module docstring, 2); False is the first design of docs/reuse.md."""
+    read: module docstring, 2); False is the first design of docs/reuse.md. max_age: a
+    pixel reused from taps already reused max_age times in a row is not reused again (None:
+    no bound); the result's `age` carries the count to the next frame."""
     from .methods import CountingRenderer
     spec.check_frame_size(width, height)
     decide = rule_function(rule)
@@ -276,6 +285,7 @@ def select_reuse(renderer, width: int, height: int, params: Params, rule: str = 
     frame = np.zeros((height, width, 3), np.uint8)
     source = np.full((height, width), spec.SRC_UNSET, np.uint8)
     zbuf = np.full((height, width), np.nan)
+    age = np.zeros((height, width), np.int32)
     yy, xx = np.meshgrid(ay.known[0], ax.known[0], indexing="ij")
     frame[yy, xx] = c.render(xx.ravel(), yy.ravel()).reshape(yy.shape + (3,))
     source[yy, xx] = spec.SRC_INITIAL
@@ -298,8 +308,11 @@ def select_reuse(renderer, width: int, height: int, params: Params, rule: str = 
             if prev is not None:
                 one_sky = np.isinf(zA) != np.isinf(zB)            # a silhouette against the sky
                 R, valid, _, _, rng = gather(prev, camera, tx, ty, zv, depth_tol, spread=True)
+                tap_age = gather.last_age
                 if no_edge:
                     valid = valid & v.below_threshold(rng)
+                if max_age is not None:
+                    valid = valid & (tap_age < max_age)
                 take = reuse_ok(v, R, valid & ~one_sky)
                 if only_traced:
                     take &= ~interp
@@ -311,6 +324,7 @@ def select_reuse(renderer, width: int, height: int, params: Params, rule: str = 
                 zv[trace] = true_z[ty[trace], tx[trace]]
             if take.any():
                 values[take] = R[take]
+                age[ty[take], tx[take]] = tap_age[take] + 1
             frame[ty, tx] = values
             zbuf[ty, tx] = zv
             source[ty, tx] = np.where(take, SRC_REUSED_BASE + k,
@@ -321,7 +335,7 @@ def select_reuse(renderer, width: int, height: int, params: Params, rule: str = 
             stats[f"t{k}"] = stats.get(f"t{k}", 0) + int(trace.sum())
             stats[f"s{k}"] = stats.get(f"s{k}", 0) + n_saved
     assert not (source == spec.SRC_UNSET).any(), "every pixel is final after level L"
-    return ReuseResult(frame, source, zbuf, c.requests, saved, reused, stats)
+    return ReuseResult(frame, source, zbuf, c.requests, saved, reused, stats, age)
 
 
 # --- the study -----------------------------------------------------------------------------
@@ -331,7 +345,8 @@ def _scaled(scale: float) -> tuple[int, ...]:
 
 
 def task_scene(scene: str, width: int, height: int, frames: int, log=print,
-               sweep=SWEEP_SCALES, reuse_scales=REUSE_SCALES, no_edge: bool = True) -> dict:
+               sweep=SWEEP_SCALES, reuse_scales=REUSE_SCALES, no_edge: bool = True,
+               max_age: int | None = None) -> dict:
     """One scene's sequence (temporal.orbit_path): per frame the full render, every rule alone
     over the threshold sweep, and rule + reuse at `reuse_scales`."""
     from msr_model import ImageRenderer
@@ -362,8 +377,8 @@ def task_scene(scene: str, width: int, height: int, frames: int, log=print,
             params = Params(tile=16, levels=3, thr=_scaled(s))
             prev = state[key] if mode == "reuse" else None
             res = select_reuse(ImageRenderer(full), width, height, params, rule, true_z, prev, cam,
-                               no_edge=no_edge and mode == "reuse")
-            state[key] = PrevFrame(res.frame, res.depth, cam)
+                               no_edge=no_edge and mode == "reuse", max_age=max_age)
+            state[key] = PrevFrame(res.frame, res.depth, cam, res.age)
             err = res.frame.astype(np.int16) - full.astype(np.int16)
             m = per[key]
             m["psnr"].append(_psnr(full, res.frame))
@@ -417,19 +432,20 @@ def _interp_flicker(sc, rule, p, skip):
     return float(np.interp(p, ps, [b for _, b in pts]))
 
 
-def run(scenes, frames: int, width: int, height: int, log=print, no_edge: bool = True, alone_from=None) -> dict:
+def run(scenes, frames: int, width: int, height: int, log=print, no_edge: bool = True, alone_from=None,
+        max_age: int | None = None) -> dict:
     """The study; alone_from: a finished result of the same sequences whose rule-alone runs
     are taken instead of rerunning them (they do not depend on reuse)."""
     t0 = time.perf_counter()
-    out = {"width": width, "height": height, "frames": frames, "depth_tol": DEPTH_TOL, "no_edge": no_edge,
+    out = {"width": width, "height": height, "frames": frames, "depth_tol": DEPTH_TOL, "no_edge": no_edge, "max_age": max_age,
            "base_thr": list(BASE_THR), "sweep_scales": list(SWEEP_SCALES), "reuse_scales": list(REUSE_SCALES),
            "scenes": {}}
     for scene in scenes:
         if alone_from is not None:
-            sc = task_scene(scene, width, height, frames, log, sweep=(), no_edge=no_edge)
+            sc = task_scene(scene, width, height, frames, log, sweep=(), no_edge=no_edge, max_age=max_age)
             sc["runs"].update({k: v for k, v in alone_from["scenes"][scene]["runs"].items() if "|alone|" in k})
         else:
-            sc = task_scene(scene, width, height, frames, log, no_edge=no_edge)
+            sc = task_scene(scene, width, height, frames, log, no_edge=no_edge, max_age=max_age)
         sc["equal_quality"] = [equal_quality(sc, r, s) for r in RULE_NAMES for s in REUSE_SCALES]
         out["scenes"][scene] = sc
     out["seconds"] = round(time.perf_counter() - t0, 1)
@@ -527,6 +543,8 @@ def main(argv=None) -> int:
                     help="no run: merge these reuse.json files (one scene each, run in parallel) into --out")
     ap.add_argument("--edge-ok", action="store_true",
                     help="the first design: the bilinear taps need not agree among themselves")
+    ap.add_argument("--max-age", type=int, default=None,
+                    help="no reuse from taps already reused this many frames in a row (default: no bound)")
     ap.add_argument("--alone-from", type=Path, default=None,
                     help="take the rules-alone runs from this finished reuse.json (same scenes, frames, size)")
     ap.add_argument("--add-scales", nargs="+", type=float, default=None,
@@ -543,7 +561,7 @@ def main(argv=None) -> int:
             sc["equal_quality"] = [equal_quality(sc, r, s) for r in RULE_NAMES for s in res["reuse_scales"]]
             res["sweep_scales"] = sorted(set(res["sweep_scales"]) | set(a.add_scales))
     else:
-        res = run(a.scenes, a.frames, a.width, a.height, no_edge=not a.edge_ok,
+        res = run(a.scenes, a.frames, a.width, a.height, no_edge=not a.edge_ok, max_age=a.max_age,
                   alone_from=json.loads(a.alone_from.read_text()) if a.alone_from else None)
     print(_report(res, a.out, a.img))
     print(f"{res['seconds']:.0f} s")
