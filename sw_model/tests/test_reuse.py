@@ -187,3 +187,19 @@ def test_tap_spread_marks_an_edge_under_the_read():
     others[19] = False
     others[W - 1] = False                      # its second tap is outside the frame: not valid
     assert (rng[:, others] == 0).all() and valid[:, others].all() and not valid[:, W - 1].any()
+
+
+def test_age_bound_stops_a_chain():
+    """Taps already reused max_age frames in a row are not reused again; one frame younger
+    they are, and the reused pixels carry the age one higher."""
+    img = _edge_image()
+    depth = np.full((H, W), 7.0)
+    c = cam()
+    ref = select(ImageRenderer(img), W, H, PARAMS)
+    old = select_reuse(ImageRenderer(img), W, H, PARAMS, "patent", depth,
+                       PrevFrame(img, depth, c, np.full((H, W), 4, np.int32)), c, max_age=4)
+    assert old.saved == 0 and old.reused == 0 and old.traced == ref.stats["traced"]
+    young = select_reuse(ImageRenderer(img), W, H, PARAMS, "patent", depth,
+                         PrevFrame(img, depth, c, np.full((H, W), 3, np.int32)), c, max_age=4)
+    assert young.saved > 0
+    assert (young.age[young.source >= 32] == 4).all() and (young.age[young.source < 32] == 0).all()
