@@ -56,7 +56,7 @@ selective renderer would trace may take that colour instead, if it passes checks
    Later levels read reused pixels as final samples, so rule + reuse traced can differ from
    rule alone traced minus saved; the study reports both runs' actual ray counts.
 
-CLI: python -m msr_eval.reuse --scenes cornell bunny duck --frames 16 --width 480 --height 270
+CLI: python -m msr_eval.reuse --scenes cornell bunny duck --frames 24 --width 480 --height 270
 --out build/reuse [--img docs/img]; scenes run in parallel processes are joined with
 --merge A/reuse.json B/reuse.json --out DIR.
 """
@@ -534,7 +534,7 @@ def _report(res: dict, out: Path, img: Path | None) -> str:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m msr_eval.reuse", description=__doc__.split("\n")[0])
     ap.add_argument("--scenes", nargs="+", default=["cornell", "bunny", "duck"])
-    ap.add_argument("--frames", type=int, default=16)
+    ap.add_argument("--frames", type=int, default=24)
     ap.add_argument("--width", type=int, default=480)
     ap.add_argument("--height", type=int, default=270)
     ap.add_argument("--out", type=Path, default=Path("build/reuse"))
