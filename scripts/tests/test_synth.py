@@ -299,3 +299,18 @@ def test_plan_follows_the_options():
     assert not any(j.key[1] == "msr_top" or "@" in str(j.key[1]) for j in jobs if j.key[0] in ("net", "ecp5"))
     jobs, _ = _plan("--modules", "msr_fb_writer")
     assert [j.key for j in jobs] == [("ecp5", "msr_fb_writer"), ("generic", ("msr_fb_writer", "inferred"))]
+
+
+def test_merge_rows_marks_the_unit_run():
+    """--modules ... --merge: the unit run's rows replace those modules' rows, say where they come
+    from, and leave every other row as it was."""
+    full = {"generic": {"a": {"inferred": {"cells": 1}}, "b": {"inferred": {"error": "x"}}},
+            "ecp5": {"a": {"luts": 5}}}
+    unit = {"generic": {"b": {"inferred": {"cells": 7}}}, "ecp5": {"b": {"luts": 9}}}
+    out = synth.merge_rows(full, unit, ["b"])
+    assert out["generic"]["a"] == {"inferred": {"cells": 1}} and out["ecp5"]["a"] == {"luts": 5}
+    (kind, row), = out["generic"]["b"].items()
+    assert kind.startswith("inferred (unit run at ") and row == {"cells": 7}
+    assert out["ecp5"]["b"]["luts"] == 9 and out["ecp5"]["b"]["merged_from"].startswith("unit run at ")
+    assert full["generic"]["b"] == {"inferred": {"error": "x"}}          # the input is not changed
+    assert synth.main(["--merge"]) == 2
