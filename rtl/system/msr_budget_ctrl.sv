@@ -9,10 +9,10 @@
 //
 // Sequences (one state machine, clear_i > start_i > check_i > row_done_i):
 //   check_i: the grid constants line(W), line(H) from shifts and adds, G = line(W) * line(H)
-//     on the multiplier (<= 13 clocks), the two checks: check_done_o at most 16 clocks after
-//     the pulse (two of them register the configuration and the constants). check_done_o and the flags hold until the next check_i or clear_i.
+//     on the multiplier (<= 13 clocks), the two checks: check_done_o at most 18 clocks after
+//     the pulse (four of them register the configuration and the constants). check_done_o and the flags hold until the next check_i or clear_i.
 //   start_i: G again, W * H, g of the last row, p of the last row, N0 = ((B' - G) * u0) >>
-//     PRIOR_SHIFT (B' = min(B, W * H)), m0 = (u0 * u0 + 128) >> 8: <= 67 clocks, then rows
+//     PRIOR_SHIFT (B' = min(B, W * H)), m0 = (u0 * u0 + 128) >> 8: <= 69 clocks, then rows
 //     0 and 1 are known (row_ok_o) and row_ready_o rises. Atot is the N the last finished
 //     frame ended with (the sum of the words it wrote into the activity memory).
 //   row_done_i: a_j = (c_j - g_j) * u_j, the sums, the memory word, then the law of section 4
@@ -87,7 +87,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   localparam int unsigned REM_W  = PROD_W + 1;   // 62: holds den << 11
   localparam int unsigned MEM_DEPTH = 512;
 
-  // ---- The configuration and the grid constants, two clocks after the pulses --------------
+  // ---- The configuration and the grid constants, four clocks after the pulses -------------
   // The check's flags and the row read-back drop at the input pulse itself (below).
   logic             check_p, start_p;
   dim_t             width_r, height_r;
@@ -436,7 +436,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
                   && row_idx_i < nty_q;
       row_m_q  <= m_q[(row_idx_i == rows_done_q) ? base_q : slot1];
 
-      // The input pulses drop the old answers at once (the sequence starts two clocks later).
+      // The input pulses drop the old answers at once (the sequence starts four clocks later).
       if (check_i) check_done_q <= 1'b0;
       if (start_i) begin
         act_q    <= 1'b0;
