@@ -683,7 +683,7 @@ def merge_rows(full: dict, unit: dict, mods: list[str]) -> dict:
     ... --merge`): each merged row names the run (`unit run at <commit>` in its kind), so the
     doc says which rows are newer than the rest."""
     try:
-        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
+        commit = subprocess.run(["git", "describe", "--always", "--dirty"], cwd=ROOT, capture_output=True,
                                 text=True, check=True).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
         commit = "unknown commit"
