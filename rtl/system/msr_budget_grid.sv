@@ -83,7 +83,7 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
   assign nty     = ROW_W'((14'(height_q) + 14'(tile_sz) - 14'd1) >> tile_log2_q);
   assign p_full  = 18'(width_q) << tile_log2_q;
   assign u0      = clamp_u((scale_init_q == '0) ? 11'd256 : scale_init_q);
-  // Stage 3: line(N) = full * n0(T) + n0(rest), n0(T) = T / S + 1 (grid_line of msr_budget_pkg).
+  // Stage 3: line(N) = floor(N / T) * n0(T) + n0(N mod T), n0(T) = T / S + 1 as T >= 8 >= S.
   logic [12:0]      line_w, line_h, line_w_q, line_h_q, line_w2_q, line_h2_q;
   assign line_w = (full_w_q << sh_q) + full_w_q + 13'(grid_axis(rest_w_q, lv_q));
   assign line_h = (full_h_q << sh_q) + full_h_q + 13'(grid_axis(rest_h_q, lv_q));

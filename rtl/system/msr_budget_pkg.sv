@@ -20,15 +20,6 @@ package msr_budget_pkg;
     return ((n + s1) >> l) + 6'(((n - 6'd1) & s1) != '0);
   endfunction
 
-  // line(N) = floor(N / T) * n0(T) + n0(N mod T); n0(T) = T / S + 1 as T >= 8 >= S.
-  function automatic logic [12:0] grid_line(dim_t n, logic [2:0] tl, level_t l);
-    logic [12:0] full;
-    logic [5:0]  rest;
-    full = 13'(n >> tl);
-    rest = 6'(n & ((dim_t'(1) << tl) - dim_t'(1)));
-    return (full << (tl - {1'b0, l})) + full + 13'(grid_axis(rest, l));
-  endfunction
-
   function automatic logic [10:0] clamp_u(logic [10:0] v);
     return (v > U_MAX) ? U_MAX : (v < U_MIN) ? U_MIN : v;
   endfunction
