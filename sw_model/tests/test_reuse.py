@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from msr_model import ImageRenderer, Params, select, spec
+from msr_model import ImageRenderer, Params, select
 from msr_model.embree import library_path
 from msr_eval.reuse import Camera, PrevFrame, gather, placement_unit, select_reuse
 
