@@ -7,17 +7,15 @@ beat (the placement rule of the module header: word ow + l, lane mod WPB), backp
 exactly when three rows are held, the tile-done pulses and idle at the end."""
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import pytest
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent))
 
 import cocotb  # noqa: E402
 from cocotb.triggers import FallingEdge, ReadOnly  # noqa: E402
-from common.msr_tb import seeded_rng, start_clock_and_reset  # noqa: E402
+from msr_tb import seeded_rng, start_clock_and_reset  # noqa: E402
 
 TILE_ENC = {8: 0, 16: 1, 32: 2}
 CODES = (0, 1, 2, 3, 16, 17, 18, 19)

@@ -14,15 +14,13 @@ from __future__ import annotations
 
 import os
 import random
-import sys
 from pathlib import Path
 
 import cocotb
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "common"))
-from msr_runner import run_cocotb  # noqa: E402
-from msr_tb import next_cycle, seeded_rng, settle, start_clock_and_reset  # noqa: E402
+from msr_runner import run_cocotb
+from msr_tb import next_cycle, seeded_rng, settle, start_clock_and_reset
 
 CTX_W, TADDR_W = 3, 10
 IDLE = {"clear_i": 0, "rsp_valid_i": 0, "rsp_tag_i": 0, "rsp_rgb_i": 0, "alloc_i": 0, "alloc_ctx_i": 0,
