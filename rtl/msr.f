@@ -22,6 +22,12 @@ rtl/engine/msr_lin_track.sv
 rtl/engine/msr_lin_dilate.sv
 rtl/engine/msr_req_out.sv
 rtl/engine/msr_rsp_check.sv
+rtl/engine/msr_ctx_alloc.sv
+rtl/engine/msr_ctx_issue.sv
+rtl/engine/msr_operand_fetch.sv
+rtl/engine/msr_out_buf.sv
+rtl/engine/msr_ctx_write.sv
+rtl/engine/msr_ctx_drain.sv
 rtl/engine/msr_tile_engine.sv
 rtl/regs/msr_regs_pkg.sv
 rtl/regs/msr_regs.sv

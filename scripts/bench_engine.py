@@ -97,7 +97,7 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
                 traced += 1
             if rsp is not None and dut.rsp_ready_o.value:
                 rsp = None
-            if dut.gr_valid_q.value:
+            if dut.gr_valid.value:
                 # the position issued this cycle (granted the cycle before, still its
                 # context's head): its pass-start flag and direction
                 gi = int(dut.gr_ctx.value)
@@ -117,7 +117,7 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
                        "barrier_or_idle")
                 PROBE[key] = PROBE.get(key, 0) + 1
                 PROBE[f"full{full}"] = PROBE.get(f"full{full}", 0) + 1
-                PROBE["stream"] = PROBE.get("stream", 0) + int(dut.streaming_q.value)
+                PROBE["stream"] = PROBE.get("stream", 0) + int(dut.u_ctx_drain.streaming_q.value)
             if dut.pix_valid_o.value:
                 pixels += 1
                 if dut.pix_last_o.value:

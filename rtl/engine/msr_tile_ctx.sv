@@ -32,16 +32,8 @@ module msr_tile_ctx
   output tile_desc_t         desc_o,        // the tile held
   // the position on offer
   output logic               cand_o,        // a position that may be granted (issued a cycle later)
-  output logic               step_first_o,  // it is the first of its pass (waveforms)
-  output lcoord_t            step_x_o,
-  output lcoord_t            step_y_o,
-  output gap_t               step_gap_o,
-  output gap_t               step_off_o,
-  output level_t             step_level_o,
-  output logic [1:0]         step_nshift_o,
-  output logic               step_init_o,   // initial-grid position: traced, no reads
-  output dir_e               step_dir_o,
-  output logic               step_o2a_o,    // lindilate: A' is rd_o2_o (else the engine's last A)
+  // its position (init: traced, no reads; o2a: lindilate's A' is rd_o2_o, else the last A)
+  output eng_pos_t           step_o,
   input  logic               issue_i,       // the head leaves this cycle (granted the cycle before)
   // decision reads: the neighbours of the position issued two cycles before
   output rgb_t               rd_a_o,
@@ -234,16 +226,9 @@ module msr_tile_ctx
     .q_o     ({cand_tail_q, cand_head_q})
   );
 
-  assign step_first_o  = head_q.first;
-  assign step_init_o   = (head_q.dir == DIR_INIT);
-  assign step_x_o      = head_q.x;
-  assign step_y_o      = head_q.y;
-  assign step_gap_o    = head_q.gap;
-  assign step_off_o    = head_q.off;
-  assign step_level_o  = head_q.level;
-  assign step_nshift_o = head_q.nshift;
-  assign step_dir_o    = head_q.dir;
-  assign step_o2a_o    = head_q.o2a;
+  assign step_o = '{dir: head_q.dir, o2a: head_q.o2a, first: head_q.first, x: head_q.x, y: head_q.y,
+                   gap: head_q.gap, off: head_q.off, level: head_q.level, nshift: head_q.nshift,
+                   init: head_q.dir == DIR_INIT};
 
   // ---- State ----------------------------------------------------------------------------------
   always_comb begin

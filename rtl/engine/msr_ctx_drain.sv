@@ -1,0 +1,95 @@
+// Drain: finished tiles leave their contexts as the engine's pixel stream. A full context is
+// picked round robin (one cycle), the streamer starts on it (the next cycle) and reads its
+// tile buffer's port 0 row-major; the context is freed when its last pixel has left.
+module msr_ctx_drain
+  import msr_pkg::*;
+#(
+  parameter int unsigned NUM_CTX = 8,
+  parameter int unsigned CTX_W   = $clog2(NUM_CTX)
+) (
+  input  logic                       clk_i,
+  input  logic                       rst_ni,
+  input  logic                       clear_i,    // synchronous soft reset
+  // the contexts
+  input  logic       [NUM_CTX-1:0]   full_i,     // the tile is finished
+  input  tile_desc_t [NUM_CTX-1:0]   desc_i,     // the tile's origin and size
+  output logic       [NUM_CTX-1:0]   own_o,      // the streamer reads this context now
+  output logic                       re_o,       // the read, to every context (own_o selects)
+  output logic       [TADDR_W-1:0]   raddr_o,
+  input  rgb_t       [NUM_CTX-1:0]   rgb_i,      // two cycles after re_o
+  input  src_t       [NUM_CTX-1:0]   src_i,
+  output logic       [NUM_CTX-1:0]   done_o,     // pulse: the whole tile has left
+  // the pixel stream, row-major, global coordinates
+  output logic                       pix_valid_o,
+  input  logic                       pix_ready_i,
+  output coord_t                     pix_x_o,
+  output coord_t                     pix_y_o,
+  output rgb_t                       pix_rgb_o,
+  output src_t                       pix_src_o,
+  output logic                       pix_last_o  // last pixel of the tile
+);
+
+  logic             arb_valid, streaming_q, start_q, start_ready;
+  logic             streaming_d, start_d, pick, done;
+  logic [CTX_W-1:0] sel, cur_q, cur_d;
+  // The streamer needs the winner's index and the tile's origin and size only.
+  /* verilator lint_off UNUSEDSIGNAL */
+  tile_desc_t         cur_desc;
+  logic [NUM_CTX-1:0] gnt;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  msr_rr_arb #(.N(NUM_CTX), .IDX_W(CTX_W)) u_stream_arb (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .clear_i (clear_i),
+    .req_i   (full_i),
+    .gnt_o   (gnt),
+    .idx_o   (sel),
+    .valid_o (arb_valid),
+    .ready_i (!streaming_q)
+  );
+
+  always_comb begin
+    pick        = !streaming_q && arb_valid;
+    streaming_d = !done && (pick || streaming_q);
+    start_d     = !(start_q && start_ready) && (pick || start_q);
+    cur_d       = pick ? sel : cur_q;
+  end
+
+  msr_clr_reg #(.WIDTH(2 + CTX_W)) u_stream_q (
+    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({streaming_d, start_d, cur_d}),
+    .q_o ({streaming_q, start_q, cur_q})
+  );
+
+  assign cur_desc = desc_i[cur_q];
+
+  msr_tile_stream u_stream (
+    .clk_i         (clk_i),
+    .rst_ni        (rst_ni),
+    .clear_i       (clear_i),
+    .start_valid_i (start_q),
+    .start_ready_o (start_ready),
+    .x0_i          (cur_desc.x0),
+    .y0_i          (cur_desc.y0),
+    .w_i           (cur_desc.w),
+    .h_i           (cur_desc.h),
+    .re_o          (re_o),
+    .raddr_o       (raddr_o),
+    .rdata_rgb_i   (rgb_i[cur_q]),
+    .rdata_src_i   (src_i[cur_q]),
+    .pix_valid_o   (pix_valid_o),
+    .pix_ready_i   (pix_ready_i),
+    .pix_x_o       (pix_x_o),
+    .pix_y_o       (pix_y_o),
+    .pix_rgb_o     (pix_rgb_o),
+    .pix_src_o     (pix_src_o),
+    .pix_last_o    (pix_last_o),
+    .done_o        (done)
+  );
+
+  for (genvar c = 0; c < NUM_CTX; c++) begin : g_own
+    assign own_o[c]  = streaming_q && (cur_q == CTX_W'(c));
+    assign done_o[c] = done && (cur_q == CTX_W'(c));
+  end
+
+endmodule : msr_ctx_drain

@@ -1,0 +1,79 @@
+// Issue: round robin over the contexts whose next position may go, the grant registered.
+//
+// No stage between the issue and the output buffer ever stalls: a position is granted only
+// with a free slot in that buffer reserved for it (a credit, can_issue_i), so the pipeline
+// registers need no enable and the issue does not wait on the output's handshake.
+//
+// The grant is registered (GR): the arbiter's output goes into flip-flops beside it, and the
+// contexts, spread over the die with their tile buffers, see a register one clock later
+// (gr_gnt_o: the head leaves, the buffer reads it). The contexts' candidate bits know about
+// the grant in flight, so a context can still win every clock.
+`include "msr_assert.svh"
+
+module msr_ctx_issue
+  import msr_pkg::*;
+#(
+  parameter int unsigned NUM_CTX = 8,
+  parameter int unsigned CTX_W   = $clog2(NUM_CTX)
+) (
+  input  logic                     clk_i,
+  input  logic                     rst_ni,
+  input  logic                     clear_i,      // synchronous soft reset
+  input  logic     [NUM_CTX-1:0]   cand_i,       // contexts with a position that may go
+  input  eng_pos_t [NUM_CTX-1:0]   pos_i,        // each context's head position
+  input  logic                     can_issue_i,  // an output-buffer slot is free (a credit)
+  output logic                     issue_o,      // a grant this cycle (takes the credit)
+  output logic                     gr_valid_o,   // GR: a grant registered ...
+  output logic     [NUM_CTX-1:0]   gr_gnt_o,     // ... one-hot (the contexts' issue_i) ...
+  output logic     [CTX_W-1:0]     gr_ctx_o,     // ... its index ...
+  output eng_pos_t                 gr_pos_o      // ... and the granted head's position
+);
+
+  logic               arb_valid;
+  logic [CTX_W-1:0]   gnt_idx;
+  logic [NUM_CTX-1:0] gnt;
+
+  msr_rr_arb #(.N(NUM_CTX), .IDX_W(CTX_W)) u_issue_arb (
+    .clk_i   (clk_i),
+    .rst_ni  (rst_ni),
+    .clear_i (clear_i),
+    .req_i   (cand_i),
+    .gnt_o   (gnt),
+    .idx_o   (gnt_idx),
+    .valid_o (arb_valid),
+    .ready_i (can_issue_i)
+  );
+
+  assign issue_o = arb_valid && can_issue_i;
+
+  msr_clr_reg #(.WIDTH(1 + NUM_CTX)) u_gr_q (
+    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({issue_o, gnt & {NUM_CTX{can_issue_i}}}),
+    .q_o ({gr_valid_o, gr_gnt_o})
+  );
+
+  // The granted context's index, encoded from the registered one-hot grant (one LUT level in
+  // the short GR -> IS path) rather than registered from the arbiter's index output (two LUT
+  // levels more behind its carry chain, the engine's longest path).
+  always_comb begin
+    gr_ctx_o = '0;
+    for (int unsigned c = 0; c < NUM_CTX; c++) begin
+      if (gr_gnt_o[c]) gr_ctx_o |= CTX_W'(c);
+    end
+  end
+  logic unused_gnt_idx;
+  assign unused_gnt_idx = ^gnt_idx;
+
+  // The granted position, picked with the one-hot grant (an AND-OR, not an index multiplexer).
+  always_comb begin
+    gr_pos_o = '0;
+    for (int unsigned c = 0; c < NUM_CTX; c++) begin
+      gr_pos_o |= pos_i[c] & {$bits(eng_pos_t){gr_gnt_o[c]}};
+    end
+  end
+
+  /* verilator lint_off SYNCASYNCNET */
+  `MSR_ASSERT(a_gnt_onehot, $onehot0(gr_gnt_o))
+  `MSR_ASSERT(a_gr_valid, gr_valid_o == (gr_gnt_o != '0))
+  /* verilator lint_on SYNCASYNCNET */
+
+endmodule : msr_ctx_issue
