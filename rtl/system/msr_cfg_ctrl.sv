@@ -9,11 +9,10 @@
 // (CONFIG.RULE 2 or 3, or 1 in a top built without it, LINDILATE 0: code 13); with a ray
 // budget (BUDGET non-zero), the budget controller's own check, run beside these from the
 // sampled registers (codes 14 and 15; a top built without it, BUDGET_EN 0, refuses any
-// budget with 14). The first
-// failing check in the order of the error codes wins: the configuration is latched and the
-// frame starts, or the error is reported
-// (STATUS.ERROR, STATUS.CFG_ERR and the interrupt) and the accelerator stays idle (no render
-// request, no memory write). A frame ends when the tile generator has handed out every tile,
+// budget with 14). The first failing check in the order of the error codes wins: the
+// configuration is latched and the frame starts, or the error is reported (STATUS.ERROR,
+// STATUS.CFG_ERR and the interrupt) and the accelerator stays idle (no render request, no
+// memory write). A frame ends when the tile generator has handed out every tile,
 // every tile's last pixel has reached the writer and the writer is idle. SOFT_RESET in any
 // state: DRAIN until no render request is in flight and the writer is idle, then one CLEAR
 // cycle (every unit's synchronous clear, sent a clock later from one register per engine and
@@ -498,5 +497,4 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
                 state_q == ST_CHECK && step_q == STEP_END[4:0] && bud_on |-> bud_done_i)
   end
   /* verilator lint_on SYNCASYNCNET */
-
 endmodule : msr_cfg_ctrl

@@ -89,4 +89,23 @@ package msr_sys_pkg;
     ERR_PROFILE    = 4'd15   // SEEDED without an activity memory of this tile-row count
   } err_e;
 
+  // The register fields the configuration controller acts on.
+  typedef struct packed {
+    logic        start;        // CTRL.START written (a pulse)
+    logic        soft_reset;   // CTRL.SOFT_RESET written (a pulse)
+    logic        irq_en;       // CTRL.IRQ_EN
+    logic [2:0]  irq_flags;    // STATUS.DONE, CFG_ERR, WDOG as they are held
+    logic [31:0] wdog_limit;   // WATCHDOG.CYCLES: cycles without progress, 0 = off
+  } reg_ctrl_t;
+
+  // What the configuration controller reports in STATUS.
+  typedef struct packed {
+    logic busy;                // STATUS.BUSY
+    err_e err;                 // STATUS.ERROR
+    logic done_set;            // STATUS.DONE set: the frame is complete
+    logic done_clr;            // STATUS.DONE, CFG_ERR, WDOG cleared (START, SOFT_RESET)
+    logic cfg_err_set;         // STATUS.CFG_ERR set: a START was refused
+    logic wdog_set;            // STATUS.WDOG set: the watchdog forced a CLEAR
+  } reg_status_t;
+
 endpackage : msr_sys_pkg

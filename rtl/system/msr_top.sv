@@ -95,8 +95,12 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   end
 
   // ---- Registers --------------------------------------------------------------------------------
-  msr_regs_pkg::msr_regs__in_t  hwif_in;
-  msr_regs_pkg::msr_regs__out_t hwif_out;
+  cfg_raw_t    raw;
+  reg_ctrl_t   reg_ctrl;
+  reg_status_t reg_status;
+  readback_t   readback;
+  logic [10:0] scale_out;
+  logic        scale_out_valid;
 
   msr_reg_if u_reg_if (
     .clk_i, .rst_ni,
@@ -105,31 +109,13 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .s_axil_bvalid, .s_axil_bready, .s_axil_bresp,
     .s_axil_arvalid, .s_axil_arready, .s_axil_araddr, .s_axil_arprot,
     .s_axil_rvalid, .s_axil_rready, .s_axil_rdata, .s_axil_rresp,
-    .hwif_in_i  (hwif_in),
-    .hwif_out_o (hwif_out)
+    .raw_o             (raw),
+    .ctrl_o            (reg_ctrl),
+    .status_i          (reg_status),
+    .readback_i        (readback),
+    .scale_out_i       (scale_out),
+    .scale_out_valid_i (scale_out_valid)
   );
-
-  cfg_raw_t raw;
-  assign raw = '{
-    width:      hwif_out.FRAME_SIZE.WIDTH.value,
-    height:     hwif_out.FRAME_SIZE.HEIGHT.value,
-    tile:       hwif_out.CONFIG.TILE.value,
-    levels:     hwif_out.CONFIG.LEVELS.value,
-    metric:     metric_e'(hwif_out.CONFIG.METRIC.value),
-    rule:       hwif_out.CONFIG.RULE.value,
-    thr:        {hwif_out.THRESH.THR3.value, hwif_out.THRESH.THR2.value,
-                 hwif_out.THRESH.THR1.value},
-    fov_gain:   hwif_out.FOV_GAIN.GAIN.value,
-    fb:         '{fb_base:    hwif_out.FB_BASE.ADDR.value,
-                  fb_stride:  hwif_out.FB_STRIDE.STRIDE.value,
-                  src_en:     hwif_out.SRC_CTRL.ENABLE.value,
-                  src_base:   hwif_out.SRC_BASE.ADDR.value,
-                  src_stride: hwif_out.SRC_STRIDE.STRIDE.value},
-    bud:        '{pixels:      hwif_out.BUDGET.PIXELS.value,
-                  scale_init:  hwif_out.BUDGET_CTRL.SCALE_INIT.value,
-                  prior_shift: hwif_out.BUDGET_CTRL.PRIOR_SHIFT.value,
-                  seeded:      hwif_out.BUDGET_CTRL.SEEDED.value}
-  };
 
   // ---- Configuration check and control ----------------------------------------------------------
   cfg_t        cfg;
@@ -148,9 +134,9 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES), .LINDILATE(LINDILATE), .BUDGET_EN(BUDGET_EN)) u_ctrl (
     .clk_i          (clk_i),
     .rst_ni         (rst_ni),
-    .start_i        (hwif_out.CTRL.START.value),
-    .soft_reset_i   (hwif_out.CTRL.SOFT_RESET.value),
-    .wdog_limit_i   (hwif_out.WATCHDOG.CYCLES.value),
+    .start_i        (reg_ctrl.start),
+    .soft_reset_i   (reg_ctrl.soft_reset),
+    .wdog_limit_i   (reg_ctrl.wdog_limit),
     .raw_i          (raw),
     .cfg_o          (cfg),
     .busy_o         (busy),
@@ -160,9 +146,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .cfg_err_set_o  (cfg_err_set),
     .wdog_set_o     (wdog_set),
     .err_counts_o   (err_counts),
-    .irq_en_i       (hwif_out.CTRL.IRQ_EN.value),
-    .irq_flags_i    ({hwif_out.STATUS.DONE.value, hwif_out.STATUS.CFG_ERR.value,
-                      hwif_out.STATUS.WDOG.value}),
+    .irq_en_i       (reg_ctrl.irq_en),
+    .irq_flags_i    (reg_ctrl.irq_flags),
     .irq_o          (irq_o),
     .start_o        (start),
     .run_o          (run),
@@ -189,14 +174,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .bud_busy_i     (bud_busy)
   );
 
-  assign hwif_in.STATUS.BUSY.next  = busy;
-  assign hwif_in.STATUS.ERROR.next = err;
-  assign hwif_in.STATUS.DONE.hwset = done_set;
-  assign hwif_in.STATUS.DONE.hwclr = done_clr;
-  assign hwif_in.STATUS.CFG_ERR.hwset = cfg_err_set;
-  assign hwif_in.STATUS.CFG_ERR.hwclr = done_clr;
-  assign hwif_in.STATUS.WDOG.hwset = wdog_set;
-  assign hwif_in.STATUS.WDOG.hwclr = done_clr;
+  assign reg_status = '{busy: busy, err: err, done_set: done_set, done_clr: done_clr,
+                        cfg_err_set: cfg_err_set, wdog_set: wdog_set};
   // ---- Tile generation -------------------------------------------------------------------------
   tile_desc_t desc;
   logic [NUM_ENGINES-1:0] desc_sp_ready;
@@ -470,8 +449,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .pix_y_i           (wr_pix_y),
       .pix_src_i         (wr_pix_src),
       .pix_last_i        (wr_pix_last),
-      .scale_out_o       (hwif_in.BUDGET_CTRL.SCALE_OUT.next),
-      .scale_out_valid_o (hwif_in.BUDGET_CTRL.SCALE_OUT_VALID.next)
+      .scale_out_o       (scale_out),
+      .scale_out_valid_o (scale_out_valid)
     );
   end else begin : g_no_budget
     assign bud_done        = 1'b0;
@@ -480,8 +459,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     assign bud_busy        = 1'b0;
     assign tg_row_ok       = 1'b0;
     assign tg_row_m        = 13'd256;
-    assign hwif_in.BUDGET_CTRL.SCALE_OUT.next       = '0;
-    assign hwif_in.BUDGET_CTRL.SCALE_OUT_VALID.next = 1'b0;
+    assign scale_out       = '0;
+    assign scale_out_valid = 1'b0;
     logic unused_budget;
     assign unused_budget = ^{bud_check, raw_q, tg_row};
   end
@@ -494,8 +473,6 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
                  (m_axi_bvalid && m_axi_bready && !b_unexpected);
 
   // ---- Performance counters and read-back ---------------------------------------------------------
-  readback_t readback;
-
   msr_perf_counters #(.NUM_ENGINES(NUM_ENGINES)) u_perf (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),
@@ -508,20 +485,6 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .err_i      (err_counts),
     .readback_o (readback)
   );
-
-  assign hwif_in.PERF_CYCLES.COUNT.next       = readback.cycles;
-  assign hwif_in.PERF_RENDER_STALL.COUNT.next = readback.rstall;
-  assign hwif_in.PERF_MEM_STALL.COUNT.next    = readback.mstall;
-  for (genvar k = 0; k < 4; k++) begin : g_perf_traced
-    assign hwif_in.PERF_TRACED[k].COUNT.next = readback.traced[k];
-  end
-  for (genvar k = 0; k < 3; k++) begin : g_perf_interp
-    assign hwif_in.PERF_INTERP[k].COUNT.next = readback.interp[k];
-  end
-  assign hwif_in.MEM_ERR.COUNT.next        = readback.err.mem_err_cnt;
-  assign hwif_in.MEM_ERR.UNEXPECTED_B.next = readback.err.b_unexpected;
-  assign hwif_in.MEM_ERR_ADDR.ADDR.next    = readback.err.mem_err_addr;
-  assign hwif_in.RSP_DROP.COUNT.next       = readback.err.rsp_drop_cnt;
 
   // ---- Debug ports -----------------------------------------------------------------------------------
   assign dbg_desc_fire_o = |eng_desc_valid;
