@@ -916,7 +916,7 @@ def gate_level_result() -> str:
     """The last gate-level bench result (cocotb's results.xml), as a sentence."""
     xml = ROOT / "build" / "tb" / "msr_tile_engine" / "default_gate" / "results.xml"
     if not xml.is_file():
-        return "not run yet on this machine (`make test` runs it)"
+        return "not run yet on this machine (`make test-gate` runs it)"
     text = xml.read_text()
     failed = "<failure" in text or "<error" in text
     when = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime(xml.stat().st_mtime))
@@ -1095,7 +1095,8 @@ path, its start and end.
 
 ## Does the netlist compute the same frame?
 
-`tb/gate_level/test_gate_level.py` (part of `make test`) simulates the mapped netlist of one
+`tb/gate_level/test_gate_level.py` (`make test-gate`; `make test` leaves it out, pytest.ini's
+`gate` marker, as its model takes some ten minutes to build) simulates the mapped netlist of one
 tile engine (`build/asic/msr_tile_engine.v`, the top's engine parameters) with Verilator, in
 its simulation form `build/asic/msr_tile_engine.sim.v`: Yosys replaces every library cell by
 the function the liberty gives it (`read_liberty`, flip-flops with their asynchronous reset),

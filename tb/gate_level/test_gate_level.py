@@ -86,10 +86,9 @@ def test_gate_level_tile_engine():
     try:
         run_cocotb("msr_tile_engine", "test_gate_level", HERE, tag="gate",
                    sources=[*sram, MACROS, NETLIST],
-                   extra_env={"GATE_TILE_COUNTS": TILE_COUNTS, "MAX_OUTSTANDING": max_outstanding(),
-                              # the simulator's Python imports the RTL bench's module
-                              "PYTHONPATH": os.pathsep.join(
-                                  [str(ROOT / "tb" / "tile_engine"), os.environ.get("PYTHONPATH", "")])})
+                   # the simulator's Python imports the RTL bench's module (tb/tile_engine is on
+                   # pytest.ini's pythonpath; the runner hands the simulator pytest's sys.path)
+                   extra_env={"GATE_TILE_COUNTS": TILE_COUNTS, "MAX_OUTSTANDING": max_outstanding()})
     finally:                # the other benches of the session keep their own flags
         if flags is None:
             os.environ.pop("MAKEFLAGS", None)
