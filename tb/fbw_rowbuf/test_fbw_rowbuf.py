@@ -222,7 +222,7 @@ async def test_rows(dut):
 
 @pytest.mark.parametrize("n_in,width", [(2, 256), (1, 32), (3, 64)])
 def test_fbw_rowbuf(n_in, width):
-    from common.msr_runner import RTL, run_cocotb
+    from msr_runner import RTL, run_cocotb
     run_cocotb("msr_fbw_rowbuf", "test_fbw_rowbuf", HERE, {"NUM_IN": n_in, "AXI_DATA_W": width}, "",
                sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_clr_reg.sv", RTL / "system/msr_fbw_pkg.sv",
                         RTL / "system/msr_fbw_rowbuf.sv"])
