@@ -10,6 +10,7 @@ rtl/prim/msr_rr_arb.sv
 rtl/prim/msr_fifo.sv
 rtl/prim/msr_spill_reg.sv
 rtl/prim/msr_shift_add_mul.sv
+rtl/prim/msr_seq_div.sv
 rtl/prim/msr_tile_sram.sv
 rtl/engine/msr_base_decision.sv
 rtl/engine/msr_decision_pipe.sv

@@ -2,23 +2,12 @@
 // sw_model/msr_model/budget.py, class Controller, bit for bit).
 //
 // Why sequential: a tile row lasts thousands of clocks and the law runs once per row, so one
-// shift-add multiplier (up to 36 x 25 bits, one multiplier bit per clock, stopping when the
-// multiplier's remaining bits are zero) and one restoring divider (11 quotient bits, one per
-// clock, the quotient saturated at U_MAX + 1 by a first test num >= den << 11) do every
-// product and quotient of the frame; the only fast path is the read-back of a row's m.
+// shift-add multiplier (msr_shift_add_mul, up to 36 x 25 bits) and one restoring divider
+// (msr_seq_div, 11 quotient bits saturated at U_MAX + 1) do every product and quotient of the
+// frame; the only fast path is the read-back of a row's m.
 //
-// Sequences (one state machine, clear_i > start_i > check_i > row_done_i):
-//   check_i: the grid constants line(W), line(H) from shifts and adds, G = line(W) * line(H)
-//     on the multiplier (<= 13 clocks), the two checks: check_done_o at most 18 clocks after
-//     the pulse (four of them register the configuration and the constants). check_done_o and the flags hold until the next check_i or clear_i.
-//   start_i: G again, W * H, g of the last row, p of the last row, N0 = ((B' - G) * u0) >>
-//     PRIOR_SHIFT (B' = min(B, W * H)), m0 = (u0 * u0 + 128) >> 8: <= 69 clocks, then rows
-//     0 and 1 are known (row_ok_o) and row_ready_o rises. Atot is the N the last finished
-//     frame ended with (the sum of the words it wrote into the activity memory).
-//   row_done_i: a_j = (c_j - g_j) * u_j, the sums, the memory word, then the law of section 4
-//     (first frame: two products and a quotient; seeded: a quotient), the slew limit and the
-//     clamp, and m of row j + 2, row_ready_o low: at most 1 + 12 (a_j) + 2 + 26 + 26 (the two
-//     products, multipliers of 25 bits) + 12 (division) + 2 + 12 (m) = 93 clocks.
+// Sequences (check, start, row; clock counts) and the widths of every quantity: docs/budget.md
+// section 6c.
 //
 // Scales: three slots (u, m) for the rows j, j + 1, j + 2 around rows_done (slot of row
 // rows_done = base_q, the next ones follow modulo 3). row_ok_o answers row_idx_i: its scale is
@@ -33,15 +22,6 @@
 // every row; a start invalidates it (it is being rewritten); a clear keeps a finished frame's
 // memory.
 //
-// Widths (W, H <= 4096, so W * H <= 2^24; u <= 1448 < 2^10.5):
-//   p_r <= 32 * 4096 = 2^17, c_j - g_j < 2^18; a_j <= 2^17 * 1448 < 2^27.5   (28 bits)
-//   N, Atot, Ad <= (W * H - G) * 1448 < 2^34.5; N0 <= 2^24 * 1448 < 2^34.5;
-//   N + N0 < 2^35.5                                                          (36 bits)
-//   C, P, Gd, G, W * H, B' <= 2^24 (25 bits); P + P0 <= 2^25 (26 bits);
-//   X = B' + Gd - C - G in (-2^25, 2^25) (27 bits signed; used only when > 0: 25 bits)
-//   numerator (N + N0) * (W * H - P) < 2^35.5 * 2^24 = 2^59.5; the multiplier's 61-bit
-//   accumulator (36 + 25 bits) holds any product of its operands.
-//   denominator (P + P0) * X < 2^26 * 2^25 = 2^51 (51 bits); den << 11 < 2^62 (62-bit compare)
 `include "msr_assert.svh"
 
 module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
@@ -78,8 +58,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
 );
 
 
-  localparam int unsigned WH_W   = 25;           // W * H and every pixel count of the frame
-  localparam int unsigned ACT_W  = 36;           // N, N0, Atot, Ad
+  localparam int unsigned WH_W   = BUD_WH_W;     // W * H and every pixel count of the frame
+  localparam int unsigned ACT_W  = BUD_ACT_W;    // N, N0, Atot, Ad
   localparam int unsigned MEM_W  = 28;           // a_j
   localparam int unsigned MC_W   = 36;           // multiplicand
   localparam int unsigned MP_W   = 25;           // multiplier
@@ -90,16 +70,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // ---- The configuration and the grid constants, four clocks after the pulses -------------
   // The check's flags and the row read-back drop at the input pulse itself (below).
   logic             check_p, start_p;
-  dim_t             width_r, height_r;
-  level_t           levels_r;
-  logic [23:0]      budget_r;
-  logic [2:0]       prior_shift_r;
-  logic             seeded_r;
-  logic [5:0]       h_last;
-  logic [12:0]      line_w, line_h;
-  logic [ROW_W-1:0] nty;
-  logic [17:0]      g_full, p_full;
-  logic [10:0]      u0;
+  budget_grid_t     cfg;                  // the configuration and the constants
   msr_budget_grid u_grid (
     .clk_i,
     .rst_ni,
@@ -116,24 +87,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .start_i,
     .check_o       (check_p),
     .start_o       (start_p),
-    .width_o       (width_r),
-    .height_o      (height_r),
-    .levels_o      (levels_r),
-    .budget_o      (budget_r),
-    .prior_shift_o (prior_shift_r),
-    .seeded_o      (seeded_r),
-    .h_last_o      (h_last),
-    .line_w_o      (line_w),
-    .line_h_o      (line_h),
-    .nty_o         (nty),
-    .g_full_o      (g_full),
-    .p_full_o      (p_full),
-    .u0_o          (u0)
+    .grid_o        (cfg)
   );
-
-  function automatic logic [1:0] inc3(logic [1:0] s);
-    return (s == 2'd2) ? 2'd0 : s + 2'd1;
-  endfunction
 
   // ---- State ---------------------------------------------------------------------------------
   typedef enum logic [4:0] {
@@ -159,18 +114,10 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   state_e            state_q, state_d;
   logic              checking_q;           // the G sequence answers a check (not a start)
   logic              act_q;                // a budget frame is on and rows 0, 1 are known
-  logic              seeded_q;
-  logic [12:0]       line_w_q;
-  logic [ROW_W-1:0]  nty_q, rows_done_q;
-  logic [5:0]        h_last_q;
-  logic [17:0]       g_full_q, p_full_q, g_last_q, p_last_q;
-  logic [WH_W-1:0]   grid_q, wh_q, bud_q, spare_q, p0_q;
-  logic [WH_W-1:0]   p_sum_q;
-  logic signed [26:0] x_rem_q;             // X = (B' - G) + Gd - C, kept as a running sum
+  budget_frame_t     frm_q;                // the frame's constants (check and start)
+  budget_law_t       law_q;                // the running sums and the law's operands
+  logic [ROW_W-1:0]  rows_done_q;
   logic              row_last_q, row_new_q; // row rows_done is the last; it sets a new scale
-  logic [ACT_W-1:0]  n_q, n0_q, atot_q, ad_q, mem_sum_q;
-  logic [10:0]       u0_q;
-  logic [17:0]       c_q, g_row_q, p_row_q;
   logic [10:0]       u_q [3];
   logic [12:0]       m_q [3];
   logic [1:0]        base_q;               // slot of row rows_done_q
@@ -195,8 +142,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [MC_W-1:0]   seq_a;
   logic [MP_W-1:0]   seq_b;
   assign seq_load = !clear_i && (start_p || check_p);
-  assign seq_a    = MC_W'(line_w);
-  assign seq_b    = MP_W'(line_h);
+  assign seq_a    = MC_W'(cfg.line_w);
+  assign seq_b    = MP_W'(cfg.line_h);
 
   // mul_load of the state machine is overridden by a new sequence (one driver per flop).
   logic              mload;
@@ -217,17 +164,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .prod_o (mul_prod)
   );
 
-  // ---- Divider: restoring, quotient bits 10..0 -------------------------------------------------
-  logic [REM_W-1:0] div_rem_q, div_den_q;   // remainder; the divisor shifted to the next bit
-  logic [10:0]      div_quo_q;
-  logic [3:0]       div_cnt_q;
-  logic             div_sat_q;              // the quotient is >= 2^11
-  logic [REM_W-1:0] div_num_in, div_den_in;
-  logic [REM_W:0]   div_diff;               // remainder - divisor: its borrow is the compare
-  logic             div_ge;
-  assign div_diff = {1'b0, div_rem_q} - {1'b0, div_den_q};
-  assign div_ge   = !div_diff[REM_W];
-
   // ---- Activity memory ---------------------------------------------------------------------
   (* no_rw_check *)
   logic [MEM_W-1:0] mem_q [MEM_DEPTH];
@@ -244,7 +180,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   end
 
   // ---- Row quantities ------------------------------------------------------------------------
-  logic             row_last, row_new, x_pos;
+  logic             x_pos;
   logic [1:0]       slot1, slot2;
   logic [17:0]      g_sel, p_sel, c_minus_g;
   logic [18:0]      c_diff;                // c - g and its borrow (one carry chain)
@@ -252,21 +188,62 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [WH_W:0]    pp0;                  // P + P0 <= 2^25: 26 bits
   logic [ACT_W-1:0] nn0, a_left;
   logic [10:0]      u_new;
-  logic [10:0]      slew_q, u_mx_q;        // u_{j+1} >> 1; max(q, u_{j+1} >> 1)
-  assign row_last  = row_last_q;
-  assign row_new   = row_new_q;
-  assign x_pos     = !x_rem_q[26] && x_rem_q != '0;
+  assign x_pos     = !law_q.x_rem[26] && law_q.x_rem != '0;
   assign slot1     = inc3(base_q);
   assign slot2     = inc3(slot1);
-  assign g_sel     = row_last ? g_last_q : g_full_q;
-  assign p_sel     = row_last ? p_last_q : p_full_q;
+  assign g_sel     = row_last_q ? frm_q.g_last : frm_q.g_full;
+  assign p_sel     = row_last_q ? frm_q.p_last : frm_q.p_full;
   assign c_diff    = {1'b0, row_traced_i} - {1'b0, g_sel};
   assign c_minus_g = c_diff[18] ? '0 : c_diff[17:0];
-  assign pp0       = (WH_W + 1)'(p_sum_q) + (WH_W + 1)'(p0_q);
-  assign nn0       = n_q + n0_q;
-  assign a_diff    = {1'b0, atot_q} - {1'b0, ad_q};
+  assign pp0       = (WH_W + 1)'(law_q.p_sum) + (WH_W + 1)'(frm_q.p0);
+  assign nn0       = law_q.n + law_q.n0;
+  assign a_diff    = {1'b0, law_q.atot} - {1'b0, law_q.ad};
   assign a_left    = a_diff[ACT_W] ? '0 : a_diff[ACT_W-1:0];
-  assign u_new     = clamp_u(u_mx_q);
+  assign u_new     = clamp_u(law_q.u_mx);
+
+  // ---- Divider (msr_seq_div): the saturation test, then quotient bits 10..0 ---------------
+  // Loaded by the law (ST_LAW) or by the two products (ST_NUM, ST_DEN); steps in ST_DIV.
+  logic             run;                    // no pulse or clear overrides the state machine
+  logic             div_init, div_load_num, div_load_den, div_last;
+  logic [REM_W-1:0] div_num_in, div_den_in;
+  logic [10:0]      div_quo;
+  assign run          = !clear_i && !start_p && !check_p;
+  assign div_init     = run && state_q == ST_LAW;
+  assign div_load_num = div_init || (run && state_q == ST_NUM && mul_done);
+  assign div_load_den = div_init || (run && state_q == ST_DEN && mul_done);
+
+  msr_seq_div #(.R_W(REM_W), .Q_W(11), .Q_SAT(Q_SAT)) u_div (
+    .clk_i,
+    .rst_ni,
+    .init_i     (div_init),
+    .quo_init_i ((row_last_q ? frm_q.spare == '0 : row_new_q && !x_pos) ? Q_SAT : 11'd0),
+    .load_num_i (div_load_num),
+    .num_i      ((state_q == ST_LAW) ? div_num_in : REM_W'(mul_prod)),
+    .load_den_i (div_load_den),
+    .den_i      ((state_q == ST_LAW) ? div_den_in : REM_W'(mul_prod)),
+    .step_i     (run && state_q == ST_DIV),
+    .last_o     (div_last),
+    .quo_o      (div_quo)
+  );
+
+  // The chains of products: when a state's product is done the next one starts with these
+  // operands, in the next state of the enum (start: G, W * H, g and p of the last row, N0, m0;
+  // law: the numerator from ST_LAW, then the denominator).
+  logic [MC_W-1:0] next_a;
+  logic [MP_W-1:0] next_b;
+  logic [5:0]      n0_last;
+  assign n0_last = grid_axis(frm_q.h_last, cfg.levels);
+  always_comb begin
+    unique case (state_q)
+      ST_G:    begin next_a = MC_W'(cfg.width);    next_b = MP_W'(cfg.height);        end
+      ST_WH:   begin next_a = MC_W'(frm_q.line_w); next_b = MP_W'(n0_last);           end
+      ST_GL:   begin next_a = MC_W'(cfg.width);    next_b = MP_W'(frm_q.h_last);      end
+      ST_PL:   begin next_a = MC_W'(frm_q.spare);  next_b = MP_W'(frm_q.u0);          end
+      ST_N0:   begin next_a = MC_W'(frm_q.u0);     next_b = MP_W'(frm_q.u0);          end
+      ST_NUM:  begin next_a = MC_W'(pp0);          next_b = law_q.x_rem[MP_W-1:0];   end
+      default: begin next_a = nn0;                 next_b = frm_q.wh - law_q.p_sum;  end
+    endcase
+  end
 
   always_comb begin
     state_d    = state_q;
@@ -287,39 +264,12 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           state_d  = ST_ACT;
         end
       end
-      ST_G: if (mul_done) begin
-        if (checking_q) begin
-          state_d = ST_IDLE;
-        end else begin
-          mul_load = 1'b1;
-          mul_a    = MC_W'(width_r);
-          mul_b    = MP_W'(height_r);
-          state_d  = ST_WH;
-        end
-      end
-      ST_WH: if (mul_done) begin
-        mul_load = 1'b1;
-        mul_a    = MC_W'(line_w_q);
-        mul_b    = MP_W'(grid_axis(h_last_q, levels_r));
-        state_d  = ST_GL;
-      end
-      ST_GL: if (mul_done) begin
-        mul_load = 1'b1;
-        mul_a    = MC_W'(width_r);
-        mul_b    = MP_W'(h_last_q);
-        state_d  = ST_PL;
-      end
-      ST_PL: if (mul_done) begin
-        mul_load = 1'b1;
-        mul_a    = MC_W'(spare_q);
-        mul_b    = MP_W'(u0_q);
-        state_d  = ST_N0;
-      end
-      ST_N0: if (mul_done) begin
-        mul_load = 1'b1;
-        mul_a    = MC_W'(u0_q);
-        mul_b    = MP_W'(u0_q);
-        state_d  = ST_M0;
+      // The chains of products: a product done starts the next (the table above).
+      ST_G, ST_WH, ST_GL, ST_PL, ST_N0, ST_NUM: if (mul_done) begin
+        mul_load = !(state_q == ST_G && checking_q);   // a check ends with G
+        mul_a    = next_a;
+        mul_b    = next_b;
+        state_d  = mul_load ? state_e'(state_q + 5'd1) : ST_IDLE;
       end
       ST_M0: if (mul_done) state_d = ST_IDLE;
       ST_ACT: if (mul_done) begin
@@ -328,33 +278,27 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       end
       ST_ACC: state_d = ST_LAW;
       ST_LAW: begin
-        if (row_last) begin
-          div_num_in = REM_W'(n_q);
-          div_den_in = REM_W'(spare_q) << 11;
-          state_d    = (spare_q == '0) ? ST_FIN : ST_DIV;
-        end else if (!row_new) begin
+        if (row_last_q) begin
+          div_num_in = REM_W'(law_q.n);
+          div_den_in = REM_W'(frm_q.spare);
+          state_d    = (frm_q.spare == '0) ? ST_FIN : ST_DIV;
+        end else if (!row_new_q) begin
           state_d = ST_SQ;                       // no new scale: just the row count
         end else if (!x_pos) begin
           state_d = ST_SLEW;                     // q = U_MAX + 1 (set below)
-        end else if (seeded_q) begin
+        end else if (frm_q.seeded) begin
           div_num_in = REM_W'(a_left);
-          div_den_in = REM_W'(x_rem_q[MP_W-1:0]) << 11;
+          div_den_in = REM_W'(law_q.x_rem[MP_W-1:0]);
           state_d    = ST_DIV;
         end else begin
           mul_load = 1'b1;
-          mul_a    = nn0;
-          mul_b    = wh_q - p_sum_q;
+          mul_a    = next_a;
+          mul_b    = next_b;
           state_d  = ST_NUM;
         end
       end
-      ST_NUM: if (mul_done) begin
-        mul_load = 1'b1;
-        mul_a    = MC_W'(pp0);
-        mul_b    = x_rem_q[MP_W-1:0];
-        state_d  = ST_DEN;
-      end
       ST_DEN: if (mul_done) state_d = ST_DIV;
-      ST_DIV: if (div_cnt_q == 4'd1) state_d = row_last ? ST_FIN : ST_SLEW;
+      ST_DIV: if (div_last) state_d = row_last_q ? ST_FIN : ST_SLEW;
       ST_SLEW: state_d = ST_SQ0;
       ST_SQ0: begin
         mul_load = 1'b1;
@@ -374,33 +318,9 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       state_q           <= ST_IDLE;
       checking_q        <= 1'b0;
       act_q             <= 1'b0;
-      seeded_q          <= 1'b0;
-      line_w_q          <= '0;
-      nty_q             <= '0;
       rows_done_q       <= '0;
-      h_last_q          <= '0;
-      g_full_q          <= '0;
-      p_full_q          <= '0;
-      g_last_q          <= '0;
-      p_last_q          <= '0;
-      grid_q            <= '0;
-      wh_q              <= '0;
-      bud_q             <= '0;
-      spare_q           <= '0;
-      p0_q              <= '0;
-      p_sum_q           <= '0;
-      x_rem_q           <= '0;
       row_last_q        <= 1'b0;
       row_new_q         <= 1'b0;
-      n_q               <= '0;
-      n0_q              <= '0;
-      atot_q            <= '0;
-      ad_q              <= '0;
-      mem_sum_q         <= '0;
-      u0_q              <= '0;
-      c_q               <= '0;
-      g_row_q           <= '0;
-      p_row_q           <= '0;
       u_q               <= '{default: '0};
       m_q               <= '{default: '0};
       base_q            <= '0;
@@ -412,15 +332,10 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       scale_out_q       <= '0;
       scale_out_valid_q <= 1'b0;
       frame_done_q      <= 1'b0;
-      div_rem_q         <= '0;
-      div_den_q         <= '0;
-      div_quo_q         <= '0;
-      div_cnt_q         <= '0;
-      div_sat_q         <= 1'b0;
-      slew_q            <= '0;
-      u_mx_q            <= '0;
       row_ok_q          <= 1'b0;
       row_m_q           <= '0;
+      frm_q             <= '0;
+      law_q             <= '0;
     end else if (clear_i) begin
       state_q      <= ST_IDLE;
       act_q        <= 1'b0;
@@ -433,7 +348,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       frame_done_q <= 1'b0;
       // Read-back of the row the walker asks about: known rows are rows_done and the next.
       row_ok_q <= act_q && row_idx_i >= rows_done_q && row_idx_i <= rows_done_q + ROW_W'(1)
-                  && row_idx_i < nty_q;
+                  && row_idx_i < frm_q.nty;
       row_m_q  <= m_q[(row_idx_i == rows_done_q) ? base_q : slot1];
 
       // The input pulses drop the old answers at once (the sequence starts four clocks later).
@@ -448,113 +363,93 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         checking_q  <= !start_p;
         act_q       <= 1'b0;
         row_ok_q    <= 1'b0;
-        line_w_q    <= line_w;
-        nty_q       <= nty;
-        h_last_q    <= h_last;
-        g_full_q    <= g_full;
-        p_full_q    <= p_full;
-        u0_q        <= u0;
-        seeded_q    <= seeded_r;
+        frm_q.line_w    <= cfg.line_w;
+        frm_q.nty       <= cfg.nty;
+        frm_q.h_last    <= cfg.h_last;
+        frm_q.g_full    <= cfg.g_full;
+        frm_q.p_full    <= cfg.p_full;
+        frm_q.u0        <= cfg.u0;
+        frm_q.seeded    <= cfg.seeded;
         if (check_p && !start_p) check_done_q <= 1'b0;
         if (start_p) begin
-          n_q               <= '0;
-          p_sum_q           <= '0;
-          ad_q              <= '0;
+          law_q.n               <= '0;
+          law_q.p_sum           <= '0;
+          law_q.ad              <= '0;
           rows_done_q       <= '0;
           base_q            <= '0;
-          atot_q            <= mem_sum_q;
+          law_q.atot            <= law_q.mem_sum;
           mem_valid_q       <= 1'b0;
           scale_out_valid_q <= 1'b0;
-          u_q[0]            <= u0;
-          u_q[1]            <= u0;
+          u_q[0]            <= cfg.u0;
+          u_q[1]            <= cfg.u0;
         end
       end else begin
         state_q <= state_d;
         unique case (state_q)
           ST_G: if (mul_done) begin
-            grid_q <= WH_W'(mul_prod);
+            frm_q.grid <= WH_W'(mul_prod);
             if (checking_q) begin
               check_done_q  <= 1'b1;
-              err_budget_q  <= budget_r != '0 && WH_W'(budget_r) < WH_W'(mul_prod);
-              err_profile_q <= seeded_r && !(mem_valid_q && mem_rows_q == nty_q);
+              err_budget_q  <= cfg.budget != '0 && WH_W'(cfg.budget) < WH_W'(mul_prod);
+              err_profile_q <= cfg.seeded && !(mem_valid_q && mem_rows_q == frm_q.nty);
             end
           end
           ST_WH: if (mul_done) begin
-            wh_q  <= WH_W'(mul_prod);
-            bud_q <= (WH_W'(budget_r) < WH_W'(mul_prod)) ? WH_W'(budget_r) : WH_W'(mul_prod);
-            p0_q  <= WH_W'(mul_prod) >> prior_shift_r;
+            frm_q.wh  <= WH_W'(mul_prod);
+            frm_q.bud <= (WH_W'(cfg.budget) < WH_W'(mul_prod)) ? WH_W'(cfg.budget)
+                                                                : WH_W'(mul_prod);
+            frm_q.p0  <= WH_W'(mul_prod) >> cfg.prior_shift;
           end
           ST_GL: if (mul_done) begin
-            g_last_q <= 18'(mul_prod);
-            spare_q  <= (bud_q > grid_q) ? bud_q - grid_q : '0;
+            frm_q.g_last <= 18'(mul_prod);
+            frm_q.spare  <= (frm_q.bud > frm_q.grid) ? frm_q.bud - frm_q.grid : '0;
           end
           ST_PL: if (mul_done) begin
-            p_last_q <= 18'(mul_prod);
-            x_rem_q  <= $signed({2'b00, spare_q});
+            frm_q.p_last <= 18'(mul_prod);
+            law_q.x_rem  <= $signed({2'b00, frm_q.spare});
           end
-          ST_N0: if (mul_done) n0_q <= ACT_W'(mul_prod >> prior_shift_r);
+          ST_N0: if (mul_done) law_q.n0 <= ACT_W'(mul_prod >> cfg.prior_shift);
           ST_M0: if (mul_done) begin
             m_q[0] <= 13'((mul_prod + PROD_W'(128)) >> 8);
             m_q[1] <= 13'((mul_prod + PROD_W'(128)) >> 8);
             act_q      <= 1'b1;
-            row_last_q <= nty_q == ROW_W'(1);
-            row_new_q  <= nty_q > ROW_W'(2);
+            row_last_q <= frm_q.nty == ROW_W'(1);
+            row_new_q  <= frm_q.nty > ROW_W'(2);
           end
           ST_IDLE: if (act_q && row_done_i) begin
-            c_q     <= row_traced_i;
-            g_row_q <= g_sel;
-            p_row_q <= p_sel;
+            law_q.c     <= row_traced_i;
+            law_q.g_row <= g_sel;
+            law_q.p_row <= p_sel;
           end
           ST_ACT: ;
           ST_ACC: begin
-            n_q     <= n_q + ACT_W'(mul_prod);
-            p_sum_q <= p_sum_q + WH_W'(p_row_q);
-            x_rem_q <= x_rem_q - $signed({9'd0, c_q}) + $signed({9'd0, g_row_q});
-            if (seeded_q) ad_q <= ad_q + ACT_W'(mem_rdata_q);
+            law_q.n     <= law_q.n + ACT_W'(mul_prod);
+            law_q.p_sum <= law_q.p_sum + WH_W'(law_q.p_row);
+            law_q.x_rem <= law_q.x_rem - $signed({9'd0, law_q.c}) + $signed({9'd0, law_q.g_row});
+            if (frm_q.seeded) law_q.ad <= law_q.ad + ACT_W'(mem_rdata_q);
           end
           ST_LAW: begin
-            // q = U_MAX + 1 without a division: X <= 0, or the last row with B' = G
-            div_quo_q <= (row_last ? spare_q == '0 : row_new && !x_pos) ? Q_SAT : 11'd0;
-            div_sat_q <= 1'b0;
-            div_cnt_q <= 4'd12;
-            slew_q    <= u_q[slot1] >> 1;
-            div_rem_q <= div_num_in;
-            div_den_q <= div_den_in;
+            law_q.slew <= u_q[slot1] >> 1;           // (the divider is loaded above)
           end
-          ST_NUM: if (mul_done) div_rem_q <= REM_W'(mul_prod);
-          ST_DEN: if (mul_done) div_den_q <= REM_W'(mul_prod) << 11;
-          // Step 12 compares with den << 11: a quotient >= 2^11 saturates at U_MAX + 1 (it
-          // clamps to U_MAX either way; the steps still run, so the step count does not
-          // depend on the compare). Steps 11..1 give the quotient bits 10..0.
-          ST_DIV: begin
-            div_cnt_q <= div_cnt_q - 4'd1;
-            div_den_q <= div_den_q >> 1;
-            if (div_cnt_q == 4'd12) begin
-              div_sat_q <= div_ge;
-            end else begin
-              if (div_ge) div_rem_q <= div_diff[REM_W-1:0];
-              div_quo_q <= (div_cnt_q == 4'd1 && div_sat_q) ? Q_SAT : {div_quo_q[9:0], div_ge};
-            end
-          end
-          ST_SLEW: u_mx_q <= (div_quo_q > slew_q) ? div_quo_q : slew_q;
+          ST_SLEW: law_q.u_mx <= (div_quo > law_q.slew) ? div_quo : law_q.slew;
           ST_SQ0: u_q[slot2] <= u_new;
           ST_SQ: if (mul_done) begin
-            if (row_new) m_q[slot2] <= 13'((mul_prod + PROD_W'(128)) >> 8);
+            if (row_new_q) m_q[slot2] <= 13'((mul_prod + PROD_W'(128)) >> 8);
             rows_done_q <= rows_done_q + ROW_W'(1);
-            row_last_q  <= rows_done_q + ROW_W'(2) == nty_q;
-            row_new_q   <= rows_done_q + ROW_W'(3) < nty_q;
+            row_last_q  <= rows_done_q + ROW_W'(2) == frm_q.nty;
+            row_new_q   <= rows_done_q + ROW_W'(3) < frm_q.nty;
             base_q      <= slot1;
           end
           ST_FIN: begin
-            scale_out_q       <= clamp_u(div_quo_q);
+            scale_out_q       <= clamp_u(div_quo);
             rows_done_q       <= rows_done_q + ROW_W'(1);
             base_q            <= slot1;
             act_q             <= 1'b0;
             scale_out_valid_q <= 1'b1;
             frame_done_q      <= 1'b1;
             mem_valid_q       <= 1'b1;
-            mem_rows_q        <= nty_q;
-            mem_sum_q         <= n_q;
+            mem_rows_q        <= frm_q.nty;
+            law_q.mem_sum         <= law_q.n;
           end
           default: ;
         endcase
@@ -575,11 +470,11 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // ---- Invariants ----------------------------------------------------------------------------
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_row_when_ready, row_done_i |-> row_ready_o || start_p || check_p || clear_i)
-  `MSR_ASSERT(a_start_budget_on, start_p |-> budget_r != '0)
-  `MSR_ASSERT(a_row_traced_range, state_q == ST_ACC |-> c_q >= g_row_q && c_q <= p_row_q)
-  `MSR_ASSERT(a_div_den_nonzero, state_q == ST_DIV && div_cnt_q == 4'd12 |-> div_den_q != '0)
+  `MSR_ASSERT(a_start_budget_on, start_p |-> cfg.budget != '0)
+  `MSR_ASSERT(a_row_traced_range,
+              state_q == ST_ACC |-> law_q.c >= law_q.g_row && law_q.c <= law_q.p_row)
   `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= U_MIN && u_q[base_q] <= U_MAX)
-  `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < nty_q)
+  `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < frm_q.nty)
   `MSR_ASSERT(a_num_fits, state_q == ST_NUM && mul_done |-> mul_prod[PROD_W-1] == 1'b0)
   /* verilator lint_on SYNCASYNCNET */
 

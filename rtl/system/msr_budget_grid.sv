@@ -27,19 +27,7 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
   // Four clocks later: the pulses, with the configuration and the constants.
   output logic             check_o,
   output logic             start_o,
-  output dim_t             width_o,
-  output dim_t             height_o,
-  output level_t           levels_o,
-  output logic [23:0]      budget_o,
-  output logic [2:0]       prior_shift_o,
-  output logic             seeded_o,
-  output logic [5:0]       h_last_o,           // h of the last tile row (1..T)
-  output logic [12:0]      line_w_o,           // line(W): grid pixels of a tile row's row
-  output logic [12:0]      line_h_o,           // line(H)
-  output logic [ROW_W-1:0] nty_o,              // tile rows
-  output logic [17:0]      g_full_o,           // grid pixels of a full tile row
-  output logic [17:0]      p_full_o,           // pixels of a full tile row, W * T
-  output logic [10:0]      u0_o                // u0, clamped
+  output budget_grid_t     grid_o              // the configuration and the constants
 );
   // Stage 1: the configuration.
   dim_t        width_q, height_q;
@@ -98,10 +86,9 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
     {g_full_q, line_w2_q, line_h2_q, h_last3_q, nty3_q, p_full3_q, u03_q} <=
         {g_full, line_w_q, line_h_q, h_last2_q, nty2_q, p_full2_q, u02_q};
   end
-  assign {h_last_o, line_w_o, line_h_o, nty_o, g_full_o, p_full_o, u0_o} =
-      {h_last3_q, line_w2_q, line_h2_q, nty3_q, g_full_q, p_full3_q, u03_q};
-  assign {width_o, height_o, levels_o, budget_o, prior_shift_o, seeded_o} =
-      {width_q, height_q, levels_q, budget_q, prior_shift_q, seeded_q};
+  // In budget_grid_t's field order.
+  assign grid_o = {width_q, height_q, levels_q, budget_q, prior_shift_q, seeded_q, h_last3_q,
+                   line_w2_q, line_h2_q, nty3_q, g_full_q, p_full3_q, u03_q};
 
   localparam int unsigned DLY = 4;                   // the stages above
   logic [DLY-1:0] check_q, start_q;

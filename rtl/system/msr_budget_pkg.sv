@@ -12,12 +12,73 @@ package msr_budget_pkg;
   localparam logic [10:0] Q_SAT = 11'd1449;      // U_MAX + 1: "no budget left" / saturated
   /* verilator lint_on UNUSEDPARAM */
 
+  // The controller's quantities (docs/budget.md section 6c gives the bounds).
+  localparam int unsigned BUD_ROW_W = COORD_W - 2;   // tile row index (as the walker's)
+  localparam int unsigned BUD_WH_W  = 25;            // W * H and every pixel count of a frame
+  localparam int unsigned BUD_ACT_W = 36;            // N, N0, Atot, Ad
+
+  // The configuration and the grid constants, as msr_budget_grid hands them on.
+  typedef struct packed {
+    dim_t                 width;      // W
+    dim_t                 height;     // H
+    level_t               levels;     // L
+    logic [23:0]          budget;     // B
+    logic [2:0]           prior_shift;
+    logic                 seeded;     // the seeded law
+    logic [5:0]           h_last;     // h of the last tile row (1..T)
+    logic [12:0]          line_w;     // line(W): grid pixels of a tile row's row
+    logic [12:0]          line_h;     // line(H)
+    logic [BUD_ROW_W-1:0] nty;        // tile rows
+    logic [17:0]          g_full;     // grid pixels of a full tile row
+    logic [17:0]          p_full;     // pixels of a full tile row, W * T
+    logic [10:0]          u0;         // u0, clamped
+  } budget_grid_t;
+
+  // The frame's constants: registered at a check or a start, then by the start's products.
+  typedef struct packed {
+    logic                 seeded;     // the seeded law
+    logic [12:0]          line_w;     // line(W)
+    logic [BUD_ROW_W-1:0] nty;        // tile rows
+    logic [5:0]           h_last;     // height of the last tile row
+    logic [17:0]          g_full;     // grid pixels of a full row, of the last row
+    logic [17:0]          g_last;
+    logic [17:0]          p_full;     // pixels of a full row, of the last row
+    logic [17:0]          p_last;
+    logic [BUD_WH_W-1:0]  grid;       // G
+    logic [BUD_WH_W-1:0]  wh;         // W * H
+    logic [BUD_WH_W-1:0]  bud;        // B' = min(B, W * H)
+    logic [BUD_WH_W-1:0]  spare;      // max(B' - G, 0)
+    logic [BUD_WH_W-1:0]  p0;         // P0 = W * H >> PRIOR_SHIFT
+    logic [10:0]          u0;         // the first rows' scale
+  } budget_frame_t;
+
+  // The law's running sums and operands, updated once per finished row.
+  typedef struct packed {
+    logic [BUD_ACT_W-1:0] n;          // N
+    logic [BUD_ACT_W-1:0] n0;         // N0
+    logic [BUD_ACT_W-1:0] atot;       // Atot: the previous frame's N
+    logic [BUD_ACT_W-1:0] ad;         // Ad: the previous frame's words of the rows done
+    logic [BUD_ACT_W-1:0] mem_sum;    // this frame's N once finished (the next Atot)
+    logic [BUD_WH_W-1:0]  p_sum;      // P
+    logic signed [26:0]   x_rem;      // X = (B' - G) + Gd - C, kept as a running sum
+    logic [17:0]          c;          // the finished row's c_j, g_j, p_j
+    logic [17:0]          g_row;
+    logic [17:0]          p_row;
+    logic [10:0]          slew;       // u_{j+1} >> 1
+    logic [10:0]          u_mx;       // max(q, u_{j+1} >> 1)
+  } budget_law_t;
+
   // n0(n) = ceil(n / S) + ((n - 1) mod S != 0), for n in 0..32 (0 for n = 0), S = 2^l.
   function automatic logic [5:0] grid_axis(logic [5:0] n, level_t l);
     logic [5:0] s1;
     s1 = 6'((7'd1 << l) - 7'd1);
     if (n == '0) return '0;
     return ((n + s1) >> l) + 6'(((n - 6'd1) & s1) != '0);
+  endfunction
+
+  // The slot after s of the three scale slots.
+  function automatic logic [1:0] inc3(logic [1:0] s);
+    return (s == 2'd2) ? 2'd0 : s + 2'd1;
   endfunction
 
   function automatic logic [10:0] clamp_u(logic [10:0] v);

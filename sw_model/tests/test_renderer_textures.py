@@ -75,16 +75,22 @@ def test_duck_without_its_texture_falls_back_with_a_warning(tmp_path):
         assert masks(rr.render_full(progress=False))[0].sum() > 50
 
 
-def test_missing_map_keeps_the_material_colour(tmp_path, capfd):
-    """An OBJ material with a yellow Kd and a map_Kd that is not there renders yellow."""
-    obj, mtl = tmp_path / "box.obj", tmp_path / "box.mtl"
-    mtl.write_text("newmtl paint\nKd 0.9 0.75 0.05\nmap_Kd textures\\Missing.PNG\n")
+def write_unit_box(obj) -> None:
+    """A unit cube as OBJ, every face mapped to the whole texture, material `paint` from
+    box.mtl beside it."""
     v = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
     faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
     lines = ["mtllib box.mtl", "usemtl paint"] + [f"v {x} {y} {z}" for x, y, z in v]
     lines += ["vt 0 0", "vt 1 0", "vt 1 1", "vt 0 1"]
     lines += ["f " + " ".join(f"{i}/{k + 1}" for k, i in enumerate(f)) for f in faces]
     obj.write_text("\n".join(lines) + "\n")
+
+
+def test_missing_map_keeps_the_material_colour(tmp_path, capfd):
+    """An OBJ material with a yellow Kd and a map_Kd that is not there renders yellow."""
+    obj, mtl = tmp_path / "box.obj", tmp_path / "box.mtl"
+    mtl.write_text("newmtl paint\nKd 0.9 0.75 0.05\nmap_Kd textures\\Missing.PNG\n")
+    write_unit_box(obj)
     with open_renderer(str(obj), 64, 48) as r:
         img = r.render_full(progress=False)
     assert "Missing.PNG" in capfd.readouterr().err
@@ -348,12 +354,7 @@ def test_texture_found_by_file_name_with_a_warning(tmp_path):
     obj, mtl = tmp_path / "box.obj", tmp_path / "box.mtl"
     mtl.write_text("newmtl paint\nKd 1 1 1\nmap_Kd C:\\Work\\Assets\\TEX\\Checker.PNG\n")
     (tmp_path / "checker.png").write_bytes(png_bytes(checker()))
-    v = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
-    faces = [(1, 3, 4, 2), (5, 6, 8, 7), (1, 2, 6, 5), (3, 7, 8, 4), (1, 5, 7, 3), (2, 4, 8, 6)]
-    lines = ["mtllib box.mtl", "usemtl paint"] + [f"v {x} {y} {z}" for x, y, z in v]
-    lines += ["vt 0 0", "vt 1 0", "vt 1 1", "vt 0 1"]
-    lines += ["f " + " ".join(f"{i}/{k + 1}" for k, i in enumerate(f)) for f in faces]
-    obj.write_text("\n".join(lines) + "\n")
+    write_unit_box(obj)
     out = tmp_path / "box.png"
     r = cli("render", "--scene", obj, "--width", 96, "--height", 72, "--out", out)
     assert r.returncode == 0, r.stderr

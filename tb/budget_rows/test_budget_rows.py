@@ -13,7 +13,7 @@ HERE = Path(__file__).resolve().parent
 
 import cocotb  # noqa: E402
 from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge  # noqa: E402
-from msr_tb import seeded_rng, start_clock_and_reset  # noqa: E402
+from msr_tb import clear_pulse, seeded_rng, start_clock_and_reset  # noqa: E402
 
 TILE_ENC = {8: 0, 16: 1, 32: 2}
 
@@ -91,10 +91,7 @@ async def test_rows(dut):
     dut.pix_last_i.value = 0
     await ClockCycles(dut.clk_i, 5)
     dut.pix_fire_i.value = 0
-    dut.clear_i.value = 1
-    await RisingEdge(dut.clk_i)
-    dut.clear_i.value = 0
-    await ReadOnly()
+    await clear_pulse(dut)
     assert int(dut.busy_o.value) == 0 and int(dut.row_valid_o.value) == 0
     await RisingEdge(dut.clk_i)
     await run_frame(dut, rng, 40, 40, 8, 0.5, 0.5)

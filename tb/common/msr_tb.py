@@ -55,6 +55,15 @@ async def settle() -> None:
     await ReadOnly()
 
 
+async def clear_pulse(dut) -> None:
+    """clear_i high across one rising edge, low again after it; returns in that cycle's
+    ReadOnly, where the cleared state can be sampled."""
+    dut.clear_i.value = 1
+    await RisingEdge(dut.clk_i)
+    dut.clear_i.value = 0
+    await ReadOnly()
+
+
 async def stream(dut, rng: random.Random, n: int, drive, check, p_valid: float, p_ready: float) -> None:
     """n items through a valid/ready pipeline (valid_i/ready_o in, valid_o/ready_i out), from
     the write window of a cycle: each cycle item `sent` is offered with probability p_valid

@@ -12,7 +12,7 @@ HERE = Path(__file__).resolve().parent
 import cocotb  # noqa: E402
 from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge, ReadOnly  # noqa: E402
 from msr_funcov import partial, record  # noqa: E402
-from msr_tb import seeded_rng, start_clock_and_reset  # noqa: E402
+from msr_tb import clear_pulse, seeded_rng, start_clock_and_reset  # noqa: E402
 
 TILE_ENC = {8: 0, 16: 1, 32: 2}
 
@@ -103,10 +103,7 @@ async def test_frames(dut):
     dut.start_i.value = 0
     dut.desc_ready_i.value = 1
     await ClockCycles(dut.clk_i, 9)
-    dut.clear_i.value = 1
-    await RisingEdge(dut.clk_i)
-    dut.clear_i.value = 0
-    await ReadOnly()
+    await clear_pulse(dut)
     assert int(dut.busy_o.value) == 0 and int(dut.done_o.value) == 0
     await RisingEdge(dut.clk_i)
     await run_frame(dut, n_eng, rng, 40, 24, 8, 2, 0, (8, 16, 32), 40, 0.5, 1)
