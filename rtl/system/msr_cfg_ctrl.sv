@@ -12,20 +12,14 @@
 // budget with 14). The first failing check in the order of the error codes wins: the
 // configuration is latched and the frame starts, or the error is reported (STATUS.ERROR,
 // STATUS.CFG_ERR and the interrupt) and the accelerator stays idle (no render request, no
-// memory write). A frame ends when the tile generator has handed out every tile,
-// every tile's last pixel has reached the writer and the writer is idle. SOFT_RESET in any
-// state: DRAIN until no render request is in flight and the writer is idle, then one CLEAR
+// memory write). A frame ends when the tile generator has handed out every tile, every tile's
+// last pixel has reached the writer and the writer is idle. SOFT_RESET in any state: DRAIN until no render request is in flight and the writer is idle, then one CLEAR
 // cycle (every unit's synchronous clear, sent a clock later from one register per engine and
 // one for the rest), then idle. The interrupt pin is registered here too.
 //
-// Watchdog: while a frame runs, WATCHDOG cycles in a row without progress (moved_i: a render
-// request, an AW, W or expected B handshake, a finished pixel taken; rsp_taken_i: a response
-// taken, while running) end the frame: CLEAR at once, STATUS.ERROR = 12, STATUS.WDOG (the interrupt).
-// The same count bounds a soft reset's drain (with WATCHDOG 0, DRAIN_TIMEOUT cycles): responses
-// do not count as progress there, so a unit that keeps sending responses cannot hold the drain
-// open; the events that do count are finite once no tile is handed out, so the drain always
-// ends. A forced CLEAR is safe for the engines (their tags are freed; late responses are then
-// dropped as stale); what it means for the AXI write port is in docs/system.md.
+// Watchdog (docs/system.md "Watchdog"): WATCHDOG cycles in a row without progress end a frame
+// (CLEAR at once, STATUS.ERROR 12, STATUS.WDOG) and bound a soft reset's drain (DRAIN_TIMEOUT
+// when 0); responses are not progress in a drain, so no unit can hold it open.
 //
 // Memory errors (SLVERR / DECERR write responses) set STATUS.ERROR = 8 for the frame (the
 // frame still completes), are counted (saturating), and the address of the first failing burst
@@ -61,6 +55,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   output logic                   start_o,        // pulse: the frame starts with cfg_o
   output logic                   run_o,          // a frame runs: tiles may be handed out
   output logic                   drain_o,        // soft reset: hold requests, drop pixels
+  output logic [NUM_ENGINES-1:0] eng_drain_o,    // drain_o, the same clock, a register per engine
   output logic                   clear_o,        // pulse: synchronous clear of the system units
   output logic [NUM_ENGINES-1:0] eng_clear_o,    // the same pulse, one register per engine
   input  logic                   desc_fire_i,    // a tile went to an engine
@@ -122,17 +117,20 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   logic [31:0]      wd_q;              // cycles in a row without progress
   logic             wd_fire;           // the watchdog ends the frame or the drain
 
-  // ---- Clear fan-out ----------------------------------------------------------------------------
+  // ---- Clear and drain fan-out ---------------------------------------------------------------
   // The soft reset's clear reaches every flip-flop of the design: one register per engine and
   // one for the rest, so that no path runs from the state register across the die into some
   // forty thousand loads. Every unit clears on the same clock, one after ST_CLEAR (the next
-  // frame's START is two clocks further at the earliest: ST_SAMPLE, ST_CHECK).
+  // frame's START is two clocks further at the earliest: ST_SAMPLE, ST_CHECK). Each engine's
+  // pixel slice drains from a register of its own, loaded from the next state: drain_o on every
+  // clock, not its decode across the die (88.9 MHz on a seed of the default top at 89d43ec).
   logic                   clear_q;
-  logic [NUM_ENGINES-1:0] eng_clear_q;
-  msr_clr_reg #(.WIDTH(1 + NUM_ENGINES)) u_clear_q (
+  logic [NUM_ENGINES-1:0] eng_clear_q, eng_drain_q;
+  msr_clr_reg #(.WIDTH(1 + 2 * NUM_ENGINES)) u_clear_q (
     .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
-    .d_i ({state_q == ST_CLEAR, {NUM_ENGINES{state_q == ST_CLEAR}}}),
-    .q_o ({clear_q, eng_clear_q})
+    .d_i ({state_q == ST_CLEAR, {NUM_ENGINES{state_q == ST_CLEAR}},
+           {NUM_ENGINES{state_d == ST_DRAIN || state_d == ST_CLEAR}}}),
+    .q_o ({clear_q, eng_clear_q, eng_drain_q})
   );
 
   // The events of the tiles-in-flight count are registered on their way in: a tile handed to
@@ -468,6 +466,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   assign start_o        = start_q;
   assign run_o          = (state_q == ST_RUN);
   assign drain_o        = (state_q == ST_DRAIN) || (state_q == ST_CLEAR);
+  assign eng_drain_o    = eng_drain_q;
   assign clear_o        = clear_q;
   assign eng_clear_o    = eng_clear_q;
 
@@ -496,5 +495,6 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     `MSR_ASSERT(a_bud_check_in_time,
                 state_q == ST_CHECK && step_q == STEP_END[4:0] && bud_on |-> bud_done_i)
   end
+  `MSR_ASSERT(a_eng_drain_is_drain, eng_drain_q == {NUM_ENGINES{drain_o}})
   /* verilator lint_on SYNCASYNCNET */
 endmodule : msr_cfg_ctrl

@@ -122,10 +122,9 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   err_e        err;
   err_counts_t err_counts;
   logic  busy, done_set, done_clr, cfg_err_set, wdog_set, start, run, drain, clear, moved;
-  logic  tg_done, tg_busy, rnd_idle, wr_idle, bresp_err, b_unexpected;
+  logic  tg_done, tg_busy, rnd_idle, wr_idle, bresp_err, b_unexpected, rmux_busy, bad_eid;
   logic  [31:0] bresp_addr;
-  logic  rmux_busy, bad_eid;
-  logic  [NUM_ENGINES-1:0] eng_rsp_drop, eng_clear;
+  logic  [NUM_ENGINES-1:0] eng_rsp_drop, eng_clear, eng_drain;
   logic  [NUM_ENGINES-1:0] eng_desc_valid, eng_desc_ready, eng_busy, wr_tile_done;
 
   cfg_raw_t raw_q;                 // the registers as the check samples them
@@ -152,6 +151,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .start_o        (start),
     .run_o          (run),
     .drain_o        (drain),
+    .eng_drain_o    (eng_drain),
     .clear_o        (clear),
     .eng_clear_o    (eng_clear),
     .desc_fire_i    (|eng_desc_valid),
@@ -376,8 +376,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     assign wr_pix_last[i] = ep_pix[i].last;
   end
 
-  assign wr_pix_valid = drain ? '0 : ep_pix_valid;
-  assign ep_pix_ready = drain ? '1 : wr_pix_ready;
+  assign wr_pix_valid = ep_pix_valid & ~eng_drain;
+  assign ep_pix_ready = wr_pix_ready | eng_drain;
 
   // ---- Frame-buffer writer ----------------------------------------------------------------------
   msr_fb_writer #(
