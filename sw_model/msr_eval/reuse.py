@@ -452,6 +452,15 @@ def run(scenes, frames: int, width: int, height: int, log=print, no_edge: bool =
     return out
 
 
+def _save(plt, fig, axes, path: Path) -> Path:
+    """The legend on the first row's last panel, then the figure written and closed."""
+    axes[0][-1].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+    return path
+
+
 def plot(result: dict, out_dir: Path) -> list[Path]:
     """reuse_curves.png: per scene, traced % against PSNR (the rule alone's sweep as a line,
     rule + reuse as points); reuse_frames.png: per scene, traced % and flicker over the frames."""
@@ -477,11 +486,7 @@ def plot(result: dict, out_dir: Path) -> list[Path]:
         ax.set_title(scene_name(scene), fontsize=10)
         ax.set_xlabel("mean PSNR vs full render (dB)")
     axes[0][0].set_ylabel("traced % (rays per pixel)")
-    axes[0][-1].legend(fontsize=7)
-    fig.tight_layout()
-    p1 = out_dir / "reuse_curves.png"
-    fig.savefig(p1, dpi=90)
-    plt.close(fig)
+    p1 = _save(plt, fig, axes, out_dir / "reuse_curves.png")
     fig, axes = plt.subplots(2, len(scenes), figsize=(3.8 * len(scenes), 5.6), squeeze=False)
     for j, scene in enumerate(scenes):
         runs = result["scenes"][scene]["runs"]
@@ -494,11 +499,7 @@ def plot(result: dict, out_dir: Path) -> list[Path]:
         axes[1][j].set_xlabel("frame")
     axes[0][0].set_ylabel("traced % (thr 8,16,32)")
     axes[1][0].set_ylabel("flicker (rms change of error)")
-    axes[0][-1].legend(fontsize=7)
-    fig.tight_layout()
-    p2 = out_dir / "reuse_frames.png"
-    fig.savefig(p2, dpi=90)
-    plt.close(fig)
+    p2 = _save(plt, fig, axes, out_dir / "reuse_frames.png")
     return [p1, p2]
 
 

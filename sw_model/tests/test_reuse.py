@@ -200,3 +200,23 @@ def test_age_bound_stops_a_chain():
                          PrevFrame(img, depth, c, np.full((H, W), 3, np.int32)), c, max_age=4)
     assert young.saved > 0
     assert (young.age[young.source >= 32] == 4).all() and (young.age[young.source < 32] == 0).all()
+
+
+def test_plot_writes_both_figures(tmp_path):
+    """plot() draws every scene's sweep and reuse points and the per-frame traces into two
+    PNG files (a result shaped as run_sequences writes it, numbers made up)."""
+    from PIL import Image
+    from msr_eval import reuse as R
+    rng = np.random.default_rng(3)
+    runs = {}
+    for rule in R.RULE_NAMES:
+        for mode, scales in (("alone", (0.5, 1.0, 2.0)), ("reuse", R.REUSE_SCALES)):
+            for s in scales:
+                runs[f"{rule}|{mode}|{s}"] = {"psnr": list(40 + rng.random(5)), "traced": list(rng.random(5) * 0.3),
+                                              "flicker": list(rng.random(4))}
+    result = {"scenes": {"cornell": {"runs": runs}, "bunny": {"runs": runs}}}
+    paths = R.plot(result, tmp_path / "figs")
+    assert [p.name for p in paths] == ["reuse_curves.png", "reuse_frames.png"]
+    for p in paths:
+        w, h = Image.open(p).size
+        assert w > 400 and h > 200
