@@ -72,7 +72,7 @@ from pathlib import Path
 import numpy as np
 
 from msr_model import Params, spec
-from msr_model.golden import decide_pass, frame_axis, interpolated_values, pass_view, threshold_maps
+from msr_model.golden import decided_passes, frame_axis, threshold_maps
 from msr_model.renderer import render_checked
 
 from .rules import rule_function
@@ -293,12 +293,8 @@ def select_reuse(renderer, width: int, height: int, params: Params, rule: str = 
     stats = {"initial": int(yy.size)}
     saved = reused = 0
     for k in range(1, L + 1):
-        for horizontal in (True, False):
-            v = pass_view(frame, source, params, k, horizontal, ax, ay, thr_maps[k - 1])
-            if v is None:
-                continue
-            interp = decide_pass(decide, v)
-            values = interpolated_values(decide, v)
+        for horizontal, v, interp, values in decided_passes(frame, source, params, k, ax, ay, thr_maps[k - 1],
+                                                            decide):
             ty, tx = v.ys, v.xs
             if horizontal:
                 zA, zB = zbuf[ty, np.broadcast_to(v.a, v.shape)], zbuf[ty, np.broadcast_to(v.b, v.shape)]

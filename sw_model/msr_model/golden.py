@@ -103,12 +103,7 @@ def select_region(renderer, width: int, height: int, params: Params, decide, thr
         progress(0)
 
     for k in range(1, L + 1):
-        for horizontal in (True, False):
-            view = pass_view(frame, source, params, k, horizontal, ax, ay, thr_maps[k - 1])
-            if view is None:
-                continue
-            interp = decide_pass(decide, view)
-            values = interpolated_values(decide, view)
+        for _, view, interp, values in decided_passes(frame, source, params, k, ax, ay, thr_maps[k - 1], decide):
             ty, tx = view.ys, view.xs
             n_traced = int((~interp).sum())
             if n_traced:
@@ -140,6 +135,17 @@ def frame_stats(source: np.ndarray, params: Params, per_level: dict, rule_name: 
         "rule": rule_name,
         "params": params.as_dict(),
     }
+
+
+def decided_passes(frame, source, params: Params, k: int, ax, ay, thr_map, decide):
+    """Level k's two passes, horizontal then vertical, over the frame as it stands: per pass
+    with positions, (horizontal, view, interp, values): the rule's decisions and every
+    position's colour were it interpolated. A generator: the caller writes a pass's pixels
+    before the next pass is read."""
+    for horizontal in (True, False):
+        view = pass_view(frame, source, params, k, horizontal, ax, ay, thr_map)
+        if view is not None:
+            yield horizontal, view, decide_pass(decide, view), interpolated_values(decide, view)
 
 
 def interpolated_values(decide, view: PassView) -> np.ndarray:
