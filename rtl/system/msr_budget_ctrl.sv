@@ -25,7 +25,7 @@
 `include "msr_assert.svh"
 
 module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
-  localparam int unsigned ROW_W = COORD_W - 2           // tile row index (as the walker's)
+  localparam int unsigned ROW_W = BUD_ROW_W             // tile row index (as the walker's)
 ) (
   input  logic             clk_i,              // clock
   input  logic             rst_ni,             // asynchronous reset, active low
@@ -363,21 +363,21 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         checking_q  <= !start_p;
         act_q       <= 1'b0;
         row_ok_q    <= 1'b0;
-        frm_q.line_w    <= cfg.line_w;
-        frm_q.nty       <= cfg.nty;
-        frm_q.h_last    <= cfg.h_last;
-        frm_q.g_full    <= cfg.g_full;
-        frm_q.p_full    <= cfg.p_full;
-        frm_q.u0        <= cfg.u0;
-        frm_q.seeded    <= cfg.seeded;
+        frm_q.line_w <= cfg.line_w;
+        frm_q.nty <= cfg.nty;
+        frm_q.h_last <= cfg.h_last;
+        frm_q.g_full <= cfg.g_full;
+        frm_q.p_full <= cfg.p_full;
+        frm_q.u0 <= cfg.u0;
+        frm_q.seeded <= cfg.seeded;
         if (check_p && !start_p) check_done_q <= 1'b0;
         if (start_p) begin
-          law_q.n               <= '0;
-          law_q.p_sum           <= '0;
-          law_q.ad              <= '0;
+          law_q.n <= '0;
+          law_q.p_sum <= '0;
+          law_q.ad <= '0;
           rows_done_q       <= '0;
           base_q            <= '0;
-          law_q.atot            <= law_q.mem_sum;
+          law_q.atot <= law_q.mem_sum;
           mem_valid_q       <= 1'b0;
           scale_out_valid_q <= 1'b0;
           u_q[0]            <= cfg.u0;
@@ -395,18 +395,18 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             end
           end
           ST_WH: if (mul_done) begin
-            frm_q.wh  <= WH_W'(mul_prod);
+            frm_q.wh <= WH_W'(mul_prod);
             frm_q.bud <= (WH_W'(cfg.budget) < WH_W'(mul_prod)) ? WH_W'(cfg.budget)
                                                                 : WH_W'(mul_prod);
-            frm_q.p0  <= WH_W'(mul_prod) >> cfg.prior_shift;
+            frm_q.p0 <= WH_W'(mul_prod) >> cfg.prior_shift;
           end
           ST_GL: if (mul_done) begin
             frm_q.g_last <= 18'(mul_prod);
-            frm_q.spare  <= (frm_q.bud > frm_q.grid) ? frm_q.bud - frm_q.grid : '0;
+            frm_q.spare <= (frm_q.bud > frm_q.grid) ? frm_q.bud - frm_q.grid : '0;
           end
           ST_PL: if (mul_done) begin
             frm_q.p_last <= 18'(mul_prod);
-            law_q.x_rem  <= $signed({2'b00, frm_q.spare});
+            law_q.x_rem <= $signed({2'b00, frm_q.spare});
           end
           ST_N0: if (mul_done) law_q.n0 <= ACT_W'(mul_prod >> cfg.prior_shift);
           ST_M0: if (mul_done) begin
@@ -417,13 +417,13 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             row_new_q  <= frm_q.nty > ROW_W'(2);
           end
           ST_IDLE: if (act_q && row_done_i) begin
-            law_q.c     <= row_traced_i;
+            law_q.c <= row_traced_i;
             law_q.g_row <= g_sel;
             law_q.p_row <= p_sel;
           end
           ST_ACT: ;
           ST_ACC: begin
-            law_q.n     <= law_q.n + ACT_W'(mul_prod);
+            law_q.n <= law_q.n + ACT_W'(mul_prod);
             law_q.p_sum <= law_q.p_sum + WH_W'(law_q.p_row);
             law_q.x_rem <= law_q.x_rem - $signed({9'd0, law_q.c}) + $signed({9'd0, law_q.g_row});
             if (frm_q.seeded) law_q.ad <= law_q.ad + ACT_W'(mem_rdata_q);
@@ -449,7 +449,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             frame_done_q      <= 1'b1;
             mem_valid_q       <= 1'b1;
             mem_rows_q        <= frm_q.nty;
-            law_q.mem_sum         <= law_q.n;
+            law_q.mem_sum <= law_q.n;
           end
           default: ;
         endcase

@@ -8,7 +8,7 @@
 // (check_o, start_o): the configuration must hold from the input pulse on. A clear drops a
 // pulse in flight.
 module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
-  localparam int unsigned ROW_W = COORD_W - 2           // tile row index (as the walker's)
+  localparam int unsigned ROW_W = BUD_ROW_W             // tile row index (as the walker's)
 ) (
   input  logic             clk_i,              // clock
   input  logic             rst_ni,             // asynchronous reset, active low

@@ -6,16 +6,16 @@
 // accumulator in 8-bit segments (a carry goes one segment per clock; 6 more clocks settle
 // it), so a plane that wraps past 4 GiB is seen; then whether the two ranges [base, end)
 // overlap, compared segment by segment from the least significant one; the rule encoding
-// (CONFIG.RULE 2 or 3, or 1 in a top built without it, LINDILATE 0: code 13); with a ray
-// budget (BUDGET non-zero), the budget controller's own check, run beside these from the
-// sampled registers (codes 14 and 15; a top built without it, BUDGET_EN 0, refuses any
-// budget with 14). The first failing check in the order of the error codes wins: the
-// configuration is latched and the frame starts, or the error is reported (STATUS.ERROR,
-// STATUS.CFG_ERR and the interrupt) and the accelerator stays idle (no render request, no
-// memory write). A frame ends when the tile generator has handed out every tile, every tile's
-// last pixel has reached the writer and the writer is idle. SOFT_RESET in any state: DRAIN until no render request is in flight and the writer is idle, then one CLEAR
-// cycle (every unit's synchronous clear, sent a clock later from one register per engine and
-// one for the rest), then idle. The interrupt pin is registered here too.
+// (CONFIG.RULE 2 or 3, or 1 in a top built without it, LINDILATE 0: code 13); with a ray budget
+// (BUDGET non-zero), the budget controller's own check, run beside these from the sampled registers
+// (codes 14 and 15; a top built without it, BUDGET_EN 0, refuses any budget with 14). The first
+// failing check in the order of the error codes wins: the configuration is latched and the frame
+// starts, or the error is reported (STATUS.ERROR, STATUS.CFG_ERR and the interrupt) and the
+// accelerator stays idle (no render request, no memory write). A frame ends when the tile generator
+// has handed out every tile, every tile's last pixel has reached the writer and the writer is idle.
+// SOFT_RESET in any state: DRAIN until no render request is in flight and the writer is idle, then
+// one CLEAR cycle (every unit's synchronous clear, sent a clock later from one register per engine
+// and one for the rest), then idle. The interrupt pin is registered here too.
 //
 // Watchdog (docs/system.md "Watchdog"): WATCHDOG cycles in a row without progress end a frame
 // (CLEAR at once, STATUS.ERROR 12, STATUS.WDOG) and bound a soft reset's drain (DRAIN_TIMEOUT
