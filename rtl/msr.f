@@ -35,6 +35,7 @@ rtl/regs/msr_regs.sv
 rtl/system/msr_sys_pkg.sv
 rtl/system/msr_axil_cpuif.sv
 rtl/system/msr_reg_if.sv
+rtl/system/msr_watchdog.sv
 rtl/system/msr_cfg_ctrl.sv
 rtl/system/msr_tile_gen.sv
 rtl/system/msr_budget_pkg.sv

@@ -114,7 +114,6 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   logic [31:0]      mem_err_addr_q;
   logic             b_unexp_q;
   logic             accept;            // CHECK ends with every check passed
-  logic [31:0]      wd_q;              // cycles in a row without progress
   logic             wd_fire;           // the watchdog ends the frame or the drain
 
   // ---- Clear and drain fan-out ---------------------------------------------------------------
@@ -348,33 +347,17 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     end
   end
 
-  // ---- Watchdog: cycles without progress in RUN and DRAIN ----------------------------------------
-  logic        wd_on;
-  logic [31:0] wd_limit;
-  assign wd_on    = (state_q == ST_RUN) || (state_q == ST_DRAIN);
-  assign wd_limit = (state_q == ST_DRAIN && wdog_limit_i == '0) ? DRAIN_TIMEOUT : wdog_limit_i;
+  // ---- Watchdog: cycles without progress in RUN and DRAIN (its compare registered) ----------
   // A soft reset written while running starts the drain with a fresh count.
-  assign wd_fire  = wd_on && !soft_reset_i && wd_limit != '0 && wd_q == wd_limit;
-
-  // The 32-bit count is two 16-bit halves; the upper half steps on a registered "lower half is
-  // all ones" flag (set the clock before the lower half reaches it), so no path holds a
-  // 32-bit carry: the count is exact, the logic depth that of a 16-bit counter.
-  logic wd_clr, wd_lo_ones_q;
-  assign wd_clr = !wd_on || progress_q || wd_fire || soft_reset_i;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      wd_q         <= '0;
-      wd_lo_ones_q <= 1'b0;
-    end else if (wd_clr) begin
-      wd_q         <= '0;
-      wd_lo_ones_q <= 1'b0;
-    end else begin
-      wd_q[15:0]   <= wd_q[15:0] + 1'b1;
-      if (wd_lo_ones_q) wd_q[31:16] <= wd_q[31:16] + 1'b1;
-      wd_lo_ones_q <= (wd_q[15:0] == 16'hFFFE);
-    end
-  end
+  msr_watchdog #(.DRAIN_TIMEOUT(DRAIN_TIMEOUT)) u_watchdog (
+    .clk_i, .rst_ni,
+    .run_i      (state_q == ST_RUN),
+    .drain_i    (state_q == ST_DRAIN),
+    .restart_i  (soft_reset_i),
+    .progress_i (progress_q),
+    .limit_i    (wdog_limit_i),
+    .fire_o     (wd_fire)
+  );
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -488,7 +471,6 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   `MSR_COVER(c_rule_refused, refused_q && err_q == ERR_RULE)
 
   `MSR_COVER(c_drain_with_mem_err, state_q == ST_CLEAR && err_q == ERR_AXI_WRITE)
-  `MSR_ASSERT(a_wd_lo_ones, wd_lo_ones_q == (wd_q[15:0] == 16'hFFFF))
   `MSR_COVER(c_wdog_run, wd_fire && state_q == ST_RUN)
   `MSR_COVER(c_wdog_drain, wd_fire && state_q == ST_DRAIN)
   if (BUDGET_EN) begin : g_bud_chk

@@ -122,17 +122,29 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
                       last: pix_last_i[i]};
   end
 
+  // ---- The frame's settings, a registered copy at the writer ------------------------------
+  // The settings come from the configuration controller's latch across the die; the stride
+  // multiples' adders and the input slices' row-end test read this copy instead (that wire
+  // set the default top's clock on ECP5 at a5d6dc9, seed 1, issue 31). The settings are
+  // constant during a frame and reach the copy a clock after START, long before the frame's
+  // first pixel (a_frame_settled).
+  fb_cfg_t    fb_q;
+  tile_size_e tile_q;
+  dim_t       last_x_q;
+  msr_clr_reg #(.WIDTH($bits(fb_cfg_t) + $bits(tile_size_e) + $bits(dim_t))) u_frame_q (
+    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
+    .d_i ({fb, tile_i, width_i - 1'b1}),
+    .q_o ({fb_q, tile_q, last_x_q})
+  );
+
   // ---- Input slices: the writer's end of the wire from the engines -------------------------
   // A pixel's row-end test (x mod T == T-1 or x == W-1) is taken on the way in and travels with
   // it as a registered bit: the row buffers' flags then see a register, not a comparator behind
-  // the wire (that decode set the default top's clock on ECP5, issue 31). The frame's last
-  // column is registered (width_i settles long before the frame's first pixel, a_width_stable).
+  // the wire (that decode set the default top's clock on ECP5, issue 31).
   lcoord_t                tmask;
-  dim_t                   last_x_q;
   logic      [NUM_IN-1:0] sl_valid, sl_ready, sl_end;
   pix_word_t [NUM_IN-1:0] sl_pix;
-  assign tmask = tile_mask(tile_i);
-  always_ff @(posedge clk_i) last_x_q <= width_i - 1'b1;
+  assign tmask = tile_mask(tile_q);
 
   for (genvar i = 0; i < NUM_IN; i++) begin : g_in_slice
     logic in_end;
@@ -177,8 +189,8 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
     .clk_i        (clk_i),
     .rst_ni       (rst_ni),
     .clear_i      (clear_i),
-    .tile_i       (tile_i),
-    .fb_i         (fb),
+    .tile_i       (tile_q),
+    .fb_i         (fb_q),
     .pix_valid_i  (sl_valid),
     .pix_ready_o  (sl_ready),
     .pix_i        (sl_pix),
@@ -204,7 +216,7 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
     .clk_i        (clk_i),
     .rst_ni       (rst_ni),
     .clear_i      (clear_i),
-    .fb_i         (fb),
+    .fb_i         (fb_q),
     .req_i        (row_pend),
     .pick_i       (pick),
     .take_o       (take),
@@ -228,7 +240,7 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
     .clk_i          (clk_i),
     .rst_ni         (rst_ni),
     .clear_i        (clear_i),
-    .src_en_i       (src_en_i),
+    .src_en_i       (fb_q.src_en),
     .row_valid_i    (row_valid),
     .row_ready_o    (row_ready_aw),
     .row_i          (row),
@@ -280,7 +292,8 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
   assign idle_o = (sl_valid == '0) && idle_rb && idle_addr && idle_aw && idle_w;
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_width_stable, pix_valid_i != '0 |-> $stable(width_i))
+  `MSR_ASSERT(a_frame_settled, pix_valid_i != '0 |-> fb_q == fb && tile_q == tile_i &&
+                               last_x_q == width_i - 1'b1)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_fb_writer
