@@ -1,7 +1,6 @@
 """The small evaluation run (make eval) as part of make test, its analysis helpers, and the
 sweep on Dask distributed against the serial sweep."""
 import json
-import time
 
 import pytest
 
@@ -36,7 +35,6 @@ def test_small_eval_run(tmp_path):
     """The quick run end to end on one scene (Embree when built, else the test picture), every
     metric against both references (FLIP, about 0.3 s a call whatever the size, is most of the
     time: one scene keeps it near the cost the test had before the converged reference)."""
-    t0 = time.perf_counter()
     args = ["--width", "64", "--height", "48", "--max-scenes", "1", "--out", str(tmp_path),
             "--all-metrics", "--workers", "0", "--no-progress", "--conv-grid", "8"]
     backend = S.Backend("auto")
@@ -81,7 +79,6 @@ def test_small_eval_run(tmp_path):
     assert text.index("## Against the converged reference") < text.index("## Headline")
     assert "DACS" in text and "VRS-like" in text
     assert data["needed_fraction"] and data["headline"]
-    assert time.perf_counter() - t0 < 120
 
 
 def test_dask_sweep_equals_serial(tmp_path):

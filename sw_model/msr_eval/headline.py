@@ -33,13 +33,18 @@ GROUPS = (
      ("multi_L3_T16_lindilate2d", "multi_L3_T32_lindilate2d", "multi_L2_T16_lindilate2d", "multi_L2_T32_lindilate2d",
       "multi_L3_T32_lindilate2d_r4", "multi_L3_T32_lindilate2d_r8", "multi_L2_T32_lindilate2d_r4"),
      "darkred", "X"),
+    # the L = 4 extension (stride-16 initial grid, evaluation only; docs/rules.md "L = 4"): with
+    # the patent's test it shows what the sparser grid alone gives
+    ("lindilate2d4", "new: lindilate2d, L4 extension (T32)", ("multi_L4_T32_lindilate2d",), "darkorange", "v"),
+    ("patent4", "patent's test, L4 extension (T32)", ("multi_L4_T32",), "tab:cyan", "<"),
     ("dacs", "DACS 4x4 (var, luma var)", ("dacs", "dacs_lumvar"), "tab:green", "s"),
     ("dacs8", "DACS 8x8, extension (var, luma var)", ("dacs_B8", "dacs_B8_lumvar"), "olive", "D"),
     ("vrs", "VRS-like tier 2 (8x8, 16x16)", ("vrs_T8", "vrs_T16"), "tab:purple", "d"),
     ("checkerboard", "checkerboard", ("checkerboard",), "tab:brown", "^"),
 )
-OURS = ("lindilate", "dilate", "lindilate2d")
+OURS = ("lindilate", "dilate", "lindilate2d", "lindilate2d4")
 PEERS = ("dacs", "dacs8")
+EQ_KEYS = ("patent", "lindilate2d", "lindilate2d4", "dacs", "dacs8", "vrs")   # the SSIM / FLIP table's groups
 GRID = (0.05, 0.10, 0.15, 0.20, 0.30, 0.40, 0.50, 0.60, 0.80)          # the common traced-fraction grid
 BANDS = ((0.0, 0.10), (0.10, 0.25), (0.25, 0.50), (0.50, 1.0))
 
@@ -154,8 +159,10 @@ def _tables(analysis: dict, cfg: dict, fig, conv_info, title: str, intro: bool, 
       "Each group's figure is its best family's, each family read on its own Pareto front, "
       "peers included: DACS over both block statistics (largest channel variance, luma "
       "variance), VRS over both tile sizes, the patent's rule and ours over L = 2 and 3 and T = 16 "
-      "and 32, threshold shapes s, 2s, 4s to s, 8s, 64s. Methods: "
-      "[dacs.md](dacs.md); the new rule: [rules.md](rules.md#lindilate2d).\n")
+      "and 32, threshold shapes s, 2s, 4s to s, 8s, 64s, and at L = 4 with T = 32 (an extension: "
+      "a stride-16 initial grid, beyond algorithm.md's L <= 3). Methods: "
+      "[dacs.md](dacs.md); the new rule: [rules.md](rules.md#lindilate2d), its L = 4 grid: "
+      "[rules.md](rules.md#the-l--4-extension-a-stride-16-initial-grid).\n")
     return L + _body(analysis, scenes, names, fig, conv_info, w_level)
 
 
@@ -223,13 +230,12 @@ def _body(analysis, scenes, names, fig, conv_info, w_level: str) -> list[str]:
     w("Of each group's cheapest recorded setting reaching `eq` (the full render itself where none does "
       "below 100 %); SSIM and FLIP against the converged reference; the worst tile's PSNR shows the "
       "local failures that a frame's mean hides.\n")
-    w("| scene | " + " | ".join(f"{names[k]} SSIM / FLIP / worst tile" for k in ("patent", "lindilate2d", "dacs",
-                                                                               "dacs8", "vrs")) + " |")
-    w("|---|" + "---|" * 5)
+    w("| scene | " + " | ".join(f"{names[k]} SSIM / FLIP / worst tile" for k in EQ_KEYS) + " |")
+    w("|---|" + "---|" * len(EQ_KEYS))
     for sc in scenes:
         a = analysis[sc]
         cells = []
-        for k in ("patent", "lindilate2d", "dacs", "dacs8", "vrs"):
+        for k in EQ_KEYS:
             at = a["groups"].get(k, {}).get("at_eq") or a["full"]
             ss, fl, tl = at.get("ssim_conv"), at.get("flip_conv"), at.get("tile32_min_psnr_conv")
             cells.append(" / ".join("-" if v is None else f"{v:.4f}" if i < 2 else f"{v:.1f} dB"

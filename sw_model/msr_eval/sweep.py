@@ -43,7 +43,7 @@ MAIN_FAMILIES = ("multi_L3_T16", "multi_L3_T32", "multi_L3_T16_dilate", "multi_L
                  "multi_L2_T16_lindilate2d", "multi_L2_T32_lindilate2d", "multi_L3_T32_r4",
                  "multi_L3_T32_lindilate_r4", "multi_L3_T32_lindilate2d_r4", "multi_L3_T32_r8",
                  "multi_L3_T32_lindilate_r8", "multi_L3_T32_lindilate2d_r8", "multi_L2_T32_lindilate2d_r4",
-                 *G.SWEEP_FAMILIES)
+                 "multi_L4_T32", "multi_L4_T32_lindilate2d", *G.SWEEP_FAMILIES)
 # SSIM and FLIP (FLIP ~6 s per 1080p frame) are computed for these families' key settings.
 KEY_FAMILIES = ("grid2", "grid4", "checkerboard", "single_traced", "single_borrowed", "multi_L1_T16",
                 "multi_L2_T16", "multi_L3_T16", "multi_L3_T32", "multi_L3_T16_fov", "multi_L3_T16_dilate",
@@ -58,8 +58,8 @@ CONV_FAMILIES = ("full", "checkerboard", "multi_L3_T16", "multi_L3_T32", "multi_
                  "multi_L2_T32_lindilate", "multi_L2_T16_lindilate2d", "multi_L2_T32_lindilate2d",
                  "multi_L3_T32_r4", "multi_L3_T32_lindilate_r4", "multi_L3_T32_lindilate2d_r4",
                  "multi_L3_T32_r8", "multi_L3_T32_lindilate_r8", "multi_L3_T32_lindilate2d_r8",
-                 "multi_L2_T32_lindilate2d_r4", "dacs", "dacs_lumvar", "dacs_B8", "dacs_B8_lumvar",
-                 "vrs_T8", "vrs_T16")
+                 "multi_L2_T32_lindilate2d_r4", "multi_L4_T32", "multi_L4_T32_lindilate2d", "dacs",
+                 "dacs_lumvar", "dacs_B8", "dacs_B8_lumvar", "vrs_T8", "vrs_T16")
 # FLIP in the full run only for these (the quick run: all key families)
 FLIP_FAMILIES_FULL = ("grid2", "checkerboard", "single_borrowed", "multi_L3_T16", "multi_L3_T16_dilate",
                       "multi_L3_T16_lindilate", "dacs", "vrs_T8", "vrs_T16")
@@ -209,13 +209,17 @@ def settings(width, height, scales, quick) -> list[Setting]:
              ("L3_T32_r4", 32, 3, 0, "patent"), ("L3_T32_lindilate_r4", 32, 3, 0, "lindilate"),
              ("L3_T32_lindilate2d_r4", 32, 3, 0, "lindilate2d"),
              ("L3_T32_r8", 32, 3, 0, "patent"), ("L3_T32_lindilate_r8", 32, 3, 0, "lindilate"),
-             ("L3_T32_lindilate2d_r8", 32, 3, 0, "lindilate2d"), ("L2_T32_lindilate2d_r4", 32, 2, 0, "lindilate2d")]
+             ("L3_T32_lindilate2d_r8", 32, 3, 0, "lindilate2d"), ("L2_T32_lindilate2d_r4", 32, 2, 0, "lindilate2d"),
+             # the L = 4 extension (stride 16, evaluation only: spec.EXT_LEVEL_RANGE): a sparser
+             # floor than the T = 32, L = 3 grid's 2.44 % (issue 30, docs/rules.md "L = 4")
+             ("L4_T32", 32, 4, 0, "patent"), ("L4_T32_lindilate2d", 32, 4, 0, "lindilate2d")]
     for name, tile, levels, fov_edge, rule in multi:
         gain = fov_gain_for(W, H, tile, fov_edge) if fov_edge else 0
         fam = f"multi_{name}"
         ratio = int(name.rsplit("_r", 1)[1]) if "_r" in name else 2      # level_thr's ratio
         for s in (scales if fam in MAIN_FAMILIES else sparse):
-            p = Params(tile=tile, levels=levels, thr=level_thr(levels, s, ratio), fov_gain=gain)
+            p = Params(tile=tile, levels=levels, thr=level_thr(levels, s, ratio), fov_gain=gain,
+                       extension=levels > max(spec.LEVEL_RANGE))
             out.append(Setting(fam, f"thr={','.join(map(str, p.thr))}", "multi_level",
                                {"params": p, "rule": rule}, {**p.as_dict(), "rule": rule}))
     for fam, block, metric in DACS_VARIANTS:

@@ -14,6 +14,9 @@ import numpy as np
 MAX_FRAME = 4096
 TILE_SIZES = (8, 16, 32)
 LEVEL_RANGE = (1, 2, 3)
+# An evaluation-only extension (issue 30, docs/rules.md "L = 4"): a fourth level, initial grid
+# stride 16. algorithm.md and the RTL stop at 3; a Params with extension=True may use 4.
+EXT_LEVEL_RANGE = (1, 2, 3, 4)
 METRICS = ("max", "sum")
 # Default per-level thresholds when none are given: thr_k = 8 * 2^(k-1), cut to L levels.
 DEFAULT_THR = (8, 16, 32)
@@ -43,12 +46,14 @@ class Params:
     thr: tuple[int, ...] = (8, 16)
     metric: str = "max"
     fov_gain: int = 0
+    extension: bool = False      # evaluation only: allows L = 4 (EXT_LEVEL_RANGE); no register has it
 
     def __post_init__(self) -> None:
         if self.tile not in TILE_SIZES:
             raise SpecError(f"tile must be one of {TILE_SIZES}, got {self.tile}")
-        if self.levels not in LEVEL_RANGE:
-            raise SpecError(f"levels must be 1, 2 or 3, got {self.levels}")
+        if self.levels not in (EXT_LEVEL_RANGE if self.extension else LEVEL_RANGE):
+            allowed = "1 to 4 (the L = 4 extension)" if self.extension else "1, 2 or 3"
+            raise SpecError(f"levels must be {allowed}, got {self.levels}")
         thr = tuple(int(t) for t in self.thr)
         if len(thr) != self.levels:
             raise SpecError(f"need exactly {self.levels} thresholds (one per level), got {len(thr)}")
@@ -70,8 +75,9 @@ class Params:
         return self.stride >> (k - 1)
 
     def as_dict(self) -> dict:
-        return {"tile": self.tile, "levels": self.levels, "thr": list(self.thr),
-                "metric": self.metric, "fov_gain": self.fov_gain}
+        out = {"tile": self.tile, "levels": self.levels, "thr": list(self.thr),
+               "metric": self.metric, "fov_gain": self.fov_gain}
+        return {**out, "extension": True} if self.extension else out
 
 
 def check_frame_size(width: int, height: int) -> None:

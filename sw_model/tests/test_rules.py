@@ -102,3 +102,29 @@ def test_rules_tile_independent():
 def test_bad_rule():
     with pytest.raises(SpecError):
         select_rule(ImageRenderer(make_test_image(8, 8)), 8, 8, Params(), rule="magic")
+
+
+def test_levels_4_only_as_the_evaluation_extension():
+    """L = 4 (stride 16) is outside algorithm.md and the registers: refused unless the Params is
+    marked as the evaluation extension, and then a complete frame whose initial grid is the
+    stride-16 grid of every tile (issue 30, docs/rules.md "L = 4")."""
+    with pytest.raises(SpecError, match="1, 2 or 3"):
+        Params(32, 4, (1, 2, 4, 8))
+    with pytest.raises(SpecError, match="1 to 4"):
+        Params(32, 5, (1, 2, 4, 8, 16), extension=True)
+    p = Params(32, 4, (1, 2, 4, 8), extension=True)
+    assert p.stride == 16 and p.as_dict()["extension"] is True
+    assert "extension" not in Params(32, 3, (1, 2, 4)).as_dict()     # the RTL's settings unchanged
+    w, h = 70, 50
+    flat = np.full((h, w, 3), 90, np.uint8)
+    r = select(ImageRenderer(flat), w, h, p)
+    # a flat frame: only the initial grid is traced; per axis, every tile's 0, 16, ... and its last pixel
+    from msr_model import spec
+    per_axis = [sum(len(spec.initial_grid(n, 16)) for _, n in spec.axis_spans(m, 32)) for m in (w, h)]
+    assert r.stats["traced"] == per_axis[0] * per_axis[1] and (r.frame == flat).all()
+    img = make_test_image(w, h)
+    for rule in ("patent", "lindilate2d"):
+        full = select_rule(ImageRenderer(img), w, h, Params(32, 4, (0, 0, 0, 0), extension=True), rule)
+        assert (full.frame == img).all() and full.stats["traced"] == w * h
+        some = select_rule(ImageRenderer(img), w, h, p, rule)
+        assert (some.source != 255).all() and 0 < some.stats["traced"] < w * h
