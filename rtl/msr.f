@@ -4,6 +4,7 @@
 rtl/msr_pkg.sv
 rtl/prim/msr_lzc.sv
 rtl/prim/msr_clr_reg.sv
+rtl/prim/msr_dup_reg.sv
 rtl/prim/msr_seg_add.sv
 rtl/prim/msr_sat_counter.sv
 rtl/prim/msr_rr_arb.sv

@@ -125,11 +125,16 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   // clock, not its decode across the die (88.9 MHz on a seed of the default top at 89d43ec).
   logic                   clear_q;
   logic [NUM_ENGINES-1:0] eng_clear_q, eng_drain_q;
-  msr_clr_reg #(.WIDTH(1 + 2 * NUM_ENGINES)) u_clear_q (
-    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
-    .d_i ({state_q == ST_CLEAR, {NUM_ENGINES{state_q == ST_CLEAR}},
-           {NUM_ENGINES{state_d == ST_DRAIN || state_d == ST_CLEAR}}}),
-    .q_o ({clear_q, eng_clear_q, eng_drain_q})
+  // The copies are msr_dup_reg flip-flops: as one register, synthesis merged them into one.
+  msr_dup_reg #(.COPIES(1 + NUM_ENGINES)) u_clear_q (
+    .clk_i, .rst_ni,
+    .d_i (state_q == ST_CLEAR),
+    .q_o ({clear_q, eng_clear_q})
+  );
+  msr_dup_reg #(.COPIES(NUM_ENGINES)) u_drain_q (
+    .clk_i, .rst_ni,
+    .d_i (state_d == ST_DRAIN || state_d == ST_CLEAR),
+    .q_o (eng_drain_q)
   );
 
   // The events of the tiles-in-flight count are registered on their way in: a tile handed to
