@@ -1,9 +1,10 @@
 // Performance counters of the accelerator (registers PERF_*): cycles, traced pixels per
 // level (entry 0 = initial samples), interpolated pixels per level, render-stall cycles (a
 // request offered and not taken) and memory-stall cycles (some engine offered a finished pixel
-// the writer could not take). Up to NUM_ENGINES pixels are counted per clock. The events are
-// registered first (per-kind pixel counts of the clock), then added into saturating counters
-// (msr_sat_counter), so the counters sit two clocks behind the events. The unit also holds
+// the writer could not take). Up to NUM_ENGINES pixels are counted per clock. Each engine's
+// handshake and source code are registered as they arrive, then counted per kind into a second
+// register, then added into saturating counters (msr_sat_counter), so the pixel counters sit
+// three clocks behind the events (the cycle and stall counters two). The unit also holds
 // the read-back registers of every count the register block shows, these and the
 // controller's error counts (err_i), one clock old.
 `include "msr_assert.svh"
@@ -29,16 +30,31 @@ module msr_perf_counters import msr_pkg::*; import msr_sys_pkg::*; #(
   logic [3:0][N_W-1:0] n_traced_d, n_traced_q;
   logic [2:0][N_W-1:0] n_interp_d, n_interp_q;
   logic                en_q, rstall_q, mstall_q;
+  logic [NUM_ENGINES-1:0] hs_q;
+  src_t [NUM_ENGINES-1:0] src_q;
 
-  // Pixels taken this clock, per kind: codes 0..3 traced at level k, 17..19 interpolated;
+  // Each engine's handshake (counted only while a frame runs) and its source code, registered
+  // by the writer's inputs: the per-kind counts below then start at flip-flops, not at the
+  // handshakes' wires and the controller's state decode (the default top's worst path on
+  // ECP5 at 3fb0e1e, seeds 2 and 3: those wires into this sum, 9 LUT levels; issue 31).
+  msr_clr_reg #(.WIDTH(NUM_ENGINES * (1 + $bits(src_t)))) u_hs_q (
+    .clk_i,
+    .rst_ni,
+    .clear_i,
+    .en_i    (1'b1),
+    .d_i     ({pix_hs_i & {NUM_ENGINES{en_i}}, pix_src_i}),
+    .q_o     ({hs_q, src_q})
+  );
+
+  // Pixels taken a clock ago, per kind: codes 0..3 traced at level k, 17..19 interpolated;
   // none outside a frame.
   always_comb begin
     n_traced_d = '0;
     n_interp_d = '0;
     for (int unsigned i = 0; i < NUM_ENGINES; i++) begin
-      if (en_i && pix_hs_i[i]) begin
-        if (pix_src_i[i][4]) n_interp_d[pix_src_i[i][1:0] - 2'd1] += 1'b1;
-        else                 n_traced_d[pix_src_i[i][1:0]] += 1'b1;
+      if (hs_q[i]) begin
+        if (src_q[i][4]) n_interp_d[src_q[i][1:0] - 2'd1] += 1'b1;
+        else             n_traced_d[src_q[i][1:0]] += 1'b1;
       end
     end
   end
