@@ -14,6 +14,7 @@
 // the block's acknowledgements, which cannot wait, always find room. A read is answered five
 // clocks after its AR handshake at the earliest, a write four after its last of AW / W.
 `include "msr_assert.svh"
+`include "../system/msr_axi_ports.svh"
 
 module msr_axil_cpuif #(
   parameter int unsigned ADDR_W    = 7,   // byte address bits
@@ -22,26 +23,6 @@ module msr_axil_cpuif #(
 ) (
   input  logic                  clk_i,
   input  logic                  rst_ni,
-  // AXI4-Lite slave
-  input  logic                  s_axil_awvalid,
-  output logic                  s_axil_awready,
-  input  logic [ADDR_W-1:0]     s_axil_awaddr,
-  input  logic [2:0]            s_axil_awprot,   // ignored
-  input  logic                  s_axil_wvalid,
-  output logic                  s_axil_wready,
-  input  logic [DATA_W-1:0]     s_axil_wdata,
-  input  logic [DATA_W/8-1:0]   s_axil_wstrb,
-  output logic                  s_axil_bvalid,
-  input  logic                  s_axil_bready,
-  output logic [1:0]            s_axil_bresp,
-  input  logic                  s_axil_arvalid,
-  output logic                  s_axil_arready,
-  input  logic [ADDR_W-1:0]     s_axil_araddr,
-  input  logic [2:0]            s_axil_arprot,   // ignored
-  output logic                  s_axil_rvalid,
-  input  logic                  s_axil_rready,
-  output logic [DATA_W-1:0]     s_axil_rdata,
-  output logic [1:0]            s_axil_rresp,
   // register block, PeakRDL passthrough cpuif (the block's s_cpuif_* ports)
   output logic                  cpuif_req_o,
   output logic                  cpuif_req_is_wr_o,
@@ -54,7 +35,9 @@ module msr_axil_cpuif #(
   input  logic                  cpuif_rd_err_i,
   input  logic [DATA_W-1:0]     cpuif_rd_data_i,
   input  logic                  cpuif_wr_ack_i,
-  input  logic                  cpuif_wr_err_i
+  input  logic                  cpuif_wr_err_i,
+  // AXI4-Lite slave
+  `MSR_AXIL_SLAVE_PORTS(ADDR_W, DATA_W)
 );
   localparam int unsigned CNT_W = $clog2(RSP_DEPTH) + 1;
   localparam int unsigned RSP_W = 2 + DATA_W;  // {is_wr, err, rdata}

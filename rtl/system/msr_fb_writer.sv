@@ -38,6 +38,7 @@
 // pixels per clock); 128 bits would cap the writer at 3.2 pixels per clock.
 `include "msr_assert.svh"
 `include "../system/msr_fbw_types.svh"
+`include "../system/msr_axi_ports.svh"
 
 module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
   parameter int unsigned NUM_IN     = 4,     // pixel streams (engines)
@@ -65,32 +66,14 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
   input  rgb_t   [NUM_IN-1:0] pix_rgb_i,     // colour
   input  src_t   [NUM_IN-1:0] pix_src_i,     // source code
   input  logic   [NUM_IN-1:0] pix_last_i,    // last pixel of its tile
-  // AXI4 write master (no read channels).
-  output logic [ID_W-1:0]       m_axi_awid,
-  output logic [31:0]           m_axi_awaddr,
-  output logic [7:0]            m_axi_awlen,
-  output logic [2:0]            m_axi_awsize,
-  output logic [1:0]            m_axi_awburst,
-  output logic                  m_axi_awlock,
-  output logic [3:0]            m_axi_awcache,
-  output logic [2:0]            m_axi_awprot,
-  output logic                  m_axi_awvalid,
-  input  logic                  m_axi_awready,
-  output logic [AXI_DATA_W-1:0] m_axi_wdata,
-  output logic [STRB_W-1:0]     m_axi_wstrb,
-  output logic                  m_axi_wlast,
-  output logic                  m_axi_wvalid,
-  input  logic                  m_axi_wready,
-  input  logic [ID_W-1:0]       m_axi_bid,
-  input  logic [1:0]            m_axi_bresp,
-  input  logic                  m_axi_bvalid,
-  output logic                  m_axi_bready,
   // Status.
   output logic              idle_o,          // no complete row waiting, no burst open/outstanding
   output logic [NUM_IN-1:0] tile_done_o,     // pulse per input: the last pixel of a tile taken
   output logic              bresp_err_o,     // pulse: a write response was SLVERR or DECERR
   output logic [31:0]       bresp_addr_o,    // with bresp_err_o: the address of that burst
-  output logic              b_unexpected_o   // pulse: a write response with no burst outstanding
+  output logic              b_unexpected_o,  // pulse: a write response with no burst outstanding
+  // AXI4 write master (no read channels).
+  `MSR_AXI_WR_MASTER_PORTS(ID_W, AXI_DATA_W)
 );
   localparam int unsigned IN_W    = (NUM_IN > 1) ? $clog2(NUM_IN) : 1;
   localparam int unsigned WPB     = AXI_DATA_W / 32;                 // 32-bit lanes per beat
@@ -229,6 +212,7 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
     .idle_o       (idle_addr)
   );
 
+  // verilog_lint: waive-start module-port (the bus ports connect by name, macro last)
   msr_fbw_aw #(
     .NUM_IN     (NUM_IN),
     .AXI_DATA_W (AXI_DATA_W),
@@ -247,26 +231,15 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
     .wb_push_o      (wb_push),
     .wb_room_i      (wb_room),
     .wb_o           (wb),
-    .m_axi_awid     (m_axi_awid),
-    .m_axi_awaddr   (m_axi_awaddr),
-    .m_axi_awlen    (m_axi_awlen),
-    .m_axi_awsize   (m_axi_awsize),
-    .m_axi_awburst  (m_axi_awburst),
-    .m_axi_awlock   (m_axi_awlock),
-    .m_axi_awcache  (m_axi_awcache),
-    .m_axi_awprot   (m_axi_awprot),
-    .m_axi_awvalid  (m_axi_awvalid),
-    .m_axi_awready  (m_axi_awready),
-    .m_axi_bid      (m_axi_bid),
-    .m_axi_bresp    (m_axi_bresp),
-    .m_axi_bvalid   (m_axi_bvalid),
-    .m_axi_bready   (m_axi_bready),
     .idle_o         (idle_aw),
     .bresp_err_o    (bresp_err_o),
     .bresp_addr_o   (bresp_addr_o),
-    .b_unexpected_o (b_unexpected_o)
+    .b_unexpected_o (b_unexpected_o),
+    `MSR_AXI_AWB_CONNECT
   );
+  // verilog_lint: waive-stop module-port
 
+  // verilog_lint: waive-start module-port (the bus ports connect by name, macro last)
   msr_fbw_w #(.NUM_IN(NUM_IN), .AXI_DATA_W(AXI_DATA_W), .wburst_t(wburst_t)) u_w (
     .clk_i        (clk_i),
     .rst_ni       (rst_ni),
@@ -281,13 +254,10 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
     .free_valid_o (free_valid),
     .free_in_o    (free_in),
     .free_buf_o   (free_buf),
-    .m_axi_wdata  (m_axi_wdata),
-    .m_axi_wstrb  (m_axi_wstrb),
-    .m_axi_wlast  (m_axi_wlast),
-    .m_axi_wvalid (m_axi_wvalid),
-    .m_axi_wready (m_axi_wready),
-    .idle_o       (idle_w)
+    .idle_o       (idle_w),
+    `MSR_AXI_W_CONNECT
   );
+  // verilog_lint: waive-stop module-port
 
   assign idle_o = (sl_valid == '0) && idle_rb && idle_addr && idle_aw && idle_w;
 

@@ -9,6 +9,7 @@
 // order for theirs (so a failing response names its burst).
 `include "msr_assert.svh"
 `include "../system/msr_fbw_types.svh"
+`include "../system/msr_axi_ports.svh"
 
 module msr_fbw_aw import msr_fbw_pkg::*; #(
   parameter int unsigned NUM_IN     = 4,     // pixel streams (engines)
@@ -33,26 +34,13 @@ module msr_fbw_aw import msr_fbw_pkg::*; #(
   output logic              wb_push_o,       // a burst's address was taken on AW
   input  logic              wb_room_i,       // the W side has room for another burst
   output wburst_t           wb_o,            // with wb_push_o: that burst
-  // AXI4 write address and response channels.
-  output logic [ID_W-1:0]   m_axi_awid,
-  output logic [31:0]       m_axi_awaddr,
-  output logic [7:0]        m_axi_awlen,
-  output logic [2:0]        m_axi_awsize,
-  output logic [1:0]        m_axi_awburst,
-  output logic              m_axi_awlock,
-  output logic [3:0]        m_axi_awcache,
-  output logic [2:0]        m_axi_awprot,
-  output logic              m_axi_awvalid,
-  input  logic              m_axi_awready,
-  input  logic [ID_W-1:0]   m_axi_bid,
-  input  logic [1:0]        m_axi_bresp,
-  input  logic              m_axi_bvalid,
-  output logic              m_axi_bready,
   // Status.
   output logic              idle_o,          // no burst listed, in the AW register or outstanding
   output logic              bresp_err_o,     // pulse: a write response was SLVERR or DECERR
   output logic [31:0]       bresp_addr_o,    // with bresp_err_o: the address of that burst
-  output logic              b_unexpected_o   // pulse: a write response with no burst outstanding
+  output logic              b_unexpected_o,  // pulse: a write response with no burst outstanding
+  // AXI4 write address and response channels.
+  `MSR_AXI_AWB_MASTER_PORTS(ID_W)
 );
   localparam int unsigned STRB_W = AXI_DATA_W / 8;
   localparam int unsigned PB     = pix_beats(AXI_DATA_W / 32);

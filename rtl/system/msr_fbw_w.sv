@@ -6,6 +6,7 @@
 // register. A row's buffer is free once W2 reads its last beat (free_*_o, registered).
 `include "msr_assert.svh"
 `include "../system/msr_fbw_types.svh"
+`include "../system/msr_axi_ports.svh"
 
 module msr_fbw_w import msr_fbw_pkg::*; #(
   parameter int unsigned NUM_IN     = 4,     // pixel streams (engines)
@@ -32,14 +33,10 @@ module msr_fbw_w import msr_fbw_pkg::*; #(
   output logic              free_valid_o,    // a buffer's last beat was read:
   output logic [IN_W-1:0]   free_in_o,       //   its input
   output buf_t              free_buf_o,      //   and buffer
-  // AXI4 write data channel.
-  output logic [AXI_DATA_W-1:0] m_axi_wdata,
-  output logic [STRB_W-1:0]     m_axi_wstrb,
-  output logic                  m_axi_wlast,
-  output logic                  m_axi_wvalid,
-  input  logic                  m_axi_wready,
   // Status.
-  output logic              idle_o           // no burst queued, no beat on its way out
+  output logic              idle_o,          // no burst queued, no beat on its way out
+  // AXI4 write data channel.
+  `MSR_AXI_W_MASTER_PORTS(AXI_DATA_W)
 );
   typedef logic [IN_W-1:0] in_t;
   typedef logic [MA_W-1:0] maddr_t;

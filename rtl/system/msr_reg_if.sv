@@ -5,38 +5,21 @@
 // The generated block's field structs (hwif) stay in here: the system sees the registers as
 // the typed bundles of msr_sys_pkg (the configuration as written, the control fields, the
 // status, the counters' read-back).
+`include "../system/msr_axi_ports.svh"
 module msr_reg_if
   import msr_sys_pkg::*;
 (
   input  logic                         clk_i,     // clock
   input  logic                         rst_ni,    // asynchronous reset, active low
-  // AXI4-Lite slave (7-bit byte address)
-  input  logic                         s_axil_awvalid,
-  output logic                         s_axil_awready,
-  input  logic [6:0]                   s_axil_awaddr,
-  input  logic [2:0]                   s_axil_awprot,
-  input  logic                         s_axil_wvalid,
-  output logic                         s_axil_wready,
-  input  logic [31:0]                  s_axil_wdata,
-  input  logic [3:0]                   s_axil_wstrb,
-  output logic                         s_axil_bvalid,
-  input  logic                         s_axil_bready,
-  output logic [1:0]                   s_axil_bresp,
-  input  logic                         s_axil_arvalid,
-  output logic                         s_axil_arready,
-  input  logic [6:0]                   s_axil_araddr,
-  input  logic [2:0]                   s_axil_arprot,
-  output logic                         s_axil_rvalid,
-  input  logic                         s_axil_rready,
-  output logic [31:0]                  s_axil_rdata,
-  output logic [1:0]                   s_axil_rresp,
   // the fields, to and from the hardware
   output cfg_raw_t                     raw_o,              // the configuration as written
   output reg_ctrl_t                    ctrl_o,             // CTRL, WATCHDOG, the held flags
   input  reg_status_t                  status_i,           // STATUS
   input  readback_t                    readback_i,         // PERF_*, MEM_ERR*, RSP_DROP
   input  logic [10:0]                  scale_out_i,        // BUDGET_CTRL.SCALE_OUT
-  input  logic                         scale_out_valid_i   // BUDGET_CTRL.SCALE_OUT_VALID
+  input  logic                         scale_out_valid_i,  // BUDGET_CTRL.SCALE_OUT_VALID
+  // AXI4-Lite slave (7-bit byte address)
+  `MSR_AXIL_SLAVE_PORTS(7, 32)
 );
 
   msr_regs_pkg::msr_regs__in_t  hwif_in;
@@ -102,13 +85,9 @@ module msr_reg_if
   logic [31:0]          cpuif_wr_data, cpuif_wr_biten, cpuif_rd_data;
   logic                 cpuif_rd_ack, cpuif_rd_err, cpuif_wr_ack, cpuif_wr_err;
 
+  // verilog_lint: waive-start module-port (the bus ports connect by name, macro last)
   msr_axil_cpuif #(.ADDR_W(7), .DATA_W(32)) u_axil (
     .clk_i, .rst_ni,
-    .s_axil_awvalid, .s_axil_awready, .s_axil_awaddr, .s_axil_awprot,
-    .s_axil_wvalid, .s_axil_wready, .s_axil_wdata, .s_axil_wstrb,
-    .s_axil_bvalid, .s_axil_bready, .s_axil_bresp,
-    .s_axil_arvalid, .s_axil_arready, .s_axil_araddr, .s_axil_arprot,
-    .s_axil_rvalid, .s_axil_rready, .s_axil_rdata, .s_axil_rresp,
     .cpuif_req_o          (cpuif_req),
     .cpuif_req_is_wr_o    (cpuif_req_is_wr),
     .cpuif_addr_o         (cpuif_addr),
@@ -120,8 +99,10 @@ module msr_reg_if
     .cpuif_rd_err_i       (cpuif_rd_err),
     .cpuif_rd_data_i      (cpuif_rd_data),
     .cpuif_wr_ack_i       (cpuif_wr_ack),
-    .cpuif_wr_err_i       (cpuif_wr_err)
+    .cpuif_wr_err_i       (cpuif_wr_err),
+    `MSR_AXIL_SLAVE_CONNECT
   );
+  // verilog_lint: waive-stop module-port
 
   msr_regs u_regs (
     .clk                  (clk_i),

@@ -9,6 +9,7 @@
 // dropped, open bursts complete; then every unit is cleared. Watchdog (WATCHDOG register): no
 // progress on the ports for that many cycles ends the frame, or a soft reset's wait, by force.
 `include "msr_assert.svh"
+`include "../system/msr_axi_ports.svh"
 
 module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES     = 4,    // parallel tile engines (claim 11)
@@ -29,26 +30,6 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
 ) (
   input  logic              clk_i,              // clock
   input  logic              rst_ni,             // asynchronous reset, active low
-  // AXI4-Lite register port (7-bit byte address).
-  input  logic              s_axil_awvalid,
-  output logic              s_axil_awready,
-  input  logic [6:0]        s_axil_awaddr,
-  input  logic [2:0]        s_axil_awprot,
-  input  logic              s_axil_wvalid,
-  output logic              s_axil_wready,
-  input  logic [31:0]       s_axil_wdata,
-  input  logic [3:0]        s_axil_wstrb,
-  output logic              s_axil_bvalid,
-  input  logic              s_axil_bready,
-  output logic [1:0]        s_axil_bresp,
-  input  logic              s_axil_arvalid,
-  output logic              s_axil_arready,
-  input  logic [6:0]        s_axil_araddr,
-  input  logic [2:0]        s_axil_arprot,
-  output logic              s_axil_rvalid,
-  input  logic              s_axil_rready,
-  output logic [31:0]       s_axil_rdata,
-  output logic [1:0]        s_axil_rresp,
   // Render request port: trace pixel (x, y).
   output logic              rnd_req_valid_o,    // a request
   input  logic              rnd_req_ready_i,    // the rendering unit takes it
@@ -60,26 +41,6 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   output logic              rnd_rsp_ready_o,    // taken
   input  logic [RTAG_W-1:0] rnd_rsp_tag_i,      // tag of the request
   input  rgb_t              rnd_rsp_rgb_i,      // colour
-  // AXI4 frame-buffer write master.
-  output logic [AXI_ID_W-1:0] m_axi_awid,
-  output logic [31:0]       m_axi_awaddr,
-  output logic [7:0]        m_axi_awlen,
-  output logic [2:0]        m_axi_awsize,
-  output logic [1:0]        m_axi_awburst,
-  output logic              m_axi_awlock,
-  output logic [3:0]        m_axi_awcache,
-  output logic [2:0]        m_axi_awprot,
-  output logic              m_axi_awvalid,
-  input  logic              m_axi_awready,
-  output logic [AXI_DATA_W-1:0]   m_axi_wdata,
-  output logic [AXI_DATA_W/8-1:0] m_axi_wstrb,
-  output logic              m_axi_wlast,
-  output logic              m_axi_wvalid,
-  input  logic              m_axi_wready,
-  input  logic [AXI_ID_W-1:0] m_axi_bid,
-  input  logic [1:0]        m_axi_bresp,
-  input  logic              m_axi_bvalid,
-  output logic              m_axi_bready,
   // Interrupt: (STATUS.DONE, CFG_ERR or WDOG) while CTRL.IRQ_EN; registered, a clock after them.
   output logic              irq_o,
   // Debug (simulation and bring-up; no function): tile hand-out and tile completion.
@@ -88,7 +49,10 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   output coord_t            dbg_desc_y0_o,
   output logic [NUM_ENGINES-1:0] dbg_tile_done_o, // engine i's last pixel of a tile is written
   output coord_t [NUM_ENGINES-1:0] dbg_pix_x_o,   // engine i's pixel (with dbg_tile_done_o)
-  output coord_t [NUM_ENGINES-1:0] dbg_pix_y_o
+  output coord_t [NUM_ENGINES-1:0] dbg_pix_y_o,
+  // The buses (rtl/system/msr_axi_ports.svh): the AXI4-Lite register port s_axil_* (7-bit byte
+  // address) and the AXI4 frame-buffer write master m_axi_*.
+  `MSR_TOP_BUS_PORTS(AXI_ID_W, AXI_DATA_W)
 );
   if (AXI_ID_W < 1 || AXI_ID_W > 8) begin : g_check_id_w
     $fatal(1, "msr_top: AXI_ID_W must be 1..8, got %0d", AXI_ID_W);
@@ -102,20 +66,18 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   logic [10:0] scale_out;
   logic        scale_out_valid;
 
+  // verilog_lint: waive-start module-port (the bus ports connect by name, macro last)
   msr_reg_if u_reg_if (
     .clk_i, .rst_ni,
-    .s_axil_awvalid, .s_axil_awready, .s_axil_awaddr, .s_axil_awprot,
-    .s_axil_wvalid, .s_axil_wready, .s_axil_wdata, .s_axil_wstrb,
-    .s_axil_bvalid, .s_axil_bready, .s_axil_bresp,
-    .s_axil_arvalid, .s_axil_arready, .s_axil_araddr, .s_axil_arprot,
-    .s_axil_rvalid, .s_axil_rready, .s_axil_rdata, .s_axil_rresp,
     .raw_o             (raw),
     .ctrl_o            (reg_ctrl),
     .status_i          (reg_status),
     .readback_i        (readback),
     .scale_out_i       (scale_out),
-    .scale_out_valid_i (scale_out_valid)
+    .scale_out_valid_i (scale_out_valid),
+    `MSR_AXIL_SLAVE_CONNECT
   );
+  // verilog_lint: waive-stop module-port
 
   // ---- Configuration check and control ----------------------------------------------------------
   cfg_t        cfg;
@@ -380,6 +342,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   assign ep_pix_ready = wr_pix_ready | eng_drain;
 
   // ---- Frame-buffer writer ----------------------------------------------------------------------
+  // verilog_lint: waive-start module-port (the bus ports connect by name, macro last)
   msr_fb_writer #(
     .NUM_IN     (NUM_ENGINES),
     .AXI_DATA_W (AXI_DATA_W),
@@ -402,31 +365,14 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .pix_rgb_i      (wr_pix_rgb),
     .pix_src_i      (wr_pix_src),
     .pix_last_i     (wr_pix_last),
-    .m_axi_awid     (m_axi_awid),
-    .m_axi_awaddr   (m_axi_awaddr),
-    .m_axi_awlen    (m_axi_awlen),
-    .m_axi_awsize   (m_axi_awsize),
-    .m_axi_awburst  (m_axi_awburst),
-    .m_axi_awlock   (m_axi_awlock),
-    .m_axi_awcache  (m_axi_awcache),
-    .m_axi_awprot   (m_axi_awprot),
-    .m_axi_awvalid  (m_axi_awvalid),
-    .m_axi_awready  (m_axi_awready),
-    .m_axi_wdata    (m_axi_wdata),
-    .m_axi_wstrb    (m_axi_wstrb),
-    .m_axi_wlast    (m_axi_wlast),
-    .m_axi_wvalid   (m_axi_wvalid),
-    .m_axi_wready   (m_axi_wready),
-    .m_axi_bid      (m_axi_bid),
-    .m_axi_bresp    (m_axi_bresp),
-    .m_axi_bvalid   (m_axi_bvalid),
-    .m_axi_bready   (m_axi_bready),
     .idle_o         (wr_idle),
     .tile_done_o    (wr_tile_done),
     .bresp_err_o    (bresp_err),
     .bresp_addr_o   (bresp_addr),
-    .b_unexpected_o (b_unexpected)
+    .b_unexpected_o (b_unexpected),
+    `MSR_AXI_WR_CONNECT
   );
+  // verilog_lint: waive-stop module-port
 
   // ---- Ray budget ----------------------------------------------------------------------------------
   if (BUDGET_EN) begin : g_budget
