@@ -45,7 +45,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 from synth import (ENGINE, TOP, bb_param_names, default_params, modules_in, params_text,  # the script's folder
                    pixels_per_clock, read_cmd, read_filelist)
-from msr_runner import rtl_digest   # the installed msr_tb package
+from msr_runner import rtl_digest, with_macros   # the installed msr_tb package
 
 OUT = ROOT / "build" / "asic"
 DOC = ROOT / "docs" / "asic.md"
@@ -403,7 +403,7 @@ def modules_below(files: list[str], unit: str) -> set[str]:
     for f in files:
         src = (ROOT / f).read_text()
         for m in re.finditer(r"^\s*module\s+(\w+)\b(.*?)^\s*endmodule", src, re.M | re.S):
-            text[m.group(1)] = m.group(2)
+            text[m.group(1)] = with_macros(m.group(2))   # flops written through msr_flops.svh
     seen, todo = set(), [unit]
     while todo:
         u = todo.pop()

@@ -15,7 +15,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from msr_runner import rtl_sources
+from msr_runner import rtl_sources, with_macros
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -38,7 +38,7 @@ def closure(files, top_file):
             defs[m.group(1)] = f
     need, todo = {top_file}, [top_file]
     while todo:
-        text = re.sub(r"//.*", "", todo.pop().read_text())
+        text = with_macros(re.sub(r"//.*", "", todo.pop().read_text()))
         for name, f in defs.items():
             if f not in need and re.search(rf"\b{name}\b", text):
                 need.add(f)

@@ -8,6 +8,7 @@
 // desc_ready_o is a function of flip-flops only (and hold_i, a register of the tag pool); the
 // soft reset is kept out of it (it is one net to every flip-flop of the engine): a descriptor
 // taken during a clear is dropped by the clear of start_o, as everything else in flight is.
+`include "msr_flops.svh"
 module msr_ctx_alloc
   import msr_pkg::*;
 #(
@@ -45,13 +46,9 @@ module msr_ctx_alloc
   );
 
   // the choice is remade every clock, so a clear need not reset it
-  msr_clr_reg #(.WIDTH(CTX_W)) u_alloc_q (
-    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1), .d_i (alloc), .q_o (alloc_q)
-  );
-  msr_clr_reg #(.WIDTH(1 + NUM_CTX)) u_start_q (
-    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({!none_avail, hs_onehot}),
-    .q_o ({any_free_q, start_o})
-  );
+  `MSR_CLR_REG(u_alloc_q, CTX_W, 1'b0, 1'b1, alloc, alloc_q)
+  `MSR_CLR_REG(u_start_q, 1 + NUM_CTX, clear_i, 1'b1, {!none_avail, hs_onehot},
+               {any_free_q, start_o})
 
   // data: used only with a start bit
   tile_desc_t desc_q;

@@ -1,6 +1,7 @@
 // Drain: finished tiles leave their contexts as the engine's pixel stream. A full context is
 // picked round robin (one cycle), the streamer starts on it (the next cycle) and reads its
 // tile buffer's port 0 row-major; the context is freed when its last pixel has left.
+`include "msr_flops.svh"
 module msr_ctx_drain
   import msr_pkg::*;
 #(
@@ -56,10 +57,8 @@ module msr_ctx_drain
     cur_d       = pick ? sel : cur_q;
   end
 
-  msr_clr_reg #(.WIDTH(2 + CTX_W)) u_stream_q (
-    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({streaming_d, start_d, cur_d}),
-    .q_o ({streaming_q, start_q, cur_q})
-  );
+  `MSR_CLR_REG(u_stream_q, 2 + CTX_W, clear_i, 1'b1, {streaming_d, start_d, cur_d},
+               {streaming_q, start_q, cur_q})
 
   assign cur_desc = desc_i[cur_q];
 

@@ -9,6 +9,7 @@
 // (gr_gnt_o: the head leaves, the buffer reads it). The contexts' candidate bits know about
 // the grant in flight, so a context can still win every clock.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_ctx_issue
   import msr_pkg::*;
@@ -46,10 +47,8 @@ module msr_ctx_issue
 
   assign issue_o = arb_valid && can_issue_i;
 
-  msr_clr_reg #(.WIDTH(1 + NUM_CTX)) u_gr_q (
-    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({issue_o, gnt & {NUM_CTX{can_issue_i}}}),
-    .q_o ({gr_valid_o, gr_gnt_o})
-  );
+  `MSR_CLR_REG(u_gr_q, 1 + NUM_CTX, clear_i, 1'b1, {issue_o, gnt & {NUM_CTX{can_issue_i}}},
+               {gr_valid_o, gr_gnt_o})
 
   // The granted context's index, encoded from the registered one-hot grant (one LUT level in
   // the short GR -> IS path) rather than registered from the arbiter's index output (two LUT

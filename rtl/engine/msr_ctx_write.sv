@@ -9,6 +9,7 @@
 // request is one more pending write of its context (registered like the write). The response
 // check never writes the context that the output writes in the same cycle.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_ctx_write
   import msr_pkg::*;
@@ -65,9 +66,7 @@ module msr_ctx_write
   assign wsrc_o  = wsrc_q;
   assign wrgb_o  = wrgb_q;
 
-  msr_clr_reg #(.WIDTH(2 * NUM_CTX)) u_write_q (
-    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({we_d, retro_d}), .q_o ({we_o, retro_o})
-  );
+  `MSR_CLR_REG(u_write_q, 2 * NUM_CTX, clear_i, 1'b1, {we_d, retro_d}, {we_o, retro_o})
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_one_writer, !(out_write_i && rsp_write_i && out_ctx_i == rsp_ctx_i))

@@ -15,6 +15,7 @@
 // Global-stall pipeline: every stage advances when the output register is empty or taken.
 // A trace-only step (the initial grid) passes through with any A / B; the caller ignores C.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_decision_pipe
   import msr_pkg::*;
@@ -231,14 +232,9 @@ module msr_decision_pipe
 
   // ---- Valid bits ------------------------------------------------------------------------------
   // One shift register: every stage's valid bit moves on when the pipeline advances.
-  msr_clr_reg #(.WIDTH(6)) u_valid (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (advance),
-    .d_i     ({s4_valid_q, s3_valid_q, s2_valid_q, s1_valid_q, s0_valid_q, valid_i}),
-    .q_o     ({valid_o, s4_valid_q, s3_valid_q, s2_valid_q, s1_valid_q, s0_valid_q})
-  );
+  `MSR_CLR_REG(u_valid, 6, clear_i, advance,
+               {s4_valid_q, s3_valid_q, s2_valid_q, s1_valid_q, s0_valid_q, valid_i},
+               {valid_o, s4_valid_q, s3_valid_q, s2_valid_q, s1_valid_q, s0_valid_q})
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_out_hold, valid_o && !ready_i |=> valid_o &&

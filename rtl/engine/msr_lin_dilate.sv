@@ -19,6 +19,7 @@
 // request (the previous line's pixel at the same position: its frame coordinates and the
 // tile-buffer address its answer writes), then the result's own write or request.
 // retro_sent_q remembers that the first half went.
+`include "msr_flops.svh"
 module msr_lin_dilate
   import msr_pkg::*;
 #(
@@ -100,13 +101,7 @@ module msr_lin_dilate
                       out_vert_i     ? {out_y_i, rt_line} : {rt_line, out_x_i};
 
   // set when the retro request takes its tag, clear when the result leaves
-  msr_clr_reg u_retro_sent (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .en_i    (out_done_i || (retro_phase_o && alloc_i)),
-    .d_i     (!out_done_i),
-    .q_o     (retro_sent_q)
-  );
+  `MSR_CLR_REG(u_retro_sent, 1, clear_i, out_done_i || (retro_phase_o && alloc_i), !out_done_i,
+               retro_sent_q)
 
 endmodule : msr_lin_dilate

@@ -27,6 +27,7 @@
 // other register here is loaded under its stage's valid bit, the trackers of a context by the
 // first position of each pass, and the previous A is read only on a line whose earlier
 // position wrote it.
+`include "msr_flops.svh"
 module msr_lin_track
   import msr_pkg::*;
 #(
@@ -78,12 +79,10 @@ module msr_lin_track
 
   logic [NUM_CTX-1:0] ln_first_q, ln_next_q;
   lcoord_t            ln_line_q, ln_cur_sel;
-  msr_clr_reg #(.WIDTH(2 * NUM_CTX)) u_ln_upd_q (
-    .clk_i, .rst_ni, .clear_i, .en_i (1'b1),
-    .d_i ({gr_gnt_i & {NUM_CTX{gr_valid_i && !gr_pos_i.init && gr_pos_i.first}},
-           gr_gnt_i & {NUM_CTX{gr_valid_i && !gr_pos_i.init && !gr_pos_i.first}}}),
-    .q_o ({ln_first_q, ln_next_q})
-  );
+  `MSR_CLR_REG(u_ln_upd_q, 2 * NUM_CTX, clear_i, 1'b1,
+               {gr_gnt_i & {NUM_CTX{gr_valid_i && !gr_pos_i.init && gr_pos_i.first}},
+                gr_gnt_i & {NUM_CTX{gr_valid_i && !gr_pos_i.init && !gr_pos_i.first}}},
+               {ln_first_q, ln_next_q})
   always_ff @(posedge clk_i) begin
     ln_line_q <= (gr_pos_i.dir == DIR_V) ? gr_pos_i.x : gr_pos_i.y;
   end

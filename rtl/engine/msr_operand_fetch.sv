@@ -11,6 +11,7 @@
 // lindilate's line tracking and outer samples (msr_lin_track) run beside IS and RD. No stage
 // stalls (the issue holds a credit for the output buffer), so the data registers have no
 // enable but their stage's valid bit, and only the valid bits are reset.
+`include "msr_flops.svh"
 module msr_operand_fetch
   import msr_pkg::*;
 #(
@@ -54,10 +55,8 @@ module msr_operand_fetch
 
   logic is_valid_q, rd_valid_q;
 
-  msr_clr_reg #(.WIDTH(3)) u_valid_q (
-    .clk_i, .rst_ni, .clear_i, .en_i (1'b1), .d_i ({gr_valid_i, is_valid_q, rd_valid_q}),
-    .q_o ({is_valid_q, rd_valid_q, valid_o})
-  );
+  `MSR_CLR_REG(u_valid_q, 3, clear_i, 1'b1, {gr_valid_i, is_valid_q, rd_valid_q},
+               {is_valid_q, rd_valid_q, valid_o})
 
   // ---- IS: no enable (an enable would hang the grant's fan-out on every one of these) ----
   logic [CTX_W-1:0] is_ctx_q;

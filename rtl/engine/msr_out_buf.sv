@@ -8,6 +8,7 @@
 // works on a register (a spill register after the buffer), not on the buffer's read
 // multiplexer.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_out_buf #(
   parameter int unsigned WIDTH = 8,
@@ -62,11 +63,8 @@ module msr_out_buf #(
   );
 
   // Credits: buffer slots not yet reserved by an issued position.
-  msr_clr_reg #(.WIDTH(CRED_W), .RESET(CRED_W'(DEPTH))) u_credit_q (
-    .clk_i, .rst_ni, .clear_i, .en_i (1'b1),
-    .d_i   (credit_q - CRED_W'(issue_i) + CRED_W'(buf_valid && spill_ready)),
-    .q_o   (credit_q)
-  );
+  `MSR_CLR_REG_RST(u_credit_q, CRED_W, CRED_W'(DEPTH), clear_i, 1'b1,
+                   credit_q - CRED_W'(issue_i) + CRED_W'(buf_valid && spill_ready), credit_q)
 
   assign can_issue_o = (credit_q != '0);
 

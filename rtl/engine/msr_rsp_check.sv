@@ -10,6 +10,7 @@
 // in flight (stale, duplicate, invented): nothing is written, no tag is freed twice, drop_o
 // pulses. A tag is released when its answer is written.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_rsp_check
   import msr_pkg::*;
@@ -92,23 +93,9 @@ module msr_rsp_check
   assign r1_ready = !r2_valid_q || r2_done;
   assign rs_ready = !r1_valid_q || r1_ready;
 
-  msr_clr_reg u_r1_valid (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .en_i    (rs_ready),
-    .d_i     (rs_valid),
-    .q_o     (r1_valid_q)
-  );
+  `MSR_CLR_REG(u_r1_valid, 1, clear_i, rs_ready, rs_valid, r1_valid_q)
 
-  msr_clr_reg u_r2_valid (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .en_i    (r1_ready),
-    .d_i     (r1_valid_q),
-    .q_o     (r2_valid_q)
-  );
+  `MSR_CLR_REG(u_r2_valid, 1, clear_i, r1_ready, r1_valid_q, r2_valid_q)
 
   always_ff @(posedge clk_i) begin
     if (rs_ready && rs_valid) r1_q <= rs_data;

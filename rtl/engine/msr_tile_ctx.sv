@@ -15,6 +15,7 @@
 // streamer while full (port 0). Every pixel of the tile is written exactly once before the
 // tile is streamed, so the buffer needs no clearing.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_tile_ctx
   import msr_pkg::*;
@@ -178,14 +179,8 @@ module msr_tile_ctx
   end
 
   // The queue's valid bits (the entries below are plain data registers).
-  msr_clr_reg #(.WIDTH(2)) u_q_valid (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     ({head_valid_d, tail_valid_d}),
-    .q_o     ({head_valid_q, tail_valid_q})
-  );
+  `MSR_CLR_REG(u_q_valid, 2, clear_i, 1'b1, {head_valid_d, tail_valid_d},
+               {head_valid_q, tail_valid_q})
 
   // Entries have no reset: each is written with its valid bit.
   always_ff @(posedge clk_i) begin
@@ -217,14 +212,9 @@ module msr_tile_ctx
                        (pend_up != we_i)    ? (we_i && pend_one) : pend_zero_q;
   assign cand_o      = issue_i ? cand_tail_q : cand_head_q;
 
-  msr_clr_reg #(.WIDTH(2)) u_cand (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     ({tail_valid_d && !tail_first_d, head_valid_d && (!head_first_d || pend_zero_d)}),
-    .q_o     ({cand_tail_q, cand_head_q})
-  );
+  `MSR_CLR_REG(u_cand, 2, clear_i, 1'b1,
+               {tail_valid_d && !tail_first_d, head_valid_d && (!head_first_d || pend_zero_d)},
+               {cand_tail_q, cand_head_q})
 
   assign step_o = '{dir: head_q.dir, o2a: head_q.o2a, first: head_q.first, x: head_q.x, y: head_q.y,
                    gap: head_q.gap, off: head_q.off, level: head_q.level, nshift: head_q.nshift,

@@ -5,6 +5,7 @@
 // have settled, SEG-count - 1 clocks after the last event (the registers are read after a
 // frame, when the counters are still).
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_sat_counter #(
   parameter int unsigned WIDTH = 32,    // counter bits, a multiple of SEG_W
@@ -44,23 +45,9 @@ module msr_sat_counter #(
   assign cin_d = NSEG'({cout, 1'b0});
   assign ovf   = cout[NSEG-1];
 
-  msr_clr_reg #(.WIDTH(NSEG * SEG_W + NSEG)) u_seg (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     ({seg_d, cin_d}),
-    .q_o     ({seg_q, cin_q})
-  );
+  `MSR_CLR_REG(u_seg, NSEG * SEG_W + NSEG, clear_i, 1'b1, {seg_d, cin_d}, {seg_q, cin_q})
   // Sticky: once the top segment overflows, the count reads all ones until a clear.
-  msr_clr_reg #(.WIDTH(1)) u_sat (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (ovf),
-    .d_i     (1'b1),
-    .q_o     (sat_q)
-  );
+  `MSR_CLR_REG(u_sat, 1, clear_i, ovf, 1'b1, sat_q)
 
   assign count_o = sat_q ? '1 : seg_q;
 

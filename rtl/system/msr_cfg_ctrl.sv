@@ -26,6 +26,7 @@
 // is kept; all three survive a soft reset (a drain is when errors tend to show) and are
 // cleared by the next START.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES   = 4,      // tile engines (tile-done inputs)
@@ -145,21 +146,15 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   // dropped, as the units drop them.
   logic                   desc_fire_q;
   logic [NUM_ENGINES-1:0] tile_done_q;
-  msr_clr_reg #(.WIDTH(1 + NUM_ENGINES)) u_events_q (
-    .clk_i, .rst_ni, .clear_i (clear_q), .en_i (1'b1),
-    .d_i ({desc_fire_i, tile_done_i}),
-    .q_o ({desc_fire_q, tile_done_q})
-  );
+  `MSR_CLR_REG(u_events_q, 1 + NUM_ENGINES, clear_q, 1'b1, {desc_fire_i, tile_done_i},
+               {desc_fire_q, tile_done_q})
 
   // Watchdog progress, registered: the handshakes come from every engine and both ports, and
   // a watchdog one clock late loses nothing. Responses count only while running: during a
   // drain they cannot keep the wait open.
   logic progress_q;
-  msr_clr_reg #(.WIDTH(1)) u_progress_q (
-    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
-    .d_i (moved_i || (state_q == ST_RUN && rsp_taken_i)),
-    .q_o (progress_q)
-  );
+  `MSR_CLR_REG(u_progress_q, 1, 1'b0, 1'b1, moved_i || (state_q == ST_RUN && rsp_taken_i),
+               progress_q)
 
   // The writer's idle flag, registered on its way in: it is an OR over every stage of the
   // writer, and that tree into the state register set the flat top's clock (10.5 ns, seed 2,
@@ -170,11 +165,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   // gates them from the first DRAIN clock), so the flag is exact from the second DRAIN clock
   // on, and the drain does not end in its first clock (drain_seen_q).
   logic wr_idle_q, drain_seen_q;
-  msr_clr_reg #(.WIDTH(2)) u_wr_idle_q (
-    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
-    .d_i ({wr_idle_i, state_q == ST_DRAIN}),
-    .q_o ({wr_idle_q, drain_seen_q})
-  );
+  `MSR_CLR_REG(u_wr_idle_q, 2, 1'b0, 1'b1, {wr_idle_i, state_q == ST_DRAIN},
+               {wr_idle_q, drain_seen_q})
 
   // Responses dropped this clock: the engines' and the mux's (at most NUM_ENGINES + 1).
   logic [4:0] rsp_drop_n;
@@ -461,11 +453,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   // The interrupt leaves from a flip-flop of its own, a clock after STATUS: the pin is far
   // from the register block, and without it the STATUS bits were pulled towards the pin and
   // the register block's write decode into them set the glue's clock.
-  msr_clr_reg #(.WIDTH(1)) u_irq_q (
-    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
-    .d_i (irq_en_i && irq_flags_i != '0),
-    .q_o (irq_o)
-  );
+  `MSR_CLR_REG(u_irq_q, 1, 1'b0, 1'b1, irq_en_i && irq_flags_i != '0, irq_o)
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_tif_no_underflow,

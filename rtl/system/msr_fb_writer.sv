@@ -37,6 +37,7 @@
 // buffer is 32-byte aligned, so four engines at one pixel per clock each fit with room (5.3
 // pixels per clock); 128 bits would cap the writer at 3.2 pixels per clock.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 `include "../system/msr_fbw_types.svh"
 `include "../system/msr_axi_ports.svh"
 
@@ -114,11 +115,8 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
   fb_cfg_t    fb_q;
   tile_size_e tile_q;
   dim_t       last_x_q;
-  msr_clr_reg #(.WIDTH($bits(fb_cfg_t) + $bits(tile_size_e) + $bits(dim_t))) u_frame_q (
-    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
-    .d_i ({fb, tile_i, width_i - 1'b1}),
-    .q_o ({fb_q, tile_q, last_x_q})
-  );
+  `MSR_CLR_REG(u_frame_q, $bits(fb_cfg_t) + $bits(tile_size_e) + $bits(dim_t), 1'b0, 1'b1,
+               {fb, tile_i, width_i - 1'b1}, {fb_q, tile_q, last_x_q})
 
   // ---- Input slices: the writer's end of the wire from the engines -------------------------
   // A pixel's row-end test (x mod T == T-1 or x == W-1) is taken on the way in and travels with

@@ -8,6 +8,7 @@
 // beside them the plane's burst shape (first-beat offset, beats, the 4 KiB split) -> a short
 // queue (S5) that the AW side takes from (row_valid_o / row_ready_i).
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 `include "../system/msr_fbw_types.svh"
 
 module msr_fbw_addr import msr_pkg::*; import msr_fbw_pkg::*; #(
@@ -103,14 +104,7 @@ module msr_fbw_addr import msr_pkg::*; import msr_fbw_pkg::*; #(
   end
 
   // Reset but never cleared: the products follow the strides whatever the frame does.
-  msr_clr_reg #(.WIDTH(NMUL * (32 + 5))) u_mul (
-    .clk_i,
-    .rst_ni,
-    .clear_i (1'b0),
-    .en_i    (1'b1),
-    .d_i     ({mul_d, mul_c_d}),
-    .q_o     ({mul_q, mul_c_q})
-  );
+  `MSR_CLR_REG(u_mul, NMUL * (32 + 5), 1'b0, 1'b1, {mul_d, mul_c_d}, {mul_q, mul_c_q})
 
   function automatic logic [31:0] mult8(logic [2:0] d, logic [31:0] s, logic [31:0] s3,
                                         logic [31:0] s5, logic [31:0] s7);
@@ -192,24 +186,14 @@ module msr_fbw_addr import msr_pkg::*; import msr_fbw_pkg::*; #(
   assign arb_ready = (s5_credit_q != ($clog2(S5_D) + 1)'(S5_D));
   assign s5_take   = row_valid_o && row_ready_i;
 
-  msr_clr_reg #(.WIDTH($clog2(S5_D) + 1)) u_s5_credit (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     (s5_credit_q + ($clog2(S5_D) + 1)'(arb_take) - ($clog2(S5_D) + 1)'(s5_take)),
-    .q_o     (s5_credit_q)
-  );
+  `MSR_CLR_REG(u_s5_credit, $clog2(S5_D) + 1, clear_i, 1'b1,
+               s5_credit_q + ($clog2(S5_D) + 1)'(arb_take) - ($clog2(S5_D) + 1)'(s5_take),
+               s5_credit_q)
 
   // The stages' valid bits, one shift register.
-  msr_clr_reg #(.WIDTH(7)) u_stage_v (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     ({s3_v_q, s2_v_q, s15_v_q, s1m_v_q, s1_v_q, s0_v_q, arb_take}),
-    .q_o     ({s4_v_q, s3_v_q, s2_v_q, s15_v_q, s1m_v_q, s1_v_q, s0_v_q})
-  );
+  `MSR_CLR_REG(u_stage_v, 7, clear_i, 1'b1,
+               {s3_v_q, s2_v_q, s15_v_q, s1m_v_q, s1_v_q, s0_v_q, arb_take},
+               {s4_v_q, s3_v_q, s2_v_q, s15_v_q, s1m_v_q, s1_v_q, s0_v_q})
 
   assign meta_in_o  = s0_in_q;
   assign meta_buf_o = s0_buf_q;

@@ -8,6 +8,7 @@
 // out on the bus. One ID: B comes in order, and the addresses of the bursts on the bus wait in
 // order for theirs (so a failing response names its burst).
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 `include "../system/msr_fbw_types.svh"
 `include "../system/msr_axi_ports.svh"
 
@@ -120,14 +121,7 @@ module msr_fbw_aw import msr_fbw_pkg::*; #(
     end
   end
 
-  msr_clr_reg #(.WIDTH(4)) u_blv (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     (blv_d),
-    .q_o     (blv_q)
-  );
+  `MSR_CLR_REG(u_blv, 4, clear_i, 1'b1, blv_d, blv_q)
   always_ff @(posedge clk_i) begin
     bl_q <= bl_d;
   end
@@ -190,14 +184,9 @@ module msr_fbw_aw import msr_fbw_pkg::*; #(
                       (32'(budget_q) == MAX_OUT && b_pop);
 
   // out_ok_q is 1 after reset and clear: the budget is then empty.
-  msr_clr_reg #(.WIDTH(2 * OUT_W + 2), .RESET({(2 * OUT_W)'(0), 2'b10})) u_budget (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     ({budget_d, onbus_q + OUT_W'(aw_hs) - OUT_W'(b_pop), out_ok_d, onbus_nz_d}),
-    .q_o     ({budget_q, onbus_q, out_ok_q, onbus_nz_q})
-  );
+  `MSR_CLR_REG_RST(u_budget, 2 * OUT_W + 2, {(2 * OUT_W)'(0), 2'b10}, clear_i, 1'b1,
+                   {budget_d, onbus_q + OUT_W'(aw_hs) - OUT_W'(b_pop), out_ok_d, onbus_nz_d},
+                   {budget_q, onbus_q, out_ok_q, onbus_nz_q})
 
   msr_fifo #(.WIDTH(32), .DEPTH(AQ_D)) u_addr_fifo (
     .clk_i   (clk_i),

@@ -18,6 +18,7 @@
 // side has read its last beat (free_*_i); it is offered to the address side (row_ready_o)
 // until taken (take_i), and `picked` from then on.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_fbw_rowbuf import msr_pkg::*; import msr_fbw_pkg::*; #(
   parameter int unsigned NUM_IN     = 4,     // pixel streams (engines)
@@ -143,14 +144,9 @@ module msr_fbw_rowbuf import msr_pkg::*; import msr_fbw_pkg::*; #(
     // taken (its flags change only by the take), so last clock's flag minus this clock's take
     // is never ready early; a new row shows a clock later. That cut the buffer-flag muxes off
     // the arbiter's carry chain and the pick that follows it.
-    msr_clr_reg #(.WIDTH(2 * NBUF + 2 * BUF_W + 2)) u_state (
-      .clk_i,
-      .rst_ni,
-      .clear_i,
-      .en_i    (1'b1),
-      .d_i     ({full_d, picked_d, col_d, pick_d, pix_hs[i], row_ready[i] && !take_i[i]}),
-      .q_o     ({full_q[i], picked_q[i], col_q[i], pick_q[i], wr_v_q[i], row_ready_q[i]})
-    );
+    `MSR_CLR_REG(u_state, 2 * NBUF + 2 * BUF_W + 2, clear_i, 1'b1,
+                 {full_d, picked_d, col_d, pick_d, pix_hs[i], row_ready[i] && !take_i[i]},
+                 {full_q[i], picked_q[i], col_q[i], pick_q[i], wr_v_q[i], row_ready_q[i]})
 
     // Data registers: written on a handshake only, read only under their valid / full flag.
     always_ff @(posedge clk_i) begin
@@ -215,14 +211,7 @@ module msr_fbw_rowbuf import msr_pkg::*; import msr_fbw_pkg::*; #(
       assign pwe_d[j] = wr_v_q[i] && (32'(pw) % WPB == j);
       assign swe_d[j] = sword_we && (32'(sw) % WPB == j);
     end
-    msr_clr_reg #(.WIDTH(2 * WPB)) u_we (
-      .clk_i,
-      .rst_ni,
-      .clear_i,
-      .en_i    (1'b1),
-      .d_i     ({pwe_d, swe_d}),
-      .q_o     ({pwe_q, swe_q})
-    );
+    `MSR_CLR_REG(u_we, 2 * WPB, clear_i, 1'b1, {pwe_d, swe_d}, {pwe_q, swe_q})
 
     always_ff @(posedge clk_i) begin
       if (wr_v_q[i] && slot != 2'd3) asm_q[i][slot] <= wr_code_q[i];

@@ -5,6 +5,7 @@
 // and WLAST; W2 reads the buffer at that address (LUT RAM, asynchronous) into the W output
 // register. A row's buffer is free once W2 reads its last beat (free_*_o, registered).
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 `include "../system/msr_fbw_types.svh"
 `include "../system/msr_axi_ports.svh"
 
@@ -79,14 +80,7 @@ module msr_fbw_w import msr_fbw_pkg::*; #(
 
   // Registered: the buffers' flags sit with their inputs, spread over the die, and the W side
   // is in one place; a buffer is free a clock after its last beat is read.
-  msr_clr_reg #(.WIDTH(1)) u_row_free (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     (w2_load && w1_last_q && w1_row_last_q),
-    .q_o     (row_free_q)
-  );
+  `MSR_CLR_REG(u_row_free, 1, clear_i, 1'b1, w2_load && w1_last_q && w1_row_last_q, row_free_q)
   always_ff @(posedge clk_i) begin
     row_free_in_q  <= w1_in_q;
     row_free_buf_q <= w1_buf_q;
@@ -113,23 +107,11 @@ module msr_fbw_w import msr_fbw_pkg::*; #(
   end
 
   // W1 fills on an issue and empties into W2; W2 fills from W1 and empties on WREADY.
-  msr_clr_reg #(.WIDTH(2)) u_w_v (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     ({w_issue || (w1_v_q && !w2_load), w2_load || (wv_q && !m_axi_wready)}),
-    .q_o     ({w1_v_q, wv_q})
-  );
+  `MSR_CLR_REG(u_w_v, 2, clear_i, 1'b1,
+               {w_issue || (w1_v_q && !w2_load), w2_load || (wv_q && !m_axi_wready)},
+               {w1_v_q, wv_q})
   // The beat of the burst at the queue's head.
-  msr_clr_reg #(.WIDTH(8)) u_wcnt (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (w_issue),
-    .d_i     (wlast_d ? '0 : wcnt_q + 1'b1),
-    .q_o     (wcnt_q)
-  );
+  `MSR_CLR_REG(u_wcnt, 8, clear_i, w_issue, wlast_d ? '0 : wcnt_q + 1'b1, wcnt_q)
   // The beat's buffer address goes only to the copy of the input it reads (the others keep
   // theirs: their read data is not selected), so each copy drives a quarter of the memories.
   for (genvar i = 0; i < NUM_IN; i++) begin : g_raddr

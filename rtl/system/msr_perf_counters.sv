@@ -8,6 +8,7 @@
 // the read-back registers of every count the register block shows, these and the
 // controller's error counts (err_i), one clock old.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_perf_counters import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES = 4,
@@ -37,14 +38,8 @@ module msr_perf_counters import msr_pkg::*; import msr_sys_pkg::*; #(
   // by the writer's inputs: the per-kind counts below then start at flip-flops, not at the
   // handshakes' wires and the controller's state decode (the default top's worst path on
   // ECP5 at 3fb0e1e, seeds 2 and 3: those wires into this sum, 9 LUT levels; issue 31).
-  msr_clr_reg #(.WIDTH(NUM_ENGINES * (1 + $bits(src_t)))) u_hs_q (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     ({pix_hs_i & {NUM_ENGINES{en_i}}, pix_src_i}),
-    .q_o     ({hs_q, src_q})
-  );
+  `MSR_CLR_REG(u_hs_q, NUM_ENGINES * (1 + $bits(src_t)), clear_i, 1'b1,
+               {pix_hs_i & {NUM_ENGINES{en_i}}, pix_src_i}, {hs_q, src_q})
 
   // Pixels taken a clock ago, per kind: codes 0..3 traced at level k, 17..19 interpolated;
   // none outside a frame.
@@ -59,14 +54,9 @@ module msr_perf_counters import msr_pkg::*; import msr_sys_pkg::*; #(
     end
   end
 
-  msr_clr_reg #(.WIDTH(7 * N_W + 3)) u_events (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     ({n_traced_d, n_interp_d, en_i, en_i && rstall_i, en_i && mstall_i}),
-    .q_o     ({n_traced_q, n_interp_q, en_q, rstall_q, mstall_q})
-  );
+  `MSR_CLR_REG(u_events, 7 * N_W + 3, clear_i, 1'b1,
+               {n_traced_d, n_interp_d, en_i, en_i && rstall_i, en_i && mstall_i},
+               {n_traced_q, n_interp_q, en_q, rstall_q, mstall_q})
 
   msr_sat_counter #(.WIDTH(32), .INC_W(1)) u_cycles (
     .clk_i (clk_i), .rst_ni (rst_ni), .clear_i (clear_i), .en_i (en_q), .inc_i (1'b1),
@@ -97,14 +87,9 @@ module msr_perf_counters import msr_pkg::*; import msr_sys_pkg::*; #(
   // placed next to it, not among counters spread over the die (the address decode's fan-out
   // to them and back set the glue's clock). A read returns a count one clock old; the status
   // bits (BUSY, DONE, ...) are not delayed, so a frame's counts are final when DONE reads 1.
-  msr_clr_reg #(.WIDTH($bits(readback_t))) u_readback_q (
-    .clk_i,
-    .rst_ni,
-    .clear_i (1'b0),
-    .en_i    (1'b1),
-    .d_i     (readback_t'{cycles: cycles, traced: traced, interp: interp, rstall: rstall,
-                          mstall: mstall, err: err_i}),
-    .q_o     (readback_o)
-  );
+  `MSR_CLR_REG(u_readback_q, $bits(readback_t), 1'b0, 1'b1,
+               readback_t'{cycles: cycles, traced: traced, interp: interp, rstall: rstall,
+                           mstall: mstall, err: err_i},
+               readback_o)
 
 endmodule : msr_perf_counters

@@ -19,6 +19,7 @@
 // 128) >> 8). With bud_en_i low the frame's descriptors are those of a top without it; a top
 // built without it (BUDGET_EN = 0) has no S6 and no wait at all.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_tile_gen import msr_pkg::*; #(
   parameter int unsigned NUM_ENGINES = 4,
@@ -196,14 +197,7 @@ module msr_tile_gen import msr_pkg::*; #(
     end
   end
 
-  msr_clr_reg #(.WIDTH($bits(ctl_t))) u_ctl (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .en_i    (1'b1),
-    .d_i     (ctl_d),
-    .q_o     (ctl_q)
-  );
+  `MSR_CLR_REG(u_ctl, $bits(ctl_t), clear_i, 1'b1, ctl_d, ctl_q)
 
   // Data registers: read only under their valid flags.
   always_ff @(posedge clk_i) begin

@@ -9,6 +9,7 @@
 // register too; a limit written while counting takes effect two clocks later, which moves a
 // fire by at most two clocks and never fires below the smaller of the two limits minus two.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_watchdog #(
   parameter int unsigned DRAIN_TIMEOUT = 16384   // bound of a drain when the limit is 0
@@ -35,11 +36,7 @@ module msr_watchdog #(
   assign fire_o = on && !restart_i && hit_q;
   assign clr    = !on || progress_i || fire_o || restart_i;
 
-  msr_clr_reg #(.WIDTH(33)) u_limit_q (
-    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
-    .d_i ({limit != '0, limit - 1'b1}),
-    .q_o ({lim_on_q, lim_m1_q})
-  );
+  `MSR_CLR_REG(u_limit_q, 33, 1'b0, 1'b1, {limit != '0, limit - 1'b1}, {lim_on_q, lim_m1_q})
 
   // The 32-bit count is two 16-bit halves; the upper half steps on a registered "lower half is
   // all ones" flag (set the clock before the lower half reaches it), so no path holds a 32-bit
@@ -57,11 +54,7 @@ module msr_watchdog #(
       hit_d        = lim_on_q && (cnt_q == lim_m1_q);
     end
   end
-  msr_clr_reg #(.WIDTH(34)) u_cnt_q (
-    .clk_i, .rst_ni, .clear_i (1'b0), .en_i (1'b1),
-    .d_i ({cnt_d, lo_ones_d, hit_d}),
-    .q_o ({cnt_q, lo_ones_q, hit_q})
-  );
+  `MSR_CLR_REG(u_cnt_q, 34, 1'b0, 1'b1, {cnt_d, lo_ones_d, hit_d}, {cnt_q, lo_ones_q, hit_q})
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_lo_ones, lo_ones_q == (cnt_q[15:0] == 16'hFFFF))

@@ -32,6 +32,34 @@ def rtl_entries(file_list: Path = FILE_LIST) -> list[str]:
     return out
 
 
+def macro_bodies() -> dict[str, str]:
+    """Every `define of the RTL's headers (rtl/*/*.svh): name -> body. A unit that writes its
+    flops or bus ports through a macro (msr_flops.svh, msr_axi_ports.svh) names the modules
+    inside the body only there; readers that find a unit's submodules by name in its text
+    (lint's closure, the ASIC flow's hierarchy) add the bodies of the macros it uses."""
+    import re
+    out = {}
+    for h in sorted(RTL.glob("*/*.svh")):
+        text = h.read_text()
+        for m in re.finditer(r"^`define\s+(\w+)(.*?)(?<!\\)$", text, re.M | re.S):
+            out[m.group(1)] = m.group(2)
+    return out
+
+
+def with_macros(text: str, bodies: dict[str, str] | None = None) -> str:
+    """text and, appended, the bodies of the macros it uses (transitively)."""
+    import re
+    bodies = macro_bodies() if bodies is None else bodies
+    seen, todo, extra = set(), [text], []
+    while todo:
+        for name in re.findall(r"`(\w+)", todo.pop()):
+            if name in bodies and name not in seen:
+                seen.add(name)
+                extra.append(bodies[name])
+                todo.append(bodies[name])
+    return "\n".join([text, *extra])
+
+
 def rtl_sources(file_list: Path = FILE_LIST) -> list[Path]:
     """Source files of rtl/msr.f in order (package first), as absolute paths."""
     return [ROOT / e for e in rtl_entries(file_list) if not e.startswith(("+", "-"))]
