@@ -99,7 +99,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     ST_PL,       // p of the last row = W * h_last
     ST_N0,       // (B' - G) * u0
     ST_M0,       // u0 * u0
-    ST_ACT,      // a_j = (c_j - g_j) * u_j
+    ST_FLR,      // the activity floor: max(c_j - g_j, p_j >> FLOOR_SHIFT) loaded
+    ST_ACT,      // a_j = max(c_j - g_j, p_j >> FLOOR_SHIFT) * u_j
     ST_ACC,      // the sums and the memory word
     ST_LAW,      // which law
     ST_NUM,      // (N + N0) * (W * H - P)
@@ -195,6 +196,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   assign p_sel     = row_last_q ? frm_q.p_last : frm_q.p_full;
   assign c_diff    = {1'b0, row_traced_i} - {1'b0, g_sel};
   assign c_minus_g = c_diff[18] ? '0 : c_diff[17:0];
+  logic [17:0]      floor_px;              // p_j >> FLOOR_SHIFT
+  assign floor_px  = law_q.p_row >> FLOOR_SHIFT;
   assign pp0       = (WH_W + 1)'(law_q.p_sum) + (WH_W + 1)'(frm_q.p0);
   assign nn0       = law_q.n + law_q.n0;
   assign a_diff    = {1'b0, law_q.atot} - {1'b0, law_q.ad};
@@ -258,11 +261,16 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       ST_IDLE: begin
         if (act_q && row_done_i) begin
           mem_re   = 1'b1;
-          mul_load = 1'b1;
-          mul_a    = MC_W'(c_minus_g);
-          mul_b    = MP_W'(u_q[base_q]);
-          state_d  = ST_ACT;
+          state_d  = ST_FLR;
         end
+      end
+      // The floor from registers (c_j - g_j and p_j, latched with the row result): the
+      // subtract and the compare are not one carry chain after the other in one clock.
+      ST_FLR: begin
+        mul_load = 1'b1;
+        mul_a    = MC_W'((law_q.ex > floor_px) ? law_q.ex : floor_px);
+        mul_b    = MP_W'(u_q[base_q]);
+        state_d  = ST_ACT;
       end
       // The chains of products: a product done starts the next (the table above).
       ST_G, ST_WH, ST_GL, ST_PL, ST_N0, ST_NUM: if (mul_done) begin
@@ -420,8 +428,9 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             law_q.c <= row_traced_i;
             law_q.g_row <= g_sel;
             law_q.p_row <= p_sel;
+            law_q.ex <= c_minus_g;
           end
-          ST_ACT: ;
+          ST_FLR, ST_ACT: ;
           ST_ACC: begin
             law_q.n <= law_q.n + ACT_W'(mul_prod);
             law_q.p_sum <= law_q.p_sum + WH_W'(law_q.p_row);

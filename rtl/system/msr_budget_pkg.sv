@@ -8,6 +8,8 @@ package msr_budget_pkg;
   /* verilator lint_off UNUSEDPARAM */
   // Scale u in 1/256: the clamp [U_MIN, U_MAX] = [45, 1448] (0.18 .. 5.66).
   localparam logic [10:0] U_MIN = 11'd45;
+  // A row's activity is at least its pixels >> FLOOR_SHIFT times its scale (docs/budget.md).
+  localparam int unsigned FLOOR_SHIFT = 7;
   localparam logic [10:0] U_MAX = 11'd1448;
   localparam logic [10:0] Q_SAT = 11'd1449;      // U_MAX + 1: "no budget left" / saturated
   /* verilator lint_on UNUSEDPARAM */
@@ -64,6 +66,7 @@ package msr_budget_pkg;
     logic [17:0]          c;          // the finished row's c_j, g_j, p_j
     logic [17:0]          g_row;
     logic [17:0]          p_row;
+    logic [17:0]          ex;         // c_j - g_j (the floor is applied from it a clock later)
     logic [10:0]          slew;       // u_{j+1} >> 1
     logic [10:0]          u_mx;       // max(q, u_{j+1} >> 1)
   } budget_law_t;

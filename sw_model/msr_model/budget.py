@@ -14,7 +14,8 @@ Rows 0 and 1 take the seed u_0 (register SCALE_INIT, 0 read as 1.0); row r >= 2 
 scale the controller computed when row r - 2 was finished, and is handed out only after that
 (so nothing depends on which engine was faster). After each finished row j, in row order:
 
-    a_j = (c_j - g_j) * u_j            # the row's activity: traced above its initial grid, times u
+    a_j = max(c_j - g_j, p_j >> FLOOR_SHIFT) * u_j    # the row's activity: traced above its
+                                       # initial grid (at least a floor), times u
     N  += a_j;  C += c_j;  P += p_j    # activity, traced and pixels of the finished rows
     X   = B - C - G_rem                # budget left above the initial grid of the rows to come
     q   = ((N + N0) * Q) // ((P + P0) * X)           # first frame: the rows seen so far, extrapolated
@@ -26,6 +27,11 @@ PRIOR_SHIFT and P0 = (W * H) >> PRIOR_SHIFT (the seed's guess "u_0 traces B", we
 part of a frame), A_prev the previous frame's activity and A_done its part over rows <= j
 (the per-row activity memory). After the last row SCALE_OUT = clamp(N // (B - G)): the one
 scale that, on this frame's activity, traces B; it and the activity memory seed the next frame.
+
+The floor (p_j >> FLOOR_SHIFT, 1/128 of the row's pixels): a row that traced only its grid at a
+large scale would otherwise read as a row that never traces at any scale; with the floor the law
+keeps some budget for it and a sequence of frames at a small budget settles instead of swinging
+(docs/budget.md, "The activity floor").
 
 A budget below the frame's initial grid (`grid_count`) cannot be met: START refuses it
 (`BudgetRefused`; STATUS.ERROR ERR_BUDGET in the hardware).
@@ -47,6 +53,7 @@ U_MIN = 45                         # m = 8: thresholds x 1/32
 U_MAX = 1448                       # m = 8190: thresholds x 32 (u: 11 bits)
 PRIOR_SHIFT = 6                    # default weight of the seed's guess: 1/64 of a frame
 PRIOR_SHIFT_MAX = 7
+FLOOR_SHIFT = 7                    # activity floor of a row: its pixels >> 7 (docs/budget.md)
 BUDGET_MAX = (1 << 24) - 1         # BUDGET register: 24 bits (W * H <= 2^24)
 ERR_BUDGET = 14                    # STATUS.ERROR: budget below the frame's initial grid
 ERR_PROFILE = 15                   # STATUS.ERROR: seeded from a profile of another tile-row count
@@ -199,7 +206,7 @@ class Controller:
         g, p = row_grid(self.width, h, self.params), self.width * h
         if not g <= traced <= p:
             raise ValueError(f"row {j}: traced {traced} outside {g}..{p}")
-        a = (traced - g) * self.scales[j]
+        a = max(traced - g, p >> FLOOR_SHIFT) * self.scales[j]
         self.activity.append(a)
         self.n_act += a
         self.traced += traced

@@ -50,6 +50,20 @@ def test_worked_example_by_hand():
     assert nxt.scales == [279, 279, 290]
 
 
+def test_activity_floor_by_hand():
+    """A row that traces only its grid (or a little more) still counts p >> 7 pixels of activity
+    at its scale: 64 x 40, rows of 1024, 1024 and 512 pixels, floors 8, 8 and 4."""
+    ctl = BG.Controller(64, 40, L2, BG.BudgetConfig(budget=640, scale_init=256, prior_shift=6))
+    ctl.finish_row(100)               # the grid only: max(0, 1024 >> 7) * 256
+    assert ctl.activity == [8 * 256]
+    ctl.finish_row(103)               # 3 above the grid, under the floor
+    assert ctl.activity == [2048, 8 * 256]
+    u2 = ctl.scales[2]
+    ctl.finish_row(65)                # 5 above the grid of the last row, over its floor of 4
+    assert ctl.activity == [2048, 2048, 5 * u2]
+    assert ctl.n_act == sum(ctl.activity)
+
+
 def test_threshold_scale_identity_and_saturation():
     assert BG.thr_multiplier(256) == 256
     assert all(BG.scale_threshold(t, 256) == t for t in range(256))
