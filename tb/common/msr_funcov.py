@@ -18,7 +18,7 @@ AXES = {
         "metric": ["max", "sum"],
         "fov": ["off", "on"],
         "partial": ["none", "x", "y", "xy"],          # frame edge cuts the last tile column / row
-        "engines": [3, 4],
+        "engines": [2, 3, 4],                        # 2: the patent-only build (LINDILATE 0)
         "backpressure": ["none", "some", "heavy"],    # memory pauses and render-port readiness
         "src": ["on", "off"],
     },
