@@ -67,7 +67,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   localparam int unsigned REM_W  = PROD_W + 1;   // 62: holds den << 11
   localparam int unsigned MEM_DEPTH = 512;
 
-  // ---- The configuration and the grid constants, four clocks after the pulses -------------
+  // ---- The configuration and the grid constants, five clocks after the pulses -------------
   // The check's flags and the row read-back drop at the input pulse itself (below).
   logic             check_p, start_p;
   budget_grid_t     cfg;                  // the configuration and the constants
@@ -168,7 +168,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // ---- Activity memory ---------------------------------------------------------------------
   (* no_rw_check *)
   logic [MEM_W-1:0] mem_q [MEM_DEPTH];
-  logic [MEM_W-1:0] mem_rdata_q;
+  logic [MEM_W-1:0] mem_rdata_q, mem_word_q;
   logic             mem_re, mem_we;
   logic [8:0]       mem_addr;
   assign mem_addr = rows_done_q[8:0];
@@ -179,6 +179,10 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   always_ff @(posedge clk_i) begin
     if (mem_re) mem_rdata_q <= mem_q[mem_addr];
   end
+  // The word registered once more (the block RAM's output register on ECP5): read in ST_IDLE,
+  // used in ST_ACC, after ST_FLR and the a_j product; from the RAM's clock-to-output straight
+  // into the 35-bit sum it was the unit's worst path.
+  always_ff @(posedge clk_i) mem_word_q <= mem_rdata_q;
 
   // ---- Row quantities ------------------------------------------------------------------------
   logic             x_pos;
@@ -234,12 +238,15 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // law: the numerator from ST_LAW, then the denominator).
   logic [MC_W-1:0] next_a;
   logic [MP_W-1:0] next_b;
-  logic [5:0]      n0_last;
-  assign n0_last = grid_axis(frm_q.h_last, cfg.levels);
+  // n0 of the last row, registered: h_last loads at the pulse and ST_WH, which uses it, begins
+  // after the G product (at least one clock); from the pulse's registers through grid_axis
+  // into the multiplier's load it was the unit's worst path.
+  logic [5:0]      n0_last_q;
+  always_ff @(posedge clk_i) n0_last_q <= grid_axis(frm_q.h_last, cfg.levels);
   always_comb begin
     unique case (state_q)
       ST_G:    begin next_a = MC_W'(cfg.width);    next_b = MP_W'(cfg.height);        end
-      ST_WH:   begin next_a = MC_W'(frm_q.line_w); next_b = MP_W'(n0_last);           end
+      ST_WH:   begin next_a = MC_W'(frm_q.line_w); next_b = MP_W'(n0_last_q);           end
       ST_GL:   begin next_a = MC_W'(cfg.width);    next_b = MP_W'(frm_q.h_last);      end
       ST_PL:   begin next_a = MC_W'(frm_q.spare);  next_b = MP_W'(frm_q.u0);          end
       ST_N0:   begin next_a = MC_W'(frm_q.u0);     next_b = MP_W'(frm_q.u0);          end
@@ -359,7 +366,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
                   && row_idx_i < frm_q.nty;
       row_m_q  <= m_q[(row_idx_i == rows_done_q) ? base_q : slot1];
 
-      // The input pulses drop the old answers at once (the sequence starts four clocks later).
+      // The input pulses drop the old answers at once (the sequence starts five clocks later).
       if (check_i) check_done_q <= 1'b0;
       if (start_i) begin
         act_q    <= 1'b0;
@@ -435,7 +442,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             law_q.n <= law_q.n + ACT_W'(mul_prod);
             law_q.p_sum <= law_q.p_sum + WH_W'(law_q.p_row);
             law_q.x_rem <= law_q.x_rem - $signed({9'd0, law_q.c}) + $signed({9'd0, law_q.g_row});
-            if (frm_q.seeded) law_q.ad <= law_q.ad + ACT_W'(mem_rdata_q);
+            if (frm_q.seeded) law_q.ad <= law_q.ad + ACT_W'(mem_word_q);
           end
           ST_LAW: begin
             law_q.slew <= u_q[slot1] >> 1;           // (the divider is loaded above)

@@ -68,7 +68,12 @@ module msr_budget_rows import msr_pkg::*; #(
   assign row_traced_o = traced_q[hslot_q];
   assign busy_o       = act_q;
 
-  // S2: each slot's counts plus this clock's pixels of its row; the taken row's slot restarts.
+  // S2: each slot's counts plus this clock's pixels of its row; the taken row's slot restarts a
+  // clock after the take (take_q: the take itself is the controller's ready and this unit's
+  // row compare, too late to also steer three counters). No pixel of the slot's next row (three
+  // rows on) can come in that clock: the tile generator waits for the controller's update.
+  logic                   take_q;
+  slot_t                  tslot_q;                       // the slot taken
   logic [2:0][CNT_W-1:0]  traced_d;
   logic [2:0][TROW_W-1:0] tiles_d;
   // Per slot the clock's counts first (a small popcount of the inputs), then one add: not a
@@ -85,14 +90,16 @@ module msr_budget_rows import msr_pkg::*; #(
           inc_la[s] = inc_la[s] + INC_W'(s1_last_q[i]);
         end
       end
-      traced_d[s] = ((take && slot_t'(s) == hslot_q) ? '0 : traced_q[s]) + CNT_W'(inc_tr[s]);
-      tiles_d[s]  = ((take && slot_t'(s) == hslot_q) ? '0 : tiles_q[s]) + TROW_W'(inc_la[s]);
+      traced_d[s] = ((take_q && slot_t'(s) == tslot_q) ? '0 : traced_q[s]) + CNT_W'(inc_tr[s]);
+      tiles_d[s]  = ((take_q && slot_t'(s) == tslot_q) ? '0 : tiles_q[s]) + TROW_W'(inc_la[s]);
     end
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       act_q    <= 1'b0;
+      take_q   <= 1'b0;
+      tslot_q  <= '0;
       s1_v_q   <= '0;
       head_q   <= '0;
       hslot_q  <= '0;
@@ -100,9 +107,11 @@ module msr_budget_rows import msr_pkg::*; #(
       tiles_q  <= '0;
     end else if (clear_i) begin
       act_q    <= 1'b0;
+      take_q   <= 1'b0;
       s1_v_q   <= '0;
     end else if (start_i) begin
       act_q    <= 1'b1;
+      take_q   <= 1'b0;
       s1_v_q   <= '0;
       head_q   <= '0;
       hslot_q  <= '0;
@@ -112,6 +121,8 @@ module msr_budget_rows import msr_pkg::*; #(
       s1_v_q   <= pix_fire_i & {NUM_IN{act_q}};
       traced_q <= traced_d;
       tiles_q  <= tiles_d;
+      take_q   <= take;
+      tslot_q  <= hslot_q;
       if (take) begin
         head_q  <= head_q + 1'b1;
         hslot_q <= slot_add(hslot_q, 2'd1);
