@@ -7,6 +7,7 @@
 // (at once for b_i = 0, after at most B_W clocks otherwise) and it holds until the next load.
 // A clear stops a product in flight (done_o rises, the product is not meaningful).
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_shift_add_mul #(
   parameter int unsigned A_W = 36,               // multiplicand bits
@@ -29,26 +30,24 @@ module msr_shift_add_mul #(
   // B_W-bit register drove the divider's loads straight from the product's state (the budget
   // unit's worst path on ECP5, 91.8 MHz).
   logic done_q;
+  `MSR_CLR_REG_RST(u_done_q, 1, 1'b1, clear_i, load_i || !done_q,
+                   load_i ? (b_i == '0) : (mp_q[B_W-1:1] == '0), done_q)
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      mc_q   <= '0;
-      mp_q   <= '0;
-      acc_q  <= '0;
-      done_q <= 1'b1;
+      mc_q  <= '0;
+      mp_q  <= '0;
+      acc_q <= '0;
     end else if (clear_i) begin
-      mp_q   <= '0;
-      done_q <= 1'b1;
+      mp_q  <= '0;
     end else if (load_i) begin
-      mc_q   <= P_W'(a_i);
-      mp_q   <= b_i;
-      acc_q  <= '0;
-      done_q <= (b_i == '0);
+      mc_q  <= P_W'(a_i);
+      mp_q  <= b_i;
+      acc_q <= '0;
     end else if (!done_q) begin
       if (mp_q[0]) acc_q <= acc_q + mc_q;
-      mc_q   <= mc_q << 1;
-      mp_q   <= mp_q >> 1;
-      done_q <= (mp_q[B_W-1:1] == '0);
+      mc_q <= mc_q << 1;
+      mp_q <= mp_q >> 1;
     end
   end
 

@@ -12,6 +12,7 @@
 // Timing: S1 registers each input's slot (row mod 3, from the row's distance to the oldest open
 // row), traced and last flags; S2 adds the per-slot counts (0..NUM_IN each) into the counters.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_budget_rows import msr_pkg::*; #(
   parameter int unsigned NUM_IN = 4,                       // pixel streams (engines)
@@ -74,6 +75,7 @@ module msr_budget_rows import msr_pkg::*; #(
   // rows on) can come in that clock: the tile generator waits for the controller's update.
   logic                   take_q;
   slot_t                  tslot_q;                       // the slot taken
+  `MSR_CLR_REG(u_take_q, 3, clear_i || start_i, 1'b1, {take, hslot_q}, {take_q, tslot_q})
   logic [2:0][CNT_W-1:0]  traced_d;
   logic [2:0][TROW_W-1:0] tiles_d;
   // Per slot the clock's counts first (a small popcount of the inputs), then one add: not a
@@ -98,8 +100,6 @@ module msr_budget_rows import msr_pkg::*; #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       act_q    <= 1'b0;
-      take_q   <= 1'b0;
-      tslot_q  <= '0;
       s1_v_q   <= '0;
       head_q   <= '0;
       hslot_q  <= '0;
@@ -107,11 +107,9 @@ module msr_budget_rows import msr_pkg::*; #(
       tiles_q  <= '0;
     end else if (clear_i) begin
       act_q    <= 1'b0;
-      take_q   <= 1'b0;
       s1_v_q   <= '0;
     end else if (start_i) begin
       act_q    <= 1'b1;
-      take_q   <= 1'b0;
       s1_v_q   <= '0;
       head_q   <= '0;
       hslot_q  <= '0;
@@ -121,8 +119,6 @@ module msr_budget_rows import msr_pkg::*; #(
       s1_v_q   <= pix_fire_i & {NUM_IN{act_q}};
       traced_q <= traced_d;
       tiles_q  <= tiles_d;
-      take_q   <= take;
-      tslot_q  <= hslot_q;
       if (take) begin
         head_q  <= head_q + 1'b1;
         hslot_q <= slot_add(hslot_q, 2'd1);
