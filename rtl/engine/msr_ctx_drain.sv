@@ -23,11 +23,7 @@ module msr_ctx_drain
   // the pixel stream, row-major, global coordinates
   output logic                       pix_valid_o,
   input  logic                       pix_ready_i,
-  output coord_t                     pix_x_o,
-  output coord_t                     pix_y_o,
-  output rgb_t                       pix_rgb_o,
-  output src_t                       pix_src_o,
-  output logic                       pix_last_o  // last pixel of the tile
+  output pix_word_t                  pix_o       // the pixel (msr_pkg::pix_word_t)
 );
 
   logic             arb_valid, streaming_q, start_q, start_ready;
@@ -78,11 +74,7 @@ module msr_ctx_drain
     .rdata_src_i   (src_i[cur_q]),
     .pix_valid_o   (pix_valid_o),
     .pix_ready_i   (pix_ready_i),
-    .pix_x_o       (pix_x_o),
-    .pix_y_o       (pix_y_o),
-    .pix_rgb_o     (pix_rgb_o),
-    .pix_src_o     (pix_src_o),
-    .pix_last_o    (pix_last_o),
+    .pix_o         (pix_o),
     .done_o        (done)
   );
 

@@ -24,11 +24,7 @@ module msr_tile_stream
   input  src_t                 rdata_src_i,
   output logic                 pix_valid_o,  // pixel stream
   input  logic                 pix_ready_i,
-  output coord_t               pix_x_o,
-  output coord_t               pix_y_o,
-  output rgb_t                 pix_rgb_o,
-  output src_t                 pix_src_o,
-  output logic                 pix_last_o,   // last pixel of the tile
+  output pix_word_t            pix_o,        // global x, y, colour, source code, last of tile
   output logic                 done_o        // pulse: last pixel taken
 );
 
@@ -69,12 +65,8 @@ module msr_tile_stream
   assign re_o     = issue;
   assign raddr_o  = {ry_q, rx_q};
 
-  assign pix_x_o     = pop_word.x;
-  assign pix_y_o     = pop_word.y;
-  assign pix_rgb_o   = pop_word.rgb;
-  assign pix_src_o   = pop_word.src;
-  assign pix_last_o  = pop_word.last;
-  assign done_o      = pop && pix_last_o;
+  assign pix_o       = pop_word;
+  assign done_o      = pop && pop_word.last;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -144,7 +136,7 @@ module msr_tile_stream
   /* verilator lint_off SYNCASYNCNET */
   a_pix_hold : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i || $time == 0)
       pix_valid_o && !pix_ready_i |=> pix_valid_o &&
-        $stable({pix_x_o, pix_y_o, pix_rgb_o, pix_src_o, pix_last_o}))
+        $stable(pix_o))
     else $error("msr_tile_stream: pixel changed while stalled");
   a_no_overflow : assert property (@(posedge clk_i) disable iff (!rst_ni || $time == 0)
       push |-> 32'(cnt) < FIFO_DEPTH)
