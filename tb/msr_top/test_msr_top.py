@@ -979,6 +979,27 @@ async def test_budget(dut):
                           budget, W, H, tile, levels, k, gold.stats["traced"], bc["scale_per_row"], scale_out)
             cfg = BudgetConfig(budget=budget, scale_init=scale_out, profile=tuple(bc["activity_per_row"]))
             await env.wr(R.STATUS, R.STATUS_DONE_MASK)
+    # a soft reset in the middle of a budget frame (msr_budget's clear): idle, nothing pending,
+    # and the next budget frame, first-frame law, bit-exact
+    params = Params(tile=8, levels=2, thr=(6, 12))
+    budget = grid_count(48, 72, params) + 600
+    env.render.image = make_image(rng, 48, 72)
+    await program_budget(env, budget)
+    await env.program(48, 72, 8, 2, 0, [6, 12], 0)
+    await env.wr(R.CTRL, R.CTRL_START_MASK)
+    await ClockCycles(dut.clk_i, 400)
+    assert await env.rd(R.STATUS) & R.STATUS_BUSY_MASK, "budget frame finished before the soft reset"
+    await env.wr(R.CTRL, R.CTRL_SOFT_RESET_MASK)
+    st = await env.wait_idle()
+    assert st == 0, f"STATUS after a soft reset in a budget frame {st:#x}: want idle, not done, no error"
+    assert not env.render.pending, "cleared with render responses outstanding"
+    env.render.requests = []
+    await program_budget(env, budget)
+    f = await env.start_frame(48, 72, 8, 2, 0, [6, 12], 0)
+    st = await env.wait_idle()
+    assert st & R.STATUS_DONE_MASK and (st & R.STATUS_ERROR_MASK) == 0, f"after the reset: STATUS {st:#x}"
+    env.check_memory(f, budget=BudgetConfig(budget=budget))
+    await env.wr(R.STATUS, R.STATUS_DONE_MASK)
     # refused: below the grid; seeded after a frame with another number of tile rows
     env.ram.write(0, bytes([FILL]) * MEM)
     env.render.requests = []
