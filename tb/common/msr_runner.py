@@ -14,6 +14,7 @@ Environment (set by `make coverage`, `make soak` or by hand):
   MSR_FUNCOV_FILE   where the benches append their functional bins (the soak sets it)"""
 from __future__ import annotations
 
+import functools
 import os
 import time
 from pathlib import Path
@@ -32,11 +33,13 @@ def rtl_entries(file_list: Path = FILE_LIST) -> list[str]:
     return out
 
 
+@functools.lru_cache(maxsize=1)
 def macro_bodies() -> dict[str, str]:
     """Every `define of the RTL's headers (rtl/*/*.svh): name -> body. A unit that writes its
     flops or bus ports through a macro (msr_flops.svh, msr_axi_ports.svh) names the modules
     inside the body only there; readers that find a unit's submodules by name in its text
-    (lint's closure, the ASIC flow's hierarchy) add the bodies of the macros it uses."""
+    (lint's closure, the ASIC flow's hierarchy) add the bodies of the macros it uses. Read once
+    a process: those readers ask for every file and module."""
     import re
     out = {}
     for h in sorted(RTL.glob("*/*.svh")):
