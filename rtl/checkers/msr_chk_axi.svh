@@ -15,18 +15,22 @@
 // drives, S of what the slave drives (input, input for a passive checker; input, output for a
 // harness that plays the master of a slave under test; output, input for one that watches a
 // master under test).
-//   `MSR_AXIL_CONN(P, X)  `MSR_AXI4_W_CONN(P, X)
+//   `MSR_AXIL_PORTS_P(P, ...), `MSR_AXI4_AW_PORTS_P(P, ...) (and _WD_, _B_): the same with
+// the names prefixed by P (the accelerator's own ports, rtl/system/msr_axi_ports.svh).
+//   `MSR_AXIL_CONN(P, X)  `MSR_AXI4_W_CONN(P, X) (and _AW_, _WD_, _B_ per channel)
 // connect an instance's ports PORT<name> to the signals SIG<name> (either prefix may be empty:
 // `MSR_AXIL_CONN(, s_axil_) binds a checker to a slave's s_axil_* ports).
 `ifndef MSR_CHK_AXI_SVH
 `define MSR_CHK_AXI_SVH
 
-`define MSR_AXIL_PORTS(M, S, ADDR_W, DATA_W) \
-  M logic [ADDR_W-1:0] awaddr, araddr, M logic [2:0] awprot, arprot, \
-  M logic [DATA_W-1:0] wdata, M logic [DATA_W/8-1:0] wstrb, \
-  M logic awvalid, wvalid, bready, arvalid, rready, \
-  S logic [DATA_W-1:0] rdata, S logic [1:0] bresp, rresp, \
-  S logic awready, wready, bvalid, arready, rvalid
+`define MSR_AXIL_PORTS_P(P, M, S, ADDR_W, DATA_W) \
+  M logic [ADDR_W-1:0] P``awaddr, P``araddr, M logic [2:0] P``awprot, P``arprot, \
+  M logic [DATA_W-1:0] P``wdata, M logic [DATA_W/8-1:0] P``wstrb, \
+  M logic P``awvalid, P``wvalid, P``bready, P``arvalid, P``rready, \
+  S logic [DATA_W-1:0] P``rdata, S logic [1:0] P``bresp, P``rresp, \
+  S logic P``awready, P``wready, P``bvalid, P``arready, P``rvalid
+
+`define MSR_AXIL_PORTS(M, S, ADDR_W, DATA_W) `MSR_AXIL_PORTS_P(, M, S, ADDR_W, DATA_W)
 
 // One signal, and one channel's VALID/READY pair (CH: aw, w, b, ar, r).
 `define MSR_AXI_SIG(P, X, N) .P``N(X``N)
@@ -39,19 +43,37 @@
   `MSR_AXI_SIG(P, X, bresp), `MSR_AXI_SIG(P, X, araddr), `MSR_AXI_SIG(P, X, arprot), \
   `MSR_AXI_SIG(P, X, rdata), `MSR_AXI_SIG(P, X, rresp)
 
+// The AXI4 write channels one by one (the frame-buffer writer's AW side carries AW and B, its
+// W side W), then together.
+`define MSR_AXI4_AW_PORTS_P(P, M, S, ADDR_W, ID_W) \
+  M logic [ID_W-1:0] P``awid, M logic [ADDR_W-1:0] P``awaddr, M logic [7:0] P``awlen, \
+  M logic [2:0] P``awsize, P``awprot, M logic [1:0] P``awburst, M logic [3:0] P``awcache, \
+  M logic P``awlock, P``awvalid, S logic P``awready
+
+`define MSR_AXI4_WD_PORTS_P(P, M, S, DATA_W) \
+  M logic [DATA_W-1:0] P``wdata, M logic [DATA_W/8-1:0] P``wstrb, \
+  M logic P``wlast, P``wvalid, S logic P``wready
+
+`define MSR_AXI4_B_PORTS_P(P, M, S, ID_W) \
+  S logic [ID_W-1:0] P``bid, S logic [1:0] P``bresp, S logic P``bvalid, M logic P``bready
+
 `define MSR_AXI4_W_PORTS(M, S, ADDR_W, DATA_W, ID_W) \
-  M logic [ID_W-1:0] awid, M logic [ADDR_W-1:0] awaddr, M logic [7:0] awlen, \
-  M logic [2:0] awsize, awprot, M logic [1:0] awburst, M logic [3:0] awcache, \
-  M logic [DATA_W-1:0] wdata, M logic [DATA_W/8-1:0] wstrb, \
-  M logic awlock, awvalid, wlast, wvalid, bready, \
-  S logic [ID_W-1:0] bid, S logic [1:0] bresp, S logic awready, wready, bvalid
+  `MSR_AXI4_AW_PORTS_P(, M, S, ADDR_W, ID_W), `MSR_AXI4_WD_PORTS_P(, M, S, DATA_W), \
+  `MSR_AXI4_B_PORTS_P(, M, S, ID_W)
+
+`define MSR_AXI4_AW_CONN(P, X) \
+  `MSR_AXI_VR(P, X, aw), `MSR_AXI_SIG(P, X, awid), `MSR_AXI_SIG(P, X, awaddr), \
+  `MSR_AXI_SIG(P, X, awlen), `MSR_AXI_SIG(P, X, awsize), `MSR_AXI_SIG(P, X, awburst), \
+  `MSR_AXI_SIG(P, X, awlock), `MSR_AXI_SIG(P, X, awcache), `MSR_AXI_SIG(P, X, awprot)
+
+`define MSR_AXI4_WD_CONN(P, X) \
+  `MSR_AXI_VR(P, X, w), `MSR_AXI_SIG(P, X, wdata), `MSR_AXI_SIG(P, X, wstrb), \
+  `MSR_AXI_SIG(P, X, wlast)
+
+`define MSR_AXI4_B_CONN(P, X) \
+  `MSR_AXI_VR(P, X, b), `MSR_AXI_SIG(P, X, bid), `MSR_AXI_SIG(P, X, bresp)
 
 `define MSR_AXI4_W_CONN(P, X) \
-  `MSR_AXI_VR(P, X, aw), `MSR_AXI_VR(P, X, w), `MSR_AXI_VR(P, X, b), \
-  `MSR_AXI_SIG(P, X, awid), `MSR_AXI_SIG(P, X, awaddr), `MSR_AXI_SIG(P, X, awlen), \
-  `MSR_AXI_SIG(P, X, awsize), `MSR_AXI_SIG(P, X, awburst), `MSR_AXI_SIG(P, X, awlock), \
-  `MSR_AXI_SIG(P, X, awcache), `MSR_AXI_SIG(P, X, awprot), `MSR_AXI_SIG(P, X, wdata), \
-  `MSR_AXI_SIG(P, X, wstrb), `MSR_AXI_SIG(P, X, wlast), `MSR_AXI_SIG(P, X, bid), \
-  `MSR_AXI_SIG(P, X, bresp)
+  `MSR_AXI4_AW_CONN(P, X), `MSR_AXI4_WD_CONN(P, X), `MSR_AXI4_B_CONN(P, X)
 
 `endif  // MSR_CHK_AXI_SVH
