@@ -11,6 +11,9 @@ package msr_border_pkg;
 
   // The helpers below take whole values or structs and use a part of them.
   /* verilator lint_off UNUSEDSIGNAL */
+  // Every function here runs at elaboration only (the localparam tables at the end): no
+  // simulation code, so coverage is off for them (the tables' users are covered).
+  /* verilator coverage_off */
 
   // border_gap(r, k, o): gap b - a of the new position o of level k (0 if o is not new).
   function automatic gap_t border_gap(int unsigned r, int unsigned k, int unsigned o);
@@ -92,6 +95,7 @@ package msr_border_pkg;
     end
     return t;
   endfunction
+  /* verilator coverage_on */
   // Per r: level k's new border offsets' gaps (BGQ_NEW), G(k)'s offsets >= 1 and their count
   // (BQ_SET, BN_SET), level k's new offsets and their count (BQ_NEW, BN_NEW).
   localparam gq_row_t BGQ_NEW [8] = '{gq_new_row(0), gq_new_row(1), gq_new_row(2), gq_new_row(3),

@@ -2,7 +2,8 @@
 // sw_model/msr_model/budget.py, class Controller, bit for bit).
 //
 // Why sequential: a tile row lasts thousands of clocks and the law runs once per row, so one
-// shift-add multiplier (msr_shift_add_mul, up to 36 x 25 bits) and one restoring divider
+// bit-serial multiplier (msr_shift_add_mul, up to 36 x 25 bits, as many clocks as the multiplier
+// operand's width) and one restoring divider
 // (msr_seq_div, 11 quotient bits saturated at U_MAX + 1) do every product and quotient of the
 // frame; the only fast path is the read-back of a row's m.
 //
@@ -63,6 +64,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   localparam int unsigned MEM_W  = 28;           // a_j
   localparam int unsigned MC_W   = 36;           // multiplicand
   localparam int unsigned MP_W   = 25;           // multiplier
+  localparam int unsigned ST_W   = $clog2(MP_W + 1);  // a product's multiplier bits, 0..25
   localparam int unsigned PROD_W = MC_W + MP_W;  // 61
   localparam int unsigned REM_W  = PROD_W + 1;   // 62: holds den << 11
   localparam int unsigned MEM_DEPTH = 512;
@@ -131,38 +133,40 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [12:0]       row_m_q;
 
   // ---- Multiplier (msr_shift_add_mul): one multiplier bit per clock -------------------------
+  // A product's operands: b's low n bits are the multiplier, handed over left-aligned (a fixed
+  // n per product, so the alignment is wiring).
+  typedef struct packed {
+    logic [MC_W-1:0] a;
+    logic [MP_W-1:0] b;
+    logic [ST_W-1:0] n;
+  } mul_op_t;
+  function automatic mul_op_t mul_op(logic [MC_W-1:0] a, logic [MP_W-1:0] b, int unsigned n);
+    return '{a: a, b: b << (MP_W - n), n: ST_W'(n)};
+  endfunction
+
   logic              mul_load;
-  logic [MC_W-1:0]   mul_a;
-  logic [MP_W-1:0]   mul_b;
+  mul_op_t           mul, mop;
   logic [PROD_W-1:0] mul_prod;
   logic              mul_done;
 
   // The multiplier's first operands of a check or a start: G = line(W) * line(H). Loaded
-  // here, not in the state machine, as the pulse may come in any state.
-  logic              seq_load;
-  logic [MC_W-1:0]   seq_a;
-  logic [MP_W-1:0]   seq_b;
+  // here, not in the state machine, as the pulse may come in any state; mul_load of the state
+  // machine is overridden by a new sequence (one driver per flop).
+  logic              seq_load, mload;
   assign seq_load = !clear_i && (start_p || check_p);
-  assign seq_a    = MC_W'(cfg.line_w);
-  assign seq_b    = MP_W'(cfg.line_h);
-
-  // mul_load of the state machine is overridden by a new sequence (one driver per flop).
-  logic              mload;
-  logic [MC_W-1:0]   ma;
-  logic [MP_W-1:0]   mb;
-  assign mload = seq_load || (mul_load && !start_p && !check_p);
-  assign ma    = seq_load ? seq_a : mul_a;
-  assign mb    = seq_load ? seq_b : mul_b;
+  assign mload    = seq_load || (mul_load && !start_p && !check_p);
+  assign mop      = seq_load ? mul_op(MC_W'(cfg.line_w), MP_W'(cfg.line_h), 13) : mul;
 
   msr_shift_add_mul #(.A_W(MC_W), .B_W(MP_W)) u_mul (
     .clk_i,
     .rst_ni,
     .clear_i,
-    .load_i (mload),
-    .a_i    (ma),
-    .b_i    (mb),
-    .done_o (mul_done),
-    .prod_o (mul_prod)
+    .load_i  (mload),
+    .a_i     (mop.a),
+    .b_i     (mop.b),
+    .steps_i (mop.n),
+    .done_o  (mul_done),
+    .prod_o  (mul_prod)
   );
 
   // ---- Activity memory ---------------------------------------------------------------------
@@ -236,8 +240,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // The chains of products: when a state's product is done the next one starts with these
   // operands, in the next state of the enum (start: G, W * H, g and p of the last row, N0, m0;
   // law: the numerator from ST_LAW, then the denominator).
-  logic [MC_W-1:0] next_a;
-  logic [MP_W-1:0] next_b;
+  mul_op_t         nxt;
   // n0 of the last row, registered: h_last loads at the pulse and ST_WH, which uses it, begins
   // after the G product (at least one clock); from the pulse's registers through grid_axis
   // into the multiplier's load it was the unit's worst path.
@@ -245,21 +248,20 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   always_ff @(posedge clk_i) n0_last_q <= grid_axis(frm_q.h_last, cfg.levels);
   always_comb begin
     unique case (state_q)
-      ST_G:    begin next_a = MC_W'(cfg.width);    next_b = MP_W'(cfg.height);        end
-      ST_WH:   begin next_a = MC_W'(frm_q.line_w); next_b = MP_W'(n0_last_q);           end
-      ST_GL:   begin next_a = MC_W'(cfg.width);    next_b = MP_W'(frm_q.h_last);      end
-      ST_PL:   begin next_a = MC_W'(frm_q.spare);  next_b = MP_W'(frm_q.u0);          end
-      ST_N0:   begin next_a = MC_W'(frm_q.u0);     next_b = MP_W'(frm_q.u0);          end
-      ST_NUM:  begin next_a = MC_W'(pp0);          next_b = law_q.x_rem[MP_W-1:0];   end
-      default: begin next_a = nn0;                 next_b = frm_q.wh - law_q.p_sum;  end
+      ST_G:    nxt = mul_op(MC_W'(cfg.width), MP_W'(cfg.height), 13);
+      ST_WH:   nxt = mul_op(MC_W'(frm_q.line_w), MP_W'(n0_last_q), 6);
+      ST_GL:   nxt = mul_op(MC_W'(cfg.width), MP_W'(frm_q.h_last), 6);
+      ST_PL:   nxt = mul_op(MC_W'(frm_q.spare), MP_W'(frm_q.u0), 11);
+      ST_N0:   nxt = mul_op(MC_W'(frm_q.u0), MP_W'(frm_q.u0), 11);
+      ST_NUM:  nxt = mul_op(MC_W'(pp0), law_q.x_rem[MP_W-1:0], MP_W);
+      default: nxt = mul_op(nn0, frm_q.wh - law_q.p_sum, MP_W);
     endcase
   end
 
   always_comb begin
     state_d    = state_q;
     mul_load   = 1'b0;
-    mul_a      = '0;
-    mul_b      = '0;
+    mul        = '0;
     mem_re     = 1'b0;
     mem_we     = 1'b0;
     div_num_in = '0;
@@ -275,15 +277,14 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       // subtract and the compare are not one carry chain after the other in one clock.
       ST_FLR: begin
         mul_load = 1'b1;
-        mul_a    = MC_W'((law_q.ex > floor_px) ? law_q.ex : floor_px);
-        mul_b    = MP_W'(u_q[base_q]);
+        mul      = mul_op(MC_W'((law_q.ex > floor_px) ? law_q.ex : floor_px),
+                          MP_W'(u_q[base_q]), 11);
         state_d  = ST_ACT;
       end
       // The chains of products: a product done starts the next (the table above).
       ST_G, ST_WH, ST_GL, ST_PL, ST_N0, ST_NUM: if (mul_done) begin
         mul_load = !(state_q == ST_G && checking_q);   // a check ends with G
-        mul_a    = next_a;
-        mul_b    = next_b;
+        mul      = nxt;
         state_d  = mul_load ? state_e'(state_q + 5'd1) : ST_IDLE;
       end
       ST_M0: if (mul_done) state_d = ST_IDLE;
@@ -307,8 +308,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           state_d    = ST_DIV;
         end else begin
           mul_load = 1'b1;
-          mul_a    = next_a;
-          mul_b    = next_b;
+          mul      = nxt;
           state_d  = ST_NUM;
         end
       end
@@ -317,8 +317,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       ST_SLEW: state_d = ST_SQ0;
       ST_SQ0: begin
         mul_load = 1'b1;
-        mul_a    = MC_W'(u_new);
-        mul_b    = MP_W'(u_new);
+        mul      = mul_op(MC_W'(u_new), MP_W'(u_new), 11);
         state_d  = ST_SQ;
       end
       ST_SQ: if (mul_done) state_d = ST_IDLE;
