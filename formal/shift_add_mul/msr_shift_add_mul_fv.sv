@@ -3,6 +3,8 @@
 // rises exactly steps_i clocks after a load (at once for 0) and holds until the next load or
 // clear; once done after a load with no clear since, the product is a * (b >> (B_W - steps)),
 // the multiplier left-aligned as the budget controller hands it over.
+`include "msr_flops.svh"
+
 module msr_shift_add_mul_fv #(
   parameter int unsigned A_W = 5,
   parameter int unsigned B_W = 4,
@@ -33,20 +35,13 @@ module msr_shift_add_mul_fv #(
   logic [S_W-1:0] left_q;
   logic           one_q;                    // the last load was of one step
   wire  [P_W-1:0] want = P_W'(a_i) * P_W'(b_i >> (S_W'(B_W) - steps_i));
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      rec_q  <= 1'b0;
-      left_q <= '0;
-    end else if (clear_i) begin
-      rec_q  <= 1'b0;
-      left_q <= '0;
-    end else if (load_i) begin
-      rec_q  <= 1'b1;
+  `MSR_CLR_REG(u_rec_q, 1, clear_i, load_i, 1'b1, rec_q)
+  `MSR_CLR_REG(u_left_q, S_W, clear_i, load_i || left_q != '0,
+               load_i ? steps_i : left_q - S_W'(1), left_q)
+  always_ff @(posedge clk_i) begin
+    if (load_i) begin
       want_q <= want;
       one_q  <= steps_i == S_W'(1);
-      left_q <= steps_i;
-    end else if (left_q != '0) begin
-      left_q <= left_q - S_W'(1);
     end
   end
 
