@@ -431,8 +431,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             row_new_q  <= frm_q.nty > ROW_W'(2);
           end
           ST_IDLE: if (act_q && row_done_i) begin
-            law_q.c <= row_traced_i;
-            law_q.g_row <= g_sel;
             law_q.p_row <= p_sel;
             law_q.ex <= c_minus_g;
           end
@@ -440,7 +438,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           ST_ACC: begin
             law_q.n <= law_q.n + ACT_W'(mul_prod);
             law_q.p_sum <= law_q.p_sum + WH_W'(law_q.p_row);
-            law_q.x_rem <= law_q.x_rem - $signed({9'd0, law_q.c}) + $signed({9'd0, law_q.g_row});
+            law_q.x_rem <= law_q.x_rem - $signed({9'd0, law_q.ex});       // - c_j + g_j
             if (frm_q.seeded) law_q.ad <= law_q.ad + ACT_W'(mem_word_q);
           end
           ST_LAW: begin
@@ -487,7 +485,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   `MSR_ASSERT(a_row_when_ready, row_done_i |-> row_ready_o || start_p || check_p || clear_i)
   `MSR_ASSERT(a_start_budget_on, start_p |-> cfg.budget != '0)
   `MSR_ASSERT(a_row_traced_range,
-              state_q == ST_ACC |-> law_q.c >= law_q.g_row && law_q.c <= law_q.p_row)
+              act_q && row_done_i && state_q == ST_IDLE |-> row_traced_i >= g_sel &&
+              row_traced_i <= p_sel)
   `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= U_MIN && u_q[base_q] <= U_MAX)
   `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < frm_q.nty)
   `MSR_ASSERT(a_num_fits, state_q == ST_NUM && mul_done |-> mul_prod[PROD_W-1] == 1'b0)

@@ -63,10 +63,8 @@ package msr_budget_pkg;
     logic [BUD_ACT_W-1:0] mem_sum;    // this frame's N once finished (the next Atot)
     logic [BUD_WH_W-1:0]  p_sum;      // P
     logic signed [26:0]   x_rem;      // X = (B' - G) + Gd - C, kept as a running sum
-    logic [17:0]          c;          // the finished row's c_j, g_j, p_j
-    logic [17:0]          g_row;
-    logic [17:0]          p_row;
-    logic [17:0]          ex;         // c_j - g_j (the floor is applied from it a clock later)
+    logic [17:0]          p_row;      // the finished row's p_j
+    logic [17:0]          ex;         // c_j - g_j >= 0 (the floor is applied from it a clock later)
     logic [10:0]          slew;       // u_{j+1} >> 1
     logic [10:0]          u_mx;       // max(q, u_{j+1} >> 1)
   } budget_law_t;
