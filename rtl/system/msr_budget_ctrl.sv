@@ -93,28 +93,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   );
 
   // ---- State ---------------------------------------------------------------------------------
-  typedef enum logic [4:0] {
-    ST_IDLE,
-    ST_G,        // G = line(W) * line(H) (check and start)
-    ST_WH,       // W * H
-    ST_GL,       // g of the last row = line(W) * n0(h_last)
-    ST_PL,       // p of the last row = W * h_last
-    ST_N0,       // (B' - G) * u0
-    ST_M0,       // u0 * u0
-    ST_FLR,      // the activity floor: max(c_j - g_j, p_j >> FLOOR_SHIFT) loaded
-    ST_ACT,      // a_j = max(c_j - g_j, p_j >> FLOOR_SHIFT) * u_j
-    ST_ACC,      // the sums and the memory word
-    ST_LAW,      // which law
-    ST_NUM,      // (N + N0) * (W * H - P)
-    ST_DEN,      // (P + P0) * X
-    ST_DIV,      // the saturation test, then 11 quotient bits
-    ST_SLEW,     // u_{j+2}
-    ST_SQ0,      // u_{j+2} * u_{j+2} loaded
-    ST_SQ,       // m_{j+2}
-    ST_FIN       // SCALE_OUT, the memory's tag
-  } state_e;
 
-  state_e            state_q, state_d;
+  budget_state_e     state_q, state_d;
   logic              checking_q;           // the G sequence answers a check (not a start)
   logic              act_q;                // a budget frame is on and rows 0, 1 are known
   budget_frame_t     frm_q;                // the frame's constants (check and start)
@@ -285,7 +265,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       ST_G, ST_WH, ST_GL, ST_PL, ST_N0, ST_NUM: if (mul_done) begin
         mul_load = !(state_q == ST_G && checking_q);   // a check ends with G
         mul      = nxt;
-        state_d  = mul_load ? state_e'(state_q + 5'd1) : ST_IDLE;
+        state_d  = mul_load ? budget_state_e'(state_q + 5'd1) : ST_IDLE;
       end
       ST_M0: if (mul_done) state_d = ST_IDLE;
       ST_ACT: if (mul_done) begin

@@ -69,6 +69,28 @@ package msr_budget_pkg;
     logic [10:0]          u_mx;       // max(q, u_{j+1} >> 1)
   } budget_law_t;
 
+  // The controller's states (msr_budget_ctrl; here so its formal harness names them too).
+  typedef enum logic [4:0] {
+    ST_IDLE,
+    ST_G,        // G = line(W) * line(H) (check and start)
+    ST_WH,       // W * H
+    ST_GL,       // g of the last row = line(W) * n0(h_last)
+    ST_PL,       // p of the last row = W * h_last
+    ST_N0,       // (B' - G) * u0
+    ST_M0,       // u0 * u0
+    ST_FLR,      // the activity floor: max(c_j - g_j, p_j >> FLOOR_SHIFT) loaded
+    ST_ACT,      // a_j = max(c_j - g_j, p_j >> FLOOR_SHIFT) * u_j
+    ST_ACC,      // the sums and the memory word
+    ST_LAW,      // which law
+    ST_NUM,      // (N + N0) * (W * H - P)
+    ST_DEN,      // (P + P0) * X
+    ST_DIV,      // the saturation test, then 11 quotient bits
+    ST_SLEW,     // u_{j+2}
+    ST_SQ0,      // u_{j+2} * u_{j+2} loaded
+    ST_SQ,       // m_{j+2}
+    ST_FIN       // SCALE_OUT, the memory's tag
+  } budget_state_e;
+
   // n0(n) = ceil(n / S) + ((n - 1) mod S != 0), for n in 0..32 (0 for n = 0), S = 2^l.
   function automatic logic [5:0] grid_axis(logic [5:0] n, level_t l);
     logic [5:0] s1;
