@@ -15,9 +15,11 @@
 //
 // Ray budget (BUDGET_EN, docs/budget.md): the walker starts a tile row only when the budget
 // controller knows its scale (row_ok_i for row_idx_o), every tile carries its row's threshold
-// multiplier m down the pipeline, and S6 scales the thresholds, thr'' = min(255, (thr' * m +
-// 128) >> 8). With bud_en_i low the frame's descriptors are those of a top without it; a top
-// built without it (BUDGET_EN = 0) has no S6 and no wait at all.
+// multiplier m down the pipeline, and S6 / S7 scale the thresholds, thr'' = min(255, (thr' * m +
+// 128) >> 8): S6 the products (multiplier blocks on an FPGA), registered straight out of them,
+// S7 the rounding and the saturation (in one clock, the block and its wires in and out made the
+// top's worst path: 77 MHz). With bud_en_i low the frame's descriptors are those of a top
+// without it; a top built without it (BUDGET_EN = 0) has neither stage nor the wait.
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
@@ -56,7 +58,7 @@ module msr_tile_gen import msr_pkg::*; #(
   end
 
   localparam int unsigned TIDX_W = COORD_W - 2;     // tile index, up to 4096/8 = 512 tiles
-  localparam int unsigned NST    = BUDGET_EN ? 6 : 5;   // pipeline stages
+  localparam int unsigned NST    = BUDGET_EN ? 7 : 5;   // pipeline stages
   localparam int unsigned R2_W   = TIDX_W + 1;      // |2t - (n-1)| < 1024
   localparam int unsigned PROD_W = R2_W + 8;        // gain * r2 < 2^18
 
@@ -260,25 +262,29 @@ module msr_tile_gen import msr_pkg::*; #(
     end
   end
 
-  // ---- S6 (BUDGET_EN): the row's threshold multiplier ---------------------------------------
+  // ---- S6, S7 (BUDGET_EN): the row's threshold multiplier -----------------------------------
   if (BUDGET_EN) begin : g_budget
-    logic [4:0][12:0] m_q;                          // m of the tile in S1..S5
-    tile_desc_t       desc6_q, desc6_d;
+    localparam int unsigned P_W = THR_W + 13;       // thr' * m
+    logic [4:0][12:0]                m_q;           // m of the tile in S1..S5
+    logic [MAX_LEVELS-1:0][P_W-1:0] prod6_q;       // S6: thr' * m per level
+    tile_desc_t                      desc6_q, desc7_q, desc7_d;
     always_comb begin
-      desc6_d = desc_q;
+      desc7_d = desc6_q;
       for (int k = 0; k < MAX_LEVELS; k++) begin
-        logic [THR_W+13-1:0] p;
-        p = (THR_W+13)'(desc_q.thr[k]) * (THR_W+13)'(m_q[4]) + (THR_W+13)'(128);
-        desc6_d.thr[k] = (p[THR_W+13-1:THR_W+8] != '0) ? thr_t'(255) : thr_t'(p[THR_W+8-1:8]);
+        logic [P_W-1:0] p;
+        p = prod6_q[k] + P_W'(128);
+        desc7_d.thr[k] = (p[P_W-1:THR_W+8] != '0) ? thr_t'(255) : thr_t'(p[THR_W+8-1:8]);
       end
     end
     always_ff @(posedge clk_i) begin
       if (en) begin
         m_q     <= {m_q[3:0], bud_en_i ? row_m_i : 13'd256};
-        desc6_q <= desc6_d;
+        desc6_q <= desc_q;
+        for (int k = 0; k < MAX_LEVELS; k++) prod6_q[k] <= P_W'(desc_q.thr[k]) * P_W'(m_q[4]);
+        desc7_q <= desc7_d;
       end
     end
-    assign desc_o = desc6_q;
+    assign desc_o = desc7_q;
   end else begin : g_no_budget
     logic unused_budget;
     assign unused_budget = ^{bud_en_i, row_ok_i, row_m_i};
