@@ -63,18 +63,19 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
   end
 
   // ---- Properties ----------------------------------------------------------------------------
-  wire in_range_0 = dut.u_q[0] >= U_MIN && dut.u_q[0] <= U_MAX;
-  wire in_range_1 = dut.u_q[1] >= U_MIN && dut.u_q[1] <= U_MAX;
-  wire in_range_2 = dut.u_q[2] >= U_MIN && dut.u_q[2] <= U_MAX;
-  wire base_in_range = dut.base_q == 2'd0 ? in_range_0 : dut.base_q == 2'd1 ? in_range_1 : in_range_2;
+  function automatic logic ok_u(logic [10:0] u);    // a scale in [U_MIN, U_MAX]
+    return u >= U_MIN && u <= U_MAX;
+  endfunction
 
   a_slots:     assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                (dut.u_q[0] == '0 || in_range_0) && (dut.u_q[1] == '0 || in_range_1) &&
-                                (dut.u_q[2] == '0 || in_range_2));
-  a_base:      assert property (@(posedge clk_i) disable iff (!rst_ni) !dut.act_q || base_in_range);
+                                (dut.u_q[0] == '0 || ok_u(dut.u_q[0])) &&
+                                (dut.u_q[1] == '0 || ok_u(dut.u_q[1])) &&
+                                (dut.u_q[2] == '0 || ok_u(dut.u_q[2])));
+  a_base:      assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                !dut.act_q || ok_u(dut.u_q[dut.base_q]));
   a_base_slot: assert property (@(posedge clk_i) disable iff (!rst_ni) dut.base_q != 2'd3);
   a_scale_out: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                !scale_out_valid || (scale_out >= U_MIN && scale_out <= U_MAX));
+                                !scale_out_valid || ok_u(scale_out));
   a_rows:      assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !dut.act_q || dut.rows_done_q < dut.frm_q.nty);
 
@@ -123,8 +124,6 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
                                 dut.u_mul.done_q == (dut.u_mul.cnt_q == '0));
   a_mul_wait:  assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !(mul_wait && same) || 6'(dut.u_mul.cnt_q) + stay_q <= 6'd25);
-  a_mul_enter: assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                !mul_wait || same || 6'(dut.u_mul.cnt_q) <= 6'd25);
   a_div_wait:  assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !(dut.state_q inside {ST_NUM, ST_DEN}) ||
                                 dut.u_div.cnt_q == 4'd12);
@@ -136,11 +135,6 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
   // a clamped seed and at least one tile row; a start sequence runs from row 0, slot 0, with
   // rows 0 and 1 at the seed; while a frame runs the last-row and new-scale flags follow the
   // row count, the next row's scale is known, and a new scale is written (ST_SQ0) before ST_SQ.
-  function automatic logic ok_u(logic [10:0] u);
-    return u >= U_MIN && u <= U_MAX;
-  endfunction
-  wire [1:0] slot1 = inc3(dut.base_q);
-  wire [1:0] slot2 = inc3(slot1);
   wire       start_seq = dut.state_q inside {ST_WH, ST_GL, ST_PL, ST_N0, ST_M0} ||
                          (dut.state_q == ST_G && !dut.checking_q);
   // (the grid unit's registers have no reset: stage n holds a value n clocks after reset)
@@ -185,10 +179,10 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
   a_fin_last:  assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 dut.state_q != ST_FIN || dut.row_last_q);
   a_next:      assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                !dut.act_q || dut.row_last_q || ok_u(dut.u_q[slot1]));
+                                !dut.act_q || dut.row_last_q || ok_u(dut.u_q[dut.slot1]));
   a_new:       assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !(dut.act_q && dut.state_q == ST_SQ && dut.row_new_q) ||
-                                ok_u(dut.u_q[slot2]));
+                                ok_u(dut.u_q[dut.slot2]));
 
   // Non-vacuity (cover, from reset): a check answered, a frame's first row update.
   c_check: cover property (@(posedge clk_i) disable iff (!rst_ni) check_done && !err_budget);
