@@ -2,16 +2,16 @@
 // row-major from the top-left, computes each tile's extent and foveated per-level
 // thresholds, and hands the descriptor to the lowest-numbered engine that can take it.
 //
-// Timing: a five-stage pipeline with one enable (it moves when the output register is empty
-// or taken), no carry longer than 13 bits per clock: S1 the tile origin, its extent left in
+// Timing: a five-stage pipeline with one enable (it moves when the output register is empty;
+// the engines' ready only empties it, so it never reaches the stages' enables), no carry longer than 13 bits per clock: S1 the tile origin, its extent left in
 // the frame and its distances r2x, r2y from the centre in half-tiles; S2 both foveation
 // products gain * r2x and gain * r2y as carry-save pairs (ten partial products in five 3:2
 // levels; gain * max(r2x, r2y) = the larger product, so the compare runs beside them) and the
 // clamped extent; S3 / S4 the chosen product's carry-propagate add in two 9-bit halves, then
 // (gain * r2) >> 4 saturated at 255; S5 the descriptor register with the thresholds
 // thr + that, saturated at 255. The walker fills the pipeline while a descriptor waits, so
-// after the first tiles an engine that asks is served at once; the engines take a tile per
-// 64 or more clocks.
+// an engine that asks is served at once, the next one two clocks later; the engines take a
+// tile per 64 or more clocks.
 //
 // Ray budget (BUDGET_EN, docs/budget.md): the walker starts a tile row only when the budget
 // controller knows its scale (row_ok_i for row_idx_o), every tile carries its row's threshold
@@ -156,7 +156,10 @@ module msr_tile_gen import msr_pkg::*; #(
   thr_t              fov_d;
 
   logic              walk_go;                       // the walker hands a tile into S1
-  assign en        = !ctl_q.v[NST-1] || taken;
+  // The stages move only while the output register is empty: `taken` (the engines' ready,
+  // from across the die) clears that register's flag alone and never reaches the stages'
+  // enables. A tile leaves at most every second clock, far above what four engines take.
+  assign en        = !ctl_q.v[NST-1];
   assign walk_go   = ctl_q.run && (!BUDGET_EN || !bud_en_i || row_ok_i);
   assign row_idx_o = ctl_q.ty;
   assign walk_last = ({1'b0, ctl_q.tx} + 1'b1 == ntx_q) && ({1'b0, ctl_q.ty} + 1'b1 == nty_q);
@@ -183,6 +186,10 @@ module msr_tile_gen import msr_pkg::*; #(
       ctl_d.ty   = '0;
     end else begin
       if (taken && ctl_q.last[NST-1]) ctl_d.done = 1'b1;
+      if (taken) begin
+        ctl_d.v[NST-1]    = 1'b0;
+        ctl_d.last[NST-1] = 1'b0;
+      end
       if (en) begin
         ctl_d.v    = {ctl_q.v[NST-2:0], walk_go};
         ctl_d.last = {ctl_q.last[NST-2:0], walk_go && walk_last};
