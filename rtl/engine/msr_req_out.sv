@@ -50,22 +50,12 @@ module msr_req_out
   assign req_in_valid = out_valid_i && (out_trace_i || retro_phase_i) && tag_avail_i;
   assign alloc_tag_o  = req_in_valid && req_in_ready;
 
-  msr_spill_reg #(
-    .WIDTH ($bits(req_t))
-  ) u_req_spill (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .valid_i (req_in_valid),
-    .ready_o (req_in_ready),
-    .data_i  (req_in),
-    .valid_o (req_valid_o),
-    .ready_i (req_ready_i),
-    .data_o  (req_out)
+  msr_spill_reg #(.WIDTH($bits(req_t))) u_req_spill (
+    .clk_i, .rst_ni, .clear_i,
+    .valid_i (req_in_valid), .ready_o (req_in_ready), .data_i (req_in),
+    .valid_o (req_valid_o),  .ready_i (req_ready_i),  .data_o (req_out)
   );
 
-  assign req_x_o   = req_out.x;
-  assign req_y_o   = req_out.y;
-  assign req_tag_o = req_out.tag;
+  assign {req_x_o, req_y_o, req_tag_o} = req_out;
 
 endmodule : msr_req_out

@@ -71,27 +71,16 @@ module msr_render_mux import msr_pkg::*; #(
     logic [2:0] count;
     logic       unused_count;
     msr_fifo #(.WIDTH($bits(rreq_t)), .DEPTH(4)) u_req_fifo (
-      .clk_i   (clk_i),
-      .rst_ni  (rst_ni),
-      .flush_i (clear_i),
-      .valid_i (eng_req_valid_i[i] && !hold_i),
-      .ready_o (rq_push_ready[i]),
+      .clk_i, .rst_ni, .flush_i (clear_i),
+      .valid_i (eng_req_valid_i[i] && !hold_i), .ready_o (rq_push_ready[i]),
       .data_i  ({eng_req_x_i[i], eng_req_y_i[i], EID_W'(i), eng_req_tag_i[i]}),
-      .valid_o (fq_valid[i]),
-      .ready_i (fq_ready[i]),
-      .data_o  (fq_data[i]),
+      .valid_o (fq_valid[i]), .ready_i (fq_ready[i]), .data_o (fq_data[i]),
       .count_o (count)
     );
     msr_spill_reg #(.WIDTH($bits(rreq_t))) u_head (
-      .clk_i   (clk_i),
-      .rst_ni  (rst_ni),
-      .clear_i (clear_i),
-      .valid_i (fq_valid[i]),
-      .ready_o (fq_ready[i]),
-      .data_i  (fq_data[i]),
-      .valid_o (rq_valid[i]),
-      .ready_i (rq_pop[i]),
-      .data_o  (rq_data[i])
+      .clk_i, .rst_ni, .clear_i,
+      .valid_i (fq_valid[i]), .ready_o (fq_ready[i]), .data_i (fq_data[i]),
+      .valid_o (rq_valid[i]), .ready_i (rq_pop[i]),   .data_o (rq_data[i])
     );
     assign unused_count       = ^count;
     assign eng_req_ready_o[i] = rq_push_ready[i] && !hold_i;
@@ -105,31 +94,18 @@ module msr_render_mux import msr_pkg::*; #(
 
   // PREFIX: the engines' queue heads are spread over the die (see msr_rr_arb)
   msr_rr_arb #(.N(NUM_ENGINES), .LOCK(1'b0), .PREFIX(1'b1), .IDX_W(EID_W)) u_req_arb (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .req_i   (rq_valid),
-    .gnt_o   (gnt),
-    .idx_o   (gnt_idx),
-    .valid_o (arb_valid),
-    .ready_i (sp_ready)
+    .clk_i, .rst_ni, .clear_i,
+    .req_i   (rq_valid), .gnt_o (gnt), .idx_o (gnt_idx),
+    .valid_o (arb_valid), .ready_i (sp_ready)
   );
   assign rq_pop = gnt & {NUM_ENGINES{sp_ready}};
 
   msr_spill_reg #(.WIDTH($bits(rreq_t))) u_req_spill (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .valid_i (arb_valid),
-    .ready_o (sp_ready),
-    .data_i  (rq_data[gnt_idx]),
-    .valid_o (rnd_req_valid_o),
-    .ready_i (rnd_req_ready_i),
-    .data_o  (req_out)
+    .clk_i, .rst_ni, .clear_i,
+    .valid_i (arb_valid),       .ready_o (sp_ready),        .data_i (rq_data[gnt_idx]),
+    .valid_o (rnd_req_valid_o), .ready_i (rnd_req_ready_i), .data_o (req_out)
   );
-  assign rnd_req_x_o   = req_out.x;
-  assign rnd_req_y_o   = req_out.y;
-  assign rnd_req_tag_o = req_out.tag;
+  assign {rnd_req_x_o, rnd_req_y_o, rnd_req_tag_o} = req_out;
 
   // ---- Responses -----------------------------------------------------------------------------------
   logic             rsp_valid, rsp_ready, eid_ok;
@@ -137,15 +113,10 @@ module msr_render_mux import msr_pkg::*; #(
   logic [EID_W-1:0] rsp_eid;
 
   msr_spill_reg #(.WIDTH($bits(rrsp_t))) u_rsp_spill (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .valid_i (rnd_rsp_valid_i),
-    .ready_o (rnd_rsp_ready_o),
+    .clk_i, .rst_ni, .clear_i,
+    .valid_i (rnd_rsp_valid_i), .ready_o (rnd_rsp_ready_o),
     .data_i  ({rnd_rsp_tag_i, rnd_rsp_rgb_i}),
-    .valid_o (rsp_valid),
-    .ready_i (rsp_ready),
-    .data_o  (rsp)
+    .valid_o (rsp_valid), .ready_i (rsp_ready), .data_o (rsp)
   );
 
   assign rsp_eid = rsp.tag[RTAG_W-1 -: EID_W];

@@ -93,47 +93,23 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   logic     bud_check, bud_done, bud_err_budget, bud_err_profile, bud_busy;
 
   msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES), .LINDILATE(LINDILATE), .BUDGET_EN(BUDGET_EN)) u_ctrl (
-    .clk_i          (clk_i),
-    .rst_ni         (rst_ni),
-    .start_i        (reg_ctrl.start),
-    .soft_reset_i   (reg_ctrl.soft_reset),
-    .wdog_limit_i   (reg_ctrl.wdog_limit),
-    .raw_i          (raw),
-    .cfg_o          (cfg),
-    .busy_o         (busy),
-    .err_o          (err),
-    .done_set_o     (done_set),
-    .done_clr_o     (done_clr),
-    .cfg_err_set_o  (cfg_err_set),
-    .wdog_set_o     (wdog_set),
-    .err_counts_o   (err_counts),
-    .irq_en_i       (reg_ctrl.irq_en),
-    .irq_flags_i    (reg_ctrl.irq_flags),
-    .irq_o          (irq_o),
-    .start_o        (start),
-    .run_o          (run),
-    .drain_o        (drain),
-    .eng_drain_o    (eng_drain),
-    .clear_o        (clear),
-    .eng_clear_o    (eng_clear),
-    .desc_fire_i    (|eng_desc_valid),
-    .tile_done_i    (wr_tile_done),
-    .tg_done_i      (tg_done),
-    .rnd_idle_i     (rnd_idle),
-    .wr_idle_i      (wr_idle),
-    .bresp_err_i    (bresp_err),
-    .bresp_addr_i   (bresp_addr),
-    .b_unexp_i      (b_unexpected),
-    .rsp_drop_i     (eng_rsp_drop),
-    .bad_eid_i      (bad_eid),
-    .moved_i        (moved),
-    .rsp_taken_i    (rnd_rsp_valid_i && rnd_rsp_ready_o),
-    .raw_o          (raw_q),
-    .bud_check_o    (bud_check),
-    .bud_done_i     (bud_done),
-    .bud_err_budget_i  (bud_err_budget),
-    .bud_err_profile_i (bud_err_profile),
-    .bud_busy_i     (bud_busy)
+    .clk_i, .rst_ni,
+    .start_i (reg_ctrl.start), .soft_reset_i (reg_ctrl.soft_reset),
+    .wdog_limit_i (reg_ctrl.wdog_limit),
+    .raw_i (raw), .cfg_o (cfg),
+    .busy_o (busy), .err_o (err), .done_set_o (done_set), .done_clr_o (done_clr),
+    .cfg_err_set_o (cfg_err_set), .wdog_set_o (wdog_set), .err_counts_o (err_counts),
+    .irq_en_i (reg_ctrl.irq_en), .irq_flags_i (reg_ctrl.irq_flags), .irq_o,
+    .start_o (start), .run_o (run), .drain_o (drain), .eng_drain_o (eng_drain),
+    .clear_o (clear), .eng_clear_o (eng_clear),
+    .desc_fire_i (|eng_desc_valid), .tile_done_i (wr_tile_done), .tg_done_i (tg_done),
+    .rnd_idle_i (rnd_idle), .wr_idle_i (wr_idle),
+    .bresp_err_i (bresp_err), .bresp_addr_i (bresp_addr), .b_unexp_i (b_unexpected),
+    .rsp_drop_i (eng_rsp_drop), .bad_eid_i (bad_eid), .moved_i (moved),
+    .rsp_taken_i (rnd_rsp_valid_i && rnd_rsp_ready_o),
+    .raw_o (raw_q),
+    .bud_check_o (bud_check), .bud_done_i (bud_done), .bud_err_budget_i (bud_err_budget),
+    .bud_err_profile_i (bud_err_profile), .bud_busy_i (bud_busy)
   );
 
   assign reg_status = '{busy: busy, err: err, done_set: done_set, done_clr: done_clr,
@@ -147,27 +123,14 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   logic [12:0]        tg_row_m;
 
   msr_tile_gen #(.NUM_ENGINES(NUM_ENGINES), .BUDGET_EN(BUDGET_EN)) u_tile_gen (
-    .clk_i        (clk_i),
-    .rst_ni       (rst_ni),
-    .clear_i      (drain),
-    .start_i      (start),
-    .width_i      (cfg.width),
-    .height_i     (cfg.height),
-    .tile_i       (cfg.tile),
-    .levels_i     (cfg.levels),
-    .metric_i     (cfg.metric),
-    .rule_i       (cfg.rule),
-    .thr_i        (cfg.thr),
-    .fov_gain_i   (cfg.fov_gain),
-    .bud_en_i     (cfg.bud.pixels != '0),
-    .row_idx_o    (tg_row),
-    .row_ok_i     (tg_row_ok),
-    .row_m_i      (tg_row_m),
-    .desc_valid_o (eng_desc_valid),
-    .desc_ready_i (desc_sp_ready & {NUM_ENGINES{run}}),
-    .desc_o       (desc),
-    .busy_o       (tg_busy),
-    .done_o       (tg_done)
+    .clk_i, .rst_ni, .clear_i (drain), .start_i (start),
+    .width_i (cfg.width), .height_i (cfg.height), .tile_i (cfg.tile), .levels_i (cfg.levels),
+    .metric_i (cfg.metric), .rule_i (cfg.rule), .thr_i (cfg.thr), .fov_gain_i (cfg.fov_gain),
+    .bud_en_i (cfg.bud.pixels != '0),
+    .row_idx_o (tg_row), .row_ok_i (tg_row_ok), .row_m_i (tg_row_m),
+    .desc_valid_o (eng_desc_valid), .desc_ready_i (desc_sp_ready & {NUM_ENGINES{run}}),
+    .desc_o (desc),
+    .busy_o (tg_busy), .done_o (tg_done)
   );
 
   // ---- Engines ----------------------------------------------------------------------------------
@@ -196,26 +159,14 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     logic       gs_desc_valid, gs_desc_ready, sp_desc_valid;
     tile_desc_t gs_desc, sp_desc;
     msr_spill_reg #(.WIDTH($bits(tile_desc_t))) u_desc_slice_gen (
-      .clk_i   (clk_i),
-      .rst_ni  (rst_ni),
-      .clear_i (clear),
-      .valid_i (eng_desc_valid[i]),
-      .ready_o (desc_sp_ready[i]),
-      .data_i  (desc),
-      .valid_o (gs_desc_valid),
-      .ready_i (gs_desc_ready),
-      .data_o  (gs_desc)
+      .clk_i, .rst_ni, .clear_i (clear),
+      .valid_i (eng_desc_valid[i]), .ready_o (desc_sp_ready[i]), .data_i (desc),
+      .valid_o (gs_desc_valid),     .ready_i (gs_desc_ready),    .data_o (gs_desc)
     );
     msr_spill_reg #(.WIDTH($bits(tile_desc_t))) u_desc_slice_eng (
-      .clk_i   (clk_i),
-      .rst_ni  (rst_ni),
-      .clear_i (eng_clear[i]),
-      .valid_i (gs_desc_valid),
-      .ready_o (gs_desc_ready),
-      .data_i  (gs_desc),
-      .valid_o (sp_desc_valid),
-      .ready_i (eng_desc_ready[i]),
-      .data_o  (sp_desc)
+      .clk_i, .rst_ni, .clear_i (eng_clear[i]),
+      .valid_i (gs_desc_valid), .ready_o (gs_desc_ready),     .data_i (gs_desc),
+      .valid_o (sp_desc_valid), .ready_i (eng_desc_ready[i]), .data_o (sp_desc)
     );
 
     msr_tile_engine #(
@@ -223,46 +174,27 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .MAX_OUTSTANDING (MAX_OUTSTANDING),
       .LINDILATE       (LINDILATE)
     ) u_engine (
-      .clk_i        (clk_i),
-      .rst_ni       (rst_ni),
-      .clear_i      (eng_clear[i]),
-      .desc_valid_i (sp_desc_valid),
-      .desc_ready_o (eng_desc_ready[i]),
-      .desc_i       (sp_desc),
-      .req_valid_o  (eng_req_valid[i]),
-      .req_ready_i  (eng_req_ready[i]),
-      .req_x_o      (eng_req_x[i]),
-      .req_y_o      (eng_req_y[i]),
-      .req_tag_o    (eng_req_tag[i]),
-      .rsp_valid_i  (eng_rsp_valid[i]),
-      .rsp_ready_o  (eng_rsp_ready[i]),
-      .rsp_tag_i    (eng_rsp_tag),
-      .rsp_rgb_i    (eng_rsp_rgb),
-      .pix_valid_o  (eng_pix_valid[i]),
-      .pix_ready_i  (eng_pix_ready[i]),
-      .pix_x_o      (eng_pix_x[i]),
-      .pix_y_o      (eng_pix_y[i]),
-      .pix_rgb_o    (eng_pix_rgb[i]),
-      .pix_src_o    (eng_pix_src[i]),
-      .pix_last_o   (eng_pix_last[i]),
-      .busy_o       (eng_busy[i]),
-      .rsp_drop_o   (eng_rsp_drop[i]),
-      .inflight_o   (eng_inflight[i]),
-      .tags_out_o   (eng_tags_out[i])
+      .clk_i, .rst_ni, .clear_i (eng_clear[i]),
+      .desc_valid_i (sp_desc_valid), .desc_ready_o (eng_desc_ready[i]), .desc_i (sp_desc),
+      .req_valid_o (eng_req_valid[i]), .req_ready_i (eng_req_ready[i]),
+      .req_x_o (eng_req_x[i]), .req_y_o (eng_req_y[i]), .req_tag_o (eng_req_tag[i]),
+      .rsp_valid_i (eng_rsp_valid[i]), .rsp_ready_o (eng_rsp_ready[i]),
+      .rsp_tag_i (eng_rsp_tag), .rsp_rgb_i (eng_rsp_rgb),
+      .pix_valid_o (eng_pix_valid[i]), .pix_ready_i (eng_pix_ready[i]),
+      .pix_x_o (eng_pix_x[i]), .pix_y_o (eng_pix_y[i]), .pix_rgb_o (eng_pix_rgb[i]),
+      .pix_src_o (eng_pix_src[i]), .pix_last_o (eng_pix_last[i]),
+      .busy_o (eng_busy[i]), .rsp_drop_o (eng_rsp_drop[i]),
+      .inflight_o (eng_inflight[i]), .tags_out_o (eng_tags_out[i])
     );
 
     // A register slice on the request wire to the render mux: without it the engine's output
     // stage (a free tag, the trace bit, the request register's load) and the mux's queue
     // were one path across the die, 8.7 ns of its 10.2 ns wire (flat top, seed 1).
     msr_spill_reg #(.WIDTH(2 * $bits(coord_t) + ETAG_W)) u_req_slice (
-      .clk_i   (clk_i),
-      .rst_ni  (rst_ni),
-      .clear_i (eng_clear[i]),
-      .valid_i (eng_req_valid[i]),
-      .ready_o (eng_req_ready[i]),
+      .clk_i, .rst_ni, .clear_i (eng_clear[i]),
+      .valid_i (eng_req_valid[i]), .ready_o (eng_req_ready[i]),
       .data_i  ({eng_req_x[i], eng_req_y[i], eng_req_tag[i]}),
-      .valid_o (mux_req_valid[i]),
-      .ready_i (mux_req_ready[i]),
+      .valid_o (mux_req_valid[i]), .ready_i (mux_req_ready[i]),
       .data_o  ({mux_req_x[i], mux_req_y[i], mux_req_tag[i]})
     );
   end
@@ -270,34 +202,19 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   // ---- Render mux ---------------------------------------------------------------------------------
 
   msr_render_mux #(.NUM_ENGINES(NUM_ENGINES), .ETAG_W(ETAG_W)) u_render_mux (
-    .clk_i           (clk_i),
-    .rst_ni          (rst_ni),
-    .clear_i         (clear),
+    .clk_i, .rst_ni, .clear_i (clear),
     // Requests are not held during a soft reset: an engine counts a request it offers as in
     // flight, so a held request would never come home and the drain would not end. The
     // engines finish the tiles they hold (no new tile is handed out, their pixels are
     // dropped) and every request goes out and is answered.
     .hold_i          (1'b0),
-    .eng_req_valid_i (mux_req_valid),
-    .eng_req_ready_o (mux_req_ready),
-    .eng_req_x_i     (mux_req_x),
-    .eng_req_y_i     (mux_req_y),
-    .eng_req_tag_i   (mux_req_tag),
-    .eng_rsp_valid_o (eng_rsp_valid),
-    .eng_rsp_ready_i (eng_rsp_ready),
-    .eng_rsp_tag_o   (eng_rsp_tag),
-    .eng_rsp_rgb_o   (eng_rsp_rgb),
-    .rnd_req_valid_o (rnd_req_valid_o),
-    .rnd_req_ready_i (rnd_req_ready_i),
-    .rnd_req_x_o     (rnd_req_x_o),
-    .rnd_req_y_o     (rnd_req_y_o),
-    .rnd_req_tag_o   (rnd_req_tag_o),
-    .rnd_rsp_valid_i (rnd_rsp_valid_i),
-    .rnd_rsp_ready_o (rnd_rsp_ready_o),
-    .rnd_rsp_tag_i   (rnd_rsp_tag_i),
-    .rnd_rsp_rgb_i   (rnd_rsp_rgb_i),
-    .busy_o          (rmux_busy),
-    .bad_eid_o       (bad_eid)
+    .eng_req_valid_i (mux_req_valid), .eng_req_ready_o (mux_req_ready),
+    .eng_req_x_i (mux_req_x), .eng_req_y_i (mux_req_y), .eng_req_tag_i (mux_req_tag),
+    .eng_rsp_valid_o (eng_rsp_valid), .eng_rsp_ready_i (eng_rsp_ready),
+    .eng_rsp_tag_o (eng_rsp_tag), .eng_rsp_rgb_o (eng_rsp_rgb),
+    .rnd_req_valid_o, .rnd_req_ready_i, .rnd_req_x_o, .rnd_req_y_o, .rnd_req_tag_o,
+    .rnd_rsp_valid_i, .rnd_rsp_ready_o, .rnd_rsp_tag_i, .rnd_rsp_rgb_i,
+    .busy_o (rmux_busy), .bad_eid_o (bad_eid)
   );
 
   // Every engine's tags are home (queued and offered requests count as in flight). Each
@@ -320,22 +237,13 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
 
   for (genvar i = 0; i < NUM_ENGINES; i++) begin : g_pix_slice
     msr_spill_reg #(.WIDTH($bits(pix_word_t))) u_pix_slice_eng (
-      .clk_i   (clk_i),
-      .rst_ni  (rst_ni),
-      .clear_i (eng_clear[i]),
-      .valid_i (eng_pix_valid[i]),
-      .ready_o (eng_pix_ready[i]),
+      .clk_i, .rst_ni, .clear_i (eng_clear[i]),
+      .valid_i (eng_pix_valid[i]), .ready_o (eng_pix_ready[i]),
       .data_i  (pix_word_t'{x: eng_pix_x[i], y: eng_pix_y[i], rgb: eng_pix_rgb[i],
                             src: eng_pix_src[i], last: eng_pix_last[i]}),
-      .valid_o (ep_pix_valid[i]),
-      .ready_i (ep_pix_ready[i]),
-      .data_o  (ep_pix[i])
+      .valid_o (ep_pix_valid[i]), .ready_i (ep_pix_ready[i]), .data_o (ep_pix[i])
     );
-    assign wr_pix_x[i]    = ep_pix[i].x;
-    assign wr_pix_y[i]    = ep_pix[i].y;
-    assign wr_pix_rgb[i]  = ep_pix[i].rgb;
-    assign wr_pix_src[i]  = ep_pix[i].src;
-    assign wr_pix_last[i] = ep_pix[i].last;
+    assign {wr_pix_x[i], wr_pix_y[i], wr_pix_rgb[i], wr_pix_src[i], wr_pix_last[i]} = ep_pix[i];
   end
 
   assign wr_pix_valid = ep_pix_valid & ~eng_drain;
@@ -348,28 +256,15 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .AXI_DATA_W (AXI_DATA_W),
     .ID_W       (AXI_ID_W)
   ) u_fb_writer (
-    .clk_i          (clk_i),
-    .rst_ni         (rst_ni),
-    .clear_i        (clear),
-    .width_i        (cfg.width),
-    .tile_i         (cfg.tile),
-    .fb_base_i      (cfg.fb.fb_base),
-    .fb_stride_i    (cfg.fb.fb_stride),
-    .src_en_i       (cfg.fb.src_en),
-    .src_base_i     (cfg.fb.src_base),
-    .src_stride_i   (cfg.fb.src_stride),
-    .pix_valid_i    (wr_pix_valid),
-    .pix_ready_o    (wr_pix_ready),
-    .pix_x_i        (wr_pix_x),
-    .pix_y_i        (wr_pix_y),
-    .pix_rgb_i      (wr_pix_rgb),
-    .pix_src_i      (wr_pix_src),
-    .pix_last_i     (wr_pix_last),
-    .idle_o         (wr_idle),
-    .tile_done_o    (wr_tile_done),
-    .bresp_err_o    (bresp_err),
-    .bresp_addr_o   (bresp_addr),
-    .b_unexpected_o (b_unexpected),
+    .clk_i, .rst_ni, .clear_i (clear),
+    .width_i (cfg.width), .tile_i (cfg.tile),
+    .fb_base_i (cfg.fb.fb_base), .fb_stride_i (cfg.fb.fb_stride),
+    .src_en_i (cfg.fb.src_en), .src_base_i (cfg.fb.src_base), .src_stride_i (cfg.fb.src_stride),
+    .pix_valid_i (wr_pix_valid), .pix_ready_o (wr_pix_ready),
+    .pix_x_i (wr_pix_x), .pix_y_i (wr_pix_y), .pix_rgb_i (wr_pix_rgb), .pix_src_i (wr_pix_src),
+    .pix_last_i (wr_pix_last),
+    .idle_o (wr_idle), .tile_done_o (wr_tile_done),
+    .bresp_err_o (bresp_err), .bresp_addr_o (bresp_addr), .b_unexpected_o (b_unexpected),
     `MSR_AXI_WR_CONNECT
   );
   // verilog_lint: waive-stop module-port
@@ -377,26 +272,14 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   // ---- Ray budget ----------------------------------------------------------------------------------
   if (BUDGET_EN) begin : g_budget
     msr_budget #(.NUM_IN(NUM_ENGINES)) u_budget (
-      .clk_i             (clk_i),
-      .rst_ni            (rst_ni),
-      .clear_i           (clear),
-      .check_i           (bud_check),
-      .raw_i             (raw_q),
-      .check_done_o      (bud_done),
-      .err_budget_o      (bud_err_budget),
-      .err_profile_o     (bud_err_profile),
-      .start_i           (start),
-      .cfg_i             (cfg),
-      .busy_o            (bud_busy),
-      .row_idx_i         (tg_row),
-      .row_ok_o          (tg_row_ok),
-      .row_m_o           (tg_row_m),
-      .pix_fire_i        (wr_pix_valid & wr_pix_ready),
-      .pix_y_i           (wr_pix_y),
-      .pix_src_i         (wr_pix_src),
-      .pix_last_i        (wr_pix_last),
-      .scale_out_o       (scale_out),
-      .scale_out_valid_o (scale_out_valid)
+      .clk_i, .rst_ni, .clear_i (clear),
+      .check_i (bud_check), .raw_i (raw_q), .check_done_o (bud_done),
+      .err_budget_o (bud_err_budget), .err_profile_o (bud_err_profile),
+      .start_i (start), .cfg_i (cfg), .busy_o (bud_busy),
+      .row_idx_i (tg_row), .row_ok_o (tg_row_ok), .row_m_o (tg_row_m),
+      .pix_fire_i (wr_pix_valid & wr_pix_ready),
+      .pix_y_i (wr_pix_y), .pix_src_i (wr_pix_src), .pix_last_i (wr_pix_last),
+      .scale_out_o (scale_out), .scale_out_valid_o (scale_out_valid)
     );
   end else begin : g_no_budget
     assign bud_done        = 1'b0;
@@ -420,16 +303,11 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
 
   // ---- Performance counters and read-back ---------------------------------------------------------
   msr_perf_counters #(.NUM_ENGINES(NUM_ENGINES)) u_perf (
-    .clk_i      (clk_i),
-    .rst_ni     (rst_ni),
-    .clear_i    (start || clear),
-    .en_i       (run),
-    .pix_hs_i   (wr_pix_valid & wr_pix_ready),
-    .pix_src_i  (wr_pix_src),
-    .rstall_i   (rnd_req_valid_o && !rnd_req_ready_i),
-    .mstall_i   ((wr_pix_valid & ~wr_pix_ready) != '0),
-    .err_i      (err_counts),
-    .readback_o (readback)
+    .clk_i, .rst_ni, .clear_i (start || clear), .en_i (run),
+    .pix_hs_i (wr_pix_valid & wr_pix_ready), .pix_src_i (wr_pix_src),
+    .rstall_i (rnd_req_valid_o && !rnd_req_ready_i),
+    .mstall_i ((wr_pix_valid & ~wr_pix_ready) != '0),
+    .err_i (err_counts), .readback_o (readback)
   );
 
   // ---- Debug ports -----------------------------------------------------------------------------------
