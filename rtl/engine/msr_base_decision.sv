@@ -66,12 +66,18 @@ module msr_base_decision
   assign b_ch  = b_i;
   assign ob_ch = outer_b_i;
 
+  // What the tests need from S1 to S4 unchanged: the bound, which outer samples exist, n_k.
+  typedef struct packed {
+    logic [PROD_W-1:0] rhs;     // thr * g
+    logic              oka;
+    logic              okb;
+    logic [1:0]        nshift;
+  } carry_t;
+
   chan_t [2:0]                   s1_abs_q;
   logic  signed [2:0][SD_W-1:0]  s1_sda_q, s1_sdb_q;   // A' - 2A + B, A - 2B + B'
-  logic  [PROD_W-1:0]            s1_rhs_q;
-  logic                          s1_oka_q, s1_okb_q;
+  carry_t                        s1_q;
   metric_e                       s1_metric_q;
-  logic  [1:0]                   s1_nshift_q;
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
@@ -80,21 +86,17 @@ module msr_base_decision
         s1_sda_q[c] <= second_diff(oa_ch[c], a_ch[c], b_ch[c]);
         s1_sdb_q[c] <= second_diff(ob_ch[c], b_ch[c], a_ch[c]);
       end
-      s1_rhs_q     <= thr_times_gap(thr_i, gap_i);
-      s1_oka_q     <= outer_a_ok_i;
-      s1_okb_q     <= outer_b_ok_i;
+      s1_q         <= '{rhs: thr_times_gap(thr_i, gap_i), oka: outer_a_ok_i, okb: outer_b_ok_i,
+                        nshift: nshift_i};
       s1_metric_q  <= metric_i;
-      s1_nshift_q  <= nshift_i;
     end
   end
 
   // ---- S2 -------------------------------------------------------------------------------------
   logic [2:0][SD_W-2:0] s2_ea_q, s2_eb_q;     // |second differences| per channel, <= 510
   logic [E_W-1:0]       s2_d_q;
-  logic [PROD_W-1:0]    s2_rhs_q;
-  logic                 s2_oka_q, s2_okb_q;
+  carry_t               s2_q;
   metric_e              s2_metric_q;
-  logic [1:0]           s2_nshift_q;
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
@@ -103,29 +105,22 @@ module msr_base_decision
         s2_eb_q[c] <= magnitude(s1_sdb_q[c]);
       end
       s2_d_q      <= reduce3(E_W'(s1_abs_q[2]), E_W'(s1_abs_q[1]), E_W'(s1_abs_q[0]), s1_metric_q);
-      s2_rhs_q    <= s1_rhs_q;
-      s2_oka_q    <= s1_oka_q;
-      s2_okb_q    <= s1_okb_q;
+      s2_q        <= s1_q;
       s2_metric_q <= s1_metric_q;
-      s2_nshift_q <= s1_nshift_q;
     end
   end
 
   // ---- S3 -------------------------------------------------------------------------------------
   logic [E_W-1:0]    s3_ea_q, s3_eb_q;
-  logic [PROD_W-1:0] s3_rhs_q;
-  logic              s3_oka_q, s3_okb_q, s3_p_q;
-  logic [1:0]        s3_nshift_q;
+  logic              s3_p_q;
+  carry_t            s3_q;
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
       s3_ea_q     <= reduce3(E_W'(s2_ea_q[2]), E_W'(s2_ea_q[1]), E_W'(s2_ea_q[0]), s2_metric_q);
       s3_eb_q     <= reduce3(E_W'(s2_eb_q[2]), E_W'(s2_eb_q[1]), E_W'(s2_eb_q[0]), s2_metric_q);
-      s3_p_q      <= (LHS_W'(s2_d_q) << s2_nshift_q) < LHS_W'(s2_rhs_q);
-      s3_rhs_q    <= s2_rhs_q;
-      s3_oka_q    <= s2_oka_q;
-      s3_okb_q    <= s2_okb_q;
-      s3_nshift_q <= s2_nshift_q;
+      s3_p_q      <= (LHS_W'(s2_d_q) << s2_q.nshift) < LHS_W'(s2_q.rhs);
+      s3_q        <= s2_q;
     end
   end
 
@@ -133,11 +128,11 @@ module msr_base_decision
   // Each outer sample's test is taken alone: c2 < bound for the larger of the two that exist
   // is both tests passing, so no max is formed.
   logic qa, qb;
-  assign qa = (LHS_W'(s3_ea_q) << s3_nshift_q) < LHS_W'(s3_rhs_q);
-  assign qb = (LHS_W'(s3_eb_q) << s3_nshift_q) < LHS_W'(s3_rhs_q);
+  assign qa = (LHS_W'(s3_ea_q) << s3_q.nshift) < LHS_W'(s3_q.rhs);
+  assign qb = (LHS_W'(s3_eb_q) << s3_q.nshift) < LHS_W'(s3_q.rhs);
 
   logic q;
-  assign q = (s3_oka_q || s3_okb_q) && (qa || !s3_oka_q) && (qb || !s3_okb_q);
+  assign q = (s3_q.oka || s3_q.okb) && (qa || !s3_q.oka) && (qb || !s3_q.okb);
 
   always_ff @(posedge clk_i) begin
     if (en_i) begin
