@@ -9,15 +9,10 @@
 // soft reset is kept out of it (it is one net to every flip-flop of the engine): a descriptor
 // taken during a clear is dropped by the clear of start_o, as everything else in flight is.
 `include "msr_flops.svh"
-module msr_ctx_alloc
-  import msr_pkg::*;
-#(
-  parameter int unsigned NUM_CTX = 8,
-  parameter int unsigned CTX_W   = $clog2(NUM_CTX)
+module msr_ctx_alloc import msr_pkg::*; #(
+  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
 ) (
-  input  logic               clk_i,
-  input  logic               rst_ni,
-  input  logic               clear_i,       // synchronous soft reset: drops a start in flight
+  input  logic               clk_i, rst_ni, clear_i,  // clear: drops a start in flight
   input  logic [NUM_CTX-1:0] ctx_free_i,    // contexts without a tile
   input  logic               hold_i,        // take no descriptor (the tags are being reset)
   input  logic               desc_valid_i,  // tile descriptor from the generator

@@ -2,15 +2,10 @@
 // picked round robin (one cycle), the streamer starts on it (the next cycle) and reads its
 // tile buffer's port 0 row-major; the context is freed when its last pixel has left.
 `include "msr_flops.svh"
-module msr_ctx_drain
-  import msr_pkg::*;
-#(
-  parameter int unsigned NUM_CTX = 8,
-  parameter int unsigned CTX_W   = $clog2(NUM_CTX)
+module msr_ctx_drain import msr_pkg::*; #(
+  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
 ) (
-  input  logic                       clk_i,
-  input  logic                       rst_ni,
-  input  logic                       clear_i,    // synchronous soft reset
+  input  logic                       clk_i, rst_ni, clear_i,  // clear: synchronous soft reset
   // the contexts
   input  logic       [NUM_CTX-1:0]   full_i,     // the tile is finished
   input  tile_desc_t [NUM_CTX-1:0]   desc_i,     // the tile's origin and size
@@ -36,14 +31,8 @@ module msr_ctx_drain
   /* verilator lint_on UNUSEDSIGNAL */
 
   msr_rr_arb #(.N(NUM_CTX), .IDX_W(CTX_W)) u_stream_arb (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .req_i   (full_i),
-    .gnt_o   (gnt),
-    .idx_o   (sel),
-    .valid_o (arb_valid),
-    .ready_i (!streaming_q)
+    .clk_i, .rst_ni, .clear_i,
+    .req_i (full_i), .gnt_o (gnt), .idx_o (sel), .valid_o (arb_valid), .ready_i (!streaming_q)
   );
 
   always_comb begin
@@ -59,23 +48,11 @@ module msr_ctx_drain
   assign cur_desc = desc_i[cur_q];
 
   msr_tile_stream u_stream (
-    .clk_i         (clk_i),
-    .rst_ni        (rst_ni),
-    .clear_i       (clear_i),
-    .start_valid_i (start_q),
-    .start_ready_o (start_ready),
-    .x0_i          (cur_desc.x0),
-    .y0_i          (cur_desc.y0),
-    .w_i           (cur_desc.w),
-    .h_i           (cur_desc.h),
-    .re_o          (re_o),
-    .raddr_o       (raddr_o),
-    .rdata_rgb_i   (rgb_i[cur_q]),
-    .rdata_src_i   (src_i[cur_q]),
-    .pix_valid_o   (pix_valid_o),
-    .pix_ready_i   (pix_ready_i),
-    .pix_o         (pix_o),
-    .done_o        (done)
+    .clk_i, .rst_ni, .clear_i,
+    .start_valid_i (start_q), .start_ready_o (start_ready),
+    .x0_i (cur_desc.x0), .y0_i (cur_desc.y0), .w_i (cur_desc.w), .h_i (cur_desc.h),
+    .re_o, .raddr_o, .rdata_rgb_i (rgb_i[cur_q]), .rdata_src_i (src_i[cur_q]),
+    .pix_valid_o, .pix_ready_i, .pix_o, .done_o (done)
   );
 
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_own

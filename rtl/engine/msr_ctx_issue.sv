@@ -11,15 +11,10 @@
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
-module msr_ctx_issue
-  import msr_pkg::*;
-#(
-  parameter int unsigned NUM_CTX = 8,
-  parameter int unsigned CTX_W   = $clog2(NUM_CTX)
+module msr_ctx_issue import msr_pkg::*; #(
+  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
 ) (
-  input  logic                     clk_i,
-  input  logic                     rst_ni,
-  input  logic                     clear_i,      // synchronous soft reset
+  input  logic                     clk_i, rst_ni, clear_i,  // clear: synchronous soft reset
   input  logic     [NUM_CTX-1:0]   cand_i,       // contexts with a position that may go
   input  eng_pos_t [NUM_CTX-1:0]   pos_i,        // each context's head position
   input  logic                     can_issue_i,  // an output-buffer slot is free (a credit)
@@ -35,14 +30,8 @@ module msr_ctx_issue
   logic [NUM_CTX-1:0] gnt;
 
   msr_rr_arb #(.N(NUM_CTX), .IDX_W(CTX_W)) u_issue_arb (
-    .clk_i   (clk_i),
-    .rst_ni  (rst_ni),
-    .clear_i (clear_i),
-    .req_i   (cand_i),
-    .gnt_o   (gnt),
-    .idx_o   (gnt_idx),
-    .valid_o (arb_valid),
-    .ready_i (can_issue_i)
+    .clk_i, .rst_ni, .clear_i,
+    .req_i (cand_i), .gnt_o (gnt), .idx_o (gnt_idx), .valid_o (arb_valid), .ready_i (can_issue_i)
   );
 
   assign issue_o = arb_valid && can_issue_i;

@@ -11,15 +11,10 @@
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
-module msr_ctx_write
-  import msr_pkg::*;
-#(
-  parameter int unsigned NUM_CTX = 8,
-  parameter int unsigned CTX_W   = $clog2(NUM_CTX)
+module msr_ctx_write import msr_pkg::*; #(
+  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
 ) (
-  input  logic                              clk_i,
-  input  logic                              rst_ni,
-  input  logic                              clear_i,      // synchronous soft reset
+  input  logic                              clk_i, rst_ni, clear_i,  // clear: soft reset
   // the output: an interpolated pixel, or a retro request of its context
   input  logic                              out_write_i,
   input  logic                              out_retro_i,

@@ -20,15 +20,10 @@
 // tile-buffer address its answer writes), then the result's own write or request.
 // retro_sent_q remembers that the first half went.
 `include "msr_flops.svh"
-module msr_lin_dilate
-  import msr_pkg::*;
-#(
-  parameter int unsigned NUM_CTX = 8,                               // tile contexts
-  parameter int unsigned CTX_W   = (NUM_CTX > 1) ? $clog2(NUM_CTX) : 1
+module msr_lin_dilate import msr_pkg::*; #(
+  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
 ) (
-  input  logic                clk_i,            // clock
-  input  logic                rst_ni,           // asynchronous reset, active low
-  input  logic                clear_i,          // synchronous soft reset
+  input  logic                clk_i, rst_ni, clear_i,  // clear: synchronous soft reset
   // PV: the decision leaving the pipeline
   input  logic                base_q_i,         // msr_base_decision's Q, two clocks before PV
   input  logic                pv_valid_i,       // a decision leaves the pipeline

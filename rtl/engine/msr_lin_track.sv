@@ -28,15 +28,10 @@
 // first position of each pass, and the previous A is read only on a line whose earlier
 // position wrote it.
 `include "msr_flops.svh"
-module msr_lin_track
-  import msr_pkg::*;
-#(
-  parameter int unsigned NUM_CTX = 8,                               // tile contexts
-  parameter int unsigned CTX_W   = (NUM_CTX > 1) ? $clog2(NUM_CTX) : 1
+module msr_lin_track import msr_pkg::*; #(
+  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
 ) (
-  input  logic                clk_i,        // clock
-  input  logic                rst_ni,       // asynchronous reset, active low
-  input  logic                clear_i,      // synchronous soft reset
+  input  logic                clk_i, rst_ni, clear_i,  // clear: synchronous soft reset
   // GR: the granted position (the trackers' own issue registers)
   input  logic                gr_valid_i,   // a position is granted
   input  logic [NUM_CTX-1:0]  gr_gnt_i,     // its context, one-hot

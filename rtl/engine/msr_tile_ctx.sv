@@ -109,45 +109,25 @@ module msr_tile_ctx
   /* verilator lint_on UNUSEDSIGNAL */
 
   msr_level_ctrl u_level_ctrl (
-    .clk_i         (clk_i),
-    .rst_ni        (rst_ni),
-    .clear_i       (clear_i),
-    .start_valid_i (start_i),
-    .start_ready_o (ctrl_start_ready),
-    .w_i           (desc_i.w),
-    .h_i           (desc_i.h),
-    .levels_i      (desc_i.levels),
-    .step_valid_o  (ctrl_valid),
-    .step_ready_i  (ctrl_room),
-    .step_x_o      (ctrl_step.x),
-    .step_y_o      (ctrl_step.y),
-    .step_ax_o     (ctrl_step.ax),
-    .step_ay_o     (ctrl_step.ay),
-    .step_bx_o     (ctrl_step.bx),
-    .step_by_o     (ctrl_step.by),
-    .step_gap_o    (ctrl_step.gap),
-    .step_off_o    (ctrl_step.off),
-    .step_level_o  (ctrl_step.level),
-    .step_nshift_o (ctrl_step.nshift),
-    .step_dir_o    (ctrl_step.dir),
-    .step_first_o  (ctrl_step.first),
-    .step_o2a_o    (ctrl_step.o2a),
-    .step_o2_o     (ctrl_step.o2),
-    .busy_o        (ctrl_busy)
+    .clk_i, .rst_ni, .clear_i,
+    .start_valid_i (start_i), .start_ready_o (ctrl_start_ready),
+    .w_i (desc_i.w), .h_i (desc_i.h), .levels_i (desc_i.levels),
+    .step_valid_o (ctrl_valid), .step_ready_i (ctrl_room),
+    .step_x_o (ctrl_step.x), .step_y_o (ctrl_step.y),
+    .step_ax_o (ctrl_step.ax), .step_ay_o (ctrl_step.ay),
+    .step_bx_o (ctrl_step.bx), .step_by_o (ctrl_step.by),
+    .step_gap_o (ctrl_step.gap), .step_off_o (ctrl_step.off), .step_level_o (ctrl_step.level),
+    .step_nshift_o (ctrl_step.nshift), .step_dir_o (ctrl_step.dir),
+    .step_first_o (ctrl_step.first), .step_o2a_o (ctrl_step.o2a), .step_o2_o (ctrl_step.o2),
+    .busy_o (ctrl_busy)
   );
 
   // ctrl_room is the spill register's "second entry empty", a flip-flop: the controller's
   // advance (the clock enable of its walk state) no longer waits for the engine's grant.
   msr_spill_reg #(.WIDTH($bits(step_t))) u_step_slice (
-    .clk_i,
-    .rst_ni,
-    .clear_i,
-    .valid_i (ctrl_valid),
-    .ready_o (ctrl_room),
-    .data_i  (ctrl_step),
-    .valid_o (step_valid),
-    .ready_i (q_room),
-    .data_o  (step)
+    .clk_i, .rst_ni, .clear_i,
+    .valid_i (ctrl_valid), .ready_o (ctrl_room), .data_i (ctrl_step),
+    .valid_o (step_valid), .ready_i (q_room),    .data_o (step)
   );
 
   // The engine's grant is registered: issue_i is a flip-flop, and the position granted the
@@ -234,19 +214,16 @@ module msr_tile_ctx
     endcase
   end
 
+  `MSR_CLR_REG_RST(u_pend_q, PEND_W + 1, {PEND_W'(0), 1'b1}, clear_i, 1'b1,
+                   {pend_d, pend_zero_d}, {pend_q, pend_zero_q})
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      state_q     <= CTX_FREE;
-      pend_q      <= '0;
-      pend_zero_q <= 1'b1;
+      state_q <= CTX_FREE;
     end else if (clear_i) begin
-      state_q     <= CTX_FREE;
-      pend_q      <= '0;
-      pend_zero_q <= 1'b1;
+      state_q <= CTX_FREE;
     end else begin
-      state_q     <= state_d;
-      pend_q      <= pend_d;
-      pend_zero_q <= pend_zero_d;
+      state_q <= state_d;
     end
   end
 
@@ -278,16 +255,11 @@ module msr_tile_ctx
     .DEPTH  (MAX_TILE * MAX_TILE),
     .DATA_W (WORD_W)
   ) u_tile_sram (
-    .clk_i    (clk_i),
-    .re0_i    (str_own_i ? str_re_i : computing),
-    .raddr0_i (str_own_i ? str_raddr_i : {head_q.by, head_q.bx}),
-    .rdata0_o (rdata0),
-    .re1_i    (computing),
-    .raddr1_i ({head_q.ay, head_q.ax}),
-    .rdata1_o (rdata1),
-    .we_i     (we_i),
-    .waddr_i  (waddr_i),
-    .wdata_i  ({wsrc_i, wrgb_i})
+    .clk_i,
+    .re0_i (str_own_i ? str_re_i : computing),
+    .raddr0_i (str_own_i ? str_raddr_i : {head_q.by, head_q.bx}), .rdata0_o (rdata0),
+    .re1_i (computing), .raddr1_i ({head_q.ay, head_q.ax}), .rdata1_o (rdata1),
+    .we_i, .waddr_i, .wdata_i ({wsrc_i, wrgb_i})
   );
 
   // Port 2 (lindilate): a colour-only copy written with the buffer, reading the head's
@@ -304,16 +276,12 @@ module msr_tile_ctx
     .DEPTH  (MAX_TILE * MAX_TILE),
     .DATA_W ($bits(rgb_t))
   ) u_tile_sram_outer (
-    .clk_i    (clk_i),
-    .re0_i    (computing && LINDILATE != 0),
+    .clk_i,
+    .re0_i (computing && LINDILATE != 0),
     .raddr0_i ((head_q.dir == DIR_V) ? {head_q.o2, head_q.x} : {head_q.y, head_q.o2}),
     .rdata0_o (rdata2),
-    .re1_i    (1'b0),
-    .raddr1_i ('0),
-    .rdata1_o (rdata2_unused),
-    .we_i     (we_i && LINDILATE != 0),
-    .waddr_i  (waddr_i),
-    .wdata_i  (wrgb_i)
+    .re1_i (1'b0), .raddr1_i ('0), .rdata1_o (rdata2_unused),
+    .we_i (we_i && LINDILATE != 0), .waddr_i, .wdata_i (wrgb_i)
   );
 
   always_ff @(posedge clk_i) begin

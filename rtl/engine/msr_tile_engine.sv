@@ -127,25 +127,15 @@ module msr_tile_engine
 
   msr_ctx_alloc #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W)) u_ctx_alloc (
     .clk_i, .rst_ni, .clear_i,
-    .ctx_free_i   (ctx_free),
-    .hold_i       (tags_init),
-    .desc_valid_i (desc_valid_i),
-    .desc_ready_o (desc_ready_o),
-    .desc_i       (desc_i),
-    .start_o      (ctx_start),
-    .desc_o       (alloc_desc)
+    .ctx_free_i (ctx_free), .hold_i (tags_init),
+    .desc_valid_i, .desc_ready_o, .desc_i,
+    .start_o (ctx_start), .desc_o (alloc_desc)
   );
 
   msr_ctx_issue #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W)) u_ctx_issue (
     .clk_i, .rst_ni, .clear_i,
-    .cand_i      (ctx_cand),
-    .pos_i       (ctx_pos),
-    .can_issue_i (can_issue),
-    .issue_o     (issue),
-    .gr_valid_o  (gr_valid),
-    .gr_gnt_o    (gr_gnt),
-    .gr_ctx_o    (gr_ctx),
-    .gr_pos_o    (iss_pos)
+    .cand_i (ctx_cand), .pos_i (ctx_pos), .can_issue_i (can_issue), .issue_o (issue),
+    .gr_valid_o (gr_valid), .gr_gnt_o (gr_gnt), .gr_ctx_o (gr_ctx), .gr_pos_o (iss_pos)
   );
 
   // ---- Operands: GR -> IS -> RD -> AB (msr_operand_fetch) -----------------------------------
@@ -163,31 +153,12 @@ module msr_tile_engine
 
   msr_operand_fetch #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .LINDILATE(LINDILATE)) u_operand_fetch (
     .clk_i, .rst_ni, .clear_i,
-    .gr_valid_i (gr_valid),
-    .gr_gnt_i   (gr_gnt),
-    .gr_ctx_i   (gr_ctx),
-    .gr_pos_i   (iss_pos),
-    .desc_i     (ctx_desc),
-    .rd_a_i     (ctx_rd_a),
-    .rd_b_i     (ctx_rd_b),
-    .rd_o2_i    (ctx_rd_o2),
-    .valid_o    (ab_valid),
-    .ctx_o      (ab_ctx),
-    .pos_o      (ab_pos),
-    .gx_o       (ab_gx),
-    .gy_o       (ab_gy),
-    .metric_o   (ab_metric),
-    .thr_o      (ab_thr),
-    .a_o        (ab_a),
-    .b_o        (ab_b),
-    .lin_o      (ab_lin),
-    .mh_o       (ab_mh),
-    .fline_o    (ab_fline),
-    .ldelta_o   (ab_ldelta),
-    .oa_o       (ab_oa),
-    .oka_o      (ab_oka),
-    .ob_o       (ab_ob),
-    .okb_o      (ab_okb)
+    .gr_valid_i (gr_valid), .gr_gnt_i (gr_gnt), .gr_ctx_i (gr_ctx), .gr_pos_i (iss_pos),
+    .desc_i (ctx_desc), .rd_a_i (ctx_rd_a), .rd_b_i (ctx_rd_b), .rd_o2_i (ctx_rd_o2),
+    .valid_o (ab_valid), .ctx_o (ab_ctx), .pos_o (ab_pos), .gx_o (ab_gx), .gy_o (ab_gy),
+    .metric_o (ab_metric), .thr_o (ab_thr), .a_o (ab_a), .b_o (ab_b),
+    .lin_o (ab_lin), .mh_o (ab_mh), .fline_o (ab_fline), .ldelta_o (ab_ldelta),
+    .oa_o (ab_oa), .oka_o (ab_oka), .ob_o (ab_ob), .okb_o (ab_okb)
   );
 
   // What travels with a decision to the output. For lindilate (lin): the position on its
@@ -245,22 +216,13 @@ module msr_tile_engine
     .USER_W ($bits(side_t))
   ) u_decision_pipe (
     .clk_i, .rst_ni, .clear_i,
-    .valid_i  (ab_valid),
-    .ready_o  (pv_ready),
-    .a_i      (ab_a),
-    .b_i      (ab_b),
-    .metric_i (ab_metric),
-    .thr_i    (ab_thr),
+    .valid_i  (ab_valid), .ready_o (pv_ready),
+    .a_i      (ab_a), .b_i (ab_b), .metric_i (ab_metric), .thr_i (ab_thr),
     .gap_i    (ab_pos.init ? gap_t'(2) : ab_pos.gap),
     .off_i    (ab_pos.init ? gap_t'(1) : ab_pos.off),
-    .nshift_i (ab_pos.nshift),
-    .user_i   (ab_side),
-    .valid_o  (pv_valid),
-    .ready_i  (1'b1),
-    .interp_o (pv_interp),
-    .diff_o   (pv_diff),
-    .rgb_o    (pv_rgb),
-    .user_o   (pv_side)
+    .nshift_i (ab_pos.nshift), .user_i (ab_side),
+    .valid_o  (pv_valid), .ready_i (1'b1),
+    .interp_o (pv_interp), .diff_o (pv_diff), .rgb_o (pv_rgb), .user_o (pv_side)
   );
 
   // lindilate: msr_base_decision takes the same AB registers plus A' and B' and answers four
@@ -272,21 +234,11 @@ module msr_tile_engine
   /* verilator lint_on UNUSEDSIGNAL */
 
   msr_base_decision u_base_decision (
-    .clk_i        (clk_i),
-    .en_i         (1'b1),
-    .outer_a_i    (ab_oa),
-    .outer_a_ok_i (ab_oka),
-    .a_i          (ab_a),
-    .b_i          (ab_b),
-    .outer_b_i    (ab_ob),
-    .outer_b_ok_i (ab_okb),
-    .metric_i     (ab_metric),
-    .thr_i        (ab_thr),
-    .gap_i        (ab_pos.gap),
-    .nshift_i     (ab_pos.nshift),
-    .base_o       (base_d),
-    .patent_o     (base_p),
-    .second_o     (base_q)
+    .clk_i, .en_i (1'b1),
+    .outer_a_i (ab_oa), .outer_a_ok_i (ab_oka), .a_i (ab_a),
+    .b_i       (ab_b),  .outer_b_i    (ab_ob),  .outer_b_ok_i (ab_okb),
+    .metric_i (ab_metric), .thr_i (ab_thr), .gap_i (ab_pos.gap), .nshift_i (ab_pos.nshift),
+    .base_o (base_d), .patent_o (base_p), .second_o (base_q)
   );
 
   assign pv_result = '{trace: pv_side.init || !(pv_side.lin ? pv_lin_interp : pv_interp),
@@ -295,13 +247,9 @@ module msr_tile_engine
 
   msr_out_buf #(.WIDTH($bits(result_t)), .DEPTH(OUT_DEPTH)) u_out_buf (
     .clk_i, .rst_ni, .clear_i,
-    .issue_i     (issue),
-    .can_issue_o (can_issue),
-    .valid_i     (pv_valid),
-    .data_i      (pv_result),
-    .valid_o     (out_valid),
-    .ready_i     (out_ready),
-    .data_o      (out_result)
+    .issue_i (issue), .can_issue_o (can_issue),
+    .valid_i (pv_valid), .data_i (pv_result),
+    .valid_o (out_valid), .ready_i (out_ready), .data_o (out_result)
   );
 
   assign out_rgb  = out_result.rgb;
@@ -315,48 +263,23 @@ module msr_tile_engine
 
   msr_lin_dilate #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W)) u_lin_dilate (
     .clk_i, .rst_ni, .clear_i,
-    .base_q_i        (base_q),
-    .pv_valid_i      (pv_valid),
-    .pv_interp_i     (pv_interp),
-    .pv_lin_i        (pv_side.lin),
-    .pv_fline_i      (pv_side.fline),
-    .pv_ctx_i        (pv_side.o.ctx),
-    .pv_mh_i         (pv_side.mh),
-    .pv_lin_interp_o (pv_lin_interp),
-    .pv_retro_o      (pv_retro),
-    .out_valid_i     (out_valid),
-    .out_retro_i     (out_result.retro),
-    .out_done_i      (out_valid && out_ready),
-    .alloc_i         (alloc_tag),
-    .out_vert_i      (out_side.vert),
-    .out_x_i         (out_side.x),
-    .out_y_i         (out_side.y),
-    .out_gx_i        (out_side.gx),
-    .out_gy_i        (out_side.gy),
-    .out_ldelta_i    (out_side.ldelta),
-    .retro_phase_o   (retro_phase),
-    .req_x_o         (req_x),
-    .req_y_o         (req_y),
-    .req_addr_o      (req_addr)
+    .base_q_i (base_q),
+    .pv_valid_i (pv_valid), .pv_interp_i (pv_interp), .pv_lin_i (pv_side.lin),
+    .pv_fline_i (pv_side.fline), .pv_ctx_i (pv_side.o.ctx), .pv_mh_i (pv_side.mh),
+    .pv_lin_interp_o (pv_lin_interp), .pv_retro_o (pv_retro),
+    .out_valid_i (out_valid), .out_retro_i (out_result.retro),
+    .out_done_i (out_valid && out_ready), .alloc_i (alloc_tag),
+    .out_vert_i (out_side.vert), .out_x_i (out_side.x), .out_y_i (out_side.y),
+    .out_gx_i (out_side.gx), .out_gy_i (out_side.gy), .out_ldelta_i (out_side.ldelta),
+    .retro_phase_o (retro_phase), .req_x_o (req_x), .req_y_o (req_y), .req_addr_o (req_addr)
   );
 
   msr_req_out #(.TAG_W(TAG_W)) u_req_out (
     .clk_i, .rst_ni, .clear_i,
-    .out_valid_i   (out_valid),
-    .out_ready_o   (out_ready),
-    .out_trace_i   (out_result.trace),
-    .retro_phase_i (retro_phase),
-    .out_write_o   (out_write),
-    .req_x_i       (req_x),
-    .req_y_i       (req_y),
-    .tag_avail_i   (tag_avail),
-    .free_tag_i    (free_tag),
-    .alloc_tag_o   (alloc_tag),
-    .req_valid_o   (req_valid_o),
-    .req_ready_i   (req_ready_i),
-    .req_x_o       (req_x_o),
-    .req_y_o       (req_y_o),
-    .req_tag_o     (req_tag_o)
+    .out_valid_i (out_valid), .out_ready_o (out_ready), .out_trace_i (out_result.trace),
+    .retro_phase_i (retro_phase), .out_write_o (out_write), .req_x_i (req_x), .req_y_i (req_y),
+    .tag_avail_i (tag_avail), .free_tag_i (free_tag), .alloc_tag_o (alloc_tag),
+    .req_valid_o, .req_ready_i, .req_x_o, .req_y_o, .req_tag_o
   );
 
   // ---- Responses and tags -----------------------------------------------------------------------
@@ -372,49 +295,25 @@ module msr_tile_engine
     .CTX_W           (CTX_W)
   ) u_rsp_check (
     .clk_i, .rst_ni, .clear_i,
-    .rsp_valid_i   (rsp_valid_i),
-    .rsp_ready_o   (rsp_ready_o),
-    .rsp_tag_i     (rsp_tag_i),
-    .rsp_rgb_i     (rsp_rgb_i),
-    .tag_avail_o   (tag_avail),
-    .free_tag_o    (free_tag),
-    .alloc_i       (alloc_tag),
-    .alloc_ctx_i   (out_side.ctx),
-    .alloc_addr_i  (req_addr),
-    .alloc_level_i (out_side.level),
-    .pipe_we_i     (out_write),
-    .pipe_ctx_i    (out_side.ctx),
-    .we_o          (r2_write),
-    .wctx_o        (rsp_wctx),
-    .waddr_o       (rsp_waddr),
-    .wlevel_o      (rsp_wlevel),
-    .wrgb_o        (rsp_wrgb),
-    .drop_o        (rsp_drop_o),
-    .inflight_o    (inflight_o),
-    .tags_out_o    (tags_out_o),
-    .init_o        (tags_init)
+    .rsp_valid_i, .rsp_ready_o, .rsp_tag_i, .rsp_rgb_i,
+    .tag_avail_o (tag_avail), .free_tag_o (free_tag),
+    .alloc_i (alloc_tag), .alloc_ctx_i (out_side.ctx), .alloc_addr_i (req_addr),
+    .alloc_level_i (out_side.level), .pipe_we_i (out_write), .pipe_ctx_i (out_side.ctx),
+    .we_o (r2_write), .wctx_o (rsp_wctx), .waddr_o (rsp_waddr), .wlevel_o (rsp_wlevel),
+    .wrgb_o (rsp_wrgb),
+    .drop_o (rsp_drop_o), .inflight_o, .tags_out_o, .init_o (tags_init)
   );
 
   // ---- Writes: each context's one port, registered (msr_ctx_write) ---------------------------
   msr_ctx_write #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W)) u_ctx_write (
     .clk_i, .rst_ni, .clear_i,
-    .out_write_i (out_write),
-    .out_retro_i (retro_phase && alloc_tag),
-    .out_ctx_i   (out_side.ctx),
-    .out_x_i     (out_side.x),
-    .out_y_i     (out_side.y),
-    .out_level_i (out_side.level),
-    .out_rgb_i   (out_rgb),
-    .rsp_write_i (r2_write),
-    .rsp_ctx_i   (rsp_wctx),
-    .rsp_addr_i  (rsp_waddr),
-    .rsp_level_i (rsp_wlevel),
-    .rsp_rgb_i   (rsp_wrgb),
-    .we_o        (ctx_we),
-    .retro_o     (ctx_retro),
-    .waddr_o     (ctx_waddr),
-    .wsrc_o      (ctx_wsrc),
-    .wrgb_o      (ctx_wrgb)
+    .out_write_i (out_write), .out_retro_i (retro_phase && alloc_tag), .out_ctx_i (out_side.ctx),
+    .out_x_i (out_side.x), .out_y_i (out_side.y), .out_level_i (out_side.level),
+    .out_rgb_i (out_rgb),
+    .rsp_write_i (r2_write), .rsp_ctx_i (rsp_wctx), .rsp_addr_i (rsp_waddr),
+    .rsp_level_i (rsp_wlevel), .rsp_rgb_i (rsp_wrgb),
+    .we_o (ctx_we), .retro_o (ctx_retro), .waddr_o (ctx_waddr), .wsrc_o (ctx_wsrc),
+    .wrgb_o (ctx_wrgb)
   );
 
   // ---- Finished tiles out (msr_ctx_drain) -----------------------------------------------------
@@ -425,17 +324,10 @@ module msr_tile_engine
 
   msr_ctx_drain #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W)) u_ctx_drain (
     .clk_i, .rst_ni, .clear_i,
-    .full_i      (ctx_full),
-    .desc_i      (ctx_desc),
-    .own_o       (ctx_str_own),
-    .re_o        (str_re),
-    .raddr_o     (str_raddr),
-    .rgb_i       (ctx_str_rgb),
-    .src_i       (ctx_str_src),
-    .done_o      (ctx_str_done),
-    .pix_valid_o (pix_valid_o),
-    .pix_ready_i (pix_ready_i),
-    .pix_o       (pix_word)
+    .full_i (ctx_full), .desc_i (ctx_desc), .own_o (ctx_str_own),
+    .re_o (str_re), .raddr_o (str_raddr), .rgb_i (ctx_str_rgb), .src_i (ctx_str_src),
+    .done_o (ctx_str_done),
+    .pix_valid_o, .pix_ready_i, .pix_o (pix_word)
   );
 
   // ---- The contexts themselves ----------------------------------------------------------------
@@ -445,28 +337,13 @@ module msr_tile_engine
       .LINDILATE (LINDILATE)
     ) u_ctx (
       .clk_i, .rst_ni, .clear_i,
-      .start_i       (ctx_start[c]),
-      .desc_i        (alloc_desc),
-      .free_o        (ctx_free[c]),
-      .desc_o        (ctx_desc[c]),
-      .cand_o        (ctx_cand[c]),
-      .step_o        (ctx_pos[c]),
-      .issue_i       (gr_gnt[c]),
-      .rd_a_o        (ctx_rd_a[c]),
-      .rd_b_o        (ctx_rd_b[c]),
-      .rd_o2_o       (ctx_rd_o2[c]),
-      .retro_i       (ctx_retro[c]),
-      .we_i          (ctx_we[c]),
-      .waddr_i       (ctx_waddr[c]),
-      .wsrc_i        (ctx_wsrc[c]),
-      .wrgb_i        (ctx_wrgb[c]),
-      .full_o        (ctx_full[c]),
-      .str_own_i     (ctx_str_own[c]),
-      .str_re_i      (str_re),
-      .str_raddr_i   (str_raddr),
-      .str_rgb_o     (ctx_str_rgb[c]),
-      .str_src_o     (ctx_str_src[c]),
-      .str_done_i    (ctx_str_done[c])
+      .start_i (ctx_start[c]), .desc_i (alloc_desc), .free_o (ctx_free[c]),
+      .desc_o (ctx_desc[c]), .cand_o (ctx_cand[c]), .step_o (ctx_pos[c]), .issue_i (gr_gnt[c]),
+      .rd_a_o (ctx_rd_a[c]), .rd_b_o (ctx_rd_b[c]), .rd_o2_o (ctx_rd_o2[c]),
+      .retro_i (ctx_retro[c]), .we_i (ctx_we[c]), .waddr_i (ctx_waddr[c]),
+      .wsrc_i (ctx_wsrc[c]), .wrgb_i (ctx_wrgb[c]), .full_o (ctx_full[c]),
+      .str_own_i (ctx_str_own[c]), .str_re_i (str_re), .str_raddr_i (str_raddr),
+      .str_rgb_o (ctx_str_rgb[c]), .str_src_o (ctx_str_src[c]), .str_done_i (ctx_str_done[c])
     );
     assign ctx_first[c] = ctx_pos[c].first;
   end
