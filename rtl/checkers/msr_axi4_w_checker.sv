@@ -121,25 +121,21 @@ module msr_axi4_w_checker #(
 
 `ifndef SYNTHESIS
   /* verilator lint_off SYNCASYNCNET */
-  a_aw_stable: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[0])
-    else $error("%m: AXI4 AW: AWVALID dropped or AW payload changed before AWREADY");
-  a_w_stable: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[1])
-    else $error("%m: AXI4 W: WVALID dropped or WDATA/WSTRB/WLAST changed before WREADY");
-  a_b_stable: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[2])
-    else $error("%m: AXI4 B: BVALID dropped or BID/BRESP changed before BREADY");
-  a_wlast: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[3])
-    else $error("%m: AXI4 W: WLAST=%0d on beat %0d of a burst of AWLEN+1=%0d", wlast, wbeat_q + 1,
-                head_len + 1);
-  a_w_early: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[4])
-    else $error("%m: AXI4 W: a beat before its AW (this checker wants AW first)");
-  a_4k: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[5])
-    else $error("%m: AXI4 AW: burst at 0x%0h of %0d bytes crosses 4 KiB", awaddr, aw_bytes);
-  a_awsize: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[6])
-    else $error("%m: AXI4 AW: AWSIZE %0d wider than the %0d-bit bus", awsize, DATA_W);
-  a_b_orphan: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[7])
-    else $error("%m: AXI4 B: BVALID with no completed write outstanding");
-  a_capacity: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[8])
-    else $error("%m: AXI4 checker: more than MAX_OUT=%0d bursts in flight", MAX_OUT);
+  `MSR_CHK_RULE(a_aw_stable, 0,
+      ("%m: AXI4 AW: AWVALID dropped or AW payload changed before AWREADY"))
+  `MSR_CHK_RULE(a_w_stable, 1,
+      ("%m: AXI4 W: WVALID dropped or WDATA/WSTRB/WLAST changed before WREADY"))
+  `MSR_CHK_RULE(a_b_stable, 2, ("%m: AXI4 B: BVALID dropped or BID/BRESP changed before BREADY"))
+  `MSR_CHK_RULE(a_wlast, 3,
+      ("%m: AXI4 W: WLAST=%0d on beat %0d of a burst of AWLEN+1=%0d",
+       wlast, wbeat_q + 1, head_len + 1))
+  `MSR_CHK_RULE(a_w_early, 4, ("%m: AXI4 W: a beat before its AW (this checker wants AW first)"))
+  `MSR_CHK_RULE(a_4k, 5,
+      ("%m: AXI4 AW: burst at 0x%0h of %0d bytes crosses 4 KiB", awaddr, aw_bytes))
+  `MSR_CHK_RULE(a_awsize, 6, ("%m: AXI4 AW: AWSIZE %0d wider than the %0d-bit bus", awsize, DATA_W))
+  `MSR_CHK_RULE(a_b_orphan, 7, ("%m: AXI4 B: BVALID with no completed write outstanding"))
+  `MSR_CHK_RULE(a_capacity, 8,
+      ("%m: AXI4 checker: more than MAX_OUT=%0d bursts in flight", MAX_OUT))
   /* verilator lint_on SYNCASYNCNET */
 `endif
 

@@ -92,22 +92,20 @@ module msr_axil_checker #(
 
 `ifndef SYNTHESIS
   /* verilator lint_off SYNCASYNCNET */
-  a_aw_stable: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[0])
-    else $error("%m: AXI4-Lite AW: AWVALID dropped or AWADDR/AWPROT changed before AWREADY");
-  a_w_stable: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[1])
-    else $error("%m: AXI4-Lite W: WVALID dropped or WDATA/WSTRB changed before WREADY");
-  a_b_stable: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[2])
-    else $error("%m: AXI4-Lite B: BVALID dropped or BRESP changed before BREADY");
-  a_ar_stable: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[3])
-    else $error("%m: AXI4-Lite AR: ARVALID dropped or ARADDR/ARPROT changed before ARREADY");
-  a_r_stable: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[4])
-    else $error("%m: AXI4-Lite R: RVALID dropped or RDATA/RRESP changed before RREADY");
-  a_b_orphan: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[5])
-    else $error("%m: AXI4-Lite B: BVALID with no write (AW and W accepted) unanswered");
-  a_r_orphan: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[6])
-    else $error("%m: AXI4-Lite R: RVALID with no read unanswered");
-  a_capacity: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[7])
-    else $error("%m: AXI4-Lite checker: more than MAX_OUT=%0d requests unanswered", MAX_OUT);
+  `MSR_CHK_RULE(a_aw_stable, 0,
+      ("%m: AXI4-Lite AW: AWVALID dropped or AWADDR/AWPROT changed before AWREADY"))
+  `MSR_CHK_RULE(a_w_stable, 1,
+      ("%m: AXI4-Lite W: WVALID dropped or WDATA/WSTRB changed before WREADY"))
+  `MSR_CHK_RULE(a_b_stable, 2, ("%m: AXI4-Lite B: BVALID dropped or BRESP changed before BREADY"))
+  `MSR_CHK_RULE(a_ar_stable, 3,
+      ("%m: AXI4-Lite AR: ARVALID dropped or ARADDR/ARPROT changed before ARREADY"))
+  `MSR_CHK_RULE(a_r_stable, 4,
+      ("%m: AXI4-Lite R: RVALID dropped or RDATA/RRESP changed before RREADY"))
+  `MSR_CHK_RULE(a_b_orphan, 5,
+      ("%m: AXI4-Lite B: BVALID with no write (AW and W accepted) unanswered"))
+  `MSR_CHK_RULE(a_r_orphan, 6, ("%m: AXI4-Lite R: RVALID with no read unanswered"))
+  `MSR_CHK_RULE(a_capacity, 7,
+      ("%m: AXI4-Lite checker: more than MAX_OUT=%0d requests unanswered", MAX_OUT))
   /* verilator lint_on SYNCASYNCNET */
 `endif
 

@@ -76,4 +76,9 @@
 `define MSR_AXI4_W_CONN(P, X) \
   `MSR_AXI4_AW_CONN(P, X), `MSR_AXI4_WD_CONN(P, X), `MSR_AXI4_B_CONN(P, X)
 
+// One rule of a checker: the labelled assertion NAME on bit I of the checker's masked
+// violations chk, off while `MSR_CHK_OFF, printing MSG (an $error argument list in parentheses).
+`define MSR_CHK_RULE(NAME, I, MSG) \
+  NAME: assert property (@(posedge clk_i) disable iff (`MSR_CHK_OFF) !chk[I]) else $error MSG;
+
 `endif  // MSR_CHK_AXI_SVH
