@@ -21,7 +21,7 @@
 // retro_sent_q remembers that the first half went.
 `include "msr_flops.svh"
 module msr_lin_dilate import msr_pkg::*; #(
-  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
+  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)  // contexts
 ) (
   input  logic                clk_i, rst_ni, clear_i,  // clear: synchronous soft reset
   // PV: the decision leaving the pipeline

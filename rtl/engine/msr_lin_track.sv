@@ -29,7 +29,7 @@
 // position wrote it.
 `include "msr_flops.svh"
 module msr_lin_track import msr_pkg::*; #(
-  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
+  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)  // contexts
 ) (
   input  logic                clk_i, rst_ni, clear_i,  // clear: synchronous soft reset
   // GR: the granted position (the trackers' own issue registers)
