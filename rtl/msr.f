@@ -7,6 +7,7 @@ rtl/prim/msr_clr_reg.sv
 rtl/prim/msr_dup_reg.sv
 rtl/prim/msr_seg_add.sv
 rtl/prim/msr_sat_counter.sv
+rtl/prim/msr_onehot_to_bin.sv
 rtl/prim/msr_rr_arb.sv
 rtl/prim/msr_fifo.sv
 rtl/prim/msr_spill_reg.sv

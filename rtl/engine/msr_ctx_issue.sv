@@ -42,12 +42,9 @@ module msr_ctx_issue import msr_pkg::*; #(
   // The granted context's index, encoded from the registered one-hot grant (one LUT level in
   // the short GR -> IS path) rather than registered from the arbiter's index output (two LUT
   // levels more behind its carry chain, the engine's longest path).
-  always_comb begin
-    gr_ctx_o = '0;
-    for (int unsigned c = 0; c < NUM_CTX; c++) begin
-      if (gr_gnt_o[c]) gr_ctx_o |= CTX_W'(c);
-    end
-  end
+  msr_onehot_to_bin #(.N(NUM_CTX), .IDX_W(CTX_W)) u_gr_ctx (
+    .onehot_i (gr_gnt_o), .bin_o (gr_ctx_o)
+  );
   logic unused_gnt_idx;
   assign unused_gnt_idx = ^gnt_idx;
 

@@ -89,12 +89,7 @@ module msr_rr_arb #(
 
   assign valid_o = (req_i != '0);
 
-  always_comb begin
-    idx_o = '0;
-    for (int unsigned i = 0; i < N; i++) begin
-      if (gnt_o[i]) idx_o |= IDX_W'(i);
-    end
-  end
+  msr_onehot_to_bin #(.N(N), .IDX_W(IDX_W)) u_idx (.onehot_i (gnt_o), .bin_o (idx_o));
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
