@@ -154,19 +154,17 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [MEM_W-1:0] mem_q [MEM_DEPTH];
   logic [MEM_W-1:0] mem_rdata_q, mem_word_q;
   logic             mem_re, mem_we;
-  logic [8:0]       mem_waddr, mem_raddr;
-  assign mem_waddr = rows_done_q[8:0];
-  assign mem_raddr = rows_done_q[8:0] + 9'(state_q == ST_ACC);   // row j, then row j + 1
+  logic [8:0]       mem_addr;
+  assign mem_addr = rows_done_q[8:0];
 
   always_ff @(posedge clk_i) begin
-    if (mem_we) mem_q[mem_waddr] <= MEM_W'(mul_prod);
+    if (mem_we) mem_q[mem_addr] <= MEM_W'(mul_prod);
   end
   always_ff @(posedge clk_i) begin
-    if (mem_re) mem_rdata_q <= mem_q[mem_raddr];
+    if (mem_re) mem_rdata_q <= mem_q[mem_addr];
   end
-  // The word registered once more (the block RAM's output register on ECP5): row j's, read in
-  // ST_IDLE, used in ST_ACC (after ST_FLR and the a_j product); row j + 1's (a1, the seeded
-  // law), read in ST_ACC, used from ST_SEED to ST_DEN. From the RAM's clock-to-output straight
+  // The word registered once more (the block RAM's output register on ECP5): read in ST_IDLE,
+  // used in ST_ACC, after ST_FLR and the a_j product; from the RAM's clock-to-output straight
   // into the 35-bit sum it was the unit's worst path.
   always_ff @(posedge clk_i) mem_word_q <= mem_rdata_q;
 
@@ -177,11 +175,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [18:0]      c_diff;                // c - g and its borrow (one carry chain)
   logic [ACT_W:0]   a_diff;                // Atot - Ad and its borrow
   logic [WH_W:0]    pp0;                  // P + P0 <= 2^25: 26 bits
-  logic [ACT_W-1:0] nn0, a_left, a_rest;
-  logic [ACT_W:0]   a1_diff;               // max(Atot - Ad, 0) - a1 and its borrow
-  logic [PROD_W:0]  den_diff;              // the denominator's product - a1 (seeded) and its borrow
-  logic [MEM_W-1:0] a1;                    // row j + 1's word (seeded), 0 for the first-frame law
-  logic             den_sat;               // seeded: X * u1 <= a1, no budget left for rows j + 2..
+  logic [ACT_W-1:0] nn0, a_left;
   logic [10:0]      u_new;
   assign x_pos     = !law_q.x_rem[26] && law_q.x_rem != '0;
   assign slot1     = inc3(base_q);
@@ -196,11 +190,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   assign nn0       = law_q.n + law_q.n0;
   assign a_diff    = {1'b0, law_q.atot} - {1'b0, law_q.ad};
   assign a_left    = a_diff[ACT_W] ? '0 : a_diff[ACT_W-1:0];
-  assign a1        = frm_q.seeded ? mem_word_q : '0;
-  assign a1_diff   = {1'b0, a_left} - (ACT_W + 1)'(a1);
-  assign a_rest    = a1_diff[ACT_W] ? '0 : a1_diff[ACT_W-1:0];
-  assign den_diff  = {1'b0, mul_prod} - (PROD_W + 1)'(a1);
-  assign den_sat   = frm_q.seeded && (den_diff[PROD_W] || den_diff == '0);
   assign u_new     = clamp_u(law_q.u_mx);
 
   // ---- Divider (msr_seq_div): the saturation test, then quotient bits 10..0 ---------------
@@ -210,9 +199,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [REM_W-1:0] div_num_in, div_den_in;
   logic [10:0]      div_quo;
   assign run          = !clear_i && !start_p && !check_p;
-  // The law presets the divider (and loads it for the last row); a seeded denominator X * u1 -
-  // a1 <= 0 presets it again, to the saturated quotient, and skips the division.
-  assign div_init     = run && (state_q == ST_LAW || (state_q == ST_DEN && mul_done && den_sat));
+  assign div_init     = run && state_q == ST_LAW;
   assign div_load_num = div_init || (run && state_q == ST_NUM && mul_done);
   assign div_load_den = div_init || (run && state_q == ST_DEN && mul_done);
 
@@ -220,12 +207,11 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .clk_i,
     .rst_ni,
     .init_i     (div_init),
-    .quo_init_i ((row_last_q ? frm_q.spare == '0 : (row_new_q && !x_pos) || state_q == ST_DEN)
-                 ? Q_SAT : 11'd0),
+    .quo_init_i ((row_last_q ? frm_q.spare == '0 : row_new_q && !x_pos) ? Q_SAT : 11'd0),
     .load_num_i (div_load_num),
     .num_i      ((state_q == ST_LAW) ? div_num_in : REM_W'(mul_prod)),
     .load_den_i (div_load_den),
-    .den_i      ((state_q == ST_LAW) ? div_den_in : REM_W'(den_diff[PROD_W-1:0])),
+    .den_i      ((state_q == ST_LAW) ? div_den_in : REM_W'(mul_prod)),
     .step_i     (run && state_q == ST_DIV),
     .last_o     (div_last),
     .quo_o      (div_quo)
@@ -233,8 +219,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
 
   // The chains of products: when a state's product is done the next one starts with these
   // operands, in the next state of the enum (start: G, W * H, g and p of the last row, N0, m0;
-  // law: the numerator from ST_LAW, then the denominator; the seeded law's numerator from
-  // ST_SEED, then its denominator).
+  // law: the numerator from ST_LAW, then the denominator).
   mul_op_t         nxt;
   // n0 of the last row, registered: h_last loads at the pulse and ST_WH, which uses it, begins
   // after the G product (at least one clock); from the pulse's registers through grid_axis
@@ -248,8 +233,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       ST_GL:   nxt = mul_op(MC_W'(cfg.width), MP_W'(frm_q.h_last), 6);
       ST_PL:   nxt = mul_op(MC_W'(frm_q.spare), MP_W'(frm_q.u0), 11);
       ST_N0:   nxt = mul_op(MC_W'(frm_q.u0), MP_W'(frm_q.u0), 11);
-      ST_NUM:  nxt = frm_q.seeded ? mul_op(MC_W'(law_q.x_rem[MP_W-1:0]), MP_W'(u_q[slot1]), 11)
-                                  : mul_op(MC_W'(pp0), law_q.x_rem[MP_W-1:0], MP_W);
+      ST_NUM:  nxt = mul_op(MC_W'(pp0), law_q.x_rem[MP_W-1:0], MP_W);
       default: nxt = mul_op(nn0, frm_q.wh - law_q.p_sum, MP_W);
     endcase
   end
@@ -268,10 +252,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           mem_re   = 1'b1;
           state_d  = ST_FLR;
         end
-      end
-      ST_ACC: begin
-        mem_re  = 1'b1;                          // row j + 1's word, for the seeded law
-        state_d = ST_LAW;
       end
       // The floor from registers (c_j - g_j and p_j, latched with the row result): the
       // subtract and the compare are not one carry chain after the other in one clock.
@@ -292,6 +272,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         mem_we  = 1'b1;
         state_d = ST_ACC;
       end
+      ST_ACC: state_d = ST_LAW;
       ST_LAW: begin
         if (row_last_q) begin
           div_num_in = REM_W'(law_q.n);
@@ -302,19 +283,16 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         end else if (!x_pos) begin
           state_d = ST_SLEW;                     // q = U_MAX + 1 (set below)
         end else if (frm_q.seeded) begin
-          state_d = ST_SEED;                     // row j + 1's word is read (ST_ACC)
+          div_num_in = REM_W'(a_left);
+          div_den_in = REM_W'(law_q.x_rem[MP_W-1:0]);
+          state_d    = ST_DIV;
         end else begin
           mul_load = 1'b1;
           mul      = nxt;
           state_d  = ST_NUM;
         end
       end
-      ST_SEED: begin
-        mul_load = 1'b1;
-        mul      = mul_op(a_rest, MP_W'(u_q[slot1]), 11);
-        state_d  = ST_NUM;
-      end
-      ST_DEN: if (mul_done) state_d = den_sat ? ST_SLEW : ST_DIV;
+      ST_DEN: if (mul_done) state_d = ST_DIV;
       ST_DIV: if (div_last) state_d = row_last_q ? ST_FIN : ST_SLEW;
       ST_SLEW: state_d = ST_SQ0;
       ST_SQ0: begin
@@ -436,7 +414,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             law_q.p_row <= p_sel;
             law_q.ex <= c_minus_g;
           end
-          ST_FLR, ST_ACT, ST_SEED: ;
+          ST_FLR, ST_ACT: ;
           ST_ACC: begin
             law_q.n <= law_q.n + ACT_W'(mul_prod);
             law_q.p_sum <= law_q.p_sum + WH_W'(law_q.p_row);

@@ -82,9 +82,8 @@ package msr_budget_pkg;
     ST_ACT,      // a_j = max(c_j - g_j, p_j >> FLOOR_SHIFT) * u_j
     ST_ACC,      // the sums and the memory word
     ST_LAW,      // which law
-    ST_SEED,     // seeded: row j + 1's word of the previous frame read, the numerator loaded
-    ST_NUM,      // (N + N0) * (W * H - P); seeded: (Atot - Ad - a1) * u1
-    ST_DEN,      // (P + P0) * X; seeded: X * u1 (- a1 at the divider)
+    ST_NUM,      // (N + N0) * (W * H - P)
+    ST_DEN,      // (P + P0) * X
     ST_DIV,      // the saturation test, then 11 quotient bits
     ST_SLEW,     // u_{j+2}
     ST_SQ0,      // u_{j+2} * u_{j+2} loaded

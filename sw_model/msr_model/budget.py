@@ -19,8 +19,7 @@ scale the controller computed when row r - 2 was finished, and is handed out onl
     N  += a_j;  C += c_j;  P += p_j    # activity, traced and pixels of the finished rows
     X   = B - C - G_rem                # budget left above the initial grid of the rows to come
     q   = ((N + N0) * Q) // ((P + P0) * X)           # first frame: the rows seen so far, extrapolated
-    q   = ((A_prev - A_done - a1) * u1) // (X * u1 - a1) # seeded: the previous frame's row activities,
-                                       # row j + 1 (word a1) at the scale u1 it already has
+    q   = (A_prev - A_done) // X                       # seeded: the previous frame's row activities
     u_{j+2} = clamp(max(q, u_{j+1} >> 1))              # X <= 0: U_MAX; down by at most half a row
 
 with Q the pixels and G_rem the initial grid of the rows not finished, N0 = ((B - G) * u_0) >>
@@ -229,14 +228,7 @@ class Controller:
         if x <= 0:
             return U_MAX + 1
         if self.profile is not None:
-            # Row j + 1 (j = rows_done - 1, just finished) already has its scale u1: it is expected
-            # to trace an / u1 above its grid (an: its word of the previous frame), and the rest,
-            # max(Atot - Ad - an, 0) of activity, gets X - an / u1, both sides times u1.
-            an, u1 = self.profile[self.rows_done], self.scales[self.rows_done]
-            den = x * u1 - an
-            if den <= 0:
-                return U_MAX + 1
-            return (max(self.prof_total - self.prof_done - an, 0) * u1) // den
+            return max(self.prof_total - self.prof_done, 0) // x
         q = self.total - self.pixels
         return ((self.n_act + self.prior_n) * q) // ((self.pixels + self.prior_p) * x)
 

@@ -46,9 +46,8 @@ def test_worked_example_by_hand():
     # the next frame, seeded with SCALE_OUT and the activity memory
     nxt = BG.Controller(64, 40, L2, BG.BudgetConfig(640, ctl.scale_out, 6, tuple(ctl.activity)))
     assert nxt.scales == [279, 279]
-    nxt.finish_row(290)               # X = 640 - 290 - 160 = 190; row 1 (word 25600) at u 279:
-    # ((106340 - 51200 - 25600) * 279) // (190 * 279 - 25600) = 8241660 // 27410 = 300
-    assert nxt.scales == [279, 279, 300]
+    nxt.finish_row(290)               # X = 640 - 290 - 160 = 190; (106340 - 51200) // 190 = 290
+    assert nxt.scales == [279, 279, 290]
 
 
 def test_activity_floor_by_hand():
