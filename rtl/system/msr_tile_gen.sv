@@ -3,8 +3,9 @@
 // thresholds, and hands the descriptor to the lowest-numbered engine that can take it.
 //
 // Timing: a five-stage pipeline with one enable (it moves when the output register is empty;
-// the engines' ready only empties it, so it never reaches the stages' enables), no carry longer than 13 bits per clock: S1 the tile origin, its extent left in
-// the frame and its distances r2x, r2y from the centre in half-tiles; S2 both foveation
+// the engines' ready only empties it, so it never reaches the stages' enables), no carry
+// longer than 13 bits per clock: S1 the tile origin, its extent left in the frame and its
+// distances r2x, r2y from the centre in half-tiles; S2 both foveation
 // products gain * r2x and gain * r2y as carry-save pairs (ten partial products in five 3:2
 // levels; gain * max(r2x, r2y) = the larger product, so the compare runs beside them) and the
 // clamped extent; S3 / S4 the chosen product's carry-propagate add in two 9-bit halves, then
