@@ -56,6 +56,9 @@ module msr_req_out
     .valid_o (req_valid_o),  .ready_i (req_ready_i),  .data_o (req_out)
   );
 
-  assign {req_x_o, req_y_o, req_tag_o} = req_out;
+  // By field name, not position: a reordered req_t cannot swap them silently.
+  assign req_x_o   = req_out.x;
+  assign req_y_o   = req_out.y;
+  assign req_tag_o = req_out.tag;
 
 endmodule : msr_req_out

@@ -105,7 +105,10 @@ module msr_render_mux import msr_pkg::*; #(
     .valid_i (arb_valid),       .ready_o (sp_ready),        .data_i (rq_data[gnt_idx]),
     .valid_o (rnd_req_valid_o), .ready_i (rnd_req_ready_i), .data_o (req_out)
   );
-  assign {rnd_req_x_o, rnd_req_y_o, rnd_req_tag_o} = req_out;
+  // By field name, not position: a reordered rreq_t cannot swap them silently.
+  assign rnd_req_x_o   = req_out.x;
+  assign rnd_req_y_o   = req_out.y;
+  assign rnd_req_tag_o = req_out.tag;
 
   // ---- Responses -----------------------------------------------------------------------------------
   logic             rsp_valid, rsp_ready, eid_ok;
