@@ -78,10 +78,11 @@ class Curves:
 
 
 def sequence(c: Curves, budget: int, frames: int, controller=BG.Controller, prior_shift=BG.PRIOR_SHIFT) -> list[dict]:
-    out, seed, prof = [], BG.SCALE_ONE, None
+    out, seed, prof, prof_u = [], BG.SCALE_ONE, None, None
     for _ in range(frames):
         ctl = controller(c.width, c.height, PARAMS,
-                         BG.BudgetConfig(budget, scale_init=seed, prior_shift=prior_shift, profile=prof))
+                         BG.BudgetConfig(budget, scale_init=seed, prior_shift=prior_shift, profile=prof,
+                                        profile_scales=prof_u))
         traced, sse = 0, 0.0
         for r in range(c.nty):
             t, s = c.row(r, ctl.scales[r])
@@ -89,7 +90,7 @@ def sequence(c: Curves, budget: int, frames: int, controller=BG.Controller, prio
             ctl.finish_row(t)
         out.append({"error_pct": 100 * (traced - ctl.budget) / ctl.budget,
                     "db_vs_fixed": c.psnr(sse) - c.fixed_psnr(traced), "scales": list(ctl.scales)})
-        seed, prof = ctl.scale_out, ctl.activity
+        seed, prof, prof_u = ctl.scale_out, ctl.activity, list(ctl.scales)
     return out
 
 

@@ -78,7 +78,8 @@ def evaluate_scene(ref, params, rule, budgets, frames, log) -> dict:
         for _ in range(frames):
             f = run(ref, params, rule, cfg)
             seq.append(f)
-            cfg = BG.BudgetConfig(B, f["scale_out"], BG.PRIOR_SHIFT, tuple(f["activity_per_row"]))
+            cfg = BG.BudgetConfig(B, f["scale_out"], BG.PRIOR_SHIFT, tuple(f["activity_per_row"]),
+                                  tuple(f["scale_per_row"]))
         # refine the curve around every frame's traced count: the midpoint of the bracketing scales
         for f in seq:
             us = sorted(curve)

@@ -115,7 +115,8 @@ def run_sequence(a, W: int, H: int, params, rule: str, budget, harness: Path, ou
             if cfg is not None:     # the driver's sequence: seeded with the last frame's scale
                 bc = g.stats["budget_control"]
                 cfg = BudgetConfig(budget=cfg.budget, scale_init=bc["scale_out"], prior_shift=cfg.prior_shift,
-                                   profile=tuple(bc["activity_per_row"]))
+                                   profile=tuple(bc["activity_per_row"]),
+                                   profile_scales=tuple(bc["scale_per_row"]))
     finally:
         rtl = sim.wait()
     if budget is not None and not rtl[0].build.get("budget_en"):

@@ -17,11 +17,13 @@
 // counted only after every one of its tiles left). row_ok_o and row_m_o are registered: they
 // answer the row_idx_i of the clock before; a start or clear drops row_ok_o at once.
 //
-// Activity memory: 512 x 28 bits, one synchronous read and one write port (one ECP5 EBR), no
-// reset; row j's word is read when its row result arrives and written a few clocks later. It
-// is valid, with the row count of the frame that wrote it, once a budget frame has finished
-// every row; a start invalidates it (it is being rewritten); a clear keeps a finished frame's
-// memory.
+// Activity memory: 512 x 39 bits, one synchronous read and one write port (two ECP5 EBRs), no
+// reset. Row j's update writes the row's word {u_j, a_j} (its scale and its activity); a seeded
+// start first runs the seed pass, which rewrites every row's word as b_k = a_k * min(u_k, u0)
+// and sums them into Btot; row j's update then reads b_j (into Bd) before it writes its own
+// word. The memory is valid, with the row count of the frame that wrote it,
+// once a budget frame has finished every row; a start invalidates it (it is being rewritten);
+// a clear keeps a finished frame's memory.
 //
 `include "msr_assert.svh"
 
@@ -60,8 +62,9 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
 
 
   localparam int unsigned WH_W   = BUD_WH_W;     // W * H and every pixel count of the frame
-  localparam int unsigned ACT_W  = BUD_ACT_W;    // N, N0, Atot, Ad
-  localparam int unsigned MEM_W  = 28;           // a_j
+  localparam int unsigned ACT_W  = BUD_ACT_W;    // N, N0
+  localparam int unsigned SEED_W = BUD_SEED_W;   // Btot, Bd
+  localparam int unsigned MEM_W  = 39;           // {u_j, a_j} (11 + 28 bits) or b_k < 2^38
   localparam int unsigned MC_W   = 36;           // multiplicand
   localparam int unsigned MP_W   = 25;           // multiplier
   localparam int unsigned ST_W   = $clog2(MP_W + 1);  // a product's multiplier bits, 0..25
@@ -155,10 +158,16 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [MEM_W-1:0] mem_rdata_q, mem_word_q;
   logic             mem_re, mem_we;
   logic [8:0]       mem_addr;
-  assign mem_addr = rows_done_q[8:0];
+  logic [MEM_W-1:0] mem_wdata;
+  logic             pass;                  // the seed pass: row pass_q's word
+  logic [ROW_W-1:0] pass_q;
+  assign pass      = state_q inside {ST_PRD, ST_PMUL, ST_PB};
+  assign mem_addr  = pass ? pass_q[8:0] : rows_done_q[8:0];
+  // A row's own word {u_j, a_j} (a_j the product of ST_ACT), or the seed pass's product b_k.
+  assign mem_wdata = pass ? MEM_W'(mul_prod) : {u_q[base_q], 28'(mul_prod)};
 
   always_ff @(posedge clk_i) begin
-    if (mem_we) mem_q[mem_addr] <= MEM_W'(mul_prod);
+    if (mem_we) mem_q[mem_addr] <= mem_wdata;
   end
   always_ff @(posedge clk_i) begin
     if (mem_re) mem_rdata_q <= mem_q[mem_addr];
@@ -173,9 +182,10 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [1:0]       slot1, slot2;
   logic [17:0]      g_sel, p_sel, c_minus_g;
   logic [18:0]      c_diff;                // c - g and its borrow (one carry chain)
-  logic [ACT_W:0]   a_diff;                // Atot - Ad and its borrow
+  logic [SEED_W:0]  a_diff;                // Btot - Bd and its borrow
   logic [WH_W:0]    pp0;                  // P + P0 <= 2^25: 26 bits
-  logic [ACT_W-1:0] nn0, a_left;
+  logic [ACT_W-1:0] nn0;
+  logic [SEED_W-1:0] a_left;
   logic [10:0]      u_new;
   assign x_pos     = !law_q.x_rem[26] && law_q.x_rem != '0;
   assign slot1     = inc3(base_q);
@@ -188,8 +198,12 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   assign floor_px  = law_q.p_row >> FLOOR_SHIFT;
   assign pp0       = (WH_W + 1)'(law_q.p_sum) + (WH_W + 1)'(frm_q.p0);
   assign nn0       = law_q.n + law_q.n0;
-  assign a_diff    = {1'b0, law_q.atot} - {1'b0, law_q.ad};
-  assign a_left    = a_diff[ACT_W] ? '0 : a_diff[ACT_W-1:0];
+  assign a_diff    = {1'b0, law_q.btot} - {1'b0, law_q.bd};
+  assign a_left    = a_diff[SEED_W] ? '0 : a_diff[SEED_W-1:0];
+  // The seed pass's operands: row k's word {u_k, a_k} as read.
+  logic [10:0]      pass_u;
+  logic [27:0]      pass_a;
+  assign {pass_u, pass_a} = mem_rdata_q;
   assign u_new     = clamp_u(law_q.u_mx);
 
   // ---- Divider (msr_seq_div): the saturation test, then quotient bits 10..0 ---------------
@@ -267,7 +281,21 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         mul      = nxt;
         state_d  = mul_load ? budget_state_e'(state_q + 5'd1) : ST_IDLE;
       end
-      ST_M0: if (mul_done) state_d = ST_IDLE;
+      ST_M0: if (mul_done) state_d = frm_q.seeded ? ST_PRD : ST_IDLE;
+      // The seed pass: every row's word of the previous frame into b_k (docs/budget.md 6c).
+      ST_PRD: begin
+        mem_re  = 1'b1;
+        state_d = ST_PMUL;
+      end
+      ST_PMUL: begin
+        mul_load = 1'b1;
+        mul      = mul_op(MC_W'(pass_a), MP_W'((pass_u < frm_q.u0) ? pass_u : frm_q.u0), 11);
+        state_d  = ST_PB;
+      end
+      ST_PB: if (mul_done) begin
+        mem_we  = 1'b1;
+        state_d = (pass_q + ROW_W'(1) == frm_q.nty) ? ST_IDLE : ST_PRD;
+      end
       ST_ACT: if (mul_done) begin
         mem_we  = 1'b1;
         state_d = ST_ACC;
@@ -283,9 +311,10 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         end else if (!x_pos) begin
           state_d = ST_SLEW;                     // q = U_MAX + 1 (set below)
         end else if (frm_q.seeded) begin
-          div_num_in = REM_W'(a_left);
-          div_den_in = REM_W'(law_q.x_rem[MP_W-1:0]);
-          state_d    = ST_DIV;
+          div_num_in = REM_W'(a_left);            // the divisor u0 * X from ST_DEN
+          mul_load   = 1'b1;
+          mul        = mul_op(MC_W'(frm_q.u0), law_q.x_rem[MP_W-1:0], MP_W);
+          state_d    = ST_DEN;
         end else begin
           mul_load = 1'b1;
           mul      = nxt;
@@ -313,6 +342,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       checking_q        <= 1'b0;
       act_q             <= 1'b0;
       rows_done_q       <= '0;
+      pass_q            <= '0;
       row_last_q        <= 1'b0;
       row_new_q         <= 1'b0;
       u_q               <= '{default: '0};
@@ -368,10 +398,10 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         if (start_p) begin
           law_q.n <= '0;
           law_q.p_sum <= '0;
-          law_q.ad <= '0;
+          law_q.bd <= '0;
+          law_q.btot <= '0;
           rows_done_q       <= '0;
           base_q            <= '0;
-          law_q.atot <= law_q.mem_sum;
           mem_valid_q       <= 1'b0;
           scale_out_valid_q <= 1'b0;
           u_q[0]            <= cfg.u0;
@@ -409,6 +439,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             act_q      <= 1'b1;
             row_last_q <= frm_q.nty == ROW_W'(1);
             row_new_q  <= frm_q.nty > ROW_W'(2);
+            pass_q     <= '0;
           end
           ST_IDLE: if (act_q && row_done_i) begin
             law_q.p_row <= p_sel;
@@ -419,7 +450,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             law_q.n <= law_q.n + ACT_W'(mul_prod);
             law_q.p_sum <= law_q.p_sum + WH_W'(law_q.p_row);
             law_q.x_rem <= law_q.x_rem - $signed({9'd0, law_q.ex});       // - c_j + g_j
-            if (frm_q.seeded) law_q.ad <= law_q.ad + ACT_W'(mem_word_q);
+            if (frm_q.seeded) law_q.bd <= law_q.bd + SEED_W'(mem_word_q);
           end
           ST_LAW: begin
             law_q.slew <= u_q[slot1] >> 1;           // (the divider is loaded above)
@@ -442,7 +473,10 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             frame_done_q      <= 1'b1;
             mem_valid_q       <= 1'b1;
             mem_rows_q        <= frm_q.nty;
-            law_q.mem_sum <= law_q.n;
+          end
+          ST_PB: if (mul_done) begin
+            law_q.btot <= law_q.btot + SEED_W'(mul_prod);
+            pass_q     <= pass_q + ROW_W'(1);
           end
           default: ;
         endcase

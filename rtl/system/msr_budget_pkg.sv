@@ -17,7 +17,8 @@ package msr_budget_pkg;
   // The controller's quantities (docs/budget.md section 6c gives the bounds).
   localparam int unsigned BUD_ROW_W = COORD_W - 2;   // tile row index (as the walker's)
   localparam int unsigned BUD_WH_W  = 25;            // W * H and every pixel count of a frame
-  localparam int unsigned BUD_ACT_W = 36;            // N, N0, Atot, Ad
+  localparam int unsigned BUD_ACT_W = 36;            // N, N0
+  localparam int unsigned BUD_SEED_W = 45;           // Btot, Bd: sums of a' * min(u', u0)
 
   // The configuration and the grid constants, as msr_budget_grid hands them on.
   typedef struct packed {
@@ -58,9 +59,8 @@ package msr_budget_pkg;
   typedef struct packed {
     logic [BUD_ACT_W-1:0] n;          // N
     logic [BUD_ACT_W-1:0] n0;         // N0
-    logic [BUD_ACT_W-1:0] atot;       // Atot: the previous frame's N
-    logic [BUD_ACT_W-1:0] ad;         // Ad: the previous frame's words of the rows done
-    logic [BUD_ACT_W-1:0] mem_sum;    // this frame's N once finished (the next Atot)
+    logic [BUD_SEED_W-1:0] btot;      // Btot: the seed pass's words of every row
+    logic [BUD_SEED_W-1:0] bd;        // Bd: those of the rows done
     logic [BUD_WH_W-1:0]  p_sum;      // P
     logic signed [26:0]   x_rem;      // X = (B' - G) + Gd - C, kept as a running sum
     logic [17:0]          p_row;      // the finished row's p_j
@@ -88,7 +88,10 @@ package msr_budget_pkg;
     ST_SLEW,     // u_{j+2}
     ST_SQ0,      // u_{j+2} * u_{j+2} loaded
     ST_SQ,       // m_{j+2}
-    ST_FIN       // SCALE_OUT, the memory's tag
+    ST_FIN,      // SCALE_OUT, the memory's tag
+    ST_PRD,      // seed pass (a seeded start): read row k's word {u'_k, a'_k}
+    ST_PMUL,     // a'_k * min(u'_k, u0) loaded
+    ST_PB        // b_k written back in its place, Btot += b_k
   } budget_state_e;
 
   // n0(n) = ceil(n / S) + ((n - 1) mod S != 0), for n in 0..32 (0 for n = 0), S = 2^l.

@@ -19,14 +19,17 @@ scale the controller computed when row r - 2 was finished, and is handed out onl
     N  += a_j;  C += c_j;  P += p_j    # activity, traced and pixels of the finished rows
     X   = B - C - G_rem                # budget left above the initial grid of the rows to come
     q   = ((N + N0) * Q) // ((P + P0) * X)           # first frame: the rows seen so far, extrapolated
-    q   = (A_prev - A_done) // X                       # seeded: the previous frame's row activities
+    q   = (A_prev - A_done) // (u_0 * X)               # seeded: the previous frame's row activities
     u_{j+2} = clamp(max(q, u_{j+1} >> 1))              # X <= 0: U_MAX; down by at most half a row
 
 with Q the pixels and G_rem the initial grid of the rows not finished, N0 = ((B - G) * u_0) >>
 PRIOR_SHIFT and P0 = (W * H) >> PRIOR_SHIFT (the seed's guess "u_0 traces B", weighted as that
-part of a frame), A_prev the previous frame's activity and A_done its part over rows <= j
-(the per-row activity memory). After the last row SCALE_OUT = clamp(N // (B - G)): the one
-scale that, on this frame's activity, traces B; it and the activity memory seed the next frame.
+part of a frame). Seeded, from the previous frame's activity a'_k and scale u'_k of every row
+(the activity memory): A_prev = sum of a'_k * min(u'_k, u_0) and A_done its part over rows <= j;
+a row that ran below the seed is counted as if its excess fell as 1 / u^2 between its own scale
+and the seed (docs/budget.md, "The seeded law"). After the last row SCALE_OUT = clamp(N // (B - G)):
+the one scale that, on this frame's activity, traces B; it and the activity memory seed the next
+frame.
 
 The floor (p_j >> FLOOR_SHIFT, 1/128 of the row's pixels): a row that traced only its grid at a
 large scale would otherwise read as a row that never traces at any scale; with the floor the law
@@ -136,12 +139,14 @@ def grid_count(width: int, height: int, params: Params) -> int:
 class BudgetConfig:
     """The budget registers: BUDGET (pixels, 0 = off), SCALE_INIT (seed u_0, 1.0 = 256, 0 read
     as 1.0), PRIOR_SHIFT (weight of the seed's guess: a frame >> PRIOR_SHIFT) and, for a seeded
-    frame, the previous frame's activity per tile row (the activity memory; None = first frame)."""
+    frame, the previous frame's activity and scale per tile row (the activity memory; None =
+    first frame)."""
 
     budget: int = 0
     scale_init: int = SCALE_ONE
     prior_shift: int = PRIOR_SHIFT
     profile: tuple[int, ...] | None = None
+    profile_scales: tuple[int, ...] | None = None
 
     def __post_init__(self):
         if not 0 <= int(self.budget) <= BUDGET_MAX:
@@ -150,6 +155,18 @@ class BudgetConfig:
             raise spec.SpecError(f"scale_init {self.scale_init} outside 0..{U_MAX}")
         if not 0 <= int(self.prior_shift) <= PRIOR_SHIFT_MAX:
             raise spec.SpecError(f"prior_shift {self.prior_shift} outside 0..{PRIOR_SHIFT_MAX}")
+        if (self.profile is None) != (self.profile_scales is None):
+            raise spec.SpecError("a seeded frame needs the previous frame's activity and scale per row")
+        if self.profile is not None:
+            if len(self.profile) != len(self.profile_scales):
+                raise spec.SpecError(f"activity profile of {len(self.profile)} rows, scales of "
+                                     f"{len(self.profile_scales)}")
+            if any(not U_MIN <= int(u) <= U_MAX for u in self.profile_scales):
+                raise spec.SpecError(f"profile scales must lie in {U_MIN}..{U_MAX}")
+            if any(int(a) < 0 or int(a) % int(u) or int(a) // int(u) >= 1 << 18
+                   for a, u in zip(self.profile, self.profile_scales)):
+                raise spec.SpecError("a profile activity is its row's excess (< 2^18) times its "
+                                     "scale: max(c - g, p >> 7) * u")
 
     @property
     def seed(self) -> int:
@@ -189,8 +206,12 @@ class Controller:
         if self.profile is not None and len(self.profile) != self.nty:
             raise BudgetRefused(f"activity profile of {len(self.profile)} tile rows, the frame has "
                                 f"{self.nty}: status error {ERR_PROFILE}")
-        self.prof_total = sum(self.profile) if self.profile is not None else 0
         u0 = self.cfg.seed
+        # The seeded law's words: a' * min(u', u0), i.e. e' * u' * min(u', u0) with e' the row's
+        # excess (floored) of the previous frame: what the START pass writes into the memory.
+        self.prof_words = None if self.profile is None else [
+            a * min(int(u), u0) for a, u in zip(self.profile, self.cfg.profile_scales)]
+        self.prof_total = sum(self.prof_words) if self.profile is not None else 0
         self.prior_n = ((self.budget - self.grid) * u0) >> self.cfg.prior_shift
         self.prior_p = self.total >> self.cfg.prior_shift
         self.scales = [u0] * min(2, self.nty)
@@ -213,7 +234,7 @@ class Controller:
         self.pixels += p
         self.grid_done += g
         if self.profile is not None:
-            self.prof_done += self.profile[j]
+            self.prof_done += self.prof_words[j]
         self.rows_done += 1
         if self.rows_done == self.nty:
             spare = self.budget - self.grid
@@ -228,7 +249,7 @@ class Controller:
         if x <= 0:
             return U_MAX + 1
         if self.profile is not None:
-            return max(self.prof_total - self.prof_done, 0) // x
+            return max(self.prof_total - self.prof_done, 0) // (self.cfg.seed * x)
         q = self.total - self.pixels
         return ((self.n_act + self.prior_n) * q) // ((self.pixels + self.prior_p) * x)
 

@@ -85,16 +85,18 @@ def _budget_config(args, width: int, height: int) -> BG.BudgetConfig:
         pixels = BG.budget_pixels(args.budget if args.budget is not None else ("px", 0), width, height)
     except ValueError as e:
         raise UsageError(f"--{e}") from None
-    scale_init, profile = args.scale_init, None
+    scale_init, profile, profile_scales = args.scale_init, None, None
     if args.budget_prev is not None:
         prev = _read_prev(args.budget_prev)
         profile = tuple(prev["activity_per_row"])
+        profile_scales = tuple(prev["scale_per_row"])
         if scale_init is None:
             scale_init = prev["scale_out"]
     elif args.budget is None and args.scale_init is not None:
         raise UsageError("--scale-init needs --budget")
     cfg = BG.BudgetConfig(budget=pixels, scale_init=BG.SCALE_ONE if scale_init is None else scale_init,
-                          prior_shift=args.prior_shift, profile=profile)
+                          prior_shift=args.prior_shift, profile=profile,
+                          profile_scales=profile_scales)
     if pixels:
         BG.Controller(width, height, _params(args), cfg)      # refuses a budget below the grid now
     return cfg
@@ -104,7 +106,8 @@ def _read_prev(path) -> dict:
     try:
         data = json.loads(open(path).read())
         ctl = data["budget_control"]
-        out = {"scale_out": int(ctl["scale_out"]), "activity_per_row": [int(a) for a in ctl["activity_per_row"]]}
+        out = {"scale_out": int(ctl["scale_out"]), "activity_per_row": [int(a) for a in ctl["activity_per_row"]],
+               "scale_per_row": [int(u) for u in ctl["scale_per_row"]]}
     except OSError as e:
         raise UsageError(f"cannot read --budget-prev {path}: {e.strerror or e}") from None
     except (ValueError, KeyError, TypeError):

@@ -44,10 +44,13 @@ def test_worked_example_by_hand():
     assert ctl.activity == [51200, 25600, 29540]
     assert ctl.scale_out == 279                           # 106340 // 380
     # the next frame, seeded with SCALE_OUT and the activity memory
-    nxt = BG.Controller(64, 40, L2, BG.BudgetConfig(640, ctl.scale_out, 6, tuple(ctl.activity)))
+    nxt = BG.Controller(64, 40, L2, BG.BudgetConfig(640, ctl.scale_out, 6, tuple(ctl.activity),
+                                                    tuple(ctl.scales)))
     assert nxt.scales == [279, 279]
-    nxt.finish_row(290)               # X = 640 - 290 - 160 = 190; (106340 - 51200) // 190 = 290
-    assert nxt.scales == [279, 279, 290]
+    # the seed pass: b = a * min(u, 279) = 51200 * 256, 25600 * 256, 29540 * 279
+    assert nxt.prof_words == [13107200, 6553600, 8241660] and nxt.prof_total == 27902460
+    nxt.finish_row(290)               # X = 190; (27902460 - 13107200) // (279 * 190) = 279
+    assert nxt.scales == [279, 279, 279]
 
 
 def test_activity_floor_by_hand():
@@ -154,11 +157,15 @@ def test_budget_below_the_grid_is_refused():
         BG.Controller(64, 40, L2, BG.BudgetConfig(g - 1))
     BG.Controller(64, 40, L2, BG.BudgetConfig(g))              # exactly the grid: accepted
     with pytest.raises(BG.BudgetRefused, match=str(BG.ERR_PROFILE)):
-        BG.Controller(64, 40, L2, BG.BudgetConfig(g, 256, 6, (1, 2)))
+        BG.Controller(64, 40, L2, BG.BudgetConfig(g, 256, 6, (256, 512), (256, 256)))
 
 
 def test_budget_config_ranges():
-    for bad in ({"budget": -1}, {"budget": 1 << 24}, {"scale_init": BG.U_MAX + 1}, {"prior_shift": 8}):
+    for bad in ({"budget": -1}, {"budget": 1 << 24}, {"scale_init": BG.U_MAX + 1}, {"prior_shift": 8},
+                {"profile": (256,)}, {"profile": (256,), "profile_scales": (256, 256)},
+                {"profile": (256,), "profile_scales": (BG.U_MIN - 1,)},
+                {"profile": (257,), "profile_scales": (256,)},
+                {"profile": (256 << 18,), "profile_scales": (256,)}):
         with pytest.raises(BG.spec.SpecError):
             BG.BudgetConfig(**bad)
     assert BG.BudgetConfig(1, scale_init=0).seed == 256 and BG.BudgetConfig(1, scale_init=1).seed == BG.U_MIN

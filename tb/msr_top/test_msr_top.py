@@ -977,7 +977,8 @@ async def test_budget(dut):
             assert scale_out == bc["scale_out"], f"SCALE_OUT {scale_out}, golden {bc['scale_out']}"
             dut._log.info("budget %d (%dx%d T%d L%d) frame %d: traced %d, scales %s, SCALE_OUT %d: bit-exact",
                           budget, W, H, tile, levels, k, gold.stats["traced"], bc["scale_per_row"], scale_out)
-            cfg = BudgetConfig(budget=budget, scale_init=scale_out, profile=tuple(bc["activity_per_row"]))
+            cfg = BudgetConfig(budget=budget, scale_init=scale_out, profile=tuple(bc["activity_per_row"]),
+                               profile_scales=tuple(bc["scale_per_row"]))
             await env.wr(R.STATUS, R.STATUS_DONE_MASK)
     # a soft reset in the middle of a budget frame (msr_budget's clear): idle, nothing pending,
     # and the next budget frame, first-frame law, bit-exact
