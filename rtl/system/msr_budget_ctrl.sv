@@ -161,7 +161,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [MEM_W-1:0] mem_wdata;
   logic             pass;                  // the seed pass: row pass_q's word
   logic [ROW_W-1:0] pass_q;
-  assign pass      = state_q inside {ST_PRD, ST_PMUL, ST_PB};
+  assign pass      = state_q inside {ST_PRD, ST_PWT, ST_PMUL, ST_PB};
   assign mem_addr  = pass ? pass_q[8:0] : rows_done_q[8:0];
   // A row's own word {u_j, a_j} (a_j the product of ST_ACT), or the seed pass's product b_k.
   assign mem_wdata = pass ? MEM_W'(mul_prod) : {u_q[base_q], 28'(mul_prod)};
@@ -182,10 +182,9 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [1:0]       slot1, slot2;
   logic [17:0]      g_sel, p_sel, c_minus_g;
   logic [18:0]      c_diff;                // c - g and its borrow (one carry chain)
-  logic [SEED_W:0]  a_diff;                // Btot - Bd and its borrow
+  logic [SEED_W:0]  b_diff;                // b_rest - b_j and its borrow
   logic [WH_W:0]    pp0;                  // P + P0 <= 2^25: 26 bits
   logic [ACT_W-1:0] nn0;
-  logic [SEED_W-1:0] a_left;
   logic [10:0]      u_new;
   assign x_pos     = !law_q.x_rem[26] && law_q.x_rem != '0;
   assign slot1     = inc3(base_q);
@@ -198,12 +197,15 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   assign floor_px  = law_q.p_row >> FLOOR_SHIFT;
   assign pp0       = (WH_W + 1)'(law_q.p_sum) + (WH_W + 1)'(frm_q.p0);
   assign nn0       = law_q.n + law_q.n0;
-  assign a_diff    = {1'b0, law_q.btot} - {1'b0, law_q.bd};
-  assign a_left    = a_diff[SEED_W] ? '0 : a_diff[SEED_W-1:0];
-  // The seed pass's operands: row k's word {u_k, a_k} as read.
+  // max(Btot - Bd, 0) kept as one running register (all words >= 0, so saturating each row's
+  // subtract gives the same): the divider loads it without a subtract in front.
+  assign b_diff    = {1'b0, law_q.b_rest} - (SEED_W + 1)'(mem_word_q);
+  // The seed pass's operands: row k's word {u_k, a_k}, from the word's second register (from
+  // the block RAM's clock-to-output through the compare into the multiplier's load it was the
+  // top's worst path, 71 MHz).
   logic [10:0]      pass_u;
   logic [27:0]      pass_a;
-  assign {pass_u, pass_a} = mem_rdata_q;
+  assign {pass_u, pass_a} = mem_word_q;
   assign u_new     = clamp_u(law_q.u_mx);
 
   // ---- Divider (msr_seq_div): the saturation test, then quotient bits 10..0 ---------------
@@ -285,8 +287,9 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       // The seed pass: every row's word of the previous frame into b_k (docs/budget.md 6c).
       ST_PRD: begin
         mem_re  = 1'b1;
-        state_d = ST_PMUL;
+        state_d = ST_PWT;
       end
+      ST_PWT: state_d = ST_PMUL;
       ST_PMUL: begin
         mul_load = 1'b1;
         mul      = mul_op(MC_W'(pass_a), MP_W'((pass_u < frm_q.u0) ? pass_u : frm_q.u0), 11);
@@ -311,7 +314,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         end else if (!x_pos) begin
           state_d = ST_SLEW;                     // q = U_MAX + 1 (set below)
         end else if (frm_q.seeded) begin
-          div_num_in = REM_W'(a_left);            // the divisor u0 * X from ST_DEN
+          div_num_in = REM_W'(law_q.b_rest);      // the divisor u0 * X from ST_DEN
           mul_load   = 1'b1;
           mul        = mul_op(MC_W'(frm_q.u0), law_q.x_rem[MP_W-1:0], MP_W);
           state_d    = ST_DEN;
@@ -398,8 +401,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         if (start_p) begin
           law_q.n <= '0;
           law_q.p_sum <= '0;
-          law_q.bd <= '0;
-          law_q.btot <= '0;
+          law_q.b_rest <= '0;
           rows_done_q       <= '0;
           base_q            <= '0;
           mem_valid_q       <= 1'b0;
@@ -450,7 +452,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             law_q.n <= law_q.n + ACT_W'(mul_prod);
             law_q.p_sum <= law_q.p_sum + WH_W'(law_q.p_row);
             law_q.x_rem <= law_q.x_rem - $signed({9'd0, law_q.ex});       // - c_j + g_j
-            if (frm_q.seeded) law_q.bd <= law_q.bd + SEED_W'(mem_word_q);
+            if (frm_q.seeded) law_q.b_rest <= b_diff[SEED_W] ? '0 : b_diff[SEED_W-1:0];
           end
           ST_LAW: begin
             law_q.slew <= u_q[slot1] >> 1;           // (the divider is loaded above)
@@ -475,7 +477,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             mem_rows_q        <= frm_q.nty;
           end
           ST_PB: if (mul_done) begin
-            law_q.btot <= law_q.btot + SEED_W'(mul_prod);
+            law_q.b_rest <= law_q.b_rest + SEED_W'(mul_prod);
             pass_q     <= pass_q + ROW_W'(1);
           end
           default: ;

@@ -59,8 +59,7 @@ package msr_budget_pkg;
   typedef struct packed {
     logic [BUD_ACT_W-1:0] n;          // N
     logic [BUD_ACT_W-1:0] n0;         // N0
-    logic [BUD_SEED_W-1:0] btot;      // Btot: the seed pass's words of every row
-    logic [BUD_SEED_W-1:0] bd;        // Bd: those of the rows done
+    logic [BUD_SEED_W-1:0] b_rest;    // max(Btot - Bd, 0): seed-pass words of the rows to come
     logic [BUD_WH_W-1:0]  p_sum;      // P
     logic signed [26:0]   x_rem;      // X = (B' - G) + Gd - C, kept as a running sum
     logic [17:0]          p_row;      // the finished row's p_j
@@ -90,6 +89,7 @@ package msr_budget_pkg;
     ST_SQ,       // m_{j+2}
     ST_FIN,      // SCALE_OUT, the memory's tag
     ST_PRD,      // seed pass (a seeded start): read row k's word {u'_k, a'_k}
+    ST_PWT,      // the word in the RAM's output register, then registered once more
     ST_PMUL,     // a'_k * min(u'_k, u0) loaded
     ST_PB        // b_k written back in its place, Btot += b_k
   } budget_state_e;
