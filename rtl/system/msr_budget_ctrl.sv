@@ -17,13 +17,10 @@
 // counted only after every one of its tiles left). row_ok_o and row_m_o are registered: they
 // answer the row_idx_i of the clock before; a start or clear drops row_ok_o at once.
 //
-// Activity memory: 512 x 39 bits, one synchronous read and one write port (two ECP5 EBRs), no
-// reset. Row j's update writes the row's word {u_j, a_j} (its scale and its activity); a seeded
-// start first runs the seed pass, which rewrites every row's word as b_k = a_k * min(u_k, u0)
-// and sums them into Btot; row j's update then reads b_j (into Bd) before it writes its own
-// word. The memory is valid, with the row count of the frame that wrote it,
-// once a budget frame has finished every row; a start invalidates it (it is being rewritten);
-// a clear keeps a finished frame's memory.
+// Activity memory (msr_budget_mem): row j's update writes {u_j, a_j}; a seeded start's seed pass
+// first rewrites every word as b_k = a_k * min(u_k, u0), and row j's update reads b_j before it
+// writes. Valid, with its row count, once a budget frame finished every row; a start
+// invalidates it (it is being rewritten); a clear keeps a finished frame's memory.
 //
 `include "msr_assert.svh"
 
@@ -60,7 +57,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   output logic             frame_done_o        // pulse: the last row's update is done
 );
 
-
   localparam int unsigned WH_W   = BUD_WH_W;     // W * H and every pixel count of the frame
   localparam int unsigned ACT_W  = BUD_ACT_W;    // N, N0
   localparam int unsigned SEED_W = BUD_SEED_W;   // Btot, Bd
@@ -96,7 +92,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   );
 
   // ---- State ---------------------------------------------------------------------------------
-
   budget_state_e     state_q, state_d;
   logic              checking_q;           // the G sequence answers a check (not a start)
   logic              act_q;                // a budget frame is on and rows 0, 1 are known
@@ -109,9 +104,9 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [1:0]        base_q;               // slot of row rows_done_q
   logic              mem_valid_q;
   logic [ROW_W-1:0]  mem_rows_q;
-  logic              check_done_q, err_budget_q, err_profile_q;
+  logic              check_done_q, err_budget_q, err_profile_q, frame_done_q;
   logic [10:0]       scale_out_q;
-  logic              scale_out_valid_q, frame_done_q;
+  logic              scale_out_valid_q;
   logic              row_ok_q;
   logic [12:0]       row_m_q;
 
@@ -152,10 +147,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .prod_o  (mul_prod)
   );
 
-  // ---- Activity memory ---------------------------------------------------------------------
-  (* no_rw_check *)
-  logic [MEM_W-1:0] mem_q [MEM_DEPTH];
-  logic [MEM_W-1:0] mem_rdata_q, mem_word_q;
+  // ---- Activity memory (msr_budget_mem): the word two clocks after its read ---------------
+  logic [MEM_W-1:0] mem_word_q;
   logic             mem_re, mem_we;
   logic [8:0]       mem_addr;
   logic [MEM_W-1:0] mem_wdata;
@@ -166,16 +159,14 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // A row's own word {u_j, a_j} (a_j the product of ST_ACT), or the seed pass's product b_k.
   assign mem_wdata = pass ? MEM_W'(mul_prod) : {u_q[base_q], 28'(mul_prod)};
 
-  always_ff @(posedge clk_i) begin
-    if (mem_we) mem_q[mem_addr] <= mem_wdata;
-  end
-  always_ff @(posedge clk_i) begin
-    if (mem_re) mem_rdata_q <= mem_q[mem_addr];
-  end
-  // The word registered once more (the block RAM's output register on ECP5): read in ST_IDLE,
-  // used in ST_ACC, after ST_FLR and the a_j product; from the RAM's clock-to-output straight
-  // into the 35-bit sum it was the unit's worst path.
-  always_ff @(posedge clk_i) mem_word_q <= mem_rdata_q;
+  msr_budget_mem #(.W(MEM_W), .DEPTH(MEM_DEPTH)) u_mem (
+    .clk_i,
+    .re_i    (mem_re),
+    .we_i    (mem_we),
+    .addr_i  (mem_addr),
+    .wdata_i (mem_wdata),
+    .word_o  (mem_word_q)
+  );
 
   // ---- Row quantities ------------------------------------------------------------------------
   logic             x_pos;
@@ -200,9 +191,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // max(Btot - Bd, 0) kept as one running register (all words >= 0, so saturating each row's
   // subtract gives the same): the divider loads it without a subtract in front.
   assign b_diff    = {1'b0, law_q.b_rest} - (SEED_W + 1)'(mem_word_q);
-  // The seed pass's operands: row k's word {u_k, a_k}, from the word's second register (from
-  // the block RAM's clock-to-output through the compare into the multiplier's load it was the
-  // top's worst path, 71 MHz).
+  // The seed pass's operands: row k's word {u_k, a_k} (from msr_budget_mem's second register).
   logic [10:0]      pass_u;
   logic [27:0]      pass_a;
   assign {pass_u, pass_a} = mem_word_q;

@@ -472,4 +472,5 @@ def test_budget_ctrl():
     from msr_runner import RTL, run_cocotb
     run_cocotb("msr_budget_ctrl", "test_budget_ctrl", HERE, {}, "",
                sources=[RTL / "msr_pkg.sv", RTL / "system/msr_budget_pkg.sv", RTL / "prim/msr_shift_add_mul.sv", RTL / "prim/msr_seq_div.sv",
-                        RTL / "system/msr_budget_grid.sv", RTL / "system/msr_budget_ctrl.sv"])
+                        RTL / "system/msr_budget_grid.sv", RTL / "system/msr_budget_mem.sv",
+                        RTL / "system/msr_budget_ctrl.sv"])
