@@ -2,6 +2,11 @@
 // the controller that turns each finished row into the scale of the row two below it
 // (msr_budget_ctrl), with what ties them to the tile generator and the configuration check.
 //
+// Configuration: the sampled registers (msr_cfg_ctrl's raw_o), taken at START and held until
+// the next START, which only an idle controller takes: so they hold from the check through the
+// frame's last row, and a started frame's are the checked ones (the check passed). One source,
+// no check/frame multiplexer in front of the controller.
+//
 // The tile generator asks for the scale of the row its walker is in (row_idx_i) and starts
 // the row only on row_ok_o. The answer is taken a clock after the question (the controller's
 // read-back is registered) and only while it answers the same row, and not in the first
@@ -14,15 +19,15 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
   input  logic                     clk_i,            // clock
   input  logic                     rst_ni,           // asynchronous reset, active low
   input  logic                     clear_i,          // synchronous clear
-  // The configuration check (msr_cfg_ctrl), from the sampled registers.
+  // The sampled registers (msr_cfg_ctrl), held from check_i through the frame.
+  input  cfg_raw_t                 raw_i,
+  // The configuration check.
   input  logic                     check_i,          // pulse: check raw_i
-  input  cfg_raw_t                 raw_i,            // stable from check_i through CHECK
   output logic                     check_done_o,     // the check below is valid
   output logic                     err_budget_o,     // 0 < BUDGET < the initial grid
   output logic                     err_profile_o,    // SEEDED without a matching memory
   // The frame.
-  input  logic                     start_i,          // pulse: an accepted frame starts with cfg_i
-  input  cfg_t                     cfg_i,            // its configuration (bud.pixels 0 = off)
+  input  logic                     start_i,          // pulse: an accepted frame starts (raw_i)
   output logic                     busy_o,           // a budget frame's rows are not all accounted
   // Tile generator.
   input  logic [TROW_W-1:0]        row_idx_i,        // the row the walker is in
@@ -38,13 +43,15 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
   output logic                     scale_out_valid_o
 );
   logic bud_start, on_q;
-  assign bud_start = start_i && cfg_i.bud.pixels != '0;
+  assign bud_start = start_i && raw_i.bud.pixels != '0;   // 0 = off
 
   // ---- Rows ----------------------------------------------------------------------------------
   logic                 row_valid, row_ready, rows_busy;
   logic [TROW_W-1:0]    row_idx;
   logic [17:0]          row_traced;
   logic [NUM_IN-1:0]    traced;
+  logic [2:0]           lg;                // log2 T (the check passed: T is 8, 16 or 32)
+  assign lg = (raw_i.tile == 6'd8) ? 3'd3 : (raw_i.tile == 6'd32) ? 3'd5 : 3'd4;
   for (genvar i = 0; i < NUM_IN; i++) begin : g_traced
     assign traced[i] = pix_src_i[i] < src_t'(16);
   end
@@ -54,9 +61,9 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
     .rst_ni       (rst_ni),
     .clear_i      (clear_i),
     .start_i      (bud_start),
-    .width_i      (cfg_i.width),
-    .height_i     (cfg_i.height),
-    .tile_i       (cfg_i.tile),
+    .width_i      (raw_i.width),
+    .height_i     (raw_i.height),
+    .tile_log2_i  (lg),
     .pix_fire_i   (pix_fire_i),
     .pix_y_i      (pix_y_i),
     .pix_traced_i (traced),
@@ -69,38 +76,21 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
   );
 
   // ---- Controller ------------------------------------------------------------------------------
-  logic [2:0]  raw_lg, cfg_lg;
   logic        ctl_row_ready, ctl_row_ok, ctl_frame_done;
   logic [12:0] ctl_row_m;
-
-  function automatic logic [2:0] lg_raw(logic [5:0] t);
-    return (t == 6'd8) ? 3'd3 : (t == 6'd32) ? 3'd5 : 3'd4;
-  endfunction
-  assign raw_lg = lg_raw(raw_i.tile);
-  assign cfg_lg = tile_log2(cfg_i.tile);
-
-  // The check reads the sampled registers, the frame its checked configuration: the same
-  // values (the check passed), so the controller sees one configuration from check_i on.
-  logic  checking_q, checking;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni)       checking_q <= 1'b0;
-    else if (check_i)  checking_q <= 1'b1;
-    else if (start_i)  checking_q <= 1'b0;
-  end
-  assign checking = check_i || checking_q;
 
   msr_budget_ctrl u_ctrl (
     .clk_i             (clk_i),
     .rst_ni            (rst_ni),
     .clear_i           (clear_i),
-    .width_i           (checking ? raw_i.width   : cfg_i.width),
-    .height_i          (checking ? raw_i.height  : cfg_i.height),
-    .tile_log2_i       (checking ? raw_lg        : cfg_lg),
-    .levels_i          (checking ? raw_i.levels  : cfg_i.levels),
-    .budget_i          (checking ? raw_i.bud.pixels      : cfg_i.bud.pixels),
-    .scale_init_i      (checking ? raw_i.bud.scale_init  : cfg_i.bud.scale_init),
-    .prior_shift_i     (checking ? raw_i.bud.prior_shift : cfg_i.bud.prior_shift),
-    .seeded_i          (checking ? raw_i.bud.seeded      : cfg_i.bud.seeded),
+    .width_i           (raw_i.width),
+    .height_i          (raw_i.height),
+    .tile_log2_i       (lg),
+    .levels_i          (raw_i.levels),
+    .budget_i          (raw_i.bud.pixels),
+    .scale_init_i      (raw_i.bud.scale_init),
+    .prior_shift_i     (raw_i.bud.prior_shift),
+    .seeded_i          (raw_i.bud.seeded),
     .check_i           (check_i),
     .check_done_o      (check_done_o),
     .err_budget_o      (err_budget_o),
@@ -143,7 +133,6 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
 
   // only the frame's geometry and budget fields are read (the rest is the writer's and engines')
   logic unused;
-  assign unused = ^{row_idx, raw_i.rule, raw_i.metric, raw_i.thr, raw_i.fov_gain, raw_i.fb,
-                    cfg_i.rule, cfg_i.metric, cfg_i.thr, cfg_i.fov_gain, cfg_i.fb};
+  assign unused = ^{row_idx, raw_i.rule, raw_i.metric, raw_i.thr, raw_i.fov_gain, raw_i.fb};
 
 endmodule : msr_budget

@@ -118,22 +118,18 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     logic [MP_W-1:0] b;
     logic [ST_W-1:0] n;
   } mul_op_t;
-  function automatic mul_op_t mul_op(logic [MC_W-1:0] a, logic [MP_W-1:0] b, int unsigned n);
-    return '{a: a, b: b << (MP_W - n), n: ST_W'(n)};
-  endfunction
 
   logic              mul_load;
-  mul_op_t           mul, mop;
+  mul_op_t           mop;
   logic [PROD_W-1:0] mul_prod;
   logic              mul_done;
 
-  // The multiplier's first operands of a check or a start: G = line(W) * line(H). Loaded
-  // here, not in the state machine, as the pulse may come in any state; mul_load of the state
-  // machine is overridden by a new sequence (one driver per flop).
+  // A check or a start loads G = line(W) * line(H) at its pulse, whatever the state (below);
+  // otherwise the state machine loads the product its state starts (mul_load). A new sequence
+  // overrides the state machine (one driver per flop).
   logic              seq_load, mload;
   assign seq_load = !clear_i && (start_p || check_p);
   assign mload    = seq_load || (mul_load && !start_p && !check_p);
-  assign mop      = seq_load ? mul_op(MC_W'(cfg.line_w), MP_W'(cfg.line_h), 13) : mul;
 
   msr_shift_add_mul #(.A_W(MC_W), .B_W(MP_W)) u_mul (
     .clk_i,
@@ -173,7 +169,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [1:0]       slot1, slot2;
   logic [17:0]      g_sel, p_sel, c_minus_g;
   logic [18:0]      c_diff;                // c - g and its borrow (one carry chain)
-  logic [SEED_W:0]  b_diff;                // b_rest - b_j and its borrow
+  logic [SEED_W:0]  b_diff;                // b_rest -+ the word and its borrow
   logic [WH_W:0]    pp0;                  // P + P0 <= 2^25: 26 bits
   logic [ACT_W-1:0] nn0;
   logic [10:0]      u_new;
@@ -184,13 +180,21 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   assign p_sel     = row_last_q ? frm_q.p_last : frm_q.p_full;
   assign c_diff    = {1'b0, row_traced_i} - {1'b0, g_sel};
   assign c_minus_g = c_diff[18] ? '0 : c_diff[17:0];
-  logic [17:0]      floor_px;              // p_j >> FLOOR_SHIFT
+  logic [17:0]      floor_px, floor_ex;    // p_j >> FLOOR_SHIFT; max(c_j - g_j, it)
   assign floor_px  = law_q.p_row >> FLOOR_SHIFT;
+  assign floor_ex  = (law_q.ex > floor_px) ? law_q.ex : floor_px;
   assign pp0       = (WH_W + 1)'(law_q.p_sum) + (WH_W + 1)'(frm_q.p0);
   assign nn0       = law_q.n + law_q.n0;
   // max(Btot - Bd, 0) kept as one running register (all words >= 0, so saturating each row's
-  // subtract gives the same): the divider loads it without a subtract in front.
-  assign b_diff    = {1'b0, law_q.b_rest} - (SEED_W + 1)'(mem_word_q);
+  // subtract gives the same): the divider loads it without a subtract in front. One adder for
+  // both: + b_k in the seed pass (ST_PB), - b_j at a row's update (ST_ACC), the borrow of the
+  // subtract saturating at 0 (the sum stays below 2^SEED_W, so the add never sets that bit).
+  logic             b_sub;
+  logic [MEM_W-1:0] b_opd;
+  assign b_sub     = !pass;
+  assign b_opd     = pass ? MEM_W'(mul_prod) : mem_word_q;
+  assign b_diff    = {1'b0, law_q.b_rest} + ((SEED_W + 1)'(b_opd) ^ {(SEED_W + 1){b_sub}})
+                     + (SEED_W + 1)'(b_sub);
   // The seed pass's operands: row k's word {u_k, a_k} (from msr_budget_mem's second register).
   logic [10:0]      pass_u;
   logic [27:0]      pass_a;
@@ -222,31 +226,52 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .quo_o      (div_quo)
   );
 
-  // The chains of products: when a state's product is done the next one starts with these
-  // operands, in the next state of the enum (start: G, W * H, g and p of the last row, N0, m0;
-  // law: the numerator from ST_LAW, then the denominator).
-  mul_op_t         nxt;
   // n0 of the last row, registered: h_last loads at the pulse and ST_WH, which uses it, begins
   // after the G product (at least one clock); from the pulse's registers through grid_axis
   // into the multiplier's load it was the unit's worst path.
   logic [5:0]      n0_last_q;
   always_ff @(posedge clk_i) n0_last_q <= grid_axis(frm_q.h_last, cfg.levels);
+
+  // The operands of the product that loads this clock, by the state that loads it (a product
+  // done in a chain state starts the next: start G, W * H, g and p of the last row, N0, m0; law
+  // the numerator, then the denominator). Each operand is one flat AND-OR choice of its
+  // sources, a source shared by the products that use it: a multiplexer per product and
+  // state, nested, was the controller's largest part.
+  logic [10:0] pass_min;
+  assign pass_min = (pass_u < frm_q.u0) ? pass_u : frm_q.u0;
   always_comb begin
-    unique case (state_q)
-      ST_G:    nxt = mul_op(MC_W'(cfg.width), MP_W'(cfg.height), 13);
-      ST_WH:   nxt = mul_op(MC_W'(frm_q.line_w), MP_W'(n0_last_q), 6);
-      ST_GL:   nxt = mul_op(MC_W'(cfg.width), MP_W'(frm_q.h_last), 6);
-      ST_PL:   nxt = mul_op(MC_W'(frm_q.spare), MP_W'(frm_q.u0), 11);
-      ST_N0:   nxt = mul_op(MC_W'(frm_q.u0), MP_W'(frm_q.u0), 11);
-      ST_NUM:  nxt = mul_op(MC_W'(pp0), law_q.x_rem[MP_W-1:0], MP_W);
-      default: nxt = mul_op(nn0, frm_q.wh - law_q.p_sum, MP_W);
-    endcase
+    logic g, seed_law;
+    g        = !seq_load;                                   // the state machine's product
+    seed_law = state_q == ST_LAW && frm_q.seeded;
+    mop.a = (MC_W'(cfg.line_w)   & {MC_W{!g || state_q == ST_WH}})
+          | (MC_W'(cfg.width)    & {MC_W{g && state_q inside {ST_G, ST_GL}}})
+          | (MC_W'(frm_q.spare)  & {MC_W{g && state_q == ST_PL}})
+          | (MC_W'(frm_q.u0)     & {MC_W{g && (state_q == ST_N0 || seed_law)}})
+          | (MC_W'(pp0)          & {MC_W{g && state_q == ST_NUM}})
+          | (nn0                 & {MC_W{g && state_q == ST_LAW && !frm_q.seeded}})
+          | (MC_W'(floor_ex)     & {MC_W{g && state_q == ST_FLR}})
+          | (MC_W'(pass_a)       & {MC_W{g && state_q == ST_PMUL}})
+          | (MC_W'(u_new)        & {MC_W{g && state_q == ST_SQ0}});
+    // the multiplier left-aligned: n bits at the top
+    mop.b = ({cfg.line_h, 12'd0}              & {MP_W{!g}})
+          | ({cfg.height, 12'd0}              & {MP_W{g && state_q == ST_G}})
+          | ({n0_last_q, 19'd0}               & {MP_W{g && state_q == ST_WH}})
+          | ({frm_q.h_last, 19'd0}            & {MP_W{g && state_q == ST_GL}})
+          | ({frm_q.u0, 14'd0}                & {MP_W{g && state_q inside {ST_PL, ST_N0}}})
+          | (law_q.x_rem[MP_W-1:0]            & {MP_W{g && (state_q == ST_NUM || seed_law)}})
+          | ((frm_q.wh - law_q.p_sum)          & {MP_W{g && state_q == ST_LAW && !frm_q.seeded}})
+          | ({u_q[base_q], 14'd0}             & {MP_W{g && state_q == ST_FLR}})
+          | ({pass_min, 14'd0}                & {MP_W{g && state_q == ST_PMUL}})
+          | ({u_new, 14'd0}                   & {MP_W{g && state_q == ST_SQ0}});
+    mop.n = !g                                    ? ST_W'(13) :
+            (state_q == ST_G)                     ? ST_W'(13) :
+            (state_q inside {ST_WH, ST_GL})       ? ST_W'(6)  :
+            (state_q inside {ST_NUM, ST_LAW})     ? ST_W'(MP_W) : ST_W'(11);
   end
 
   always_comb begin
     state_d    = state_q;
     mul_load   = 1'b0;
-    mul        = '0;
     mem_re     = 1'b0;
     mem_we     = 1'b0;
     div_num_in = '0;
@@ -262,14 +287,11 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       // subtract and the compare are not one carry chain after the other in one clock.
       ST_FLR: begin
         mul_load = 1'b1;
-        mul      = mul_op(MC_W'((law_q.ex > floor_px) ? law_q.ex : floor_px),
-                          MP_W'(u_q[base_q]), 11);
         state_d  = ST_ACT;
       end
       // The chains of products: a product done starts the next (the table above).
       ST_G, ST_WH, ST_GL, ST_PL, ST_N0, ST_NUM: if (mul_done) begin
         mul_load = !(state_q == ST_G && checking_q);   // a check ends with G
-        mul      = nxt;
         state_d  = mul_load ? budget_state_e'(state_q + 5'd1) : ST_IDLE;
       end
       ST_M0: if (mul_done) state_d = frm_q.seeded ? ST_PRD : ST_IDLE;
@@ -281,7 +303,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       ST_PWT: state_d = ST_PMUL;
       ST_PMUL: begin
         mul_load = 1'b1;
-        mul      = mul_op(MC_W'(pass_a), MP_W'((pass_u < frm_q.u0) ? pass_u : frm_q.u0), 11);
         state_d  = ST_PB;
       end
       ST_PB: if (mul_done) begin
@@ -305,11 +326,9 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         end else if (frm_q.seeded) begin
           div_num_in = REM_W'(law_q.b_rest);      // the divisor u0 * X from ST_DEN
           mul_load   = 1'b1;
-          mul        = mul_op(MC_W'(frm_q.u0), law_q.x_rem[MP_W-1:0], MP_W);
           state_d    = ST_DEN;
         end else begin
           mul_load = 1'b1;
-          mul      = nxt;
           state_d  = ST_NUM;
         end
       end
@@ -318,7 +337,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       ST_SLEW: state_d = ST_SQ0;
       ST_SQ0: begin
         mul_load = 1'b1;
-        mul      = mul_op(MC_W'(u_new), MP_W'(u_new), 11);
         state_d  = ST_SQ;
       end
       ST_SQ: if (mul_done) state_d = ST_IDLE;
@@ -379,7 +397,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         checking_q  <= !start_p;
         act_q       <= 1'b0;
         row_ok_q    <= 1'b0;
-        frm_q.line_w <= cfg.line_w;
         frm_q.nty <= cfg.nty;
         frm_q.h_last <= cfg.h_last;
         frm_q.g_full <= cfg.g_full;
@@ -466,7 +483,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             mem_rows_q        <= frm_q.nty;
           end
           ST_PB: if (mul_done) begin
-            law_q.b_rest <= law_q.b_rest + SEED_W'(mul_prod);
+            law_q.b_rest <= b_diff[SEED_W] ? '0 : b_diff[SEED_W-1:0];
             pass_q     <= pass_q + ROW_W'(1);
           end
           default: ;

@@ -60,16 +60,34 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [17:0]      p_full, p_full_q, p_full2_q, p_full4_q;
   logic [10:0]      u0, u0_q, u02_q, u04_q;
   logic [5:0]       h_last2_q, h_last4_q;
-  assign tile_sz = 6'(7'd1 << tile_log2_q);
-  assign h_rest  = 6'(height_q & (dim_t'(tile_sz) - dim_t'(1)));
+  // T is 8, 16 or 32 (msr_budget's decode): a three-way choice for each split at T, not a
+  // shifter for every log2 T.
+  always_comb begin
+    unique case (tile_log2_q)
+      3'd3: begin
+        tile_sz = 6'd8;
+        full_w  = 13'(width_q >> 3);   rest_w = 6'(width_q[2:0]);
+        full_h  = 13'(height_q >> 3);  rest_h = 6'(height_q[2:0]);
+        p_full  = 18'(width_q) << 3;
+      end
+      3'd5: begin
+        tile_sz = 6'd32;
+        full_w  = 13'(width_q >> 5);   rest_w = 6'(width_q[4:0]);
+        full_h  = 13'(height_q >> 5);  rest_h = 6'(height_q[4:0]);
+        p_full  = 18'(width_q) << 5;
+      end
+      default: begin
+        tile_sz = 6'd16;
+        full_w  = 13'(width_q >> 4);   rest_w = 6'(width_q[3:0]);
+        full_h  = 13'(height_q >> 4);  rest_h = 6'(height_q[3:0]);
+        p_full  = 18'(width_q) << 4;
+      end
+    endcase
+  end
+  assign h_rest  = rest_h;
   assign h_last  = (h_rest == '0) ? tile_sz : h_rest;
-  assign full_w  = 13'(width_q >> tile_log2_q);
-  assign full_h  = 13'(height_q >> tile_log2_q);
-  assign rest_w  = 6'(width_q & ((dim_t'(1) << tile_log2_q) - dim_t'(1)));
-  assign rest_h  = 6'(height_q & ((dim_t'(1) << tile_log2_q) - dim_t'(1)));
   assign sh      = tile_log2_q - {1'b0, levels_q};
-  assign nty     = ROW_W'((14'(height_q) + 14'(tile_sz) - 14'd1) >> tile_log2_q);
-  assign p_full  = 18'(width_q) << tile_log2_q;
+  assign nty     = ROW_W'(full_h) + ROW_W'(rest_h != '0);
   assign u0      = clamp_u((scale_init_q == '0) ? 11'd256 : scale_init_q);
   // Stages 3 and 4: line(N) = floor(N / T) * n0(T) + n0(N mod T), n0(T) = T / S + 1 as
   // T >= 8 >= S: the full tiles' part and the rest's n0 side by side, then their sum (in one

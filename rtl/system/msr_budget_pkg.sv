@@ -40,7 +40,6 @@ package msr_budget_pkg;
   // The frame's constants: registered at a check or a start, then by the start's products.
   typedef struct packed {
     logic                 seeded;     // the seeded law
-    logic [12:0]          line_w;     // line(W)
     logic [BUD_ROW_W-1:0] nty;        // tile rows
     logic [5:0]           h_last;     // height of the last tile row
     logic [17:0]          g_full;     // grid pixels of a full row, of the last row

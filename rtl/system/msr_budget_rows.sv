@@ -10,7 +10,8 @@
 // its row, and its next row (three on) cannot have a pixel before then.
 //
 // Timing: S1 registers each input's slot (row mod 3, from the row's distance to the oldest open
-// row), traced and last flags; S2 adds the per-slot counts (0..NUM_IN each) into the counters.
+// row: as it is 0..2, the two low bits of the row and of the oldest open row give it, so the
+// row number itself is never formed), traced and last flags; S2 adds the per-slot counts (0..NUM_IN each) into the counters.
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
@@ -25,7 +26,7 @@ module msr_budget_rows import msr_pkg::*; #(
   input  logic                     start_i,       // pulse: a budget frame begins (cfg below)
   input  dim_t                     width_i,       // W, stable for the frame
   input  dim_t                     height_i,      // H
-  input  tile_size_e               tile_i,        // T
+  input  logic [2:0]               tile_log2_i,   // log2 T: 3, 4 or 5
   // Finished pixels, as the writer takes them.
   input  logic [NUM_IN-1:0]        pix_fire_i,    // input i's pixel is taken this clock
   input  coord_t [NUM_IN-1:0]      pix_y_i,       // its row
@@ -51,9 +52,25 @@ module msr_budget_rows import msr_pkg::*; #(
   logic [NUM_IN-1:0]       s1_v_q, s1_tr_q, s1_last_q;
   slot_t [NUM_IN-1:0]      s1_slot_q;
 
-  // ceil(n / 2^lg)
+  // ceil(n / 2^lg), lg in 3..5 (a three-way choice, not a shifter for every lg; one add)
   function automatic logic [TROW_W-1:0] tiles_of(dim_t n, logic [2:0] lg);
-    return TROW_W'(n >> lg) + TROW_W'((n & ((dim_t'(1) << lg) - 1'b1)) != '0);
+    logic [TROW_W-1:0] q;
+    logic              r;
+    unique case (lg)
+      3'd3:    begin q = TROW_W'(n >> 3); r = n[2:0] != '0; end
+      3'd5:    begin q = TROW_W'(n >> 5); r = n[4:0] != '0; end
+      default: begin q = TROW_W'(n >> 4); r = n[3:0] != '0; end
+    endcase
+    return q + TROW_W'(r);
+  endfunction
+
+  // The two low bits of the tile row of pixel row y: y[lg + 1 : lg] (y's bits 3 to 6).
+  function automatic logic [1:0] row_lo(logic [6:3] y, logic [2:0] lg);
+    unique case (lg)
+      3'd3:    return y[4:3];
+      3'd5:    return y[6:5];
+      default: return y[5:4];
+    endcase
   endfunction
 
   function automatic slot_t slot_add(slot_t s, logic [1:0] d);
@@ -132,7 +149,7 @@ module msr_budget_rows import msr_pkg::*; #(
   slot_t [NUM_IN-1:0] s1_slot_d;
   always_comb begin
     for (int unsigned i = 0; i < NUM_IN; i++) begin
-      s1_slot_d[i] = slot_add(hslot_q, 2'(TROW_W'(pix_y_i[i] >> lg_q) - head_q));
+      s1_slot_d[i] = slot_add(hslot_q, row_lo(pix_y_i[i][6:3], lg_q) - head_q[1:0]);
     end
   end
 
@@ -141,9 +158,9 @@ module msr_budget_rows import msr_pkg::*; #(
     s1_tr_q   <= pix_traced_i;
     s1_last_q <= pix_last_i;
     if (start_i) begin
-      lg_q  <= tile_log2(tile_i);
-      ntx_q <= tiles_of(width_i, tile_log2(tile_i));
-      nty_q <= tiles_of(height_i, tile_log2(tile_i));
+      lg_q  <= tile_log2_i;
+      ntx_q <= tiles_of(width_i, tile_log2_i);
+      nty_q <= tiles_of(height_i, tile_log2_i);
     end
   end
 

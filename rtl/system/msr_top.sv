@@ -273,9 +273,9 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   if (BUDGET_EN) begin : g_budget
     msr_budget #(.NUM_IN(NUM_ENGINES)) u_budget (
       .clk_i, .rst_ni, .clear_i (clear),
-      .check_i (bud_check), .raw_i (raw_q), .check_done_o (bud_done),
+      .raw_i (raw_q), .check_i (bud_check), .check_done_o (bud_done),
       .err_budget_o (bud_err_budget), .err_profile_o (bud_err_profile),
-      .start_i (start), .cfg_i (cfg), .busy_o (bud_busy),
+      .start_i (start), .busy_o (bud_busy),
       .row_idx_i (tg_row), .row_ok_o (tg_row_ok), .row_m_o (tg_row_m),
       .pix_fire_i (wr_pix_valid & wr_pix_ready),
       .pix_y_i (wr_pix_y), .pix_src_i (wr_pix_src), .pix_last_i (wr_pix_last),

@@ -15,7 +15,7 @@ import cocotb  # noqa: E402
 from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge  # noqa: E402
 from msr_tb import clear_pulse, seeded_rng, start_clock_and_reset  # noqa: E402
 
-TILE_ENC = {8: 0, 16: 1, 32: 2}
+TILE_LOG2 = {8: 3, 16: 4, 32: 5}
 
 
 def tiles_of(W, H, T):
@@ -27,7 +27,7 @@ def tiles_of(W, H, T):
 async def run_frame(dut, rng, W, H, T, p_traced, p_ready):
     n_in = int(dut.NUM_IN.value)
     nty = (H + T - 1) // T
-    dut.width_i.value, dut.height_i.value, dut.tile_i.value = W, H, TILE_ENC[T]
+    dut.width_i.value, dut.height_i.value, dut.tile_log2_i.value = W, H, TILE_LOG2[T]
     dut.start_i.value = 1
     await RisingEdge(dut.clk_i)
     dut.start_i.value = 0
@@ -81,7 +81,7 @@ async def test_rows(dut):
     for c in cases:
         await run_frame(dut, rng, *c)
     # a clear mid-frame forgets it: the next frame counts from zero
-    dut.width_i.value, dut.height_i.value, dut.tile_i.value = 40, 40, 0
+    dut.width_i.value, dut.height_i.value, dut.tile_log2_i.value = 40, 40, 3
     dut.start_i.value = 1
     await RisingEdge(dut.clk_i)
     dut.start_i.value = 0
