@@ -171,6 +171,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [18:0]      c_diff;                // c - g and its borrow (one carry chain)
   logic [SEED_W:0]  b_diff;                // b_rest -+ the word and its borrow
   logic [WH_W:0]    pp0;                  // P + P0 <= 2^25: 26 bits
+  logic [WH_W:0]    spare_d;              // B' - G and its borrow (one carry chain)
   logic [ACT_W-1:0] nn0;
   logic [10:0]      u_new;
   assign x_pos     = !law_q.x_rem[26] && law_q.x_rem != '0;
@@ -185,6 +186,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   assign floor_ex  = (law_q.ex > floor_px) ? law_q.ex : floor_px;
   assign pp0       = (WH_W + 1)'(law_q.p_sum) + (WH_W + 1)'(frm_q.p0);
   assign nn0       = law_q.n + law_q.n0;
+  assign spare_d   = {1'b0, frm_q.bud} - {1'b0, frm_q.grid};
   // max(Btot - Bd, 0) kept as one running register (all words >= 0, so saturating each row's
   // subtract gives the same): the divider loads it without a subtract in front. One adder for
   // both: + b_k in the seed pass (ST_PB), - b_j at a row's update (ST_ACC), the borrow of the
@@ -206,6 +208,18 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic             run;                    // no pulse or clear overrides the state machine
   logic             div_init, div_load_num, div_load_den, div_last;
   logic [REM_W-1:0] div_num_in, div_den_in;
+  // The divider's operands, one flat choice each: in ST_LAW N and B' - G (the last row) or
+  // max(Btot - Bd, 0) (the others: only the seeded law divides it; the first-frame law's
+  // ST_NUM and ST_DEN reload both, and the other branches do not divide), else the product
+  // (ST_NUM, ST_DEN).
+  logic law_last, law_rest;
+  assign law_last   = state_q == ST_LAW && row_last_q;
+  assign law_rest   = state_q == ST_LAW && !row_last_q;
+  assign div_num_in = (REM_W'(law_q.n)      & {REM_W{law_last}})
+                    | (REM_W'(law_q.b_rest) & {REM_W{law_rest}})
+                    | (REM_W'(mul_prod)     & {REM_W{state_q != ST_LAW}});
+  assign div_den_in = (REM_W'(frm_q.spare)  & {REM_W{law_last}})
+                    | (REM_W'(mul_prod)     & {REM_W{state_q != ST_LAW}});
   logic [10:0]      div_quo;
   assign run          = !clear_i && !start_p && !check_p;
   assign div_init     = run && state_q == ST_LAW;
@@ -218,9 +232,9 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .init_i     (div_init),
     .quo_init_i ((row_last_q ? frm_q.spare == '0 : row_new_q && !x_pos) ? Q_SAT : 11'd0),
     .load_num_i (div_load_num),
-    .num_i      ((state_q == ST_LAW) ? div_num_in : REM_W'(mul_prod)),
+    .num_i      (div_num_in),
     .load_den_i (div_load_den),
-    .den_i      ((state_q == ST_LAW) ? div_den_in : REM_W'(mul_prod)),
+    .den_i      (div_den_in),
     .step_i     (run && state_q == ST_DIV),
     .last_o     (div_last),
     .quo_o      (div_quo)
@@ -274,8 +288,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     mul_load   = 1'b0;
     mem_re     = 1'b0;
     mem_we     = 1'b0;
-    div_num_in = '0;
-    div_den_in = '0;
     unique case (state_q)
       ST_IDLE: begin
         if (act_q && row_done_i) begin
@@ -316,15 +328,13 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       ST_ACC: state_d = ST_LAW;
       ST_LAW: begin
         if (row_last_q) begin
-          div_num_in = REM_W'(law_q.n);
-          div_den_in = REM_W'(frm_q.spare);
           state_d    = (frm_q.spare == '0) ? ST_FIN : ST_DIV;
         end else if (!row_new_q) begin
           state_d = ST_SQ;                       // no new scale: just the row count
         end else if (!x_pos) begin
           state_d = ST_SLEW;                     // q = U_MAX + 1 (set below)
         end else if (frm_q.seeded) begin
-          div_num_in = REM_W'(law_q.b_rest);      // the divisor u0 * X from ST_DEN
+          // (the divider's numerator: max(Btot - Bd, 0); its divisor u0 * X from ST_DEN)
           mul_load   = 1'b1;
           state_d    = ST_DEN;
         end else begin
@@ -381,8 +391,10 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     end else begin
       frame_done_q <= 1'b0;
       // Read-back of the row the walker asks about: known rows are rows_done and the next.
-      row_ok_q <= act_q && row_idx_i >= rows_done_q && row_idx_i <= rows_done_q + ROW_W'(1)
-                  && row_idx_i < frm_q.nty;
+      // (rows_done < nty while act_q; row rows_done + 1 is in the frame unless rows_done is
+      // the last: equalities, not three magnitude compares)
+      row_ok_q <= act_q && (row_idx_i == rows_done_q ||
+                            (row_idx_i == rows_done_q + ROW_W'(1) && !row_last_q));
       row_m_q  <= m_q[(row_idx_i == rows_done_q) ? base_q : slot1];
 
       // The input pulses drop the old answers at once (the sequence starts five clocks later).
@@ -434,7 +446,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           end
           ST_GL: if (mul_done) begin
             frm_q.g_last <= 18'(mul_prod);
-            frm_q.spare <= (frm_q.bud > frm_q.grid) ? frm_q.bud - frm_q.grid : '0;
+            frm_q.spare <= spare_d[WH_W] ? '0 : spare_d[WH_W-1:0];
           end
           ST_PL: if (mul_done) begin
             frm_q.p_last <= 18'(mul_prod);

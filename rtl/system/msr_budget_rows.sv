@@ -40,6 +40,7 @@ module msr_budget_rows import msr_pkg::*; #(
   output logic                     busy_o         // a budget frame's rows are not all handed on
 );
   typedef logic [1:0] slot_t;                            // row mod 3
+  localparam int unsigned INC_W = $clog2(NUM_IN + 1);    // pixels of one slot in a clock
 
   logic [2:0]              lg_q;                          // log2 T
   logic [TROW_W-1:0]       ntx_q, nty_q;                  // tiles per row, rows
@@ -73,10 +74,30 @@ module msr_budget_rows import msr_pkg::*; #(
     endcase
   endfunction
 
+  // (s + d) mod 3 for s in 0..2, d in 0..3, as a table (no carry chain for two bits)
   function automatic slot_t slot_add(slot_t s, logic [1:0] d);
-    logic [2:0] t;
-    t = 3'(s) + 3'(d);
-    return (t >= 3'd3) ? slot_t'(t - 3'd3) : slot_t'(t);
+    unique case ({s, d})
+      4'b00_00, 4'b01_10, 4'b10_01, 4'b00_11: return 2'd0;
+      4'b00_01, 4'b01_00, 4'b10_10, 4'b01_11: return 2'd1;
+      4'b00_10, 4'b01_01, 4'b10_00, 4'b10_11: return 2'd2;
+      default:                                return 2'd0;  // s = 3 never happens
+    endcase
+  endfunction
+
+  // The number of set bits as boolean logic: a thermometer code (at least k + 1 set) built
+  // one input at a time, then its length. A loop of additions made a chain of small carry
+  // chains per slot (two per input), more than the counters themselves.
+  function automatic logic [INC_W-1:0] ones(logic [NUM_IN-1:0] b);
+    logic [NUM_IN-1:0] t;
+    logic [INC_W-1:0]  n;
+    t = '0;
+    for (int unsigned i = 0; i < NUM_IN; i++) begin
+      for (int k = NUM_IN - 1; k > 0; k--) t[k] = t[k] | (b[i] & t[k-1]);
+      t[0] = t[0] | b[i];
+    end
+    n = '0;
+    for (int unsigned k = 0; k < NUM_IN; k++) if (t[k]) n = INC_W'(k + 1);
+    return n;
   endfunction
 
   logic take;
@@ -97,18 +118,13 @@ module msr_budget_rows import msr_pkg::*; #(
   logic [2:0][TROW_W-1:0] tiles_d;
   // Per slot the clock's counts first (a small popcount of the inputs), then one add: not a
   // chain of NUM_IN wide adders (that chain was 36 levels, 51 MHz on its own).
-  localparam int unsigned INC_W = $clog2(NUM_IN + 1);
   logic [2:0][INC_W-1:0] inc_tr, inc_la;
   always_comb begin
     for (int unsigned s = 0; s < 3; s++) begin
-      inc_tr[s] = '0;
-      inc_la[s] = '0;
-      for (int unsigned i = 0; i < NUM_IN; i++) begin
-        if (s1_v_q[i] && s1_slot_q[i] == slot_t'(s)) begin
-          inc_tr[s] = inc_tr[s] + INC_W'(s1_tr_q[i]);
-          inc_la[s] = inc_la[s] + INC_W'(s1_last_q[i]);
-        end
-      end
+      logic [NUM_IN-1:0] in_s;                           // the inputs with a pixel of slot s
+      for (int unsigned i = 0; i < NUM_IN; i++) in_s[i] = s1_v_q[i] && s1_slot_q[i] == slot_t'(s);
+      inc_tr[s] = ones(in_s & s1_tr_q);
+      inc_la[s] = ones(in_s & s1_last_q);
       traced_d[s] = ((take_q && slot_t'(s) == tslot_q) ? '0 : traced_q[s]) + CNT_W'(inc_tr[s]);
       tiles_d[s]  = ((take_q && slot_t'(s) == tslot_q) ? '0 : tiles_q[s]) + TROW_W'(inc_la[s]);
     end
