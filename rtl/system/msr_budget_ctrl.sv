@@ -68,7 +68,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   localparam int unsigned REM_W  = PROD_W + 1;   // 62: holds den << 11
   localparam int unsigned MEM_DEPTH = 512;
 
-  // ---- The configuration and the grid constants, five clocks after the pulses -------------
+  // ---- The configuration and the grid constants, six clocks after the pulses --------------
   // The check's flags and the row read-back drop at the input pulse itself (below).
   logic             check_p, start_p;
   budget_grid_t     cfg;                  // the configuration and the constants
@@ -170,7 +170,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [17:0]      g_sel, p_sel, c_minus_g;
   logic [18:0]      c_diff;                // c - g and its borrow (one carry chain)
   logic [SEED_W:0]  b_diff;                // b_rest -+ the word and its borrow
-  logic [WH_W:0]    pp0;                  // P + P0 <= 2^25: 26 bits
   logic [WH_W:0]    spare_d;              // B' - G and its borrow (one carry chain)
   logic [ACT_W-1:0] nn0;
   logic [10:0]      u_new;
@@ -184,7 +183,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [17:0]      floor_px, floor_ex;    // p_j >> FLOOR_SHIFT; max(c_j - g_j, it)
   assign floor_px  = law_q.p_row >> FLOOR_SHIFT;
   assign floor_ex  = (law_q.ex > floor_px) ? law_q.ex : floor_px;
-  assign pp0       = (WH_W + 1)'(law_q.p_sum) + (WH_W + 1)'(frm_q.p0);
   assign nn0       = law_q.n + law_q.n0;
   assign spare_d   = {1'b0, frm_q.bud} - {1'b0, frm_q.grid};
   // max(Btot - Bd, 0) kept as one running register (all words >= 0, so saturating each row's
@@ -202,6 +200,11 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [27:0]      pass_a;
   assign {pass_u, pass_a} = mem_word_q;
   assign u_new     = clamp_u(law_q.u_mx);
+
+  // P0 = W * H >> PRIOR_SHIFT (ST_WH) and N0 = (B' - G) * u0 >> PRIOR_SHIFT (ST_N0) through one
+  // shifter: both products are below 2^36 (W * H <= 2^24, B' - G < 2^24, u0 < 2^11).
+  logic [ACT_W-1:0] prod_shr;
+  assign prod_shr = mul_prod[ACT_W-1:0] >> cfg.prior_shift;
 
   // ---- Divider (msr_seq_div): the saturation test, then quotient bits 10..0 ---------------
   // Loaded by the law (ST_LAW) or by the two products (ST_NUM, ST_DEN); steps in ST_DIV.
@@ -261,7 +264,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           | (MC_W'(cfg.width)    & {MC_W{g && state_q inside {ST_G, ST_GL}}})
           | (MC_W'(frm_q.spare)  & {MC_W{g && state_q == ST_PL}})
           | (MC_W'(frm_q.u0)     & {MC_W{g && (state_q == ST_N0 || seed_law)}})
-          | (MC_W'(pp0)          & {MC_W{g && state_q == ST_NUM}})
+          | (MC_W'(law_q.pp0)    & {MC_W{g && state_q == ST_NUM}})
           | (nn0                 & {MC_W{g && state_q == ST_LAW && !frm_q.seeded}})
           | (MC_W'(floor_ex)     & {MC_W{g && state_q == ST_FLR}})
           | (MC_W'(pass_a)       & {MC_W{g && state_q == ST_PMUL}})
@@ -273,7 +276,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           | ({frm_q.h_last, 19'd0}            & {MP_W{g && state_q == ST_GL}})
           | ({frm_q.u0, 14'd0}                & {MP_W{g && state_q inside {ST_PL, ST_N0}}})
           | (law_q.x_rem[MP_W-1:0]            & {MP_W{g && (state_q == ST_NUM || seed_law)}})
-          | ((frm_q.wh - law_q.p_sum)          & {MP_W{g && state_q == ST_LAW && !frm_q.seeded}})
+          | (law_q.p_left                     & {MP_W{g && state_q == ST_LAW && !frm_q.seeded}})
           | ({u_q[base_q], 14'd0}             & {MP_W{g && state_q == ST_FLR}})
           | ({pass_min, 14'd0}                & {MP_W{g && state_q == ST_PMUL}})
           | ({u_new, 14'd0}                   & {MP_W{g && state_q == ST_SQ0}});
@@ -328,7 +331,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       ST_ACC: state_d = ST_LAW;
       ST_LAW: begin
         if (row_last_q) begin
-          state_d    = (frm_q.spare == '0) ? ST_FIN : ST_DIV;
+          // SCALE_OUT = clamp(q) through ST_SLEW's max with a zero slew: one clamp for both
+          state_d    = (frm_q.spare == '0) ? ST_SLEW : ST_DIV;
         end else if (!row_new_q) begin
           state_d = ST_SQ;                       // no new scale: just the row count
         end else if (!x_pos) begin
@@ -343,8 +347,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         end
       end
       ST_DEN: if (mul_done) state_d = ST_DIV;
-      ST_DIV: if (div_last) state_d = row_last_q ? ST_FIN : ST_SLEW;
-      ST_SLEW: state_d = ST_SQ0;
+      ST_DIV: if (div_last) state_d = ST_SLEW;
+      ST_SLEW: state_d = row_last_q ? ST_FIN : ST_SQ0;
       ST_SQ0: begin
         mul_load = 1'b1;
         state_d  = ST_SQ;
@@ -378,8 +382,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       frame_done_q      <= 1'b0;
       row_ok_q          <= 1'b0;
       row_m_q           <= '0;
-      frm_q             <= '0;
-      law_q             <= '0;
     end else if (clear_i) begin
       state_q      <= ST_IDLE;
       act_q        <= 1'b0;
@@ -397,7 +399,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
                             (row_idx_i == rows_done_q + ROW_W'(1) && !row_last_q));
       row_m_q  <= m_q[(row_idx_i == rows_done_q) ? base_q : slot1];
 
-      // The input pulses drop the old answers at once (the sequence starts five clocks later).
+      // The input pulses drop the old answers at once (the sequence starts six clocks later).
       if (check_i) check_done_q <= 1'b0;
       if (start_i) begin
         act_q    <= 1'b0;
@@ -409,17 +411,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         checking_q  <= !start_p;
         act_q       <= 1'b0;
         row_ok_q    <= 1'b0;
-        frm_q.nty <= cfg.nty;
-        frm_q.h_last <= cfg.h_last;
-        frm_q.g_full <= cfg.g_full;
-        frm_q.p_full <= cfg.p_full;
-        frm_q.u0 <= cfg.u0;
-        frm_q.seeded <= cfg.seeded;
         if (check_p && !start_p) check_done_q <= 1'b0;
         if (start_p) begin
-          law_q.n <= '0;
-          law_q.p_sum <= '0;
-          law_q.b_rest <= '0;
           rows_done_q       <= '0;
           base_q            <= '0;
           mem_valid_q       <= 1'b0;
@@ -431,28 +424,12 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         state_q <= state_d;
         unique case (state_q)
           ST_G: if (mul_done) begin
-            frm_q.grid <= WH_W'(mul_prod);
             if (checking_q) begin
               check_done_q  <= 1'b1;
               err_budget_q  <= cfg.budget != '0 && WH_W'(cfg.budget) < WH_W'(mul_prod);
               err_profile_q <= cfg.seeded && !(mem_valid_q && mem_rows_q == frm_q.nty);
             end
           end
-          ST_WH: if (mul_done) begin
-            frm_q.wh <= WH_W'(mul_prod);
-            frm_q.bud <= (WH_W'(cfg.budget) < WH_W'(mul_prod)) ? WH_W'(cfg.budget)
-                                                                : WH_W'(mul_prod);
-            frm_q.p0 <= WH_W'(mul_prod) >> cfg.prior_shift;
-          end
-          ST_GL: if (mul_done) begin
-            frm_q.g_last <= 18'(mul_prod);
-            frm_q.spare <= spare_d[WH_W] ? '0 : spare_d[WH_W-1:0];
-          end
-          ST_PL: if (mul_done) begin
-            frm_q.p_last <= 18'(mul_prod);
-            law_q.x_rem <= $signed({2'b00, frm_q.spare});
-          end
-          ST_N0: if (mul_done) law_q.n0 <= ACT_W'(mul_prod >> cfg.prior_shift);
           ST_M0: if (mul_done) begin
             m_q[0] <= 13'((mul_prod + PROD_W'(128)) >> 8);
             m_q[1] <= 13'((mul_prod + PROD_W'(128)) >> 8);
@@ -461,21 +438,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             row_new_q  <= frm_q.nty > ROW_W'(2);
             pass_q     <= '0;
           end
-          ST_IDLE: if (act_q && row_done_i) begin
-            law_q.p_row <= p_sel;
-            law_q.ex <= c_minus_g;
-          end
           ST_FLR, ST_ACT: ;
-          ST_ACC: begin
-            law_q.n <= law_q.n + ACT_W'(mul_prod);
-            law_q.p_sum <= law_q.p_sum + WH_W'(law_q.p_row);
-            law_q.x_rem <= law_q.x_rem - $signed({9'd0, law_q.ex});       // - c_j + g_j
-            if (frm_q.seeded) law_q.b_rest <= b_diff[SEED_W] ? '0 : b_diff[SEED_W-1:0];
-          end
-          ST_LAW: begin
-            law_q.slew <= u_q[slot1] >> 1;           // (the divider is loaded above)
-          end
-          ST_SLEW: law_q.u_mx <= (div_quo > law_q.slew) ? div_quo : law_q.slew;
           ST_SQ0: u_q[slot2] <= u_new;
           ST_SQ: if (mul_done) begin
             if (row_new_q) m_q[slot2] <= 13'((mul_prod + PROD_W'(128)) >> 8);
@@ -485,7 +448,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             base_q      <= slot1;
           end
           ST_FIN: begin
-            scale_out_q       <= clamp_u(div_quo);
+            scale_out_q       <= u_new;                // clamp(q) (ST_SLEW)
             rows_done_q       <= rows_done_q + ROW_W'(1);
             base_q            <= slot1;
             act_q             <= 1'b0;
@@ -495,13 +458,59 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             mem_rows_q        <= frm_q.nty;
           end
           ST_PB: if (mul_done) begin
-            law_q.b_rest <= b_diff[SEED_W] ? '0 : b_diff[SEED_W-1:0];
             pass_q     <= pass_q + ROW_W'(1);
           end
           default: ;
         endcase
       end
     end
+  end
+
+  // ---- The law's data registers ------------------------------------------------------------
+  // Plain flip-flops (the state machine and act_q say when they hold a value): a start's clear
+  // and a saturation at zero are the flip-flops' synchronous reset, not a multiplexer.
+  logic st_done, b_upd;
+  assign st_done = run && mul_done;
+  assign b_upd   = run && ((state_q == ST_ACC && frm_q.seeded) || (state_q == ST_PB && mul_done));
+  always_ff @(posedge clk_i) begin
+    if (seq_load) begin
+      frm_q.nty    <= cfg.nty;
+      frm_q.h_last <= cfg.h_last;
+      frm_q.g_full <= cfg.g_full;
+      frm_q.p_full <= cfg.p_full;
+      frm_q.u0     <= cfg.u0;
+      frm_q.seeded <= cfg.seeded;
+    end
+    if (st_done && state_q == ST_G) frm_q.grid <= WH_W'(mul_prod);
+    if (st_done && state_q == ST_WH) begin
+      frm_q.bud <= (WH_W'(cfg.budget) < WH_W'(mul_prod)) ? WH_W'(cfg.budget) : WH_W'(mul_prod);
+    end
+    if (st_done && state_q == ST_GL) begin
+      frm_q.g_last <= 18'(mul_prod);
+      frm_q.spare  <= spare_d[WH_W] ? '0 : spare_d[WH_W-1:0];
+    end
+    if (st_done && state_q == ST_PL) frm_q.p_last <= 18'(mul_prod);
+    // P + P0 and W * H - P start at ST_WH (P = 0) and move by p_j at each row's update
+    if (st_done && state_q == ST_WH) begin
+      law_q.pp0    <= (WH_W + 1)'(prod_shr);
+      law_q.p_left <= WH_W'(mul_prod);
+    end else if (run && state_q == ST_ACC) begin
+      law_q.pp0    <= law_q.pp0 + (WH_W + 1)'(law_q.p_row);
+      law_q.p_left <= law_q.p_left - WH_W'(law_q.p_row);
+    end
+    if (st_done && state_q == ST_PL) law_q.x_rem <= $signed({2'b00, frm_q.spare});
+    else if (run && state_q == ST_ACC) law_q.x_rem <= law_q.x_rem - $signed({9'd0, law_q.ex});
+    if (st_done && state_q == ST_N0) law_q.n0 <= prod_shr;
+    if (seq_load && start_p) law_q.n <= '0;
+    else if (run && state_q == ST_ACC) law_q.n <= law_q.n + ACT_W'(mul_prod);
+    if ((seq_load && start_p) || (b_upd && b_diff[SEED_W])) law_q.b_rest <= '0;
+    else if (b_upd) law_q.b_rest <= b_diff[SEED_W-1:0];
+    if (run && state_q == ST_IDLE && act_q && row_done_i) begin
+      law_q.p_row <= p_sel;
+      law_q.ex    <= c_minus_g;
+    end
+    if (run && state_q == ST_LAW) law_q.slew <= row_last_q ? '0 : u_q[slot1] >> 1;
+    if (run && state_q == ST_SLEW) law_q.u_mx <= (div_quo > law_q.slew) ? div_quo : law_q.slew;
   end
 
   assign check_done_o      = check_done_q;
@@ -523,6 +532,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
               row_traced_i <= p_sel)
   `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= U_MIN && u_q[base_q] <= U_MAX)
   `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < frm_q.nty)
+  `MSR_ASSERT(a_shift_fits, state_q inside {ST_WH, ST_N0} && mul_done |->
+              mul_prod[PROD_W-1:ACT_W] == '0)
   `MSR_ASSERT(a_num_fits, state_q == ST_NUM && mul_done |-> mul_prod[PROD_W-1] == 1'b0)
   /* verilator lint_on SYNCASYNCNET */
 

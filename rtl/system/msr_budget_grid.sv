@@ -4,7 +4,7 @@
 // The constants load the controller's multiplier at a check or a start; computed straight from
 // the configuration (behind msr_budget's check/frame mux and the tile-size decode) they were
 // the budget unit's worst path (62.5 MHz alone on ECP5). So the configuration is registered,
-// the constants from it registered again, and the pulses come out five clocks late with them
+// the constants from it registered again, and the pulses come out six clocks late with them
 // (check_o, start_o): the configuration must hold from the input pulse on. A clear drops a
 // pulse in flight.
 module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
@@ -24,7 +24,7 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
   input  logic             seeded_i,           // the seeded law
   input  logic             check_i,            // pulse
   input  logic             start_i,            // pulse
-  // Five clocks later: the pulses, with the configuration and the constants.
+  // Six clocks later: the pulses, with the configuration and the constants.
   output logic             check_o,
   output logic             start_o,
   output budget_grid_t     grid_o              // the configuration and the constants
@@ -47,19 +47,19 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
     seeded_q      <= seeded_i;
   end
 
-  // Stages 2 to 5: the constants, a few adds per clock (in one clock they were 49 generic
-  // logic levels, 56.6 MHz alone on ECP5). The configuration goes out from stage 1: it holds
-  // from the input pulse on, so stage 1 has it when the pulse comes out.
+  // Stages 2 to 6: the constants, a few adds per clock (in one clock they were 49 generic
+  // logic levels, 56.6 MHz alone on ECP5). The configuration goes out from stage 1 and the
+  // constants that need no more from stage 2: it holds from the input pulse on, so they hold
+  // when the pulse comes out.
   // Stage 2: each axis split at the tile size, the shift T / S, and what needs no more.
   logic [5:0]       tile_sz, h_rest, h_last, h_last_q;
   logic [12:0]      full_w, full_h, full_w_q, full_h_q;
   logic [5:0]       rest_w, rest_h, rest_w_q, rest_h_q;
-  logic [2:0]       sh, sh_q, sh2_q;                 // log2 (T / S)
+  logic [2:0]       sh, sh_q;                        // log2 (T / S)
   level_t           lv_q;
-  logic [ROW_W-1:0] nty, nty_q, nty2_q, nty4_q;
-  logic [17:0]      p_full, p_full_q, p_full2_q, p_full4_q;
-  logic [10:0]      u0, u0_q, u02_q, u04_q;
-  logic [5:0]       h_last2_q, h_last4_q;
+  logic [ROW_W-1:0] nty, nty_q;
+  logic [17:0]      p_full, p_full_q;
+  logic [10:0]      u0, u0_q;
   // T is 8, 16 or 32 (msr_budget's decode): a three-way choice for each split at T, not a
   // shifter for every log2 T.
   always_comb begin
@@ -91,39 +91,38 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
   assign u0      = clamp_u((scale_init_q == '0) ? 11'd256 : scale_init_q);
   // Stages 3 and 4: line(N) = floor(N / T) * n0(T) + n0(N mod T), n0(T) = T / S + 1 as
   // T >= 8 >= S: the full tiles' part and the rest's n0 side by side, then their sum (in one
-  // clock, the rest's n0 and the two adds were the budget unit's worst path, 96 MHz).
-  logic [12:0]      fl_w, fl_h, fl_w_q, fl_h_q;
-  logic [5:0]       ga_w, ga_h, ga_w_q, ga_h_q;
-  logic [2:0]       sh3_q;
-  logic [5:0]       h_last3_q;
-  logic [ROW_W-1:0] nty3_q;
-  logic [17:0]      p_full3_q;
-  logic [10:0]      u03_q;
-  assign fl_w = (full_w_q << sh_q) + full_w_q;
-  assign fl_h = (full_h_q << sh_q) + full_h_q;
-  assign ga_w = grid_axis(rest_w_q, lv_q);
-  assign ga_h = grid_axis(rest_h_q, lv_q);
-  logic [12:0]      line_w, line_h, line_w_q, line_h_q, line_w2_q, line_h2_q;
-  assign line_w = fl_w_q + 13'(ga_w_q);
-  assign line_h = fl_h_q + 13'(ga_h_q);
+  // clock, the rest's n0 and the two adds were the budget unit's worst path, 96 MHz). One path
+  // for both axes, W and H on alternate clocks (ax_q): each line is ready two clocks after
+  // stage 2, the other one clock later.
+  logic             ax_q, ax2_q;                     // the axis in stage 3, 4: 0 = W, 1 = H
+  logic [12:0]      full_a, fl, fl_q;
+  logic [5:0]       rest_a, ga, ga_q;
+  assign full_a = ax_q ? full_h_q : full_w_q;
+  assign rest_a = ax_q ? rest_h_q : rest_w_q;
+  assign fl     = (full_a << sh_q) + full_a;
+  assign ga     = grid_axis(rest_a, lv_q);
+  logic [12:0]      line, line_w_q, line_h_q;
+  assign line = fl_q + 13'(ga_q);
   // Stage 5: g of a full tile row = line(W) * n0(T).
   logic [17:0]      g_full, g_full_q;
-  assign g_full = 18'((19'(line_w_q) << sh3_q) + 19'(line_w_q));
+  assign g_full = 18'((19'(line_w_q) << sh_q) + 19'(line_w_q));
   always_ff @(posedge clk_i) begin
     {h_last_q, full_w_q, full_h_q, rest_w_q, rest_h_q, sh_q, lv_q, nty_q, p_full_q, u0_q} <=
         {h_last, full_w, full_h, rest_w, rest_h, sh, levels_q, nty, p_full, u0};
-    {fl_w_q, fl_h_q, ga_w_q, ga_h_q, sh2_q, h_last2_q, nty2_q, p_full2_q, u02_q} <=
-        {fl_w, fl_h, ga_w, ga_h, sh_q, h_last_q, nty_q, p_full_q, u0_q};
-    {line_w_q, line_h_q, sh3_q, h_last3_q, nty3_q, p_full3_q, u03_q} <=
-        {line_w, line_h, sh2_q, h_last2_q, nty2_q, p_full2_q, u02_q};
-    {g_full_q, line_w2_q, line_h2_q, h_last4_q, nty4_q, p_full4_q, u04_q} <=
-        {g_full, line_w_q, line_h_q, h_last3_q, nty3_q, p_full3_q, u03_q};
+    {fl_q, ga_q, ax2_q} <= {fl, ga, ax_q};
+    if (ax2_q) line_h_q <= line;
+    else       line_w_q <= line;
+    g_full_q <= g_full;
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) ax_q <= 1'b0;
+    else         ax_q <= !ax_q;
   end
   // In budget_grid_t's field order.
-  assign grid_o = {width_q, height_q, levels_q, budget_q, prior_shift_q, seeded_q, h_last4_q,
-                   line_w2_q, line_h2_q, nty4_q, g_full_q, p_full4_q, u04_q};
+  assign grid_o = {width_q, height_q, levels_q, budget_q, prior_shift_q, seeded_q, h_last_q,
+                   line_w_q, line_h_q, nty_q, g_full_q, p_full_q, u0_q};
 
-  localparam int unsigned DLY = 5;                   // the stages above
+  localparam int unsigned DLY = 6;                   // the stages above
   logic [DLY-1:0] check_q, start_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin

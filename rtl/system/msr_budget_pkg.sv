@@ -47,10 +47,8 @@ package msr_budget_pkg;
     logic [17:0]          p_full;     // pixels of a full row, of the last row
     logic [17:0]          p_last;
     logic [BUD_WH_W-1:0]  grid;       // G
-    logic [BUD_WH_W-1:0]  wh;         // W * H
     logic [BUD_WH_W-1:0]  bud;        // B' = min(B, W * H)
     logic [BUD_WH_W-1:0]  spare;      // max(B' - G, 0)
-    logic [BUD_WH_W-1:0]  p0;         // P0 = W * H >> PRIOR_SHIFT
     logic [10:0]          u0;         // the first rows' scale
   } budget_frame_t;
 
@@ -59,7 +57,8 @@ package msr_budget_pkg;
     logic [BUD_ACT_W-1:0] n;          // N
     logic [BUD_ACT_W-1:0] n0;         // N0
     logic [BUD_SEED_W-1:0] b_rest;    // max(Btot - Bd, 0): seed-pass words of the rows to come
-    logic [BUD_WH_W-1:0]  p_sum;      // P
+    logic [BUD_WH_W:0]    pp0;        // P + P0 (P0 = W * H >> PRIOR_SHIFT), as a running sum
+    logic [BUD_WH_W-1:0]  p_left;     // W * H - P, as a running difference
     logic signed [26:0]   x_rem;      // X = (B' - G) + Gd - C, kept as a running sum
     logic [17:0]          p_row;      // the finished row's p_j
     logic [17:0]          ex;         // c_j - g_j >= 0 (the floor is applied from it a clock later)

@@ -114,8 +114,6 @@ module msr_budget_rows import msr_pkg::*; #(
   logic                   take_q;
   slot_t                  tslot_q;                       // the slot taken
   `MSR_CLR_REG(u_take_q, 3, clear_i || start_i, 1'b1, {take, hslot_q}, {take_q, tslot_q})
-  logic [2:0][CNT_W-1:0]  traced_d;
-  logic [2:0][TROW_W-1:0] tiles_d;
   // Per slot the clock's counts first (a small popcount of the inputs), then one add: not a
   // chain of NUM_IN wide adders (that chain was 36 levels, 51 MHz on its own).
   logic [2:0][INC_W-1:0] inc_tr, inc_la;
@@ -125,8 +123,21 @@ module msr_budget_rows import msr_pkg::*; #(
       for (int unsigned i = 0; i < NUM_IN; i++) in_s[i] = s1_v_q[i] && s1_slot_q[i] == slot_t'(s);
       inc_tr[s] = ones(in_s & s1_tr_q);
       inc_la[s] = ones(in_s & s1_last_q);
-      traced_d[s] = ((take_q && slot_t'(s) == tslot_q) ? '0 : traced_q[s]) + CNT_W'(inc_tr[s]);
-      tiles_d[s]  = ((take_q && slot_t'(s) == tslot_q) ? '0 : tiles_q[s]) + TROW_W'(inc_la[s]);
+    end
+  end
+
+  // The counters are data registers (act_q gates them): a start, a clear or the slot's restart
+  // is the flip-flops' synchronous reset, not a multiplexer in front of each adder (the slot
+  // has no pixel in the clock it restarts, a_restart_idle).
+  always_ff @(posedge clk_i) begin
+    for (int unsigned s = 0; s < 3; s++) begin
+      if (clear_i || start_i || (take_q && slot_t'(s) == tslot_q)) begin
+        traced_q[s] <= '0;
+        tiles_q[s]  <= '0;
+      end else begin
+        traced_q[s] <= traced_q[s] + CNT_W'(inc_tr[s]);
+        tiles_q[s]  <= tiles_q[s] + TROW_W'(inc_la[s]);
+      end
     end
   end
 
@@ -136,8 +147,6 @@ module msr_budget_rows import msr_pkg::*; #(
       s1_v_q   <= '0;
       head_q   <= '0;
       hslot_q  <= '0;
-      traced_q <= '0;
-      tiles_q  <= '0;
     end else if (clear_i) begin
       act_q    <= 1'b0;
       s1_v_q   <= '0;
@@ -146,12 +155,8 @@ module msr_budget_rows import msr_pkg::*; #(
       s1_v_q   <= '0;
       head_q   <= '0;
       hslot_q  <= '0;
-      traced_q <= '0;
-      tiles_q  <= '0;
     end else begin
       s1_v_q   <= pix_fire_i & {NUM_IN{act_q}};
-      traced_q <= traced_d;
-      tiles_q  <= tiles_d;
       if (take) begin
         head_q  <= head_q + 1'b1;
         hslot_q <= slot_add(hslot_q, 2'd1);
@@ -186,6 +191,8 @@ module msr_budget_rows import msr_pkg::*; #(
     `MSR_ASSERT(a_row_open, pix_fire_i[i] && act_q |->
                 TROW_W'(pix_y_i[i] >> lg_q) - head_q < TROW_W'(3), clk_i, !rst_ni || clear_i)
   end
+  `MSR_ASSERT(a_restart_idle, take_q |-> inc_tr[tslot_q] == '0 && inc_la[tslot_q] == '0,
+              clk_i, !rst_ni || clear_i)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_budget_rows

@@ -74,7 +74,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   // Ray budget controller (BUDGET_EN).
   output cfg_raw_t               raw_o,          // the sampled registers, from bud_check_o on
   output logic                   bud_check_o,    // pulse: check the sampled budget registers
-  input  logic                   bud_done_i,     // its check is done (within 20 clocks) ...
+  input  logic                   bud_done_i,     // its check is done (within 21 clocks) ...
   input  logic                   bud_err_budget_i,   // ... BUDGET below the initial grid
   input  logic                   bud_err_profile_i,  // ... SEEDED without a matching memory
   input  logic                   bud_busy_i      // a budget frame's rows are not all accounted
@@ -290,7 +290,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   endfunction
 
   // The budget's check, read when CHECK decides: off (0) always passes; a top without the
-  // controller refuses any budget; an unfinished check (the controller takes at most 20 of
+  // controller refuses any budget; an unfinished check (the controller takes at most 21 of
   // CHECK's 27 clocks: asserted below) would refuse rather than start unchecked.
   logic       bud_on;
   logic [1:0] bud_bad;

@@ -22,7 +22,7 @@ from cocotb.clock import Clock  # noqa: E402
 from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, Timer  # noqa: E402
 from msr_tb import seeded_rng  # noqa: E402
 
-CHECK_CLOCKS_MAX = 20          # the configuration check waits this long (docs, msr_cfg_ctrl)
+CHECK_CLOCKS_MAX = 21          # the configuration check waits this long (docs, msr_cfg_ctrl)
 UPDATE_CLOCKS_MAX = 100        # docs/budget.md section 6: "an update takes under 100 clocks"
 LOG2 = {8: 3, 16: 4, 32: 5}
 
