@@ -458,6 +458,16 @@ def add_pixel_rate(row: dict) -> dict:
     return row
 
 
+def doc_pixels_per_clock(report: dict) -> tuple[float, str]:
+    """The pixels per clock the doc names: the one the top's row was computed with (a --merge of
+    unit rows keeps the top's row, so its figure must not be re-read from a bench report this
+    machine may not have), else the current figure."""
+    top_row = report.get("ecp5", {}).get(TOP, {})
+    if "pixels_per_clock" in top_row:
+        return top_row["pixels_per_clock"], top_row.get("pixels_per_clock_source", "top row")
+    return pixels_per_clock()
+
+
 def fmt(n) -> str:
     return f"{n:,}".replace(",", " ") if isinstance(n, int) else str(n)
 
@@ -490,7 +500,7 @@ def write_doc(report: dict) -> None:
                         f"{100 * r['lut_utilisation']:.1f} % | {fmt(r['flip_flops'])} | "
                         f"{r['block_rams']} | {r['dsp_mult18']} | {r['fmax_mhz']} | "
                         f"{fmt(r.get('pixels_per_second_per_lut4', ''))} |")
-    ppc, ppc_source = pixels_per_clock()
+    ppc, ppc_source = doc_pixels_per_clock(report)
     top = report["top_params"]
     DOC.write_text(f"""# Synthesis results
 
@@ -678,15 +688,24 @@ def run_graph(jobs: list[Job], workers: int, bar=None) -> tuple[dict, list[str]]
     return results, failures
 
 
+def run_commit() -> str:
+    """The commit a run measured: HEAD, marked dirty only when the synthesised sources (rtl/)
+    differ from it (uncommitted docs do not change a netlist)."""
+    try:
+        commit = subprocess.run(["git", "describe", "--always"], cwd=ROOT, capture_output=True,
+                                text=True, check=True).stdout.strip()
+        changed = subprocess.run(["git", "status", "--porcelain", "--", "rtl"], cwd=ROOT,
+                                 capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown commit"
+    return commit + ("-dirty" if changed else "")
+
+
 def merge_rows(full: dict, unit: dict, mods: list[str]) -> dict:
     """The whole design's report with the rows of `mods` taken from a unit run (`--modules
     ... --merge`): each merged row names the run (`unit run at <commit>` in its kind), so the
     doc says which rows are newer than the rest."""
-    try:
-        commit = subprocess.run(["git", "describe", "--always", "--dirty"], cwd=ROOT, capture_output=True,
-                                text=True, check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        commit = "unknown commit"
+    commit = run_commit()
     out = json.loads(json.dumps(full))
     tag = f"unit run at {commit}"
     for m in mods:

@@ -2,6 +2,7 @@
 bottom-up roll-up of the top, memory bits from an RTLIL dump, the job graph (its plan and the
 order and failure rules of its runner)."""
 import json
+import subprocess
 
 import pytest
 
@@ -314,3 +315,30 @@ def test_merge_rows_marks_the_unit_run():
     assert out["ecp5"]["b"]["luts"] == 9 and out["ecp5"]["b"]["merged_from"].startswith("unit run at ")
     assert full["generic"]["b"] == {"inferred": {"error": "x"}}          # the input is not changed
     assert synth.main(["--merge"]) == 2
+
+
+def test_doc_pixel_rate_is_the_top_rows(monkeypatch, tmp_path):
+    """A --merge rewrites docs/synthesis.md on a machine that may have no bench report: the doc's
+    pixels per clock stays the one the top's row was computed with, not the fallback constant."""
+    monkeypatch.setattr(synth, "BENCH_REPORT", tmp_path / "absent.json")
+    rep = {"ecp5": {synth.TOP: {"pixels_per_clock": 3.715, "pixels_per_clock_source": "out/bench/report.json"}}}
+    assert synth.doc_pixels_per_clock(rep) == (3.715, "out/bench/report.json")
+    assert synth.doc_pixels_per_clock({"ecp5": {}}) == (synth.DEFAULT_PIXELS_PER_CLOCK,
+                                                        "constant (no out/bench/report.json)")
+
+
+def test_run_commit_dirty_only_for_rtl(monkeypatch):
+    """A run is marked dirty only when rtl/ differs from HEAD (uncommitted docs are not)."""
+    calls = []
+
+    def fake_run(cmd, **kw):
+        calls.append(cmd)
+        out = "abc1234\n" if cmd[1] == "describe" else (" M rtl/x.sv\n" if dirty else "")
+        return subprocess.CompletedProcess(cmd, 0, stdout=out, stderr="")
+
+    monkeypatch.setattr(synth.subprocess, "run", fake_run)
+    dirty = False
+    assert synth.run_commit() == "abc1234"
+    dirty = True
+    assert synth.run_commit() == "abc1234-dirty"
+    assert any(c[-1] == "rtl" for c in calls)
