@@ -1,5 +1,7 @@
 // Ray budget controller, the arithmetic (docs/budget.md sections 1-4 and 6; golden model
-// sw_model/msr_model/budget.py, class Controller, bit for bit).
+// sw_model/msr_model/budget.py, class Controller, bit for bit). This module is the state
+// machine, the scale slots and the shared multiplier and divider with their operands; the
+// frame's constants and the law's running sums are msr_budget_law's registers.
 //
 // Why sequential: a tile row lasts thousands of clocks and the law runs once per row, so one
 // bit-serial multiplier (msr_shift_add_mul, up to 36 x 25 bits, as many clocks as the multiplier
@@ -59,7 +61,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
 
   localparam int unsigned WH_W   = BUD_WH_W;     // W * H and every pixel count of the frame
   localparam int unsigned ACT_W  = BUD_ACT_W;    // N, N0
-  localparam int unsigned SEED_W = BUD_SEED_W;   // Btot, Bd
   localparam int unsigned MEM_W  = 39;           // {u_j, a_j} (11 + 28 bits) or b_k < 2^38
   localparam int unsigned MC_W   = 36;           // multiplicand
   localparam int unsigned MP_W   = 25;           // multiplier
@@ -164,51 +165,56 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .word_o  (mem_word_q)
   );
 
-  // ---- Row quantities ------------------------------------------------------------------------
+  // ---- The frame's constants and the law's registers (msr_budget_law) ----------------------
   logic             x_pos;
   logic [1:0]       slot1, slot2;
-  logic [17:0]      g_sel, p_sel, c_minus_g;
-  logic [18:0]      c_diff;                // c - g and its borrow (one carry chain)
-  logic [SEED_W:0]  b_diff;                // b_rest -+ the word and its borrow
-  logic [WH_W:0]    spare_d;              // B' - G and its borrow (one carry chain)
+  logic [17:0]      g_sel, p_sel, floor_ex;
   logic [ACT_W-1:0] nn0;
   logic [10:0]      u_new;
-  assign x_pos     = !law_q.x_rem[26] && law_q.x_rem != '0;
-  assign slot1     = inc3(base_q);
-  assign slot2     = inc3(slot1);
-  assign g_sel     = row_last_q ? frm_q.g_last : frm_q.g_full;
-  assign p_sel     = row_last_q ? frm_q.p_last : frm_q.p_full;
-  assign c_diff    = {1'b0, row_traced_i} - {1'b0, g_sel};
-  assign c_minus_g = c_diff[18] ? '0 : c_diff[17:0];
-  logic [17:0]      floor_px, floor_ex;    // p_j >> FLOOR_SHIFT; max(c_j - g_j, it)
-  assign floor_px  = law_q.p_row >> FLOOR_SHIFT;
-  assign floor_ex  = (law_q.ex > floor_px) ? law_q.ex : floor_px;
-  assign nn0       = law_q.n + law_q.n0;
-  assign spare_d   = {1'b0, frm_q.bud} - {1'b0, frm_q.grid};
-  // max(Btot - Bd, 0) kept as one running register (all words >= 0, so saturating each row's
-  // subtract gives the same): the divider loads it without a subtract in front. One adder for
-  // both: + b_k in the seed pass (ST_PB), - b_j at a row's update (ST_ACC), the borrow of the
-  // subtract saturating at 0 (the sum stays below 2^SEED_W, so the add never sets that bit).
-  logic             b_sub;
-  logic [MEM_W-1:0] b_opd;
-  assign b_sub     = !pass;
-  assign b_opd     = pass ? MEM_W'(mul_prod) : mem_word_q;
-  assign b_diff    = {1'b0, law_q.b_rest} + ((SEED_W + 1)'(b_opd) ^ {(SEED_W + 1){b_sub}})
-                     + (SEED_W + 1)'(b_sub);
+  logic [10:0]      div_quo;
+  logic             run;                    // no pulse or clear overrides the state machine
+  assign slot1 = inc3(base_q);
+  assign slot2 = inc3(slot1);
+  assign run   = !clear_i && !start_p && !check_p;
+
+  msr_budget_law #(.PROD_W(PROD_W), .MEM_W(MEM_W)) u_law (
+    .clk_i,
+    .state_i      (state_q),
+    .run_i        (run),
+    .seq_load_i   (seq_load),
+    .start_i      (start_p),
+    .cfg_i        (cfg),
+    .mul_done_i   (mul_done),
+    .mul_prod_i   (mul_prod),
+    .row_take_i   (act_q && row_done_i),
+    .row_traced_i,
+    .row_last_i   (row_last_q),
+    .pass_i       (pass),
+    .mem_word_i   (mem_word_q),
+    .u_next_i     (u_q[slot1]),
+    .div_quo_i    (div_quo),
+    .frm_o        (frm_q),
+    .law_o        (law_q),
+    .g_sel_o      (g_sel),
+    .p_sel_o      (p_sel),
+    .floor_ex_o   (floor_ex),
+    .nn0_o        (nn0),
+    .x_pos_o      (x_pos),
+    .u_new_o      (u_new)
+  );
+
+  // (the fields the law unit keeps to itself)
+  logic unused_law;
+  assign unused_law = ^{frm_q.g_full, frm_q.g_last, frm_q.p_full, frm_q.p_last, frm_q.grid,
+                        frm_q.bud, law_q.n0, law_q.p_row, law_q.ex, law_q.slew, law_q.u_mx};
+
   // The seed pass's operands: row k's word {u_k, a_k} (from msr_budget_mem's second register).
   logic [10:0]      pass_u;
   logic [27:0]      pass_a;
   assign {pass_u, pass_a} = mem_word_q;
-  assign u_new     = clamp_u(law_q.u_mx);
-
-  // P0 = W * H >> PRIOR_SHIFT (ST_WH) and N0 = (B' - G) * u0 >> PRIOR_SHIFT (ST_N0) through one
-  // shifter: both products are below 2^36 (W * H <= 2^24, B' - G < 2^24, u0 < 2^11).
-  logic [ACT_W-1:0] prod_shr;
-  assign prod_shr = mul_prod[ACT_W-1:0] >> cfg.prior_shift;
 
   // ---- Divider (msr_seq_div): the saturation test, then quotient bits 10..0 ---------------
   // Loaded by the law (ST_LAW) or by the two products (ST_NUM, ST_DEN); steps in ST_DIV.
-  logic             run;                    // no pulse or clear overrides the state machine
   logic             div_init, div_load_num, div_load_den, div_last;
   logic [REM_W-1:0] div_num_in, div_den_in;
   // The divider's operands, one flat choice each: in ST_LAW N and B' - G (the last row) or
@@ -223,8 +229,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
                     | (REM_W'(mul_prod)     & {REM_W{state_q != ST_LAW}});
   assign div_den_in = (REM_W'(frm_q.spare)  & {REM_W{law_last}})
                     | (REM_W'(mul_prod)     & {REM_W{state_q != ST_LAW}});
-  logic [10:0]      div_quo;
-  assign run          = !clear_i && !start_p && !check_p;
   assign div_init     = run && state_q == ST_LAW;
   assign div_load_num = div_init || (run && state_q == ST_NUM && mul_done);
   assign div_load_den = div_init || (run && state_q == ST_DEN && mul_done);
@@ -464,53 +468,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         endcase
       end
     end
-  end
-
-  // ---- The law's data registers ------------------------------------------------------------
-  // Plain flip-flops (the state machine and act_q say when they hold a value): a start's clear
-  // and a saturation at zero are the flip-flops' synchronous reset, not a multiplexer.
-  logic st_done, b_upd;
-  assign st_done = run && mul_done;
-  assign b_upd   = run && ((state_q == ST_ACC && frm_q.seeded) || (state_q == ST_PB && mul_done));
-  always_ff @(posedge clk_i) begin
-    if (seq_load) begin
-      frm_q.nty    <= cfg.nty;
-      frm_q.h_last <= cfg.h_last;
-      frm_q.g_full <= cfg.g_full;
-      frm_q.p_full <= cfg.p_full;
-      frm_q.u0     <= cfg.u0;
-      frm_q.seeded <= cfg.seeded;
-    end
-    if (st_done && state_q == ST_G) frm_q.grid <= WH_W'(mul_prod);
-    if (st_done && state_q == ST_WH) begin
-      frm_q.bud <= (WH_W'(cfg.budget) < WH_W'(mul_prod)) ? WH_W'(cfg.budget) : WH_W'(mul_prod);
-    end
-    if (st_done && state_q == ST_GL) begin
-      frm_q.g_last <= 18'(mul_prod);
-      frm_q.spare  <= spare_d[WH_W] ? '0 : spare_d[WH_W-1:0];
-    end
-    if (st_done && state_q == ST_PL) frm_q.p_last <= 18'(mul_prod);
-    // P + P0 and W * H - P start at ST_WH (P = 0) and move by p_j at each row's update
-    if (st_done && state_q == ST_WH) begin
-      law_q.pp0    <= (WH_W + 1)'(prod_shr);
-      law_q.p_left <= WH_W'(mul_prod);
-    end else if (run && state_q == ST_ACC) begin
-      law_q.pp0    <= law_q.pp0 + (WH_W + 1)'(law_q.p_row);
-      law_q.p_left <= law_q.p_left - WH_W'(law_q.p_row);
-    end
-    if (st_done && state_q == ST_PL) law_q.x_rem <= $signed({2'b00, frm_q.spare});
-    else if (run && state_q == ST_ACC) law_q.x_rem <= law_q.x_rem - $signed({9'd0, law_q.ex});
-    if (st_done && state_q == ST_N0) law_q.n0 <= prod_shr;
-    if (seq_load && start_p) law_q.n <= '0;
-    else if (run && state_q == ST_ACC) law_q.n <= law_q.n + ACT_W'(mul_prod);
-    if ((seq_load && start_p) || (b_upd && b_diff[SEED_W])) law_q.b_rest <= '0;
-    else if (b_upd) law_q.b_rest <= b_diff[SEED_W-1:0];
-    if (run && state_q == ST_IDLE && act_q && row_done_i) begin
-      law_q.p_row <= p_sel;
-      law_q.ex    <= c_minus_g;
-    end
-    if (run && state_q == ST_LAW) law_q.slew <= row_last_q ? '0 : u_q[slot1] >> 1;
-    if (run && state_q == ST_SLEW) law_q.u_mx <= (div_quo > law_q.slew) ? div_quo : law_q.slew;
   end
 
   assign check_done_o      = check_done_q;

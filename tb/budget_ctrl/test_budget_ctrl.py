@@ -473,4 +473,4 @@ def test_budget_ctrl():
     run_cocotb("msr_budget_ctrl", "test_budget_ctrl", HERE, {}, "",
                sources=[RTL / "msr_pkg.sv", RTL / "system/msr_budget_pkg.sv", RTL / "prim/msr_shift_add_mul.sv", RTL / "prim/msr_seq_div.sv",
                         RTL / "system/msr_budget_grid.sv", RTL / "system/msr_budget_mem.sv",
-                        RTL / "system/msr_budget_ctrl.sv"])
+                        RTL / "system/msr_budget_law.sv", RTL / "system/msr_budget_ctrl.sv"])
