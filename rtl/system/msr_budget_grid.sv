@@ -60,28 +60,14 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [ROW_W-1:0] nty, nty_q;
   logic [17:0]      p_full, p_full_q;
   logic [10:0]      u0, u0_q;
-  // T is 8, 16 or 32 (msr_budget's decode): a three-way choice for each split at T, not a
-  // shifter for every log2 T.
+  // T is 8, 16 or 32 (msr_budget's decode): three-way choices, not shifters for every log2 T.
+  assign {full_w, rest_w} = split_tile(width_q, tile_log2_q);
+  assign {full_h, rest_h} = split_tile(height_q, tile_log2_q);
   always_comb begin
     unique case (tile_log2_q)
-      3'd3: begin
-        tile_sz = 6'd8;
-        full_w  = 13'(width_q >> 3);   rest_w = 6'(width_q[2:0]);
-        full_h  = 13'(height_q >> 3);  rest_h = 6'(height_q[2:0]);
-        p_full  = 18'(width_q) << 3;
-      end
-      3'd5: begin
-        tile_sz = 6'd32;
-        full_w  = 13'(width_q >> 5);   rest_w = 6'(width_q[4:0]);
-        full_h  = 13'(height_q >> 5);  rest_h = 6'(height_q[4:0]);
-        p_full  = 18'(width_q) << 5;
-      end
-      default: begin
-        tile_sz = 6'd16;
-        full_w  = 13'(width_q >> 4);   rest_w = 6'(width_q[3:0]);
-        full_h  = 13'(height_q >> 4);  rest_h = 6'(height_q[3:0]);
-        p_full  = 18'(width_q) << 4;
-      end
+      3'd3:    begin tile_sz = 6'd8;  p_full = 18'(width_q) << 3; end
+      3'd5:    begin tile_sz = 6'd32; p_full = 18'(width_q) << 5; end
+      default: begin tile_sz = 6'd16; p_full = 18'(width_q) << 4; end
     endcase
   end
   assign h_rest  = rest_h;

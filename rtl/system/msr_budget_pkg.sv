@@ -100,6 +100,16 @@ package msr_budget_pkg;
     return ((n + s1) >> l) + 6'(((n - 6'd1) & s1) != '0);
   endfunction
 
+  // n split at the tile size T = 2^lg, lg in 3..5: {n >> lg, n mod T}, a three-way choice (a
+  // shift by a 3-bit amount would be a shifter for all eight).
+  function automatic logic [18:0] split_tile(dim_t n, logic [2:0] lg);
+    unique case (lg)
+      3'd3:    return {13'(n >> 3), 6'(n[2:0])};
+      3'd5:    return {13'(n >> 5), 6'(n[4:0])};
+      default: return {13'(n >> 4), 6'(n[3:0])};
+    endcase
+  endfunction
+
   // The slot after s of the three scale slots.
   function automatic logic [1:0] inc3(logic [1:0] s);
     return (s == 2'd2) ? 2'd0 : s + 2'd1;

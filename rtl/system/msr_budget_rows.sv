@@ -15,7 +15,7 @@
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
-module msr_budget_rows import msr_pkg::*; #(
+module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   parameter int unsigned NUM_IN = 4,                       // pixel streams (engines)
   localparam int unsigned TROW_W = COORD_W - 2,           // tile row / column count width
   localparam int unsigned CNT_W  = 18                     // traced in a row: <= 4096 * 32
@@ -53,16 +53,12 @@ module msr_budget_rows import msr_pkg::*; #(
   logic [NUM_IN-1:0]       s1_v_q, s1_tr_q, s1_last_q;
   slot_t [NUM_IN-1:0]      s1_slot_q;
 
-  // ceil(n / 2^lg), lg in 3..5 (a three-way choice, not a shifter for every lg; one add)
+  // ceil(n / 2^lg), lg in 3..5 (the tile split of msr_budget_pkg; one add)
   function automatic logic [TROW_W-1:0] tiles_of(dim_t n, logic [2:0] lg);
-    logic [TROW_W-1:0] q;
-    logic              r;
-    unique case (lg)
-      3'd3:    begin q = TROW_W'(n >> 3); r = n[2:0] != '0; end
-      3'd5:    begin q = TROW_W'(n >> 5); r = n[4:0] != '0; end
-      default: begin q = TROW_W'(n >> 4); r = n[3:0] != '0; end
-    endcase
-    return q + TROW_W'(r);
+    logic [12:0] q;
+    logic [5:0]  r;
+    {q, r} = split_tile(n, lg);
+    return TROW_W'(q + 13'(r != '0));                    // < 2^10: n <= 4096, lg >= 3
   endfunction
 
   // The two low bits of the tile row of pixel row y: y[lg + 1 : lg] (y's bits 3 to 6).

@@ -101,4 +101,5 @@ async def test_rows(dut):
 def test_budget_rows(n_in):
     from msr_runner import RTL, run_cocotb
     run_cocotb("msr_budget_rows", "test_budget_rows", HERE, {"NUM_IN": n_in}, f"n{n_in}",
-               sources=[RTL / "msr_pkg.sv", RTL / "system/msr_budget_rows.sv"])
+               sources=[RTL / "msr_pkg.sv", RTL / "system/msr_budget_pkg.sv",
+                        RTL / "system/msr_budget_rows.sv"])
