@@ -4,7 +4,7 @@
 Tiles never read each other and a tile row's thresholds are its scale u alone, so a frame's
 traced count and squared error under any per-row schedule of scales is the sum over rows of
 that row's count and error at its own u. `curves` renders each scene once per scale of a
-quarter-octave ladder (u = 45 .. 1448, fixed for the whole frame, the golden model's
+quarter-octave ladder (u = 32 .. 1448, fixed for the whole frame, the golden model's
 select_budget with fixed_scale) and stores per row the traced pixels and the squared error
 against the full render; `law` then runs the controller of docs/budget.md (or a variant) over
 those curves, row by row, reading a row at an off-ladder u linearly in log u: a sequence of
@@ -29,7 +29,7 @@ from msr_model import budget as BG
 
 REPO = Path(__file__).resolve().parents[1]
 PARAMS = Params(tile=16, levels=3, thr=(8, 16, 32))          # as eval_budget.py
-LADDER = sorted({max(BG.U_MIN, min(BG.U_MAX, round(256 * 2 ** (k / 4)))) for k in range(-13, 11)})
+LADDER = sorted({max(BG.U_MIN_FIRST, min(BG.U_MAX, round(256 * 2 ** (k / 4)))) for k in range(-13, 11)} | {BG.U_MIN})
 
 
 def curves(width: int, height: int, scenes: list[str], out: Path) -> None:
@@ -61,7 +61,7 @@ class Curves:
         self.width, self.height, self.nty = width, height, self.traced.shape[1]
 
     def row(self, r: int, u: int) -> tuple[int, float]:
-        x = math.log(min(max(u, BG.U_MIN), BG.U_MAX))
+        x = math.log(min(max(u, BG.U_MIN_FIRST), BG.U_MAX))
         t = int(round(np.interp(x, self.lu, self.traced[:, r])))
         return max(t, int(self.grid[r])), float(np.interp(x, self.lu, self.sse[:, r]))
 

@@ -28,7 +28,7 @@ from msr_model import budget as BG
 
 REPO = Path(__file__).resolve().parents[1]
 from msr_eval.scenes import MODEL_FILES   # the evaluation set's model files, besides the built-ins
-LADDER = (BG.U_MIN,) + tuple(int(round(256 * 2 ** (k / 2))) for k in range(-4, 6))   # u = 45, 64 .. 1448
+LADDER = (BG.U_MIN_FIRST, BG.U_MIN) + tuple(int(round(256 * 2 ** (k / 2))) for k in range(-4, 6))   # u = 32, 45, 64 .. 1448
 
 
 def psnr(ref, img) -> float:

@@ -3,7 +3,8 @@
 // controller takes them, any traced count in the row's range [g_j, p_j]. Proves by k-induction
 // from any reachable state:
 // - scale bounds: every scale slot holds 0 (never written since reset) or a u in
-//   [U_MIN, U_MAX]; the rows' slot (base) is in range while a frame runs; SCALE_OUT too;
+//   [U_MIN_FIRST, U_MAX]; the rows' slot (base) is in range while a frame runs, and in
+//   [U_MIN, U_MAX] while a seeded frame runs; SCALE_OUT too; u0 in [U_MIN, U_MAX];
 // - the read-back window: row_ok_o only for a row the controller has a scale for
 //   (rows_done <= row <= rows_done + 1 < nty), and rows_done < nty while a frame runs;
 // - no deadlock: no state but idle lasts more than MAX_STAY clocks (a product waits at most its
@@ -63,7 +64,10 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
   end
 
   // ---- Properties ----------------------------------------------------------------------------
-  function automatic logic ok_u(logic [10:0] u);    // a scale in [U_MIN, U_MAX]
+  function automatic logic ok_u(logic [10:0] u);    // a scale in [U_MIN_FIRST, U_MAX]
+    return u >= U_MIN_FIRST && u <= U_MAX;
+  endfunction
+  function automatic logic ok_u0(logic [10:0] u);   // u0 and a seeded frame's: [U_MIN, U_MAX]
     return u >= U_MIN && u <= U_MAX;
   endfunction
 
@@ -73,6 +77,8 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
                                 (dut.u_q[2] == '0 || ok_u(dut.u_q[2])));
   a_base:      assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !dut.act_q || ok_u(dut.u_q[dut.base_q]));
+  a_base_sd:   assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                !(dut.act_q && dut.frm_q.seeded) || ok_u0(dut.u_q[dut.base_q]));
   a_base_slot: assert property (@(posedge clk_i) disable iff (!rst_ni) dut.base_q != 2'd3);
   a_scale_out: assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !scale_out_valid || ok_u(scale_out));
@@ -144,7 +150,7 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
     else if (age_q != 3'd7)  age_q <= age_q + 3'd1;
   end
   a_grid_u0:   assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                age_q < 3'd2 || ok_u(dut.u_grid.u0_q));
+                                age_q < 3'd2 || ok_u0(dut.u_grid.u0_q));
   a_grid_nty:  assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 age_q < 3'd2 || dut.u_grid.nty_q != '0);
   // (and a pulse leaves the grid unit only six clocks after reset: its delay line resets, and
@@ -155,7 +161,7 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
   end
   a_start_seq: assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !start_seq || (!dut.act_q && dut.rows_done_q == '0 &&
-                                dut.base_q == 2'd0 && ok_u(dut.u_q[0]) && ok_u(dut.u_q[1]) &&
+                                dut.base_q == 2'd0 && ok_u0(dut.u_q[0]) && ok_u0(dut.u_q[1]) &&
                                 dut.frm_q.nty != '0));
   a_last:      assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !dut.act_q || (dut.row_last_q == (dut.rows_done_q + ROW_W'(1) == dut.frm_q.nty) &&
@@ -174,9 +180,15 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
                                 dut.state_q != ST_FIN || dut.row_last_q);
   a_next:      assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !dut.act_q || dut.row_last_q || ok_u(dut.u_q[dut.slot1]));
+  a_next_sd:   assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                !(dut.act_q && dut.frm_q.seeded) || dut.row_last_q ||
+                                ok_u0(dut.u_q[dut.slot1]));
   a_new:       assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !(dut.act_q && dut.state_q == ST_SQ && dut.row_new_q) ||
                                 ok_u(dut.u_q[dut.slot2]));
+  a_new_sd:    assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                !(dut.act_q && dut.frm_q.seeded && dut.state_q == ST_SQ &&
+                                  dut.row_new_q) || ok_u0(dut.u_q[dut.slot2]));
 
   // Non-vacuity (cover, from reset): a check answered, a frame's first row update.
   c_check: cover property (@(posedge clk_i) disable iff (!rst_ni) check_done && !err_budget);

@@ -206,7 +206,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // (the fields the law unit keeps to itself)
   logic unused_law;
   assign unused_law = ^{frm_q.g_full, frm_q.g_last, frm_q.p_full, frm_q.p_last, frm_q.grid,
-                        frm_q.bud, law_q.n0, law_q.p_row, law_q.ex, law_q.slew, law_q.u_mx};
+                        frm_q.bud, law_q.n0, law_q.p_row, law_q.ex, law_q.slew, law_q.u_mx,
+                        law_q.deep};
 
   // The seed pass's operands: row k's word {u_k, a_k} (from msr_budget_mem's second register).
   logic [10:0]      pass_u;
@@ -487,7 +488,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   `MSR_ASSERT(a_row_traced_range,
               act_q && row_done_i && state_q == ST_IDLE |-> row_traced_i >= g_sel &&
               row_traced_i <= p_sel)
-  `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= U_MIN && u_q[base_q] <= U_MAX)
+  `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= (frm_q.seeded ? U_MIN : U_MIN_FIRST) &&
+                             u_q[base_q] <= U_MAX)
   `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < frm_q.nty)
   `MSR_ASSERT(a_shift_fits, state_q inside {ST_WH, ST_N0} && mul_done |->
               mul_prod[PROD_W-1:ACT_W] == '0)

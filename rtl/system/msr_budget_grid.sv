@@ -74,7 +74,7 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
   assign h_last  = (h_rest == '0) ? tile_sz : h_rest;
   assign sh      = tile_log2_q - {1'b0, levels_q};
   assign nty     = ROW_W'(full_h) + ROW_W'(rest_h != '0);
-  assign u0      = clamp_u((scale_init_q == '0) ? 11'd256 : scale_init_q);
+  assign u0      = clamp_u((scale_init_q == '0) ? 11'd256 : scale_init_q, U_MIN);
   // Stages 3 and 4: line(N) = floor(N / T) * n0(T) + n0(N mod T), n0(T) = T / S + 1 as
   // T >= 8 >= S: the full tiles' part and the rest's n0 side by side, then their sum (in one
   // clock, the rest's n0 and the two adds were the budget unit's worst path, 96 MHz). One path

@@ -56,7 +56,8 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
   assign floor_ex_o = (law_q.ex > floor_px) ? law_q.ex : floor_px;
   assign nn0_o      = law_q.n + law_q.n0;
   assign spare_d    = {1'b0, frm_q.bud} - {1'b0, frm_q.grid};
-  assign u_new_o    = clamp_u(law_q.u_mx);
+  // (a first frame's row goes below U_MIN only from a row at U_MIN or below; docs/budget.md)
+  assign u_new_o    = clamp_u(law_q.u_mx, (law_q.deep && !frm_q.seeded) ? U_MIN_FIRST : U_MIN);
   // max(Btot - Bd, 0) kept as one running register (all words >= 0, so saturating each row's
   // subtract gives the same): the divider loads it without a subtract in front. One adder for
   // both: + b_k in the seed pass (ST_PB), - b_j at a row's update (ST_ACC), the borrow of the
@@ -115,8 +116,10 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
       law_q.p_row <= p_sel_o;
       law_q.ex    <= c_minus_g;
     end
-    // (the last row has no next scale to slew from: SCALE_OUT = clamp(q) through the same step)
+    // (the last row has no next scale to slew from: SCALE_OUT = clamp(q) through the same step,
+    // in [U_MIN, U_MAX] like u0, since it seeds the next frame)
     if (run_i && state_i == ST_LAW) law_q.slew <= row_last_i ? '0 : u_next_i >> 1;
+    if (run_i && state_i == ST_LAW) law_q.deep <= !row_last_i && u_next_i <= U_MIN;
     if (run_i && state_i == ST_SLEW) begin
       law_q.u_mx <= (div_quo_i > law_q.slew) ? div_quo_i : law_q.slew;
     end

@@ -6,8 +6,11 @@ package msr_budget_pkg;
 
   // Not every unit uses every constant (each is linted on its own with the package).
   /* verilator lint_off UNUSEDPARAM */
-  // Scale u in 1/256: the clamp [U_MIN, U_MAX] = [45, 1448] (0.18 .. 5.66).
+  // Scale u in 1/256: the clamp [U_MIN, U_MAX] = [45, 1448] (0.18 .. 5.66); a first frame's
+  // rows go down to U_MIN_FIRST = 32 (0.125: thresholds x 1/64) from a row at U_MIN or below
+  // (docs/budget.md, "The first frame's range").
   localparam logic [10:0] U_MIN = 11'd45;
+  localparam logic [10:0] U_MIN_FIRST = 11'd32;
   // A row's activity is at least its pixels >> FLOOR_SHIFT times its scale (docs/budget.md).
   localparam int unsigned FLOOR_SHIFT = 7;
   localparam logic [10:0] U_MAX = 11'd1448;
@@ -63,6 +66,7 @@ package msr_budget_pkg;
     logic [17:0]          p_row;      // the finished row's p_j
     logic [17:0]          ex;         // c_j - g_j >= 0 (the floor is applied from it a clock later)
     logic [10:0]          slew;       // u_{j+1} >> 1
+    logic                 deep;       // u_{j+1} <= U_MIN (a first frame's lo is U_MIN_FIRST)
     logic [10:0]          u_mx;       // max(q, u_{j+1} >> 1)
   } budget_law_t;
 
@@ -115,8 +119,10 @@ package msr_budget_pkg;
     return (s == 2'd2) ? 2'd0 : s + 2'd1;
   endfunction
 
-  function automatic logic [10:0] clamp_u(logic [10:0] v);
-    return (v > U_MAX) ? U_MAX : (v < U_MIN) ? U_MIN : v;
+  // The law's clamp [lo, U_MAX]: lo = U_MIN, or U_MIN_FIRST for a first frame's row whose
+  // predecessor runs at U_MIN or below.
+  function automatic logic [10:0] clamp_u(logic [10:0] v, logic [10:0] lo);
+    return (v > U_MAX) ? U_MAX : (v < lo) ? lo : v;
   endfunction
 
 endpackage : msr_budget_pkg

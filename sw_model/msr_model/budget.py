@@ -2,7 +2,8 @@
 
 A budget B (traced pixels per frame; 0 = off) makes the tile generator scale every tile's
 per-level thresholds by one factor per tile row. The controller's scale u is unsigned fixed
-point, 1.0 = 256, in [U_MIN, U_MAX] = [45, 1448]; the thresholds take its square,
+point, 1.0 = 256, in [U_MIN, U_MAX] = [45, 1448] (a first frame's rows down to U_MIN_FIRST = 32);
+the thresholds take its square,
 
     m = (u * u + 128) >> 8                               # once per tile row, 8..8190
     thr_k'' = min(255, (thr_k' * m + 128) >> 8)          # per tile; thr_k' the foveated threshold
@@ -21,6 +22,14 @@ scale the controller computed when row r - 2 was finished, and is handed out onl
     q   = ((N + N0) * Q) // ((P + P0) * X)           # first frame: the rows seen so far, extrapolated
     q   = (A_prev - A_done) // (u_0 * X)               # seeded: the previous frame's row activities
     u_{j+2} = clamp(max(q, u_{j+1} >> 1))              # X <= 0: U_MAX; down by at most half a row
+
+clamp(v) = min(U_MAX, max(lo, v)) with lo = U_MIN (45), except in a first frame once row j + 1
+already runs at U_MIN or below: then lo = U_MIN_FIRST (32). A first frame knows nothing of the
+rows below it, and the bottom rows of an object-centred scene (floor, background) cannot trace
+20 % even at 45; below 45 the level thresholds fall by a whole step (thr'' rounds to 0), which
+the 1 / u model does not see, so the scale takes that step only from a row already at the bound.
+Seeded frames, u_0 and SCALE_OUT keep [45, 1448], where the activity model that seeds the next
+frame holds (docs/budget.md, "The first frame's range").
 
 with Q the pixels and G_rem the initial grid of the rows not finished, N0 = ((B - G) * u_0) >>
 PRIOR_SHIFT and P0 = (W * H) >> PRIOR_SHIFT (the seed's guess "u_0 traces B", weighted as that
@@ -52,7 +61,8 @@ from .spec import Params
 
 SCALE_FRAC = 8                     # fraction bits of u and m: 1.0 = 256
 SCALE_ONE = 1 << SCALE_FRAC
-U_MIN = 45                         # m = 8: thresholds x 1/32
+U_MIN = 45                         # m = 8: thresholds x 1/32 (u_0 and every seeded frame)
+U_MIN_FIRST = 32                   # m = 4: thresholds x 1/64 (a first frame's rows, from a row at U_MIN)
 U_MAX = 1448                       # m = 8190: thresholds x 32 (u: 11 bits)
 PRIOR_SHIFT = 6                    # default weight of the seed's guess: 1/64 of a frame
 PRIOR_SHIFT_MAX = 7
@@ -110,8 +120,9 @@ def scale_threshold(thr, m: int):
     return int(out) if np.ndim(out) == 0 else out.astype(np.int32)
 
 
-def clamp_scale(u: int) -> int:
-    return min(U_MAX, max(U_MIN, int(u)))
+def clamp_scale(u: int, lo: int = U_MIN) -> int:
+    """clamp(v) of the law: [lo, U_MAX]; lo = U_MIN, or U_MIN_FIRST (Controller.scale_floor)."""
+    return min(U_MAX, max(lo, int(u)))
 
 
 def grid_axis(n: int, stride: int) -> int:
@@ -161,8 +172,8 @@ class BudgetConfig:
             if len(self.profile) != len(self.profile_scales):
                 raise spec.SpecError(f"activity profile of {len(self.profile)} rows, scales of "
                                      f"{len(self.profile_scales)}")
-            if any(not U_MIN <= int(u) <= U_MAX for u in self.profile_scales):
-                raise spec.SpecError(f"profile scales must lie in {U_MIN}..{U_MAX}")
+            if any(not U_MIN_FIRST <= int(u) <= U_MAX for u in self.profile_scales):
+                raise spec.SpecError(f"profile scales must lie in {U_MIN_FIRST}..{U_MAX}")
             if any(int(a) < 0 or int(a) % int(u) or int(a) // int(u) >= 1 << 18
                    for a, u in zip(self.profile, self.profile_scales)):
                 raise spec.SpecError("a profile activity is its row's excess (< 2^18) times its "
@@ -240,7 +251,12 @@ class Controller:
             spare = self.budget - self.grid
             self.scale_out = U_MAX if spare <= 0 else clamp_scale(self.n_act // spare)
         elif j + 2 < self.nty:
-            self.scales.append(clamp_scale(max(self.quotient(), self.scales[j + 1] >> 1)))
+            self.scales.append(clamp_scale(max(self.quotient(), self.scales[j + 1] >> 1), self.scale_floor(j)))
+
+    def scale_floor(self, j: int) -> int:
+        """lo of the clamp of u_{j+2}: U_MIN_FIRST in a first frame once u_{j+1} <= U_MIN."""
+        first = self.profile is None
+        return U_MIN_FIRST if first and self.scales[j + 1] <= U_MIN else U_MIN
 
     def quotient(self) -> int:
         """q of the law: the scale at which the rows to come are expected to trace the budget left

@@ -138,9 +138,30 @@ def test_scales_stay_in_bounds_on_random_rows():
             hr = ctl.row_height(r)
             lo = BG.row_grid(w, hr, p)
             ctl.finish_row(int(rng.integers(lo, w * hr + 1)))
-            assert all(BG.U_MIN <= u <= BG.U_MAX for u in ctl.scales)
+            assert all(BG.U_MIN_FIRST <= u <= BG.U_MAX for u in ctl.scales)
             assert all(b >= a >> 1 or b == BG.U_MIN for a, b in zip(ctl.scales[1:], ctl.scales[2:]))
+            assert all(b >= BG.U_MIN or a <= BG.U_MIN for a, b in zip(ctl.scales[1:], ctl.scales[2:]))
         assert BG.U_MIN <= ctl.scale_out <= BG.U_MAX and len(ctl.scales) == ctl.nty
+
+
+def test_a_first_frame_reaches_below_u_min_a_seeded_frame_does_not():
+    # Rows that trace only their grid against a budget of most of the frame: the scale falls
+    # by half a row to 45, and on a first frame one row later to 32; seeded frames and
+    # SCALE_OUT stay at 45.
+    w, h = 256, 160
+    g = BG.grid_count(w, h, L2)
+    cfg = BG.BudgetConfig(w * h * 9 // 10)
+    first = BG.Controller(w, h, L2, cfg)
+    for r in range(first.nty):
+        first.finish_row(BG.row_grid(w, first.row_height(r), L2))
+    assert first.scales[2:] == [128, 64, 45, 32, 32, 32, 32, 32] and first.scale_out == BG.U_MIN
+    assert g < cfg.budget
+    seeded = BG.Controller(w, h, L2, BG.BudgetConfig(cfg.budget, first.scale_out, profile=first.activity,
+                                                     profile_scales=first.scales))
+    assert BG.BudgetConfig(1, scale_init=BG.U_MIN_FIRST).seed == BG.U_MIN     # u0 is never below 45
+    for r in range(seeded.nty):
+        seeded.finish_row(BG.row_grid(w, seeded.row_height(r), L2))
+    assert min(seeded.scales) == BG.U_MIN and seeded.scale_out == BG.U_MIN
 
 
 def test_spent_budget_gives_the_largest_scale():
@@ -163,7 +184,7 @@ def test_budget_below_the_grid_is_refused():
 def test_budget_config_ranges():
     for bad in ({"budget": -1}, {"budget": 1 << 24}, {"scale_init": BG.U_MAX + 1}, {"prior_shift": 8},
                 {"profile": (256,)}, {"profile": (256,), "profile_scales": (256, 256)},
-                {"profile": (256,), "profile_scales": (BG.U_MIN - 1,)},
+                {"profile": (256,), "profile_scales": (BG.U_MIN_FIRST - 1,)},
                 {"profile": (257,), "profile_scales": (256,)},
                 {"profile": (256 << 18,), "profile_scales": (256,)}):
         with pytest.raises(BG.spec.SpecError):

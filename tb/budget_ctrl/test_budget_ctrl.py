@@ -267,8 +267,9 @@ class Bench:
             x = ctl.budget - ctl.traced - (ctl.grid - ctl.grid_done)
             q, slew = ctl.quotient(), ctl.scales[j + 1] >> 1
             law = "seeded" if ctl.profile is not None else "first"
+            deep = ctl.scales[j + 2] < BG.U_MIN         # a first frame's row below 45
             k = ("x<=0" if x <= 0 else f"{law}_sat" if q > BG.U_MAX else f"{law}_slew" if q < slew
-                 else f"{law}_min" if q < BG.U_MIN else f"{law}_mid")
+                 else "first_deep" if deep else f"{law}_min" if q < BG.U_MIN else f"{law}_mid")
         self.law[k] = self.law.get(k, 0) + 1
 
     def summary(self):
@@ -436,7 +437,7 @@ async def test_random_frames(dut):
         await random_sequence(b, rng, W, H, rng.choice((8, 16, 32)), rng.randint(1, 3), rng.randint(2, 3),
                               gap=rng.choice(((0, 0), (0, 3), (0, 20))))
     b.summary()
-    for k in ("first_mid", "first_slew", "first_sat", "first_min", "seeded_mid", "seeded_slew",
+    for k in ("first_mid", "first_slew", "first_sat", "first_min", "first_deep", "seeded_mid", "seeded_slew",
               "seeded_sat", "x<=0", "none", "out_mid", "out_max", "out_min"):
         assert b.law.get(k, 0) > 0, f"law branch {k} never taken: {b.law}"
 
