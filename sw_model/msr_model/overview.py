@@ -203,10 +203,11 @@ def title_lines(info: RunInfo, width: int, height: int, traced_fraction: float) 
 
 
 def _scale_strip(draw, box, lay: Layout, tile: int, scales, f):
-    """The budget's scale u of each tile row as a bar from the 1.0 line (log scale, 1/5.7 .. 5.7),
-    at the height of the row in the traced map."""
+    """The budget's scale u of each tile row as a bar from the 1.0 line (log scale, 1/8 .. 5.7: a
+    first frame's rows reach U_MIN_FIRST), at the height of the row in the traced map."""
+    from .budget import U_MAX, U_MIN_FIRST
     x0, y0, x1, y1 = box
-    lo, hi = math.log(45 / 256), math.log(1448 / 256)
+    lo, hi = math.log(U_MIN_FIRST / 256), math.log(U_MAX / 256)
     xs = lambda u: x0 + round((math.log(u / 256) - lo) / (hi - lo) * (x1 - x0))   # noqa: E731
     draw.rectangle((x0 - 1, y0 - 1, x1, y1), outline=INK)
     for r, u in enumerate(scales):
@@ -215,7 +216,7 @@ def _scale_strip(draw, box, lay: Layout, tile: int, scales, f):
         a, b = sorted((xs(256), xs(u)))
         draw.rectangle((a, ya, max(b, a + 1), yb), fill=(68, 1, 84) if u >= 256 else (53, 183, 121))
     draw.line((xs(256), y0, xs(256), y1), fill=INK)
-    for u, text in ((45, "/5.7"), (256, "1"), (1448, "x5.7")):
+    for u, text in ((U_MIN_FIRST, "/8"), (256, "1"), (U_MAX, "x5.7")):
         draw.text((xs(u), y1 + 4), text, fill=INK, font=f, anchor="mt")
 
 
