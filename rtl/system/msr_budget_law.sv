@@ -5,7 +5,7 @@
 // unit says what, with the adds, compares and clamps that only these registers need.
 //
 // Plain flip-flops (the state machine and act_q say when they hold a value): a start's clear
-// and a saturation at zero are the flip-flops' synchronous reset, not a multiplexer in front.
+// is the flip-flops' synchronous reset, not a multiplexer in front.
 `include "msr_assert.svh"
 
 module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
@@ -122,8 +122,10 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
     end
     // (the last row has no next scale to slew from: SCALE_OUT = clamp(q) through the same step,
     // in [U_MIN, U_MAX] like u0, since it seeds the next frame)
-    if (run_i && state_i == ST_LAW) law_q.slew <= row_last_i ? '0 : u_next_i >> 1;
-    if (run_i && state_i == ST_LAW) law_q.deep <= !row_last_i && u_next_i <= U_MIN;
+    if (run_i && state_i == ST_LAW) begin
+      law_q.slew <= row_last_i ? '0 : u_next_i >> 1;
+      law_q.deep <= !row_last_i && u_next_i <= U_MIN;
+    end
     if (run_i && state_i == ST_SLEW) begin
       law_q.u_mx <= (div_quo_i > law_q.slew) ? div_quo_i : law_q.slew;
     end
