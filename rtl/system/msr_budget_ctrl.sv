@@ -20,7 +20,7 @@
 // answer the row_idx_i of the clock before; a start or clear drops row_ok_o at once.
 //
 // Activity memory (msr_budget_mem): row j's update writes {u_j, a_j}; a seeded start's seed pass
-// first rewrites every word as b_k = a_k * min(u_k, u0), and row j's update reads b_j before it
+// first rewrites every word as b_k = a_k * w(u_k, u0), and row j's update reads b_j before it
 // writes. Valid, with its row count, once a budget frame finished every row; a start
 // invalidates it (it is being rewritten); a clear keeps a finished frame's memory.
 //
@@ -259,8 +259,16 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // the numerator, then the denominator). Each operand is one flat AND-OR choice of its
   // sources, a source shared by the products that use it: a multiplexer per product and
   // state, nested, was the controller's largest part.
-  logic [10:0] pass_min;
-  assign pass_min = (pass_u < frm_q.u0) ? pass_u : frm_q.u0;
+  // The seed pass's weight w of row k (b_k = a'_k * w, docs/budget.md section 4): u'_k at or
+  // below u0; above it u0 plus half (u0 >= 256) or a quarter (u0 >= 128) of u'_k - u0, else u0.
+  // w <= max(u'_k, u0) <= 1448.
+  logic [10:0] pass_w, pass_up;
+  logic        pass_above;
+  assign pass_above = pass_u > frm_q.u0;
+  assign pass_up    = pass_u - frm_q.u0;              // used only when pass_above
+  assign pass_w     = !pass_above           ? pass_u :
+                      (frm_q.u0 >= 11'd256) ? frm_q.u0 + (pass_up >> 1) :
+                      (frm_q.u0 >= 11'd128) ? frm_q.u0 + (pass_up >> 2) : frm_q.u0;
   always_comb begin
     logic g, seed_law;
     g        = !seq_load;                                   // the state machine's product
@@ -283,7 +291,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           | (law_q.x_rem[MP_W-1:0]            & {MP_W{g && (state_q == ST_NUM || seed_law)}})
           | (law_q.p_left                     & {MP_W{g && state_q == ST_LAW && !frm_q.seeded}})
           | ({u_q[base_q], 14'd0}             & {MP_W{g && state_q == ST_FLR}})
-          | ({pass_min, 14'd0}                & {MP_W{g && state_q == ST_PMUL}})
+          | ({pass_w, 14'd0}                  & {MP_W{g && state_q == ST_PMUL}})
           | ({u_new, 14'd0}                   & {MP_W{g && state_q == ST_SQ0}});
     mop.n = !g                                    ? ST_W'(13) :
             (state_q == ST_G)                     ? ST_W'(13) :

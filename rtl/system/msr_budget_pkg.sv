@@ -21,7 +21,7 @@ package msr_budget_pkg;
   localparam int unsigned BUD_ROW_W = COORD_W - 2;   // tile row index (as the walker's)
   localparam int unsigned BUD_WH_W  = 25;            // W * H and every pixel count of a frame
   localparam int unsigned BUD_ACT_W = 36;            // N, N0
-  localparam int unsigned BUD_SEED_W = 45;           // Btot, Bd: sums of a' * min(u', u0)
+  localparam int unsigned BUD_SEED_W = 45;           // Btot, Bd: sums of a' * w(u', u0)
 
   // The configuration and the grid constants, as msr_budget_grid hands them on.
   typedef struct packed {
@@ -92,7 +92,7 @@ package msr_budget_pkg;
     ST_FIN,      // SCALE_OUT, the memory's tag
     ST_PRD,      // seed pass (a seeded start): read row k's word {u'_k, a'_k}
     ST_PWT,      // the word in the RAM's output register, then registered once more
-    ST_PMUL,     // a'_k * min(u'_k, u0) loaded
+    ST_PMUL,     // a'_k * w(u'_k, u0) loaded
     ST_PB        // b_k written back in its place, Btot += b_k
   } budget_state_e;
 

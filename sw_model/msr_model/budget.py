@@ -34,9 +34,10 @@ frame holds (docs/budget.md, "The first frame's range").
 with Q the pixels and G_rem the initial grid of the rows not finished, N0 = ((B - G) * u_0) >>
 PRIOR_SHIFT and P0 = (W * H) >> PRIOR_SHIFT (the seed's guess "u_0 traces B", weighted as that
 part of a frame). Seeded, from the previous frame's activity a'_k and scale u'_k of every row
-(the activity memory): A_prev = sum of a'_k * min(u'_k, u_0) and A_done its part over rows <= j;
-a row that ran below the seed is counted as if its excess fell as 1 / u^2 between its own scale
-and the seed (docs/budget.md, "The seeded law"). After the last row SCALE_OUT = clamp(N // (B - G)):
+(the activity memory): A_prev = sum of a'_k * w(u'_k, u_0) (seed_weight) and A_done its part over
+rows <= j; a row that ran below the seed is counted as if its excess fell as 1 / u^2 between its
+own scale and the seed (docs/budget.md, "The seeded law"), and one that ran above a large seed as
+if it rose faster than 1 / u down to the seed ("The seed pass above the seed", v4). After the last row SCALE_OUT = clamp(N // (B - G)):
 the one scale that, on this frame's activity, traces B; it and the activity memory seed the next
 frame.
 
@@ -67,6 +68,8 @@ U_MAX = 1448                       # m = 8190: thresholds x 32 (u: 11 bits)
 PRIOR_SHIFT = 6                    # default weight of the seed's guess: 1/64 of a frame
 PRIOR_SHIFT_MAX = 7
 FLOOR_SHIFT = 7                    # activity floor of a row: its pixels >> 7 (docs/budget.md)
+SEED_ABOVE_HALF = 256               # seed pass: a row above the seed counts half its distance when u0 >= this
+SEED_ABOVE_QUARTER = 128            # ... a quarter when u0 >= this (v4, docs/budget.md)
 BUDGET_MAX = (1 << 24) - 1         # BUDGET register: 24 bits (W * H <= 2^24)
 ERR_BUDGET = 14                    # STATUS.ERROR: budget below the frame's initial grid
 ERR_PROFILE = 15                   # STATUS.ERROR: seeded from a profile of another tile-row count
@@ -123,6 +126,20 @@ def scale_threshold(thr, m: int):
 def clamp_scale(u: int, lo: int = U_MIN) -> int:
     """clamp(v) of the law: [lo, U_MAX]; lo = U_MIN, or U_MIN_FIRST (Controller.scale_floor)."""
     return min(U_MAX, max(lo, int(u)))
+
+
+def seed_weight(u_prev: int, u0: int) -> int:
+    """The seed pass's factor w of a row that ran at u_prev, for a frame seeded at u0 (b = a' * w).
+    Below u0: u_prev (the row's excess taken to fall as 1 / u^2 up to u0). Above u0: u0, plus
+    (u_prev - u0) >> 1 when u0 >= 256 or >> 2 when u0 >= 128 (excess rising faster than 1 / u
+    down to u0 at large scales; v4)."""
+    if u_prev <= u0:
+        return u_prev
+    if u0 >= SEED_ABOVE_HALF:
+        return u0 + ((u_prev - u0) >> 1)
+    if u0 >= SEED_ABOVE_QUARTER:
+        return u0 + ((u_prev - u0) >> 2)
+    return u0
 
 
 def grid_axis(n: int, stride: int) -> int:
@@ -218,10 +235,10 @@ class Controller:
             raise BudgetRefused(f"activity profile of {len(self.profile)} tile rows, the frame has "
                                 f"{self.nty}: status error {ERR_PROFILE}")
         u0 = self.cfg.seed
-        # The seeded law's words: a' * min(u', u0), i.e. e' * u' * min(u', u0) with e' the row's
+        # The seeded law's words: a' * w(u', u0), i.e. e' * u' * w(u', u0) with e' the row's
         # excess (floored) of the previous frame: what the START pass writes into the memory.
         self.prof_words = None if self.profile is None else [
-            a * min(int(u), u0) for a, u in zip(self.profile, self.cfg.profile_scales)]
+            a * seed_weight(int(u), u0) for a, u in zip(self.profile, self.cfg.profile_scales)]
         self.prof_total = sum(self.prof_words) if self.profile is not None else 0
         self.prior_n = ((self.budget - self.grid) * u0) >> self.cfg.prior_shift
         self.prior_p = self.total >> self.cfg.prior_shift
