@@ -730,6 +730,9 @@ def parser() -> argparse.ArgumentParser:
                          "(marked with the commit they were measured at) and rewrite docs/synthesis.md")
     ap.add_argument("--seeds", default=",".join(map(str, ECP5_TOP_SEEDS)),
                     help="placement seeds of the flat top (comma-separated; default %(default)s)")
+    ap.add_argument("--target-mhz", type=float, default=ECP5_TARGET_MHZ,
+                    help="nextpnr's --freq, the clock its timing-driven placer aims at (default "
+                         "%(default)s; compare two tops only at the same target)")
     return ap
 
 
@@ -751,6 +754,11 @@ def main(argv=None) -> int:
     if args.jobs < 1:
         print("synth: --jobs must be >= 1", file=sys.stderr)
         return 2
+    if not 1 <= args.target_mhz <= 1000:
+        print(f"synth: --target-mhz must lie in 1..1000, got {args.target_mhz}", file=sys.stderr)
+        return 2
+    global ECP5_TARGET_MHZ
+    ECP5_TARGET_MHZ = args.target_mhz
     files = read_filelist()
     units = [m for m in modules_in(files) if not m.endswith("_pkg")]
     mods = args.modules.split(",") if args.modules else units
