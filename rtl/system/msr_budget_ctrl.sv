@@ -260,15 +260,16 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // sources, a source shared by the products that use it: a multiplexer per product and
   // state, nested, was the controller's largest part.
   // The seed pass's weight w of row k (b_k = a'_k * w, docs/budget.md section 4): u'_k at or
-  // below u0; above it u0 plus half (u0 >= 256) or a quarter (u0 >= 128) of u'_k - u0, else u0.
-  // w <= max(u'_k, u0) <= 1448.
-  logic [10:0] pass_w, pass_up;
+  // below u0; above it u0 plus half (u0 >= 256) or a quarter (u0 >= 128) of the distance
+  // d = min(u'_k - u0, u0 >> 1), else u0. w <= min(max(u'_k, u0), 1.25 u0) <= 1448.
+  logic [10:0] pass_w, pass_up, pass_d;
   logic        pass_above;
   assign pass_above = pass_u > frm_q.u0;
   assign pass_up    = pass_u - frm_q.u0;              // used only when pass_above
+  assign pass_d     = (pass_up > (frm_q.u0 >> 1)) ? (frm_q.u0 >> 1) : pass_up;
   assign pass_w     = !pass_above           ? pass_u :
-                      (frm_q.u0 >= 11'd256) ? frm_q.u0 + (pass_up >> 1) :
-                      (frm_q.u0 >= 11'd128) ? frm_q.u0 + (pass_up >> 2) : frm_q.u0;
+                      (frm_q.u0 >= 11'd256) ? frm_q.u0 + (pass_d >> 1) :
+                      (frm_q.u0 >= 11'd128) ? frm_q.u0 + (pass_d >> 2) : frm_q.u0;
   always_comb begin
     logic g, seed_law;
     g        = !seq_load;                                   // the state machine's product

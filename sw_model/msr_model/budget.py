@@ -130,15 +130,17 @@ def clamp_scale(u: int, lo: int = U_MIN) -> int:
 
 def seed_weight(u_prev: int, u0: int) -> int:
     """The seed pass's factor w of a row that ran at u_prev, for a frame seeded at u0 (b = a' * w).
-    Below u0: u_prev (the row's excess taken to fall as 1 / u^2 up to u0). Above u0: u0, plus
-    (u_prev - u0) >> 1 when u0 >= 256 or >> 2 when u0 >= 128 (excess rising faster than 1 / u
-    down to u0 at large scales; v4)."""
+    Below u0: u_prev (the row's excess taken to fall as 1 / u^2 up to u0). Above u0: u0 plus the
+    distance d = min(u_prev - u0, u0 >> 1) >> 1 when u0 >= 256, d >> 2 when u0 >= 128, else
+    nothing (excess rising faster than 1 / u down to u0 at large scales; the distance capped at
+    half the seed so a row that ran at U_MAX on its floor is not taken for a busy one; v4)."""
     if u_prev <= u0:
         return u_prev
+    d = min(u_prev - u0, u0 >> 1)
     if u0 >= SEED_ABOVE_HALF:
-        return u0 + ((u_prev - u0) >> 1)
+        return u0 + (d >> 1)
     if u0 >= SEED_ABOVE_QUARTER:
-        return u0 + ((u_prev - u0) >> 2)
+        return u0 + (d >> 2)
     return u0
 
 

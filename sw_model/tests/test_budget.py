@@ -48,26 +48,29 @@ def test_worked_example_by_hand():
                                                     tuple(ctl.scales)))
     assert nxt.scales == [279, 279]
     # the seed pass: b = a * w(u, 279) = 51200 * 256, 25600 * 256 (rows below the seed: their own
-    # u) and 29540 * 350 (row 2 ran above it, at 422: 279 + (422 - 279) >> 1, u0 >= 256)
-    assert nxt.prof_words == [13107200, 6553600, 10339000] and nxt.prof_total == 29999800
-    nxt.finish_row(290)               # X = 190; (29999800 - 13107200) // (279 * 190) = 318
-    assert nxt.scales == [279, 279, 318]
+    # u) and 29540 * 348 (row 2 ran above it, at 422: 279 + min(422 - 279, 279 >> 1) >> 1, u0 >= 256)
+    assert nxt.prof_words == [13107200, 6553600, 10279920] and nxt.prof_total == 29940720
+    nxt.finish_row(290)               # X = 190; (29940720 - 13107200) // (279 * 190) = 317
+    assert nxt.scales == [279, 279, 317]
 
 
 def test_seed_weight_branches():
     """The seed pass's weight (docs/budget.md, "The seed pass above the seed"): a row at or below
     the seed keeps its own scale; above it, half its distance to the seed counts when u0 >= 256,
-    a quarter when 128 <= u0 < 256, none below 128; w never exceeds max(u', u0)."""
+    a quarter when 128 <= u0 < 256, none below 128, the distance capped at u0 >> 1; w never
+    leaves [min(u', u0), max(u', u0)] nor exceeds 1.25 u0."""
     assert BG.seed_weight(200, 279) == 200 and BG.seed_weight(279, 279) == 279
-    assert BG.seed_weight(422, 279) == 279 + 71              # (422 - 279) >> 1
-    assert BG.seed_weight(1448, 256) == 256 + 596            # u0 = 256: half
-    assert BG.seed_weight(1448, 255) == 255 + 298            # u0 = 255: a quarter
-    assert BG.seed_weight(1448, 128) == 128 + 330
+    assert BG.seed_weight(400, 279) == 279 + 60              # (400 - 279) >> 1, under the cap
+    assert BG.seed_weight(422, 279) == 279 + 69              # the cap: (279 >> 1) >> 1
+    assert BG.seed_weight(1448, 256) == 256 + 64             # u0 = 256: half of 128
+    assert BG.seed_weight(300, 255) == 255 + 11              # u0 = 255: a quarter of 45
+    assert BG.seed_weight(1448, 255) == 255 + 31             # a quarter of the cap 127
+    assert BG.seed_weight(1448, 128) == 128 + 16
     assert BG.seed_weight(1448, 127) == 127                  # u0 < 128: the seed itself
     for u0 in (45, 127, 128, 255, 256, 700, 1448):
         for u in (32, 45, 100, 127, 128, 255, 256, 257, 1000, 1448):
             w = BG.seed_weight(u, u0)
-            assert min(u, u0) <= w <= max(u, u0)
+            assert min(u, u0) <= w <= max(u, u0) and w <= u0 + (u0 >> 2)
 
 
 def test_activity_floor_by_hand():
