@@ -151,7 +151,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [MEM_W-1:0] mem_wdata;
   logic             pass;                  // the seed pass: row pass_q's word
   logic [ROW_W-1:0] pass_q;
-  assign pass      = state_q inside {ST_PRD, ST_PWT, ST_PMUL, ST_PB};
+  assign pass      = state_q inside {ST_PRD, ST_PWT, ST_PFL, ST_PFC, ST_PMUL, ST_PB};
   assign mem_addr  = pass ? pass_q[8:0] : rows_done_q[8:0];
   // A row's own word {u_j, a_j} (a_j the product of ST_ACT), or the seed pass's product b_k.
   assign mem_wdata = pass ? MEM_W'(mul_prod) : {u_q[base_q], 28'(mul_prod)};
@@ -205,7 +205,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
 
   // (the fields the law unit keeps to itself)
   logic unused_law;
-  assign unused_law = ^{frm_q.g_full, frm_q.g_last, frm_q.p_full, frm_q.p_last, frm_q.grid,
+  assign unused_law = ^{frm_q.g_full, frm_q.g_last, frm_q.grid,
                         frm_q.bud, law_q.n0, law_q.p_row, law_q.ex, law_q.slew, law_q.u_mx,
                         law_q.deep};
 
@@ -261,15 +261,49 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // state, nested, was the controller's largest part.
   // The seed pass's weight w of row k (b_k = a'_k * w, docs/budget.md section 4): u'_k at or
   // below u0; above it u0 plus half (u0 >= 256) or a quarter (u0 >= 128) of the distance
-  // d = min(u'_k - u0, u0 >> 1), else u0. w <= min(max(u'_k, u0), 1.25 u0) <= 1448.
-  logic [10:0] pass_w, pass_up, pass_d;
-  logic        pass_above;
-  assign pass_above = pass_u > frm_q.u0;
-  assign pass_up    = pass_u - frm_q.u0;              // used only when pass_above
-  assign pass_d     = (pass_up > (frm_q.u0 >> 1)) ? (frm_q.u0 >> 1) : pass_up;
-  assign pass_w     = !pass_above           ? pass_u :
-                      (frm_q.u0 >= 11'd256) ? frm_q.u0 + (pass_d >> 1) :
-                      (frm_q.u0 >= 11'd128) ? frm_q.u0 + (pass_d >> 2) : frm_q.u0;
+  // d = min(u'_k - u0, u0 >> 1), else u0; u0 too for a row whose activity was its floor,
+  // a'_k = (p_k >> FLOOR_SHIFT) * u'_k (ST_PFL's product, compared in ST_PFC, where w is
+  // registered for ST_PMUL). w <= min(max(u'_k, u0), 1.25 u0) <= 1448.
+  // Written as one add of u'_k and a constant of the frame: u0 + ((u' - u0) >> 1) =
+  // (u' + u0) >> 1 and u0 + ((u' - u0) >> 2) = (u' + 3 u0) >> 2; the capped weight and the
+  // cap's line u0 + (u0 >> 1) are registers of u0 too (it is fixed from the start, and the pass
+  // begins after the start's chain of products), so the word's register reaches the
+  // multiplier's load through one carry chain and a choice, as a plain min did.
+  logic [11:0] seed_line_q;     // u0 + (u0 >> 1): beyond it the distance is capped
+  logic [12:0] seed_x3_q;       // 3 u0
+  logic [10:0] seed_cap_q;      // the capped weight
+  logic        seed_half_q, seed_qtr_q;
+  always_ff @(posedge clk_i) begin
+    seed_line_q <= 12'(frm_q.u0) + 12'(frm_q.u0 >> 1);
+    seed_x3_q   <= 13'(frm_q.u0) + 13'({frm_q.u0, 1'b0});
+    seed_half_q <= frm_q.u0 >= 11'd256;
+    seed_qtr_q  <= frm_q.u0 >= 11'd128 && frm_q.u0 < 11'd256;
+    seed_cap_q  <= frm_q.u0 + ((frm_q.u0 >= 11'd256) ? (frm_q.u0 >> 2) :
+                               (frm_q.u0 >= 11'd128) ? (frm_q.u0 >> 3) : 11'd0);
+  end
+  logic [10:0] pass_w;
+  logic [11:0] pass_half;
+  logic [12:0] pass_qtr;
+  logic        pass_above, pass_capped;
+  assign pass_above  = pass_u > frm_q.u0;
+  assign pass_capped = 12'(pass_u) > seed_line_q;
+  assign pass_half   = 12'(pass_u) + 12'(frm_q.u0);
+  assign pass_qtr    = 13'(pass_u) + seed_x3_q;
+  assign pass_w      = !pass_above                 ? pass_u :
+                       !(seed_half_q || seed_qtr_q) ? frm_q.u0 :
+                       pass_capped                 ? seed_cap_q :
+                       seed_half_q                 ? pass_half[11:1] : pass_qtr[12:2];
+  logic unused_pass;                                  // the bits the shifts drop
+  assign unused_pass = ^{pass_half[0], pass_qtr[1:0]};
+  // Row k's floor p_k >> FLOOR_SHIFT (the last row's p is its own), ready from ST_PWT on (pass_q
+  // moves only at ST_PB); w registered at ST_PFC.
+  logic [10:0] pass_floor_q, pass_w_q;
+  always_ff @(posedge clk_i) begin
+    pass_floor_q <= 11'(((pass_q + ROW_W'(1) == frm_q.nty) ? frm_q.p_last : frm_q.p_full)
+                        >> FLOOR_SHIFT);
+    if (state_q == ST_PFC && mul_done)
+      pass_w_q <= (pass_above && mul_prod == PROD_W'(pass_a)) ? frm_q.u0 : pass_w;
+  end
   always_comb begin
     logic g, seed_law;
     g        = !seq_load;                                   // the state machine's product
@@ -282,6 +316,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           | (nn0                 & {MC_W{g && state_q == ST_LAW && !frm_q.seeded}})
           | (MC_W'(floor_ex)     & {MC_W{g && state_q == ST_FLR}})
           | (MC_W'(pass_a)       & {MC_W{g && state_q == ST_PMUL}})
+          | (MC_W'(pass_floor_q) & {MC_W{g && state_q == ST_PFL}})
           | (MC_W'(u_new)        & {MC_W{g && state_q == ST_SQ0}});
     // the multiplier left-aligned: n bits at the top
     mop.b = ({cfg.line_h, 12'd0}              & {MP_W{!g}})
@@ -292,7 +327,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           | (law_q.x_rem[MP_W-1:0]            & {MP_W{g && (state_q == ST_NUM || seed_law)}})
           | (law_q.p_left                     & {MP_W{g && state_q == ST_LAW && !frm_q.seeded}})
           | ({u_q[base_q], 14'd0}             & {MP_W{g && state_q == ST_FLR}})
-          | ({pass_w, 14'd0}                  & {MP_W{g && state_q == ST_PMUL}})
+          | ({pass_w_q, 14'd0}                & {MP_W{g && state_q == ST_PMUL}})
+          | ({pass_u, 14'd0}                  & {MP_W{g && state_q == ST_PFL}})
           | ({u_new, 14'd0}                   & {MP_W{g && state_q == ST_SQ0}});
     mop.n = !g                                    ? ST_W'(13) :
             (state_q == ST_G)                     ? ST_W'(13) :
@@ -329,7 +365,12 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         mem_re  = 1'b1;
         state_d = ST_PWT;
       end
-      ST_PWT: state_d = ST_PMUL;
+      ST_PWT: state_d = ST_PFL;
+      ST_PFL: begin
+        mul_load = 1'b1;
+        state_d  = ST_PFC;
+      end
+      ST_PFC: if (mul_done) state_d = ST_PMUL;
       ST_PMUL: begin
         mul_load = 1'b1;
         state_d  = ST_PB;

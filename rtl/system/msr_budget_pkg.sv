@@ -92,6 +92,8 @@ package msr_budget_pkg;
     ST_FIN,      // SCALE_OUT, the memory's tag
     ST_PRD,      // seed pass (a seeded start): read row k's word {u'_k, a'_k}
     ST_PWT,      // the word in the RAM's output register, then registered once more
+    ST_PFL,      // (p_k >> FLOOR_SHIFT) * u'_k loaded: the row's activity if it was floored
+    ST_PFC,      // floored = (a'_k == that product); w(u'_k, u0) registered
     ST_PMUL,     // a'_k * w(u'_k, u0) loaded
     ST_PB        // b_k written back in its place, Btot += b_k
   } budget_state_e;

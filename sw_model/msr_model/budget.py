@@ -128,14 +128,17 @@ def clamp_scale(u: int, lo: int = U_MIN) -> int:
     return min(U_MAX, max(lo, int(u)))
 
 
-def seed_weight(u_prev: int, u0: int) -> int:
+def seed_weight(u_prev: int, u0: int, floored: bool = False) -> int:
     """The seed pass's factor w of a row that ran at u_prev, for a frame seeded at u0 (b = a' * w).
     Below u0: u_prev (the row's excess taken to fall as 1 / u^2 up to u0). Above u0: u0 plus the
     distance d = min(u_prev - u0, u0 >> 1) >> 1 when u0 >= 256, d >> 2 when u0 >= 128, else
-    nothing (excess rising faster than 1 / u down to u0 at large scales; the distance capped at
-    half the seed so a row that ran at U_MAX on its floor is not taken for a busy one; v4)."""
+    nothing (excess rising faster than 1 / u down to u0 at large scales; v4); u0 for a `floored`
+    row, whose activity was its floor (p >> FLOOR_SHIFT) * u_prev: a floor is not a measurement
+    to extrapolate, and the cap bounds what a row that ran at a large scale can claim."""
     if u_prev <= u0:
         return u_prev
+    if floored:
+        return u0
     d = min(u_prev - u0, u0 >> 1)
     if u0 >= SEED_ABOVE_HALF:
         return u0 + (d >> 1)
@@ -240,7 +243,8 @@ class Controller:
         # The seeded law's words: a' * w(u', u0), i.e. e' * u' * w(u', u0) with e' the row's
         # excess (floored) of the previous frame: what the START pass writes into the memory.
         self.prof_words = None if self.profile is None else [
-            a * seed_weight(int(u), u0) for a, u in zip(self.profile, self.cfg.profile_scales)]
+            a * seed_weight(int(u), u0, a == ((self.width * self.row_height(k)) >> FLOOR_SHIFT) * int(u))
+            for k, (a, u) in enumerate(zip(self.profile, self.cfg.profile_scales))]
         self.prof_total = sum(self.prof_words) if self.profile is not None else 0
         self.prior_n = ((self.budget - self.grid) * u0) >> self.cfg.prior_shift
         self.prior_p = self.total >> self.cfg.prior_shift

@@ -67,10 +67,24 @@ def test_seed_weight_branches():
     assert BG.seed_weight(1448, 255) == 255 + 31             # a quarter of the cap 127
     assert BG.seed_weight(1448, 128) == 128 + 16
     assert BG.seed_weight(1448, 127) == 127                  # u0 < 128: the seed itself
+    assert BG.seed_weight(400, 279, floored=True) == 279     # a floored row: the seed
+    assert BG.seed_weight(200, 279, floored=True) == 200     # (below the seed: its own u)
     for u0 in (45, 127, 128, 255, 256, 700, 1448):
         for u in (32, 45, 100, 127, 128, 255, 256, 257, 1000, 1448):
             w = BG.seed_weight(u, u0)
             assert min(u, u0) <= w <= max(u, u0) and w <= u0 + (u0 >> 2)
+            assert BG.seed_weight(u, u0, True) == min(u, u0)
+
+
+def test_seed_pass_floored_row():
+    """A row whose activity was its floor, a' = (p >> 7) * u', is not extrapolated above the
+    seed (the floor is not a measurement): 64 x 40, row 2 (8 pixels high: floor 4) ran at 422
+    and traced its grid alone, a' = 4 * 422."""
+    cfg = BG.BudgetConfig(640, 279, 6, (51200, 25600, 4 * 422), (256, 256, 422))
+    nxt = BG.Controller(64, 40, L2, cfg)
+    assert nxt.prof_words == [51200 * 256, 25600 * 256, 4 * 422 * 279]
+    cfg = BG.BudgetConfig(640, 279, 6, (51200, 25600, 5 * 422), (256, 256, 422))
+    assert BG.Controller(64, 40, L2, cfg).prof_words[2] == 5 * 422 * 348    # one pixel more
 
 
 def test_activity_floor_by_hand():

@@ -204,8 +204,10 @@ class Bench:
         if seeded:
             # which branch of the seed pass's weight w(u'_k, u0) every row's word took
             u0s = cfg.seed
-            for u in self.mem_u:
-                k = ("w_below" if u <= u0s else "w_half" if u0s >= BG.SEED_ABOVE_HALF else
+            for r, (a, u) in enumerate(zip(self.mem, self.mem_u)):
+                floored = a == ((W * self.ctl.row_height(r)) >> BG.FLOOR_SHIFT) * u
+                k = ("w_below" if u <= u0s else "w_floored" if floored else
+                     "w_half" if u0s >= BG.SEED_ABOVE_HALF else
                      "w_quarter" if u0s >= BG.SEED_ABOVE_QUARTER else "w_seed")
                 self.law[k] = self.law.get(k, 0) + 1
                 if k in ("w_half", "w_quarter"):
@@ -450,7 +452,7 @@ async def test_random_frames(dut):
     b.summary()
     for k in ("first_mid", "first_slew", "first_sat", "first_min", "first_deep", "seeded_mid", "seeded_slew",
               "seeded_sat", "x<=0", "none", "out_mid", "out_max", "out_min",
-              "w_below", "w_half", "w_quarter", "w_seed", "w_capped", "w_uncapped"):
+              "w_below", "w_half", "w_quarter", "w_seed", "w_capped", "w_uncapped", "w_floored"):
         assert b.law.get(k, 0) > 0, f"law branch {k} never taken: {b.law}"
 
 
