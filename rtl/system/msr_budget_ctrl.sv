@@ -254,56 +254,28 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [5:0]      n0_last_q;
   always_ff @(posedge clk_i) n0_last_q <= grid_axis(frm_q.h_last, cfg.levels);
 
+  // The seed pass's weight w(u'_k, u0) and row k's floor (msr_budget_seed_w): ST_PFL loads the
+  // floor product (p_k >> FLOOR_SHIFT) * u'_k, ST_PFC registers w from it for ST_PMUL.
+  logic [10:0] pass_floor_q, pass_w_q;
+  msr_budget_seed_w #(.PROD_W(PROD_W)) u_seed_w (
+    .clk_i,
+    .u0_i       (frm_q.u0),
+    .p_full_i   (frm_q.p_full),
+    .p_last_i   (frm_q.p_last),
+    .row_last_i (pass_q + ROW_W'(1) == frm_q.nty),
+    .u_prev_i   (pass_u),
+    .a_prev_i   (pass_a),
+    .take_i     (state_q == ST_PFC && mul_done),
+    .prod_i     (mul_prod),
+    .floor_o    (pass_floor_q),
+    .w_o        (pass_w_q)
+  );
+
   // The operands of the product that loads this clock, by the state that loads it (a product
   // done in a chain state starts the next: start G, W * H, g and p of the last row, N0, m0; law
   // the numerator, then the denominator). Each operand is one flat AND-OR choice of its
   // sources, a source shared by the products that use it: a multiplexer per product and
   // state, nested, was the controller's largest part.
-  // The seed pass's weight w of row k (b_k = a'_k * w, docs/budget.md section 4): u'_k at or
-  // below u0; above it u0 plus half (u0 >= 256) or a quarter (u0 >= 128) of the distance
-  // d = min(u'_k - u0, u0 >> 1), else u0; u0 too for a row whose activity was its floor,
-  // a'_k = (p_k >> FLOOR_SHIFT) * u'_k (ST_PFL's product, compared in ST_PFC, where w is
-  // registered for ST_PMUL). w <= min(max(u'_k, u0), 1.25 u0) <= 1448.
-  // Written as one add of u'_k and a constant of the frame: u0 + ((u' - u0) >> 1) =
-  // (u' + u0) >> 1 and u0 + ((u' - u0) >> 2) = (u' + 3 u0) >> 2; the capped weight and the
-  // cap's line u0 + (u0 >> 1) are registers of u0 too (it is fixed from the start, and the pass
-  // begins after the start's chain of products), so the word's register reaches the
-  // multiplier's load through one carry chain and a choice, as a plain min did.
-  logic [11:0] seed_line_q;     // u0 + (u0 >> 1): beyond it the distance is capped
-  logic [12:0] seed_x3_q;       // 3 u0
-  logic [10:0] seed_cap_q;      // the capped weight
-  logic        seed_half_q, seed_qtr_q;
-  always_ff @(posedge clk_i) begin
-    seed_line_q <= 12'(frm_q.u0) + 12'(frm_q.u0 >> 1);
-    seed_x3_q   <= 13'(frm_q.u0) + 13'({frm_q.u0, 1'b0});
-    seed_half_q <= frm_q.u0 >= 11'd256;
-    seed_qtr_q  <= frm_q.u0 >= 11'd128 && frm_q.u0 < 11'd256;
-    seed_cap_q  <= frm_q.u0 + ((frm_q.u0 >= 11'd256) ? (frm_q.u0 >> 2) :
-                               (frm_q.u0 >= 11'd128) ? (frm_q.u0 >> 3) : 11'd0);
-  end
-  logic [10:0] pass_w;
-  logic [11:0] pass_half;
-  logic [12:0] pass_qtr;
-  logic        pass_above, pass_capped;
-  assign pass_above  = pass_u > frm_q.u0;
-  assign pass_capped = 12'(pass_u) > seed_line_q;
-  assign pass_half   = 12'(pass_u) + 12'(frm_q.u0);
-  assign pass_qtr    = 13'(pass_u) + seed_x3_q;
-  assign pass_w      = !pass_above                 ? pass_u :
-                       !(seed_half_q || seed_qtr_q) ? frm_q.u0 :
-                       pass_capped                 ? seed_cap_q :
-                       seed_half_q                 ? pass_half[11:1] : pass_qtr[12:2];
-  logic unused_pass;                                  // the bits the shifts drop
-  assign unused_pass = ^{pass_half[0], pass_qtr[1:0]};
-  // Row k's floor p_k >> FLOOR_SHIFT (the last row's p is its own), ready from ST_PWT on (pass_q
-  // moves only at ST_PB); w registered at ST_PFC.
-  logic [10:0] pass_floor_q, pass_w_q;
-  always_ff @(posedge clk_i) begin
-    pass_floor_q <= 11'(((pass_q + ROW_W'(1) == frm_q.nty) ? frm_q.p_last : frm_q.p_full)
-                        >> FLOOR_SHIFT);
-    if (state_q == ST_PFC && mul_done)
-      pass_w_q <= (pass_above && mul_prod == PROD_W'(pass_a)) ? frm_q.u0 : pass_w;
-  end
   always_comb begin
     logic g, seed_law;
     g        = !seq_load;                                   // the state machine's product

@@ -14,6 +14,10 @@ package msr_budget_pkg;
   // A row's activity is at least its pixels >> FLOOR_SHIFT times its scale (docs/budget.md).
   localparam int unsigned FLOOR_SHIFT = 7;
   localparam logic [10:0] U_MAX = 11'd1448;
+  // The seed pass counts half of a row's distance above a seed u0 >= SEED_ABOVE_HALF, a quarter
+  // above one >= SEED_ABOVE_QUARTER (msr_budget_seed_w; docs/budget.md, v4).
+  localparam logic [10:0] SEED_ABOVE_HALF = 11'd256;
+  localparam logic [10:0] SEED_ABOVE_QUARTER = 11'd128;
   localparam logic [10:0] Q_SAT = 11'd1449;      // U_MAX + 1: "no budget left" / saturated
   /* verilator lint_on UNUSEDPARAM */
 

@@ -243,7 +243,7 @@ class Controller:
         # The seeded law's words: a' * w(u', u0), i.e. e' * u' * w(u', u0) with e' the row's
         # excess (floored) of the previous frame: what the START pass writes into the memory.
         self.prof_words = None if self.profile is None else [
-            a * seed_weight(int(u), u0, a == ((self.width * self.row_height(k)) >> FLOOR_SHIFT) * int(u))
+            a * seed_weight(int(u), u0, a == self.row_floor(k) * int(u))
             for k, (a, u) in enumerate(zip(self.profile, self.cfg.profile_scales))]
         self.prof_total = sum(self.prof_words) if self.profile is not None else 0
         self.prior_n = ((self.budget - self.grid) * u0) >> self.cfg.prior_shift
@@ -253,6 +253,10 @@ class Controller:
     def row_height(self, r: int) -> int:
         return min(self.params.tile, self.height - r * self.params.tile)
 
+    def row_floor(self, r: int) -> int:
+        """Row r's activity floor in pixels: p_r >> FLOOR_SHIFT."""
+        return (self.width * self.row_height(r)) >> FLOOR_SHIFT
+
     def finish_row(self, traced: int) -> None:
         """Row `rows_done` is finished with `traced` pixels of source code < 16: update, and set
         the scale of row rows_done + 2, or SCALE_OUT after the last row."""
@@ -261,7 +265,7 @@ class Controller:
         g, p = row_grid(self.width, h, self.params), self.width * h
         if not g <= traced <= p:
             raise ValueError(f"row {j}: traced {traced} outside {g}..{p}")
-        a = max(traced - g, p >> FLOOR_SHIFT) * self.scales[j]
+        a = max(traced - g, self.row_floor(j)) * self.scales[j]
         self.activity.append(a)
         self.n_act += a
         self.traced += traced

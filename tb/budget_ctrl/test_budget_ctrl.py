@@ -205,7 +205,7 @@ class Bench:
             # which branch of the seed pass's weight w(u'_k, u0) every row's word took
             u0s = cfg.seed
             for r, (a, u) in enumerate(zip(self.mem, self.mem_u)):
-                floored = a == ((W * self.ctl.row_height(r)) >> BG.FLOOR_SHIFT) * u
+                floored = a == self.ctl.row_floor(r) * u
                 k = ("w_below" if u <= u0s else "w_floored" if floored else
                      "w_half" if u0s >= BG.SEED_ABOVE_HALF else
                      "w_quarter" if u0s >= BG.SEED_ABOVE_QUARTER else "w_seed")
@@ -488,4 +488,5 @@ def test_budget_ctrl():
     run_cocotb("msr_budget_ctrl", "test_budget_ctrl", HERE, {}, "",
                sources=[RTL / "msr_pkg.sv", RTL / "system/msr_budget_pkg.sv", RTL / "prim/msr_shift_add_mul.sv", RTL / "prim/msr_seq_div.sv",
                         RTL / "system/msr_budget_grid.sv", RTL / "system/msr_budget_mem.sv",
-                        RTL / "system/msr_budget_law.sv", RTL / "system/msr_budget_ctrl.sv"])
+                        RTL / "system/msr_budget_law.sv", RTL / "system/msr_budget_seed_w.sv",
+                        RTL / "system/msr_budget_ctrl.sv"])
