@@ -1,7 +1,8 @@
 // Ray budget controller, the arithmetic (docs/budget.md sections 1-4 and 6; golden model
 // sw_model/msr_model/budget.py, class Controller, bit for bit). This module is the state
-// machine, the scale slots and the shared multiplier and divider with their operands; the
-// frame's constants and the law's running sums are msr_budget_law's registers.
+// machine, the scale slots and the shared multiplier and divider; the frame's constants and the
+// law's running sums are msr_budget_law's registers, the multiplier's operands by state
+// msr_budget_mul_ops's choice, the seed pass's weight msr_budget_seed_w's.
 //
 // Why sequential: a tile row lasts thousands of clocks and the law runs once per row, so one
 // bit-serial multiplier (msr_shift_add_mul, up to 36 x 25 bits, as many clocks as the multiplier
@@ -62,9 +63,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   localparam int unsigned WH_W   = BUD_WH_W;     // W * H and every pixel count of the frame
   localparam int unsigned ACT_W  = BUD_ACT_W;    // N, N0
   localparam int unsigned MEM_W  = 39;           // {u_j, a_j} (11 + 28 bits) or b_k < 2^38
-  localparam int unsigned MC_W   = 36;           // multiplicand
-  localparam int unsigned MP_W   = 25;           // multiplier
-  localparam int unsigned ST_W   = $clog2(MP_W + 1);  // a product's multiplier bits, 0..25
+  localparam int unsigned MC_W   = BUD_MC_W;     // multiplicand (36)
+  localparam int unsigned MP_W   = BUD_MP_W;     // multiplier (25)
   localparam int unsigned PROD_W = MC_W + MP_W;  // 61
   localparam int unsigned REM_W  = PROD_W + 1;   // 62: holds den << 11
   localparam int unsigned MEM_DEPTH = 512;
@@ -112,16 +112,9 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [12:0]       row_m_q;
 
   // ---- Multiplier (msr_shift_add_mul): one multiplier bit per clock -------------------------
-  // A product's operands: b's low n bits are the multiplier, handed over left-aligned (a fixed
-  // n per product, so the alignment is wiring).
-  typedef struct packed {
-    logic [MC_W-1:0] a;
-    logic [MP_W-1:0] b;
-    logic [ST_W-1:0] n;
-  } mul_op_t;
-
+  // Its operands by the loading state: msr_budget_mul_ops, below.
   logic              mul_load;
-  mul_op_t           mop;
+  budget_mul_op_t    mop;
   logic [PROD_W-1:0] mul_prod;
   logic              mul_done;
 
@@ -271,42 +264,24 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .w_o        (pass_w_q)
   );
 
-  // The operands of the product that loads this clock, by the state that loads it (a product
-  // done in a chain state starts the next: start G, W * H, g and p of the last row, N0, m0; law
-  // the numerator, then the denominator). Each operand is one flat AND-OR choice of its
-  // sources, a source shared by the products that use it: a multiplexer per product and
-  // state, nested, was the controller's largest part.
-  always_comb begin
-    logic g, seed_law;
-    g        = !seq_load;                                   // the state machine's product
-    seed_law = state_q == ST_LAW && frm_q.seeded;
-    mop.a = (MC_W'(cfg.line_w)   & {MC_W{!g || state_q == ST_WH}})
-          | (MC_W'(cfg.width)    & {MC_W{g && state_q inside {ST_G, ST_GL}}})
-          | (MC_W'(frm_q.spare)  & {MC_W{g && state_q == ST_PL}})
-          | (MC_W'(frm_q.u0)     & {MC_W{g && (state_q == ST_N0 || seed_law)}})
-          | (MC_W'(law_q.pp0)    & {MC_W{g && state_q == ST_NUM}})
-          | (nn0                 & {MC_W{g && state_q == ST_LAW && !frm_q.seeded}})
-          | (MC_W'(floor_ex)     & {MC_W{g && state_q == ST_FLR}})
-          | (MC_W'(pass_a)       & {MC_W{g && state_q == ST_PMUL}})
-          | (MC_W'(pass_floor_q) & {MC_W{g && state_q == ST_PFL}})
-          | (MC_W'(u_new)        & {MC_W{g && state_q == ST_SQ0}});
-    // the multiplier left-aligned: n bits at the top
-    mop.b = ({cfg.line_h, 12'd0}              & {MP_W{!g}})
-          | ({cfg.height, 12'd0}              & {MP_W{g && state_q == ST_G}})
-          | ({n0_last_q, 19'd0}               & {MP_W{g && state_q == ST_WH}})
-          | ({frm_q.h_last, 19'd0}            & {MP_W{g && state_q == ST_GL}})
-          | ({frm_q.u0, 14'd0}                & {MP_W{g && state_q inside {ST_PL, ST_N0}}})
-          | (law_q.x_rem[MP_W-1:0]            & {MP_W{g && (state_q == ST_NUM || seed_law)}})
-          | (law_q.p_left                     & {MP_W{g && state_q == ST_LAW && !frm_q.seeded}})
-          | ({u_q[base_q], 14'd0}             & {MP_W{g && state_q == ST_FLR}})
-          | ({pass_w_q, 14'd0}                & {MP_W{g && state_q == ST_PMUL}})
-          | ({pass_u, 14'd0}                  & {MP_W{g && state_q == ST_PFL}})
-          | ({u_new, 14'd0}                   & {MP_W{g && state_q == ST_SQ0}});
-    mop.n = !g                                    ? ST_W'(13) :
-            (state_q == ST_G)                     ? ST_W'(13) :
-            (state_q inside {ST_WH, ST_GL})       ? ST_W'(6)  :
-            (state_q inside {ST_NUM, ST_LAW})     ? ST_W'(MP_W) : ST_W'(11);
-  end
+  // The operands of the product that loads this clock, by the state that loads it.
+  msr_budget_mul_ops u_mul_ops (
+    .state_i      (state_q),
+    .seq_load_i   (seq_load),
+    .cfg_i        (cfg),
+    .frm_i        (frm_q),
+    .law_i        (law_q),
+    .n0_last_i    (n0_last_q),
+    .nn0_i        (nn0),
+    .floor_ex_i   (floor_ex),
+    .u_row_i      (u_q[base_q]),
+    .u_new_i      (u_new),
+    .pass_a_i     (pass_a),
+    .pass_u_i     (pass_u),
+    .pass_floor_i (pass_floor_q),
+    .pass_w_i     (pass_w_q),
+    .op_o         (mop)
+  );
 
   always_comb begin
     state_d    = state_q;

@@ -26,6 +26,10 @@ package msr_budget_pkg;
   localparam int unsigned BUD_WH_W  = 25;            // W * H and every pixel count of a frame
   localparam int unsigned BUD_ACT_W = 36;            // N, N0
   localparam int unsigned BUD_SEED_W = 45;           // Btot, Bd: sums of a' * w(u', u0)
+  // The shared multiplier (msr_shift_add_mul): multiplicand, multiplier, multiplier bits.
+  localparam int unsigned BUD_MC_W = 36;
+  localparam int unsigned BUD_MP_W = 25;
+  localparam int unsigned BUD_ST_W = $clog2(BUD_MP_W + 1);
 
   // The configuration and the grid constants, as msr_budget_grid hands them on.
   typedef struct packed {
@@ -73,6 +77,14 @@ package msr_budget_pkg;
     logic                 deep;       // u_{j+1} <= U_MIN (a first frame's lo is U_MIN_FIRST)
     logic [10:0]          u_mx;       // max(q, u_{j+1} >> 1)
   } budget_law_t;
+
+  // A product's operands (msr_budget_mul_ops): b's low n bits are the multiplier, handed over
+  // left-aligned (a fixed n per product, so the alignment is wiring).
+  typedef struct packed {
+    logic [BUD_MC_W-1:0] a;
+    logic [BUD_MP_W-1:0] b;
+    logic [BUD_ST_W-1:0] n;
+  } budget_mul_op_t;
 
   // The controller's states (msr_budget_ctrl; here so its formal harness names them too).
   typedef enum logic [4:0] {

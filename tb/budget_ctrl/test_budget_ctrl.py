@@ -489,4 +489,5 @@ def test_budget_ctrl():
                sources=[RTL / "msr_pkg.sv", RTL / "system/msr_budget_pkg.sv", RTL / "prim/msr_shift_add_mul.sv", RTL / "prim/msr_seq_div.sv",
                         RTL / "system/msr_budget_grid.sv", RTL / "system/msr_budget_mem.sv",
                         RTL / "system/msr_budget_law.sv", RTL / "system/msr_budget_seed_w.sv",
+                        RTL / "system/msr_budget_mul_ops.sv",
                         RTL / "system/msr_budget_ctrl.sv"])
