@@ -15,7 +15,10 @@ module msr_ctx_issue import msr_pkg::*; #(
   parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
 ) (
   input  logic                     clk_i, rst_ni, clear_i,  // clear: synchronous soft reset
-  input  logic     [NUM_CTX-1:0]   cand_i,       // contexts with a position that may go
+  // each context's candidate alternatives (registers): the tail may go while its head leaves
+  // (the grant in flight, gr_gnt_o), the head otherwise
+  input  logic     [NUM_CTX-1:0]   cand_tail_i,
+  input  logic     [NUM_CTX-1:0]   cand_head_i,
   input  eng_pos_t [NUM_CTX-1:0]   pos_i,        // each context's head position
   input  logic                     can_issue_i,  // an output-buffer slot is free (a credit)
   output logic                     issue_o,      // a grant this cycle (takes the credit)
@@ -27,11 +30,15 @@ module msr_ctx_issue import msr_pkg::*; #(
 
   logic               arb_valid;
   logic [CTX_W-1:0]   gnt_idx;
-  logic [NUM_CTX-1:0] gnt;
+  logic [NUM_CTX-1:0] gnt, cand;
+
+  // The contexts whose position may go: one LUT per context, here beside the grant register
+  // and the arbiter (the wire from a context to the arbiter is crossed once, from flip-flops).
+  assign cand = (gr_gnt_o & cand_tail_i) | (~gr_gnt_o & cand_head_i);
 
   msr_rr_arb #(.N(NUM_CTX), .IDX_W(CTX_W)) u_issue_arb (
     .clk_i, .rst_ni, .clear_i,
-    .req_i (cand_i), .gnt_o (gnt), .idx_o (gnt_idx), .valid_o (arb_valid), .ready_i (can_issue_i)
+    .req_i (cand), .gnt_o (gnt), .idx_o (gnt_idx), .valid_o (arb_valid), .ready_i (can_issue_i)
   );
 
   assign issue_o = arb_valid && can_issue_i;

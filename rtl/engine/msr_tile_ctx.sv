@@ -32,7 +32,10 @@ module msr_tile_ctx
   output logic               free_o,        // no tile: may start one
   output tile_desc_t         desc_o,        // the tile held
   // the position on offer
-  output logic               cand_o,        // a position that may be granted (issued a cycle later)
+  // the position on offer: the candidate bit is issue_i ? cand_tail_o : cand_head_o, formed
+  // at the arbiter (msr_ctx_issue), which holds the grant register issue_i comes from
+  output logic               cand_tail_o,   // the tail may go once the head leaves
+  output logic               cand_head_o,   // the head may go
   // its position (init: traced, no reads; o2a: lindilate's A' is rd_o2_o, else the last A)
   output eng_pos_t           step_o,
   input  logic               issue_i,       // the head leaves this cycle (granted the cycle before)
@@ -182,10 +185,14 @@ module msr_tile_ctx
   // leaving position is not yet written, so the barrier holds anyway). Otherwise the head,
   // the first of a pass only when nothing issued is pending. Both alternatives are registered
   // from the next state (cand_tail_q, cand_head_q), so the candidate is one 3-input mux of
-  // flip-flops: the arbiter's path (the engine's longest) starts right there.
-  // (Tried at 61d2d60: the mux moved into msr_ctx_issue beside the grant register, to cross the
-  // engine once. The placer still put its LUT beside the context, and the default top's three
-  // seeds all ran grant -> mux -> arbiter: median 108.03 MHz against 111.76. Reverted.)
+  // flip-flops: the arbiter's path (the engine's longest) starts right there. The mux sits in
+  // the arbiter (msr_ctx_issue), beside the grant register: here, the path ran grant -> context
+  // -> arbiter, two crossings of the engine in one clock (the BUDGET_EN = 1 top's worst path,
+  // 3.2 of 9.5 ns in those two wires); there, one crossing, from these flip-flops.
+  // The placer may still put the mux's LUT beside the context (the default top at 61d2d60 ran
+  // all three seeds through grant -> mux -> arbiter, 9.2-9.4 ns), but without the move the top
+  // was slower on the same seeds (edb9d9c: 99.04 / 104.07 MHz on seeds 1 / 3, against 105.99 /
+  // 108.03), its worst paths elsewhere in the engines: placement noise, the move kept.
   // A retro request (retro_i) adds one pending write like an issue; it comes only while the
   // position that caused it is pending, so it never meets a zero count.
   logic pend_zero_q, pend_zero_d, pend_one, cand_tail_q, cand_head_q, pend_up;
@@ -193,7 +200,8 @@ module msr_tile_ctx
   assign pend_one    = (pend_q == PEND_W'(1));
   assign pend_zero_d = (issue_i && retro_i) ? 1'b0 :
                        (pend_up != we_i)    ? (we_i && pend_one) : pend_zero_q;
-  assign cand_o      = issue_i ? cand_tail_q : cand_head_q;
+  assign cand_tail_o = cand_tail_q;
+  assign cand_head_o = cand_head_q;
 
   `MSR_CLR_REG(u_cand, 2, clear_i, 1'b1,
                {tail_valid_d && !tail_first_d, head_valid_d && (!head_first_d || pend_zero_d)},

@@ -103,7 +103,7 @@ module msr_tile_engine
   end
 
   // ---- Contexts ---------------------------------------------------------------------------------
-  logic       [NUM_CTX-1:0] ctx_free, ctx_full, ctx_cand, ctx_start;
+  logic       [NUM_CTX-1:0] ctx_free, ctx_full, ctx_cand_tail, ctx_cand_head, ctx_start;
   // the head is the first position of its pass (waveforms, scripts/bench_engine.py)
   /* verilator lint_off UNUSEDSIGNAL */
   logic       [NUM_CTX-1:0] ctx_first;
@@ -134,7 +134,8 @@ module msr_tile_engine
 
   msr_ctx_issue #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W)) u_ctx_issue (
     .clk_i, .rst_ni, .clear_i,
-    .cand_i (ctx_cand), .pos_i (ctx_pos), .can_issue_i (can_issue), .issue_o (issue),
+    .cand_tail_i (ctx_cand_tail), .cand_head_i (ctx_cand_head), .pos_i (ctx_pos),
+    .can_issue_i (can_issue), .issue_o (issue),
     .gr_valid_o (gr_valid), .gr_gnt_o (gr_gnt), .gr_ctx_o (gr_ctx), .gr_pos_o (iss_pos)
   );
 
@@ -338,7 +339,8 @@ module msr_tile_engine
     ) u_ctx (
       .clk_i, .rst_ni, .clear_i,
       .start_i (ctx_start[c]), .desc_i (alloc_desc), .free_o (ctx_free[c]),
-      .desc_o (ctx_desc[c]), .cand_o (ctx_cand[c]), .step_o (ctx_pos[c]), .issue_i (gr_gnt[c]),
+      .desc_o (ctx_desc[c]), .cand_tail_o (ctx_cand_tail[c]), .cand_head_o (ctx_cand_head[c]),
+      .step_o (ctx_pos[c]), .issue_i (gr_gnt[c]),
       .rd_a_o (ctx_rd_a[c]), .rd_b_o (ctx_rd_b[c]), .rd_o2_o (ctx_rd_o2[c]),
       .retro_i (ctx_retro[c]), .we_i (ctx_we[c]), .waddr_i (ctx_waddr[c]),
       .wsrc_i (ctx_wsrc[c]), .wrgb_i (ctx_wrgb[c]), .full_o (ctx_full[c]),
