@@ -33,7 +33,8 @@ module msr_ctx_issue import msr_pkg::*; #(
   logic [NUM_CTX-1:0] gnt, cand;
 
   // The contexts whose position may go: one LUT per context, here beside the grant register
-  // and the arbiter (the wire from a context to the arbiter is crossed once, from flip-flops).
+  // and the arbiter, so that the path can cross from a context once, from its flip-flops (the
+  // placer decides where the LUT goes: msr_tile_ctx).
   assign cand = (gr_gnt_o & cand_tail_i) | (~gr_gnt_o & cand_head_i);
 
   msr_rr_arb #(.N(NUM_CTX), .IDX_W(CTX_W)) u_issue_arb (

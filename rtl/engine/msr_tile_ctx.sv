@@ -186,13 +186,11 @@ module msr_tile_ctx
   // the first of a pass only when nothing issued is pending. Both alternatives are registered
   // from the next state (cand_tail_q, cand_head_q), so the candidate is one 3-input mux of
   // flip-flops: the arbiter's path (the engine's longest) starts right there. The mux sits in
-  // the arbiter (msr_ctx_issue), beside the grant register: here, the path ran grant -> context
-  // -> arbiter, two crossings of the engine in one clock (the BUDGET_EN = 1 top's worst path,
-  // 3.2 of 9.5 ns in those two wires); there, one crossing, from these flip-flops.
-  // The placer may still put the mux's LUT beside the context (the default top at 61d2d60 ran
-  // all three seeds through grant -> mux -> arbiter, 9.2-9.4 ns), but without the move the top
-  // was slower on the same seeds (edb9d9c: 99.04 / 104.07 MHz on seeds 1 / 3, against 105.99 /
-  // 108.03), its worst paths elsewhere in the engines: placement noise, the move kept.
+  // the arbiter (msr_ctx_issue), beside the grant register, so that the path may cross the
+  // engine once (from these flip-flops) rather than twice (grant -> context -> arbiter). The
+  // placer is still free to put its LUT beside the context, and did (61d2d60, all three seeds of
+  // the default top, 9.2-9.4 ns); without the move the top was slower on the same seeds (edb9d9c),
+  // its worst paths elsewhere: placement noise, the move kept.
   // A retro request (retro_i) adds one pending write like an issue; it comes only while the
   // position that caused it is pending, so it never meets a zero count.
   logic pend_zero_q, pend_zero_d, pend_one, cand_tail_q, cand_head_q, pend_up;
