@@ -6,7 +6,8 @@
 module msr_rr_arb_fv #(
   parameter int unsigned N      = 4,
   parameter bit          LOCK   = 1'b0,
-  parameter bit          PREFIX = 1'b0     // the LUT prefix choice instead of the carry chain
+  parameter bit          PREFIX = 1'b0,    // the LUT prefix choice instead of the carry chain
+  parameter bit          MASKS  = 1'b0     // each grant from registered masks
 ) (
   input logic                 clk_i,
   input logic                 rst_ni,
@@ -21,7 +22,7 @@ module msr_rr_arb_fv #(
   logic [IDX_W-1:0] idx_o;
   logic             valid_o;
 
-  msr_rr_arb #(.N(N), .LOCK(LOCK), .PREFIX(PREFIX)) dut (
+  msr_rr_arb #(.N(N), .LOCK(LOCK), .PREFIX(PREFIX), .MASKS(MASKS)) dut (
     .clk_i, .rst_ni, .clear_i, .req_i, .gnt_o, .idx_o, .valid_o, .ready_i
   );
 
@@ -66,6 +67,25 @@ module msr_rr_arb_fv #(
   // and K's wait plus its distance from the last winner never exceeds N-1.
   a_mask:      assert property (@(posedge clk_i) disable iff (!rst_ni) vec_t'(dut.above_q + above_low) == '0 && !dut.above_q[0]);
   a_fair_dist: assert property (@(posedge clk_i) disable iff (!rst_ni) wait_q + k_dist <= N - 1);
+
+  if (MASKS) begin : g_masks
+    // The registered masks give the chain's grant (so every property above holds for them),
+    // and follow the pointer: "i outranks j" restated from above_q, the induction's invariant.
+    logic [N-1:0][N-1:0] outrank_ref;
+    always_comb begin
+      for (int i = 0; i < N; i++) begin
+        for (int j = 0; j < N; j++) begin
+          // j outranks i: both above the last winner or both not, and j lower; or j above, i not
+          outrank_ref[i][j] = (dut.above_q[j] == dut.above_q[i]) ? (j < i)
+                                                                 : dut.above_q[j];
+        end
+      end
+    end
+    a_masks_chain: assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                    dut.gnt == dut.gnt_chain);
+    a_masks_ptr:   assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                    dut.g_masks.outrank_q == outrank_ref);
+  end
 
   if (LOCK) begin : g_lock
     // The grant offered and not taken last cycle (a clear counts as taken), registered by

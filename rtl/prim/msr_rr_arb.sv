@@ -14,6 +14,7 @@ module msr_rr_arb #(
   parameter int unsigned N     = 4,                      // requesters, >= 1
   parameter bit          LOCK  = 1'b0,                   // hold an offered, untaken grant
   parameter bit          PREFIX = 1'b0,                  // the choice in LUTs, not a carry chain
+  parameter bit          MASKS = 1'b0,                   // each grant from registered masks
   parameter int unsigned IDX_W = (N > 1) ? $clog2(N) : 1
 ) (
   input  logic             clk_i,     // clock
@@ -58,9 +59,51 @@ module msr_rr_arb #(
   end else begin : g_carry_chain
     assign below_incl = both ^ (both - 1'b1);
   end
+  logic [N-1:0] gnt_chain;
   assign lowest     = both & below_incl;
-  assign gnt        = lowest[N-1:0] | lowest[2*N-1:N];
+  assign gnt_chain  = lowest[N-1:0] | lowest[2*N-1:N];
   assign above_pick = below_incl[N] ? ~below_incl[2*N-1:N] : ~below_incl[N-1:0];
+
+  if (MASKS) begin : g_masks
+    // Each grant from a registered mask: outrank_q[i] holds the requesters that outrank i this
+    // round (below i: all of them unless i is above the last winner, then those above it too;
+    // above i: those above the last winner, unless i is), so grant i is request i and none of
+    // the masked requests, one AND-OR of the requests and flip-flops (two LUT levels at N = 4)
+    // beside requester i. For the render mux: its queue heads' pops went through the prefix
+    // chain at the port and back, 7.5 of 9.5 ns wire in the BUDGET_EN = 1 top (61d2d60, seeds
+    // 2 and 5). The pointer's next value (above_d) still comes from the chain, off that path.
+    typedef logic [N-1:0][N-1:0] outrank_t;
+    function automatic outrank_t outrank_of(logic [N-1:0] above);
+      outrank_t m;
+      for (int unsigned i = 0; i < N; i++) begin
+        for (int unsigned j = 0; j < N; j++) begin
+          if (j < i)      m[i][j] = !above[i] || above[j];
+          else if (j > i) m[i][j] = !above[i] && above[j];
+          else            m[i][j] = 1'b0;
+        end
+      end
+      return m;
+    endfunction
+    outrank_t outrank_q;
+    for (genvar i = 0; i < N; i++) begin : g_gnt
+      assign gnt[i] = req_i[i] && (req_i & outrank_q[i]) == '0;
+    end
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        outrank_q <= outrank_of('0);
+      end else if (clear_i) begin
+        outrank_q <= outrank_of('0);
+      end else if (valid_o && ready_i) begin
+        outrank_q <= outrank_of(above_d);
+      end
+    end
+    /* verilator lint_off SYNCASYNCNET */
+    `MSR_ASSERT(a_masks_of_pointer, outrank_q == outrank_of(above_q))
+    `MSR_ASSERT(a_masks_match_chain, gnt == gnt_chain)
+    /* verilator lint_on SYNCASYNCNET */
+  end else begin : g_chain
+    assign gnt = gnt_chain;
+  end
 
   if (LOCK) begin : g_lock
     logic [N-1:0] locked_q;   // the grant offered last cycle

@@ -92,8 +92,8 @@ module msr_render_mux import msr_pkg::*; #(
   logic                   arb_valid, sp_ready;
   rreq_t                  req_out;
 
-  // PREFIX: the engines' queue heads are spread over the die (see msr_rr_arb)
-  msr_rr_arb #(.N(NUM_ENGINES), .LOCK(1'b0), .PREFIX(1'b1), .IDX_W(EID_W)) u_req_arb (
+  // PREFIX and MASKS: the engines' queue heads are spread over the die (see msr_rr_arb)
+  msr_rr_arb #(.N(NUM_ENGINES), .LOCK(1'b0), .PREFIX(1'b1), .MASKS(1'b1), .IDX_W(EID_W)) u_req_arb (
     .clk_i, .rst_ni, .clear_i,
     .req_i   (rq_valid), .gnt_o (gnt), .idx_o (gnt_idx),
     .valid_o (arb_valid), .ready_i (sp_ready)
