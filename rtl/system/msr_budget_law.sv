@@ -55,15 +55,7 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
   assign c_diff     = {1'b0, row_traced_i} - {1'b0, g_sel_o};
   assign c_minus_g  = c_diff[18] ? '0 : c_diff[17:0];
   assign floor_px   = law_q.p_row >> FLOOR_SHIFT;
-  // The floor's compare, registered with ex and p_j: ex > p_j >> FLOOR_SHIFT exactly when
-  // c_j - g_j - (p_j >> FLOOR_SHIFT) - 1 >= 0 (c_j < g_j gives ex = 0, never above the floor).
-  // Compared in ST_FLR, its carry chain ran into the multiplier's operand choice and on into
-  // the multiplicand: the BUDGET_EN = 1 top's worst path at 25211a9 (seed 3, 9.31 ns). Here
-  // it ends in a flip-flop; ST_FLR takes a 2:1 choice of registers.
-  logic [20:0] floor_d;
-  logic        floor_gt_q;            // law_q.ex > floor_px
-  assign floor_d    = 21'(row_traced_i) - 21'(g_sel_o) - 21'(p_sel_o >> FLOOR_SHIFT) - 21'd1;
-  assign floor_ex_o = floor_gt_q ? law_q.ex : floor_px;
+  assign floor_ex_o = (law_q.ex > floor_px) ? law_q.ex : floor_px;
   assign nn0_o      = law_q.n + law_q.n0;
   assign spare_d    = {1'b0, frm_q.bud} - {1'b0, frm_q.grid};
   // (a first frame's row goes below U_MIN only from a row at U_MIN or below; docs/budget.md)
@@ -127,7 +119,6 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
     if (run_i && state_i == ST_IDLE && row_take_i) begin
       law_q.p_row <= p_sel_o;
       law_q.ex    <= c_minus_g;
-      floor_gt_q  <= !floor_d[20];
     end
     // (the last row has no next scale to slew from: SCALE_OUT = clamp(q) through the same step,
     // in [U_MIN, U_MAX] like u0, since it seeds the next frame)
@@ -144,14 +135,11 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
   // than a memory word)
   logic unused;
   assign unused = ^{cfg_i.width, cfg_i.height, cfg_i.levels, cfg_i.line_w, cfg_i.line_h,
-                    mul_prod_i[PROD_W-1:MEM_W], b_diff[SEED_W],    // (the borrow: asserted 0)
-                    floor_d[19:0]};                                 // (only its sign)
+                    mul_prod_i[PROD_W-1:MEM_W], b_diff[SEED_W]};   // (the borrow: asserted 0)
 
   // The seed pass's add stays below 2^SEED_W and a row's subtract never borrows (above). No
   // reset here: state_i comes from the controller's reset state, so b_upd is low after reset.
   `MSR_ASSERT(a_b_rest_no_borrow, b_upd |-> !b_diff[SEED_W], clk_i, 1'b0)
-  // The registered compare is the compare (where the floor is read).
-  `MSR_ASSERT(a_floor_gt, state_i == ST_FLR |-> floor_gt_q == (law_q.ex > floor_px), clk_i, 1'b0)
 
   assign frm_o = frm_q;
   assign law_o = law_q;
