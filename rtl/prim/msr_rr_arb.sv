@@ -7,7 +7,8 @@
 // Timing: the "requests above the last winner" mask is a register (a thermometer code), and
 // the grant and the next mask both come from the lowest set bit of {requests, requests above
 // the last winner}: one 2N-bit carry chain (or, with PREFIX, a prefix OR in LUTs), so the
-// grant is a handful of LUT levels for any N.
+// grant is a handful of LUT levels for any N. With MASKS the grant comes instead from
+// registered per-requester masks (below); the chain then only gives the next pointer.
 `include "msr_assert.svh"
 
 module msr_rr_arb #(
