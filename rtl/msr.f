@@ -39,8 +39,8 @@ rtl/system/msr_axil_cpuif.sv
 rtl/system/msr_reg_if.sv
 rtl/system/msr_watchdog.sv
 rtl/system/msr_cfg_ctrl.sv
-rtl/system/msr_tile_gen.sv
 rtl/system/msr_budget_pkg.sv
+rtl/system/msr_tile_gen.sv
 rtl/system/msr_budget_rows.sv
 rtl/system/msr_budget_grid.sv
 rtl/system/msr_budget_mem.sv

@@ -43,7 +43,8 @@ def curves(width: int, height: int, scenes: list[str], out: Path) -> None:
         ref = reference(sc, width, height, "fast", cache)
         traced, sse = np.zeros((len(LADDER), nty)), np.zeros((len(LADDER), nty))
         for i, u in enumerate(LADDER):
-            r = BG.select_budget(ImageRenderer(ref), width, height, PARAMS, BG.BudgetConfig(0), fixed_scale=u)
+            r = BG.select_budget(ImageRenderer(ref), width, height, PARAMS, BG.BudgetConfig(0), fixed_scale=u,
+                                 fixed_dither=True)      # dithered as a budget frame's rows
             traced[i] = r.stats["budget_control"]["traced_per_row"]
             rows = ((ref.astype(np.float64) - r.frame.astype(np.float64)) ** 2).sum(axis=(1, 2))
             sse[i] = [rows[k * T:(k + 1) * T].sum() for k in range(nty)]
@@ -84,13 +85,13 @@ def sequence(c: Curves, budget: int, frames: int, controller=BG.Controller, prio
                          BG.BudgetConfig(budget, scale_init=seed, prior_shift=prior_shift, profile=prof,
                                         profile_scales=prof_u))
         traced, sse = 0, 0.0
-        for r in range(c.nty):
-            t, s = c.row(r, ctl.scales[r])
+        for j, r in enumerate(ctl.order):                  # the dispatch order (docs/budget.md 2)
+            t, s = c.row(r, ctl.scales[j])
             traced, sse = traced + t, sse + s
             ctl.finish_row(t)
         out.append({"error_pct": 100 * (traced - ctl.budget) / ctl.budget,
                     "db_vs_fixed": c.psnr(sse) - c.fixed_psnr(traced), "scales": list(ctl.scales)})
-        seed, prof, prof_u = ctl.scale_out, ctl.activity, list(ctl.scales)
+        seed, prof, prof_u = ctl.scale_out, ctl.activity, ctl.scale_of_rows()
     return out
 
 

@@ -28,6 +28,7 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
   input logic             seeded_i,
   input logic             check_i, start_i, row_done_i,
   input logic [17:0]      row_traced_i,
+  input logic             row_bottom_i,     // any: the row's height (either) bounds its count
   input logic [ROW_W-1:0] row_idx_i
 );
   logic             init, check_done, err_budget, err_profile, row_ready, row_ok;
@@ -41,7 +42,7 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
     .clk_i, .rst_ni, .clear_i, .width_i, .height_i, .tile_log2_i, .levels_i, .budget_i,
     .scale_init_i, .prior_shift_i, .seeded_i, .check_i, .check_done_o(check_done),
     .err_budget_o(err_budget), .err_profile_o(err_profile), .start_i, .row_done_i,
-    .row_traced_i, .row_ready_o(row_ready), .row_idx_i, .row_ok_o(row_ok), .row_m_o(row_m),
+    .row_traced_i, .row_bottom_i, .row_ready_o(row_ready), .row_idx_i, .row_ok_o(row_ok), .row_m_o(row_m),
     .scale_out_o(scale_out), .scale_out_valid_o(scale_out_valid), .frame_done_o(frame_done)
   );
 

@@ -49,6 +49,7 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
   logic                 row_valid, row_ready, rows_busy;
   logic [TROW_W-1:0]    row_idx;
   logic [17:0]          row_traced;
+  logic                 row_bottom;
   logic [NUM_IN-1:0]    traced;
   logic [2:0]           lg;                // log2 T (the check passed: T is 8, 16 or 32)
   assign lg = (raw_i.tile == 6'd8) ? 3'd3 : (raw_i.tile == 6'd32) ? 3'd5 : 3'd4;
@@ -71,6 +72,7 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
     .row_valid_o  (row_valid),
     .row_ready_i  (row_ready),
     .row_idx_o    (row_idx),
+    .row_bottom_o (row_bottom),
     .row_traced_o (row_traced),
     .busy_o       (rows_busy)
   );
@@ -98,6 +100,7 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
     .start_i           (bud_start),
     .row_done_i        (row_valid && ctl_row_ready),
     .row_traced_i      (row_traced),
+    .row_bottom_i      (row_bottom),
     .row_ready_o       (ctl_row_ready),
     .row_idx_i         (row_idx_i),
     .row_ok_o          (ctl_row_ok),

@@ -51,6 +51,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   input  logic             start_i,            // pulse: an accepted budget frame starts
   input  logic             row_done_i,         // pulse: the next row in order is finished ...
   input  logic [17:0]      row_traced_i,       // ... with this many traced pixels (c_j)
+  input  logic             row_bottom_i,       // ... and it is the frame's bottom tile row
   output logic             row_ready_o,        // a row result can be taken
   input  logic [ROW_W-1:0] row_idx_i,          // the row the tile generator asks about
   output logic             row_ok_o,           // its scale is known (registered)
@@ -142,8 +143,17 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic             mem_re, mem_we;
   logic [8:0]       mem_addr;
   logic [MEM_W-1:0] mem_wdata;
-  logic             pass;                  // the seed pass: row pass_q's word
+  logic             pass;                  // the seed pass: position pass_q's word
   logic [ROW_W-1:0] pass_q;
+  logic [ROW_W-1:0] pass_row_q;            // ... the tile row at that position (next_row)
+  // The dispatch order's stride and nty - S, settled two clocks after the frame's nty (the seed
+  // pass begins after the start's chain of products).
+  logic [2:0]       ord_lgs_q;
+  logic [ROW_W-1:0] ord_nty_s_q;
+  always_ff @(posedge clk_i) begin
+    ord_lgs_q   <= row_stride_log2(frm_q.nty);
+    ord_nty_s_q <= frm_q.nty - (ROW_W'(1) << ord_lgs_q);
+  end
   assign pass      = state_q inside {ST_PRD, ST_PWT, ST_PFL, ST_PFC, ST_PMUL, ST_PB};
   assign mem_addr  = pass ? pass_q[8:0] : rows_done_q[8:0];
   // A row's own word {u_j, a_j} (a_j the product of ST_ACT), or the seed pass's product b_k.
@@ -182,6 +192,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .row_take_i   (act_q && row_done_i),
     .row_traced_i,
     .row_last_i   (row_last_q),
+    .row_bottom_i (row_bottom_i),
     .pass_i       (pass),
     .mem_word_i   (mem_word_q),
     .u_next_i     (u_q[slot1]),
@@ -199,8 +210,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // (the fields the law unit keeps to itself)
   logic unused_law;
   assign unused_law = ^{frm_q.g_full, frm_q.g_last, frm_q.grid,
-                        frm_q.bud, law_q.n0, law_q.p_row, law_q.ex, law_q.slew, law_q.u_mx,
-                        law_q.deep};
+                        frm_q.bud, law_q.n0, law_q.p_row, law_q.ex, law_q.slew, law_q.rise,
+                        law_q.u_mx, law_q.deep};
 
   // The seed pass's operands: row k's word {u_k, a_k} (from msr_budget_mem's second register).
   logic [10:0]      pass_u;
@@ -255,7 +266,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .u0_i       (frm_q.u0),
     .p_full_i   (frm_q.p_full),
     .p_last_i   (frm_q.p_last),
-    .row_last_i (pass_q + ROW_W'(1) == frm_q.nty),
+    .row_last_i (pass_row_q == frm_q.nty - ROW_W'(1)),
     .u_prev_i   (pass_u),
     .a_prev_i   (pass_a),
     .take_i     (state_q == ST_PFC && mul_done),
@@ -369,6 +380,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       act_q             <= 1'b0;
       rows_done_q       <= '0;
       pass_q            <= '0;
+      pass_row_q        <= '0;
       row_last_q        <= 1'b0;
       row_new_q         <= 1'b0;
       u_q               <= '{default: '0};
@@ -439,6 +451,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             row_last_q <= frm_q.nty == ROW_W'(1);
             row_new_q  <= frm_q.nty > ROW_W'(2);
             pass_q     <= '0;
+            pass_row_q <= '0;
           end
           ST_FLR, ST_ACT: ;
           ST_SQ0: u_q[slot2] <= u_new;
@@ -461,6 +474,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           end
           ST_PB: if (mul_done) begin
             pass_q     <= pass_q + ROW_W'(1);
+            pass_row_q <= next_row(pass_row_q, ord_lgs_q, ord_nty_s_q);
           end
           default: ;
         endcase

@@ -23,6 +23,7 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
   input  logic              row_take_i,      // a row result is taken (in ST_IDLE) ...
   input  logic [17:0]       row_traced_i,    // ... with this many traced pixels (c_j)
   input  logic              row_last_i,      // the row being updated is the frame's last
+  input  logic              row_bottom_i,    // the row taken is the frame's bottom tile row
   input  logic              pass_i,          // the seed pass (its product is b_k)
   input  logic [MEM_W-1:0]  mem_word_i,      // the activity word of the row being updated
   input  logic [10:0]       u_next_i,        // u_{j+1}
@@ -34,7 +35,7 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
   output logic [17:0]       floor_ex_o,      // max(c_j - g_j, p_j >> FLOOR_SHIFT)
   output logic [BUD_ACT_W-1:0] nn0_o,        // N + N0
   output logic              x_pos_o,         // X > 0
-  output logic [10:0]       u_new_o          // clamp(max(q, u_{j+1} >> 1))
+  output logic [10:0]       u_new_o          // clamp(min(max(q, u_{j+1} >> 1), 2 u_{j+1}))
 );
   localparam int unsigned WH_W   = BUD_WH_W;
   localparam int unsigned ACT_W  = BUD_ACT_W;
@@ -50,8 +51,8 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [WH_W:0]    spare_d;               // B' - G and its borrow (one carry chain)
   logic [17:0]      floor_px;              // p_j >> FLOOR_SHIFT
   assign x_pos_o    = !law_q.x_rem[26] && law_q.x_rem != '0;
-  assign g_sel_o    = row_last_i ? frm_q.g_last : frm_q.g_full;
-  assign p_sel_o    = row_last_i ? frm_q.p_last : frm_q.p_full;
+  assign g_sel_o    = row_bottom_i ? frm_q.g_last : frm_q.g_full;
+  assign p_sel_o    = row_bottom_i ? frm_q.p_last : frm_q.p_full;
   assign c_diff     = {1'b0, row_traced_i} - {1'b0, g_sel_o};
   assign c_minus_g  = c_diff[18] ? '0 : c_diff[17:0];
   assign floor_px   = law_q.p_row >> FLOOR_SHIFT;
@@ -122,12 +123,16 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
     end
     // (the last row has no next scale to slew from: SCALE_OUT = clamp(q) through the same step,
     // in [U_MIN, U_MAX] like u0, since it seeds the next frame)
+    // The scale moves by at most a factor of two per row either way (v5): min(max(q, u >> 1),
+    // 2 u) as two compares of q beside each other (u >> 1 < 2 u), not one after the other.
     if (run_i && state_i == ST_LAW) begin
       law_q.slew <= row_last_i ? '0 : u_next_i >> 1;
+      law_q.rise <= (row_last_i || u_next_i[10]) ? '1 : {u_next_i[9:0], 1'b0};
       law_q.deep <= !row_last_i && u_next_i <= U_MIN;
     end
     if (run_i && state_i == ST_SLEW) begin
-      law_q.u_mx <= (div_quo_i > law_q.slew) ? div_quo_i : law_q.slew;
+      law_q.u_mx <= (div_quo_i > law_q.rise) ? law_q.rise :
+                    (div_quo_i > law_q.slew) ? div_quo_i : law_q.slew;
     end
   end
 

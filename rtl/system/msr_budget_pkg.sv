@@ -74,8 +74,9 @@ package msr_budget_pkg;
     logic [17:0]          p_row;      // the finished row's p_j
     logic [17:0]          ex;         // c_j - g_j >= 0 (the floor is applied from it a clock later)
     logic [10:0]          slew;       // u_{j+1} >> 1
+    logic [10:0]          rise;       // 2 u_{j+1}, saturated at 2047 (2047 for the last row)
     logic                 deep;       // u_{j+1} <= U_MIN (a first frame's lo is U_MIN_FIRST)
-    logic [10:0]          u_mx;       // max(q, u_{j+1} >> 1)
+    logic [10:0]          u_mx;       // min(max(q, u_{j+1} >> 1), 2 u_{j+1})
   } budget_law_t;
 
   // A product's operands (msr_budget_mul_ops): b's low n bits are the multiplier, handed over
@@ -135,6 +136,24 @@ package msr_budget_pkg;
   // The slot after s of the three scale slots.
   function automatic logic [1:0] inc3(logic [1:0] s);
     return (s == 2'd2) ? 2'd0 : s + 2'd1;
+  endfunction
+
+  // The dispatch order of a budget frame (docs/budget.md section 2): tile rows interleaved at a
+  // stride S = 2^lgs, rows 0, S, 2S, .. then 1, 1 + S, .. up to phase S - 1, so the rows the law
+  // has seen are spread over the frame. lgs = msb(nty) - 2, at least 0: the largest S with
+  // 4 S <= nty (every phase holds four rows or more; raster order below 8 rows).
+  function automatic logic [2:0] row_stride_log2(logic [BUD_ROW_W-1:0] nty);
+    for (int b = BUD_ROW_W - 1; b >= 3; b--) if (nty[b]) return 3'(b - 2);
+    return 3'd0;
+  endfunction
+
+  // The row dispatched after row r: r + S within its phase, else the next phase's first row,
+  // (r mod S) + 1. nty_s = nty - S (a register of the frame): r < nty_s is r + S < nty.
+  function automatic logic [BUD_ROW_W-1:0] next_row(logic [BUD_ROW_W-1:0] r, logic [2:0] lgs,
+                                                     logic [BUD_ROW_W-1:0] nty_s);
+    logic [BUD_ROW_W-1:0] s;
+    s = BUD_ROW_W'(1) << lgs;
+    return (r < nty_s) ? r + s : (r & (s - 1'b1)) + 1'b1;
   endfunction
 
   // The law's clamp [lo, U_MAX]: lo = U_MIN, or U_MIN_FIRST for a first frame's row whose

@@ -1,17 +1,20 @@
 // Ray budget, the counting side (docs/budget.md section 3): per tile row, the traced pixels
 // (source code < 16) of the finished pixels at the frame-buffer writer's inputs, and the row's
-// results handed to the budget controller in row order.
+// results handed to the budget controller in dispatch order (rows interleaved at the stride
+// S of msr_budget_pkg::row_stride_log2, as the tile generator walks a budget frame).
 //
 // A row is finished when the last pixel of each of its ntx tiles has arrived: an engine emits
 // a tile's pixels in order and ends with the one flagged last, so by then every pixel of the
 // row has been counted (the same moment as "its pixel count reaches W * h", without a product).
-// At most three rows are open (the controller's row r-2 gates the tile generator's row r), so
-// three counter pairs indexed by row mod 3 suffice; a slot is cleared when the controller takes
-// its row, and its next row (three on) cannot have a pixel before then.
+// At most three rows are open (the controller's position j - 2 gates the tile generator's
+// position j), so three counter pairs indexed by position mod 3 suffice; a slot is cleared when
+// the controller takes its row, and its next row (three on) cannot have a pixel before then.
+// The rows of the three open positions are registers (hrow_q), moved on by next_row at each
+// take, so a pixel's slot is which of them its tile row is.
 //
-// Timing: S1 registers each input's slot (row mod 3, from the row's distance to the oldest open
-// row: as it is 0..2, the two low bits of the row and of the oldest open row give it, so the
-// row number itself is never formed), traced and last flags; S2 adds the per-slot counts (0..NUM_IN each) into the counters.
+// Timing: S1 registers each input's slot (position mod 3: the open row its tile row equals,
+// three compares with registers), traced and last flags; S2 adds the per-slot counts (0..NUM_IN
+// each) into the counters.
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
@@ -35,7 +38,8 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   // The next row's result, in row order, to the controller.
   output logic                     row_valid_o,   // row row_idx_o is finished
   input  logic                     row_ready_i,   // the controller takes it
-  output logic [TROW_W-1:0]        row_idx_o,     // the oldest open row
+  output logic [TROW_W-1:0]        row_idx_o,     // the oldest open row's position
+  output logic                     row_bottom_o,  // ... it is the frame's bottom tile row
   output logic [CNT_W-1:0]         row_traced_o,  // its traced pixels
   output logic                     busy_o         // a budget frame's rows are not all handed on
 );
@@ -45,8 +49,13 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [2:0]              lg_q;                          // log2 T
   logic [TROW_W-1:0]       ntx_q, nty_q;                  // tiles per row, rows
   logic                    act_q;                         // rows left to hand on
-  logic [TROW_W-1:0]       head_q;                        // the oldest open row
+  logic [TROW_W-1:0]       head_q;                        // the oldest open row's position
   slot_t                   hslot_q;                       // its slot
+  logic [2:0][TROW_W-1:0]  hrow_q;                        // the rows of positions head .. head + 2
+  logic                    bottom_q;                      // hrow_q[0] is row nty - 1
+  logic [2:0]              lgs_q;                         // the order's stride, log2 S
+  logic [TROW_W-1:0]       nty_s_q;                       // nty - S
+  logic                    set_q;                         // the clock after a start
   logic [2:0][CNT_W-1:0]   traced_q;
   logic [2:0][TROW_W-1:0]  tiles_q;                       // tiles of the row whose last pixel came
   // S1
@@ -61,12 +70,12 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
     return TROW_W'(q + 13'(r != '0));                    // < 2^10: n <= 4096, lg >= 3
   endfunction
 
-  // The two low bits of the tile row of pixel row y: y[lg + 1 : lg] (y's bits 3 to 6).
-  function automatic logic [1:0] row_lo(logic [6:3] y, logic [2:0] lg);
+  // The tile row of pixel row y: y >> lg.
+  function automatic logic [TROW_W-1:0] tile_row(coord_t y, logic [2:0] lg);
     unique case (lg)
-      3'd3:    return y[4:3];
-      3'd5:    return y[6:5];
-      default: return y[5:4];
+      3'd3:    return TROW_W'(y >> 3);
+      3'd5:    return TROW_W'(y >> 5);
+      default: return TROW_W'(y >> 4);
     endcase
   endfunction
 
@@ -100,6 +109,7 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   assign row_valid_o  = act_q && (tiles_q[hslot_q] == ntx_q);
   assign take         = row_valid_o && row_ready_i;
   assign row_idx_o    = head_q;
+  assign row_bottom_o = bottom_q;
   assign row_traced_o = traced_q[hslot_q];
   assign busy_o       = act_q;
 
@@ -161,12 +171,37 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
     end
   end
 
-  // S1: the row's slot from its distance to the oldest open row (0..2). head_q and hslot_q move
-  // together, so the slot is the same whether S1 saw the old or the new head.
+  // The open rows: after a start (from nty_q, the clock after) rows 0, S and 2S (S <= nty / 4,
+  // or S = 1); each take moves them on by one position. Pixels come only once the controller
+  // has the first scales, many clocks later (a_rows_set).
+  logic [TROW_W-1:0] s_row;                               // S
+  assign s_row = TROW_W'(1) << lgs_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) set_q <= 1'b0;
+    else         set_q <= start_i && !clear_i;
+  end
+  always_ff @(posedge clk_i) begin
+    if (start_i) begin
+      lgs_q <= row_stride_log2(tiles_of(height_i, tile_log2_i));
+    end else if (set_q) begin
+      nty_s_q  <= nty_q - s_row;
+      hrow_q   <= {s_row << 1, s_row, TROW_W'(0)};
+      bottom_q <= nty_q == TROW_W'(1);
+    end else if (take) begin
+      hrow_q   <= {next_row(hrow_q[2], lgs_q, nty_s_q), hrow_q[2], hrow_q[1]};
+      bottom_q <= hrow_q[1] == nty_q - 1'b1;
+    end
+  end
+
+  // S1: the row's slot from which open position its tile row is (0..2; 2 if neither of the
+  // first two). hrow_q and hslot_q move together, so the slot is the same whether S1 saw the
+  // old or the new head.
   slot_t [NUM_IN-1:0] s1_slot_d;
   always_comb begin
     for (int unsigned i = 0; i < NUM_IN; i++) begin
-      s1_slot_d[i] = slot_add(hslot_q, row_lo(pix_y_i[i][6:3], lg_q) - head_q[1:0]);
+      logic [TROW_W-1:0] r;
+      r = tile_row(pix_y_i[i], lg_q);
+      s1_slot_d[i] = slot_add(hslot_q, (r == hrow_q[0]) ? 2'd0 : (r == hrow_q[1]) ? 2'd1 : 2'd2);
     end
   end
 
@@ -182,10 +217,14 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   end
 
   /* verilator lint_off SYNCASYNCNET */
-  // Every pixel belongs to one of the three open rows.
+  // Every pixel belongs to one of the three open rows (and none comes before they are set).
   for (genvar i = 0; i < NUM_IN; i++) begin : g_chk
     `MSR_ASSERT(a_row_open, pix_fire_i[i] && act_q |->
-                TROW_W'(pix_y_i[i] >> lg_q) - head_q < TROW_W'(3), clk_i, !rst_ni || clear_i)
+                (tile_row(pix_y_i[i], lg_q) == hrow_q[0] ||
+                 tile_row(pix_y_i[i], lg_q) == hrow_q[1] ||
+                 tile_row(pix_y_i[i], lg_q) == hrow_q[2]),
+                clk_i, !rst_ni || clear_i)
+    `MSR_ASSERT(a_rows_set, pix_fire_i[i] && act_q |-> !set_q, clk_i, !rst_ni || clear_i)
   end
   `MSR_ASSERT(a_restart_idle, take_q |-> inc_tr[tslot_q] == '0 && inc_la[tslot_q] == '0,
               clk_i, !rst_ni || clear_i)

@@ -14,17 +14,22 @@
 // an engine that asks is served at once, the next one two clocks later; the engines take a
 // tile per 64 or more clocks.
 //
-// Ray budget (BUDGET_EN, docs/budget.md): the walker starts a tile row only when the budget
-// controller knows its scale (row_ok_i for row_idx_o), every tile carries its row's threshold
-// multiplier m down the pipeline, and S6 / S7 scale the thresholds, thr'' = min(255, (thr' * m +
-// 128) >> 8): S6 the products (multiplier blocks on an FPGA), registered straight out of them,
-// S7 the rounding and the saturation (in one clock, the block and its wires in and out made the
-// top's worst path: 77 MHz). With bud_en_i low the frame's descriptors are those of a top
-// without it; a top built without it (BUDGET_EN = 0) has neither stage nor the wait.
+// Ray budget (BUDGET_EN, docs/budget.md): a budget frame's walker takes the tile rows
+// interleaved (rows 0, S, 2S, .., then 1, 1 + S, ..; msr_budget_pkg::next_row), so the rows the
+// controller has seen are spread over the frame; it starts a row only when the controller knows
+// its scale (row_ok_i for row_idx_o, the row's position in that order), every tile carries its
+// row's threshold multiplier m down the pipeline, and S6 / S7 scale the thresholds,
+// thr'' = min(255, (thr' * m + d) >> 8), d the tile's dither (bit-reversed (tx + ty) mod 256,
+// whose mean is the rounding's 128: a row's mean threshold then moves smoothly with m instead
+// of in integer steps): S6 the products (multiplier blocks on an FPGA), registered straight out
+// of them, and d, S7 the add and the saturation (in one clock, the block and its wires in and
+// out made the top's worst path: 77 MHz). With bud_en_i low the frame is walked row-major and
+// m = 256 (every thr'' = thr' whatever d), so its descriptors are those of a top without it; a
+// top built without it (BUDGET_EN = 0) has neither stage nor the wait nor the order.
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
-module msr_tile_gen import msr_pkg::*; #(
+module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #(
   parameter int unsigned NUM_ENGINES = 4,
   parameter bit          BUDGET_EN   = 1'b0,                 // the ray-budget stage and row wait
   localparam int unsigned TROW_W     = COORD_W - 2          // tile row index (as the walker's)
@@ -44,7 +49,7 @@ module msr_tile_gen import msr_pkg::*; #(
   input  logic [7:0]             fov_gain_i,    // foveation gain, 0 = uniform
   // Ray budget (BUDGET_EN): the controller's scale of the row the walker is in.
   input  logic                   bud_en_i,      // this frame holds a budget
-  output logic [TROW_W-1:0]      row_idx_o,     // the tile row the walker is in
+  output logic [TROW_W-1:0]      row_idx_o,     // the walker's row: its position in the order
   input  logic                   row_ok_i,      // its scale is known (this clock)
   input  logic [12:0]            row_m_i,       // its threshold multiplier m (1.0 = 256)
   // Descriptor to the engines: valid goes to exactly one engine that is ready.
@@ -161,9 +166,23 @@ module msr_tile_gen import msr_pkg::*; #(
   // from across the die) clears that register's flag alone and never reaches the stages'
   // enables. A tile leaves at most every second clock, far above what four engines take.
   assign en        = !ctl_q.v[NST-1];
-  assign walk_go   = ctl_q.run && (!BUDGET_EN || !bud_en_i || row_ok_i);
-  assign row_idx_o = ctl_q.ty;
-  assign walk_last = ({1'b0, ctl_q.tx} + 1'b1 == ntx_q) && ({1'b0, ctl_q.ty} + 1'b1 == nty_q);
+  logic              order_set;                     // the order's stride is set (below)
+  assign walk_go   = ctl_q.run && (!BUDGET_EN || !bud_en_i || (row_ok_i && order_set));
+
+  // The row order: S = smask_q + 1, rows r, r + S, .. of phase r mod S, then the next phase. A
+  // frame without a budget (or a top without the budget) has S = 1: row-major. The last
+  // row in that order is the last of phase S - 1.
+  logic [TIDX_W-1:0] smask_q;                       // S - 1
+  logic [TIDX_W:0]   nty_s_q;                       // nty - S: ty < nty_s_q is ty + S < nty
+  logic [TIDX_W-1:0] pos_q;                         // the walker's row position in the order
+  logic [TIDX_W-1:0] ty_next;
+  logic              row_end;                       // the walker's tile is its row's last
+  assign row_end   = {1'b0, ctl_q.tx} + 1'b1 == ntx_q;
+  assign ty_next   = ({1'b0, ctl_q.ty} < nty_s_q) ? ctl_q.ty + (smask_q + 1'b1)
+                                                  : (ctl_q.ty & smask_q) + 1'b1;
+  assign walk_last = row_end && (ctl_q.ty & smask_q) == smask_q &&
+                     !({1'b0, ctl_q.ty} < nty_s_q);
+  assign row_idx_o = BUDGET_EN ? pos_q : ctl_q.ty;
 
   // The frame's tile grid, latched at START (a clear leaves it: only a START reads it).
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -176,6 +195,36 @@ module msr_tile_gen import msr_pkg::*; #(
       ntx_q <= tile_count(width_i, lg_d);
       nty_q <= tile_count(height_i, lg_d);
     end
+  end
+
+  // The order's stride, the clock after the start (from nty_q): row-major until then, and a
+  // budget frame's walker waits for it (in the top it waits far longer, for the first scale).
+  if (BUDGET_EN) begin : g_order
+    logic       set_q;
+    logic [2:0] lgs_d;                              // log2 S
+    assign lgs_d = (set_q && bud_en_i) ? row_stride_log2(TIDX_W'(nty_q)) : 3'd0;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        set_q   <= 1'b0;
+        smask_q <= '0;
+        nty_s_q <= '0;
+        pos_q   <= '0;
+      end else begin
+        set_q <= start_i && !clear_i;
+        if ((start_i && !clear_i) || set_q) begin
+          smask_q <= TIDX_W'((TIDX_W+1)'(1) << lgs_d) - 1'b1;
+          nty_s_q <= (start_i ? tile_count(height_i, lg_d) : nty_q) - ((TIDX_W+1)'(1) << lgs_d);
+        end
+        if (start_i) pos_q <= '0;
+        else if (en && walk_go && row_end) pos_q <= pos_q + 1'b1;
+      end
+    end
+    assign order_set = !set_q;
+  end else begin : g_raster
+    assign order_set = 1'b1;
+    assign smask_q = '0;
+    assign nty_s_q = nty_q - 1'b1;
+    assign pos_q   = '0;
   end
 
   always_comb begin
@@ -196,9 +245,9 @@ module msr_tile_gen import msr_pkg::*; #(
         ctl_d.last = {ctl_q.last[NST-2:0], walk_go && walk_last};
         if (walk_go) begin
           if (walk_last) ctl_d.run = 1'b0;
-          if ({1'b0, ctl_q.tx} + 1'b1 == ntx_q) begin
+          if (row_end) begin
             ctl_d.tx = '0;
-            ctl_d.ty = ctl_q.ty + 1'b1;
+            ctl_d.ty = ty_next;
           end else begin
             ctl_d.tx = ctl_q.tx + 1'b1;
           end
@@ -275,12 +324,16 @@ module msr_tile_gen import msr_pkg::*; #(
     localparam int unsigned P_W = THR_W + 13;       // thr' * m
     logic [4:0][12:0]                m_q;           // m of the tile in S1..S5
     logic [MAX_LEVELS-1:0][P_W-1:0] prod6_q;       // S6: thr' * m per level
+    logic [7:0]                      dith6_q;       // S6: the tile's dither d
     tile_desc_t                      desc6_q, desc7_q, desc7_d;
+    // d = bit-reversed (tx + ty) mod 256: neighbouring tiles far apart in [0, 255]
+    logic [7:0] txy;
+    assign txy = 8'(desc_q.x0 >> lg_q) + 8'(desc_q.y0 >> lg_q);
     always_comb begin
       desc7_d = desc6_q;
       for (int k = 0; k < MAX_LEVELS; k++) begin
         logic [P_W-1:0] p;
-        p = prod6_q[k] + P_W'(128);
+        p = prod6_q[k] + P_W'(dith6_q);
         desc7_d.thr[k] = (p[P_W-1:THR_W+8] != '0) ? thr_t'(255) : thr_t'(p[THR_W+8-1:8]);
       end
     end
@@ -288,6 +341,7 @@ module msr_tile_gen import msr_pkg::*; #(
       if (en) begin
         m_q     <= {m_q[3:0], bud_en_i ? row_m_i : 13'd256};
         desc6_q <= desc_q;
+        dith6_q <= {<<{txy}};
         for (int k = 0; k < MAX_LEVELS; k++) prod6_q[k] <= P_W'(desc_q.thr[k]) * P_W'(m_q[4]);
         desc7_q <= desc7_d;
       end
@@ -295,7 +349,7 @@ module msr_tile_gen import msr_pkg::*; #(
     assign desc_o = desc7_q;
   end else begin : g_no_budget
     logic unused_budget;
-    assign unused_budget = ^{bud_en_i, row_ok_i, row_m_i};
+    assign unused_budget = ^{bud_en_i, row_ok_i, row_m_i, pos_q};
     assign desc_o        = desc_q;
   end
 

@@ -6,14 +6,19 @@ point, 1.0 = 256, in [U_MIN, U_MAX] = [45, 1448] (a first frame's rows down to U
 the thresholds take its square,
 
     m = (u * u + 128) >> 8                               # once per tile row, 8..8190
-    thr_k'' = min(255, (thr_k' * m + 128) >> 8)          # per tile; thr_k' the foveated threshold
+    thr_k'' = min(255, (thr_k' * m + d) >> 8)            # per tile; thr_k' the foveated threshold
 
 because a tile row's traced pixels above its initial grid fall about as 1 / sqrt(threshold):
-in u they fall as 1 / u, which the law below assumes.
+in u they fall as 1 / u, which the law below assumes. d = thr_dither(tx, ty), the bit-reversed
+(tx + ty) mod 256, in place of the rounding's 128: a row's mean threshold follows thr' * m / 256
+instead of stepping between integers (small thresholds made a row's count jump at one u).
 
-Rows 0 and 1 take the seed u_0 (register SCALE_INIT, 0 read as 1.0); row r >= 2 takes the
-scale the controller computed when row r - 2 was finished, and is handed out only after that
-(so nothing depends on which engine was faster). After each finished row j, in row order:
+A budget frame dispatches its tile rows interleaved (row_order): rows 0, S, 2S, .., then 1,
+1 + S, .. (S = 2^(msb(nty) - 2), at least 1), so the rows the law has seen are spread over the
+frame. The law runs over positions j in that order: positions 0 and 1 take the seed u_0
+(register SCALE_INIT, 0 read as 1.0); position j >= 2 takes the scale the controller computed
+when position j - 2 was finished, and is handed out only after that (so nothing depends on
+which engine was faster). After each finished position j:
 
     a_j = max(c_j - g_j, p_j >> FLOOR_SHIFT) * u_j    # the row's activity: traced above its
                                        # initial grid (at least a floor), times u
@@ -21,7 +26,7 @@ scale the controller computed when row r - 2 was finished, and is handed out onl
     X   = B - C - G_rem                # budget left above the initial grid of the rows to come
     q   = ((N + N0) * Q) // ((P + P0) * X)           # first frame: the rows seen so far, extrapolated
     q   = (A_prev - A_done) // (u_0 * X)               # seeded: the previous frame's row activities
-    u_{j+2} = clamp(max(q, u_{j+1} >> 1))              # X <= 0: U_MAX; down by at most half a row
+    u_{j+2} = clamp(min(max(q, u_{j+1} >> 1), 2 u_{j+1}))   # X <= 0: U_MAX + 1; at most 2x a row
 
 clamp(v) = min(U_MAX, max(lo, v)) with lo = U_MIN (45), except in a first frame once row j + 1
 already runs at U_MIN or below: then lo = U_MIN_FIRST (32). A first frame knows nothing of the
@@ -33,8 +38,8 @@ frame holds (docs/budget.md, "The first frame's range").
 
 with Q the pixels and G_rem the initial grid of the rows not finished, N0 = ((B - G) * u_0) >>
 PRIOR_SHIFT and P0 = (W * H) >> PRIOR_SHIFT (the seed's guess "u_0 traces B", weighted as that
-part of a frame). Seeded, from the previous frame's activity a'_k and scale u'_k of every row
-(the activity memory): A_prev = sum of a'_k * w(u'_k, u_0) (seed_weight) and A_done its part over
+part of a frame). Seeded, from the previous frame's activity a'_k and scale u'_k of every
+position (the activity memory; profiles outside the controller are per tile row, top to bottom): A_prev = sum of a'_k * w(u'_k, u_0) (seed_weight) and A_done its part over
 rows <= j; a row that ran below the seed is counted as if its excess fell as 1 / u^2 between its
 own scale and the seed (docs/budget.md, "The seeded law"), and one that ran above a large seed as
 if it rose faster than 1 / u down to the seed ("The seed pass above the seed", v4). After the last row SCALE_OUT = clamp(N // (B - G)):
@@ -117,10 +122,27 @@ def thr_multiplier(u: int) -> int:
     return (int(u) * int(u) + (SCALE_ONE >> 1)) >> SCALE_FRAC
 
 
-def scale_threshold(thr, m: int):
-    """thr'' = min(255, (thr * m + 128) >> 8): one 8 x 13-bit product at the descriptor stage."""
-    out = np.minimum(255, (np.asarray(thr, dtype=np.int64) * int(m) + (SCALE_ONE >> 1)) >> SCALE_FRAC)
+def scale_threshold(thr, m: int, dither=SCALE_ONE >> 1):
+    """thr'' = min(255, (thr * m + d) >> 8): one 8 x 13-bit product at the descriptor stage. d is
+    the tile's dither (`thr_dither`) in a budget frame, 128 (rounding) elsewhere; with m = 256
+    thr'' = thr for any d in 0..255."""
+    out = np.minimum(255, (np.asarray(thr, dtype=np.int64) * int(m) + np.asarray(dither, dtype=np.int64))
+                     >> SCALE_FRAC)
     return int(out) if np.ndim(out) == 0 else out.astype(np.int32)
+
+
+def thr_dither(tx: int, ty: int) -> int:
+    """The threshold dither of tile (tx, ty): (tx + ty) mod 256 with its 8 bits reversed. Its mean
+    over 256 neighbouring tiles is 127.5, the rounding's 128 less a half: a row's mean threshold
+    then follows thr * m / 256 smoothly instead of stepping between integers (docs/budget.md
+    section 1)."""
+    v = (int(tx) + int(ty)) & 0xFF
+    return int(f"{v:08b}"[::-1], 2)
+
+
+def row_dither(ty: int, ntx: int) -> np.ndarray:
+    """thr_dither of the tiles of tile row ty, as a (1, ntx) array."""
+    return np.array([thr_dither(tx, ty) for tx in range(ntx)], dtype=np.int64)[None, :]
 
 
 def clamp_scale(u: int, lo: int = U_MIN) -> int:
@@ -168,6 +190,29 @@ def grid_count(width: int, height: int, params: Params) -> int:
     return grid_line(width, params.tile, params.stride) * grid_line(height, params.tile, params.stride)
 
 
+def row_stride_log2(nty: int) -> int:
+    """log2 of the dispatch stride S of a budget frame: the largest power of two with 4 * S <= nty
+    (at least 1): msb(nty) - 2, floored at 0. Every phase then holds at least four tile rows."""
+    return max(int(nty).bit_length() - 3, 0)
+
+
+def next_row(r: int, lgs: int, nty: int) -> int:
+    """The tile row dispatched after row r in a budget frame: r + S within its phase (r mod S),
+    else the first row of the next phase, (r mod S) + 1 (docs/budget.md section 2)."""
+    s = 1 << lgs
+    return r + s if r + s < nty else (r & (s - 1)) + 1
+
+
+def row_order(nty: int) -> list[int]:
+    """The tile rows of a budget frame in dispatch order: rows 0, S, 2S, .., then 1, 1 + S, ..
+    up to phase S - 1 (S = 2 ** row_stride_log2(nty); S = 1, raster order, below 8 rows)."""
+    lgs, out, r = row_stride_log2(nty), [], 0
+    for _ in range(nty):
+        out.append(r)
+        r = next_row(r, lgs, nty)
+    return out
+
+
 @dataclass(frozen=True)
 class BudgetConfig:
     """The budget registers: BUDGET (pixels, 0 = off), SCALE_INIT (seed u_0, 1.0 = 256, 0 read
@@ -210,7 +255,9 @@ class BudgetConfig:
 @dataclass
 class Controller:
     """The controller over one frame (docs/budget.md, "State"): feed it every finished row's
-    traced count in row order (`finish_row`); `scales[r]` is row r's u once it is known."""
+    traced count in dispatch order (`finish_row`; `order[j]` is the tile row at position j);
+    `scales[j]` is position j's u once it is known. Profiles (cfg.profile, `activity`) are per
+    tile row, top to bottom; the law and the activity memory run over positions."""
 
     width: int
     height: int
@@ -222,8 +269,8 @@ class Controller:
     grid_done: int = 0             # initial grid of the finished rows
     prof_done: int = 0             # A_done: the previous frame's activity over the finished rows
     rows_done: int = 0
-    scales: list[int] = field(default_factory=list)      # u of every tile row, as handed out
-    activity: list[int] = field(default_factory=list)    # a_j: this frame's, for the next
+    scales: list[int] = field(default_factory=list)      # u of every position, as handed out
+    act_pos: list[int] = field(default_factory=list)     # a_j of every finished position
     scale_out: int | None = None
 
     def __post_init__(self):
@@ -235,38 +282,58 @@ class Controller:
                                 f"(W {self.width}, H {self.height}, T {self.params.tile}, "
                                 f"L {self.params.levels}): status error {ERR_BUDGET}")
         self.nty = spec.tile_counts(self.width, self.height, self.params.tile)[1]
+        self.order = row_order(self.nty)
         self.profile = None if self.cfg.profile is None else [int(a) for a in self.cfg.profile]
         if self.profile is not None and len(self.profile) != self.nty:
             raise BudgetRefused(f"activity profile of {len(self.profile)} tile rows, the frame has "
                                 f"{self.nty}: status error {ERR_PROFILE}")
         u0 = self.cfg.seed
-        # The seeded law's words: a' * w(u', u0), i.e. e' * u' * w(u', u0) with e' the row's
-        # excess (floored) of the previous frame: what the START pass writes into the memory.
+        # The seeded law's words by position: a' * w(u', u0), i.e. e' * u' * w(u', u0) with e'
+        # the row's excess (floored) of the previous frame: what the START pass writes into the
+        # memory (which the hardware holds by position).
         self.prof_words = None if self.profile is None else [
-            a * seed_weight(int(u), u0, a == self.row_floor(k) * int(u))
-            for k, (a, u) in enumerate(zip(self.profile, self.cfg.profile_scales))]
+            self.profile[r] * seed_weight(int(self.cfg.profile_scales[r]), u0,
+                                          self.profile[r] == self.row_floor(k) * int(self.cfg.profile_scales[r]))
+            for k, r in enumerate(self.order)]
         self.prof_total = sum(self.prof_words) if self.profile is not None else 0
         self.prior_n = ((self.budget - self.grid) * u0) >> self.cfg.prior_shift
         self.prior_p = self.total >> self.cfg.prior_shift
         self.scales = [u0] * min(2, self.nty)
 
-    def row_height(self, r: int) -> int:
-        return min(self.params.tile, self.height - r * self.params.tile)
+    def row_height(self, j: int) -> int:
+        """The pixel height of the tile row at position j."""
+        return min(self.params.tile, self.height - self.order[j] * self.params.tile)
 
-    def row_floor(self, r: int) -> int:
-        """Row r's activity floor in pixels: p_r >> FLOOR_SHIFT."""
-        return (self.width * self.row_height(r)) >> FLOOR_SHIFT
+    def row_floor(self, j: int) -> int:
+        """Position j's activity floor in pixels: p_j >> FLOOR_SHIFT."""
+        return (self.width * self.row_height(j)) >> FLOOR_SHIFT
+
+    @property
+    def activity(self) -> list[int]:
+        """a_j of every finished tile row, top to bottom (the profile of the next frame)."""
+        out = [0] * len(self.act_pos)
+        for j, a in enumerate(self.act_pos):
+            out[self.order[j]] = a
+        return out
+
+    def scale_of_rows(self) -> list[int]:
+        """u of every tile row, top to bottom (every position's scale must be known)."""
+        out = [0] * self.nty
+        for j, u in enumerate(self.scales):
+            out[self.order[j]] = u
+        return out
 
     def finish_row(self, traced: int) -> None:
-        """Row `rows_done` is finished with `traced` pixels of source code < 16: update, and set
-        the scale of row rows_done + 2, or SCALE_OUT after the last row."""
+        """Position `rows_done` (tile row order[rows_done]) is finished with `traced` pixels of
+        source code < 16: update, and set the scale of position rows_done + 2, or SCALE_OUT after
+        the last."""
         j = self.rows_done
         h = self.row_height(j)
         g, p = row_grid(self.width, h, self.params), self.width * h
         if not g <= traced <= p:
             raise ValueError(f"row {j}: traced {traced} outside {g}..{p}")
         a = max(traced - g, self.row_floor(j)) * self.scales[j]
-        self.activity.append(a)
+        self.act_pos.append(a)
         self.n_act += a
         self.traced += traced
         self.pixels += p
@@ -278,7 +345,8 @@ class Controller:
             spare = self.budget - self.grid
             self.scale_out = U_MAX if spare <= 0 else clamp_scale(self.n_act // spare)
         elif j + 2 < self.nty:
-            self.scales.append(clamp_scale(max(self.quotient(), self.scales[j + 1] >> 1), self.scale_floor(j)))
+            u1 = self.scales[j + 1]
+            self.scales.append(clamp_scale(min(max(self.quotient(), u1 >> 1), u1 << 1), self.scale_floor(j)))
 
     def scale_floor(self, j: int) -> int:
         """lo of the clamp of u_{j+2}: U_MIN_FIRST in a first frame once u_{j+1} <= U_MIN."""
@@ -298,10 +366,12 @@ class Controller:
 
 
 def select_budget(renderer, width: int, height: int, params: Params, cfg: BudgetConfig,
-                  rule=DEFAULT_RULE, fixed_scale: int | None = None) -> FrameResult:
-    """The selective render with a ray budget: tile rows in dispatch order, each with its scale.
-    With cfg.budget == 0 this is golden.select(), bit for bit. `fixed_scale` (a u, for the
-    evaluation) runs every row at that one scale without the controller: fixed thresholds."""
+                  rule=DEFAULT_RULE, fixed_scale: int | None = None, fixed_dither: bool = False) -> FrameResult:
+    """The selective render with a ray budget: tile rows in dispatch order, each with its scale
+    and every tile's thresholds dithered. With cfg.budget == 0 this is golden.select(), bit for
+    bit. `fixed_scale` (a u, for the evaluation) runs every row at that one scale without the
+    controller: fixed thresholds, rounded as a user's (or dithered as a budget frame's, with
+    `fixed_dither`)."""
     spec.check_frame_size(width, height)
     if cfg.budget == 0 and fixed_scale is None:
         return select(renderer, width, height, params, rule=rule)
@@ -313,21 +383,24 @@ def select_budget(renderer, width: int, height: int, params: Params, cfg: Budget
     frame = np.zeros((height, width, 3), dtype=np.uint8)
     source = np.full((height, width), spec.SRC_UNSET, dtype=np.uint8)
     per_level: dict = {}
-    row_traced = []
-    for r in range(nty):
+    row_traced = [0] * nty
+    # A budget frame dispatches its tile rows interleaved (row_order); fixed thresholds do not
+    # depend on the order (every row at one scale) and take raster order.
+    for j, r in enumerate(range(nty) if ctl is None else ctl.order):
         y0, h = r * T, min(T, height - r * T)
-        m = thr_multiplier(fixed_scale if ctl is None else ctl.scales[r])
-        band_thr = [scale_threshold(t[r:r + 1], m) for t in thr_maps]
+        m = thr_multiplier(fixed_scale if ctl is None else ctl.scales[j])
+        d = row_dither(r, ntx) if ctl is not None or fixed_dither else SCALE_ONE >> 1
+        band_thr = [scale_threshold(t[r:r + 1], m, d) for t in thr_maps]
         f, s, counts = select_region(_Band(renderer, width, y0, h), width, h, params, decide, band_thr)
         frame[y0:y0 + h], source[y0:y0 + h] = f, s
         for key, v in counts.items():
             per_level[key] = per_level.get(key, 0) + v
-        row_traced.append(int((s < spec.SRC_INTERP_BASE).sum()))
+        row_traced[r] = int((s < spec.SRC_INTERP_BASE).sum())
         if ctl is not None:
-            ctl.finish_row(row_traced[-1])
+            ctl.finish_row(row_traced[r])
     stats = frame_stats(source, params, per_level, rule_name)
     stats["budget"] = 0 if ctl is None else ctl.budget
-    scales = [fixed_scale] * nty if ctl is None else ctl.scales
+    scales = [fixed_scale] * nty if ctl is None else ctl.scale_of_rows()
     stats["budget_control"] = {
         "scale_init": None if ctl is None else cfg.seed,
         "prior_shift": None if ctl is None else cfg.prior_shift,

@@ -109,6 +109,50 @@ def test_threshold_scale_identity_and_saturation():
     assert BG.thr_multiplier(BG.U_MIN) == 8 and BG.thr_multiplier(BG.U_MAX) == 8190
 
 
+# --- the dispatch order and the dither (v5, docs/budget.md sections 1 and 2) -------------------
+
+@pytest.mark.parametrize("nty", [1, 2, 3, 7, 8, 9, 15, 16, 30, 34, 68, 135, 512])
+def test_row_order_interleaves_the_rows(nty):
+    order = BG.row_order(nty)
+    assert sorted(order) == list(range(nty))
+    s = 1 << BG.row_stride_log2(nty)
+    assert (nty < 8 and s == 1) or 4 * s <= nty < 8 * s        # the largest S with 4 S <= nty
+    assert order == [r for phase in range(s) for r in range(phase, nty, s)]
+    # next_row as the hardware walks it (nty_s = nty - S a register of the frame)
+    r, walk = 0, [0]
+    for _ in range(nty - 1):
+        r = BG.next_row(r, BG.row_stride_log2(nty), nty)
+        walk.append(r)
+    assert walk == order
+
+
+def test_budget_frame_renders_its_rows_in_dispatch_order():
+    w, h = 40, 16 * 9                                            # 9 tile rows: S = 2
+    img = _noise_picture(w, h, 8)
+    seen = []
+
+    class Recorder(ImageRenderer):
+        def render(self, xs, ys):
+            ys = np.asarray(ys)
+            if ys.size and (not seen or seen[-1] != int(ys.min()) // 16):
+                seen.append(int(ys.min()) // 16)
+            return super().render(xs, ys)
+    BG.select_budget(Recorder(img), w, h, L2, BG.BudgetConfig(w * h // 4))
+    assert seen == [0, 2, 4, 6, 8, 1, 3, 5, 7] == BG.row_order(9)
+
+
+def test_dither_is_neutral_at_unit_scale_and_fractional_elsewhere():
+    row = [BG.thr_dither(tx, 3) for tx in range(256)]
+    assert sorted(row) == list(range(256))                      # every d once in 256 tiles
+    assert row[:4] == [BG.thr_dither(0, 3), 0b00100000, 0b10100000, 0b01100000]
+    assert all(BG.scale_threshold(t, 256, d) == t for t in range(256) for d in (0, 127, 255))
+    # the mean threshold of 256 tiles follows thr * m / 256 (the rounding would give one integer)
+    for t, m in ((16, 24 * 16), (16, 23 * 16), (8, 700), (32, 100)):
+        mean = np.mean([BG.scale_threshold(t, m, d) for d in row])
+        assert abs(mean - t * m / 256) <= 0.5 / 256 + 1e-9
+        assert BG.scale_threshold(t, m) == (t * m + 128) >> 8
+
+
 def test_grid_count_is_the_initial_samples():
     for (w, h), p in (((64, 40), L2), ((100, 37), L3), ((33, 17), Params(tile=8, levels=1, thr=(9,))),
                       ((96, 70), Params(tile=32, levels=3, thr=(4, 8, 16)))):
@@ -141,7 +185,7 @@ def test_rows_use_their_own_scale():
     scales = r.stats["budget_control"]["scale_per_row"]
     assert len(set(scales)) > 1
     for row, u in enumerate(scales):
-        f = BG.select_budget(ImageRenderer(img), w, h, L3, BG.BudgetConfig(0), fixed_scale=u)
+        f = BG.select_budget(ImageRenderer(img), w, h, L3, BG.BudgetConfig(0), fixed_scale=u, fixed_dither=True)
         band = slice(row * 16, row * 16 + 16)
         assert np.array_equal(r.source[band], f.source[band]) and np.array_equal(r.frame[band], f.frame[band])
 
@@ -191,17 +235,22 @@ def test_a_first_frame_reaches_below_u_min_a_seeded_frame_does_not():
     assert first.scales[2:] == [128, 64, 45, 32, 32, 32, 32, 32] and first.scale_out == BG.U_MIN
     assert g < cfg.budget
     seeded = BG.Controller(w, h, L2, BG.BudgetConfig(cfg.budget, first.scale_out, profile=first.activity,
-                                                     profile_scales=first.scales))
+                                                     profile_scales=first.scale_of_rows()))
     assert BG.BudgetConfig(1, scale_init=BG.U_MIN_FIRST).seed == BG.U_MIN     # u0 is never below 45
     for r in range(seeded.nty):
         seeded.finish_row(BG.row_grid(w, seeded.row_height(r), L2))
     assert min(seeded.scales) == BG.U_MIN and seeded.scale_out == BG.U_MIN
 
 
-def test_spent_budget_gives_the_largest_scale():
+def test_spent_budget_raises_the_scale_twofold_per_row():
+    # Nothing left above the grid (q = U_MAX + 1): the scale rises, but by at most 2x a row (v5).
     ctl = BG.Controller(64, 64, L2, BG.BudgetConfig(budget=BG.grid_count(64, 64, L2) + 10))
     ctl.finish_row(64 * 16)           # a whole row traced: nothing left above the grid
-    assert ctl.scales[2] == BG.U_MAX
+    ctl.finish_row(BG.row_grid(64, 16, L2))
+    assert ctl.scales == [256, 256, 512, 1024]
+    ctl = BG.Controller(64, 64, L2, BG.BudgetConfig(budget=BG.grid_count(64, 64, L2) + 10, scale_init=1000))
+    ctl.finish_row(64 * 16)
+    assert ctl.scales[2] == BG.U_MAX  # 2 u > U_MAX: the clamp
 
 
 # --- refusals ----------------------------------------------------------------------------------

@@ -1,11 +1,13 @@
 """budget_ctrl: the ray-budget controller's arithmetic (rtl/system/msr_budget_ctrl.sv) against
 the golden model msr_model.budget.Controller (docs/budget.md sections 1-4 and 6), clock by clock.
 
-Every clock the bench asks the controller about one tile row (row_idx_i) and checks the
-registered answer exactly: row_ok_o is 1 iff a budget frame is on and the row is the next row
-to be consumed or the one after it (so a row r >= 2 is never ok before the update of row r - 2
-has ended), and row_m_o is then (u * u + 128) >> 8 of the model's scale of that row. Row
-results c_j go in as soon as (or some clocks after) row_ready_o; SCALE_OUT after the last row,
+Every clock the bench asks the controller about one row position (row_idx_i: the tile rows
+in dispatch order, docs/budget.md section 2) and checks the registered answer exactly:
+row_ok_o is 1 iff a budget frame is on and the position is the next one to be consumed or the
+one after it (so a position j >= 2 is never ok before the update of j - 2 has ended), and
+row_m_o is then (u * u + 128) >> 8 of the model's scale of that position. Row results c_j go
+in as soon as (or some clocks after) row_ready_o, flagged when the position holds the frame's
+bottom tile row (its own height); SCALE_OUT after the last row,
 the check's two flags and its latency (<= 20 clocks) are checked against the model and the
 rules of docs/budget.md (refusal 0 < min(B, W*H) < G; SEEDED needs a memory written by a
 finished budget frame with as many tile rows)."""
@@ -63,7 +65,7 @@ class Bench:
     async def reset(self):
         dut = self.dut
         dut.rst_ni.value = 0
-        for name in ("clear_i", "check_i", "start_i", "row_done_i", "row_traced_i", "row_idx_i",
+        for name in ("clear_i", "check_i", "start_i", "row_done_i", "row_traced_i", "row_bottom_i", "row_idx_i",
                      "width_i", "height_i", "tile_log2_i", "levels_i", "budget_i", "scale_init_i",
                      "prior_shift_i", "seeded_i"):
             getattr(dut, name).value = 0
@@ -96,7 +98,7 @@ class Bench:
             v = self.rng.randrange(0, 1 << 10)
         return v & 0x3FF
 
-    async def clock(self, check=0, start=0, clear=0, row=None, probe=None, cfg=None):
+    async def clock(self, check=0, start=0, clear=0, row=None, probe=None, cfg=None, bottom=False):
         """One clock: inputs written after the falling edge, outputs read in ReadOnly (they are
         the state after the last rising edge; the inputs act at the next one)."""
         d = self.dut
@@ -108,6 +110,7 @@ class Bench:
         if row is not None:
             assert int(d.row_ready_o.value) == 1, "row result given while row_ready_o is low"
             d.row_traced_i.value = row
+            d.row_bottom_i.value = int(bottom)
         probe = self.pick_probe() if probe is None else probe
         d.row_idx_i.value = probe
         await ReadOnly()
@@ -204,8 +207,9 @@ class Bench:
         if seeded:
             # which branch of the seed pass's weight w(u'_k, u0) every row's word took
             u0s = cfg.seed
-            for r, (a, u) in enumerate(zip(self.mem, self.mem_u)):
-                floored = a == self.ctl.row_floor(r) * u
+            for k, r in enumerate(self.ctl.order):
+                a, u = self.mem[r], self.mem_u[r]
+                floored = a == self.ctl.row_floor(k) * u
                 k = ("w_below" if u <= u0s else "w_floored" if floored else
                      "w_half" if u0s >= BG.SEED_ABOVE_HALF else
                      "w_quarter" if u0s >= BG.SEED_ABOVE_QUARTER else "w_seed")
@@ -244,7 +248,7 @@ class Bench:
                 await self.clock(clear=1)
                 self.act, self.pending, self.ctl = False, False, None
                 return None
-            await self.clock(row=c)
+            await self.clock(row=c, bottom=self.ctl.order[j] == self.nty - 1)
             self.ctl.finish_row(c)
             self.rows += 1
             self.classify(j)
@@ -260,7 +264,7 @@ class Bench:
         assert int(d.scale_out_o.value) == self.ctl.scale_out, (
             f"SCALE_OUT {int(d.scale_out_o.value)}, want {self.ctl.scale_out} ({W}x{H} T{T} L{L} B {B})")
         self.mem = list(self.ctl.activity)
-        self.mem_u = list(self.ctl.scales)
+        self.mem_u = self.ctl.scale_of_rows()
         self.frames += 1
         for _ in range(self.rng.randint(1, 4)):
             await self.clock()
@@ -277,10 +281,11 @@ class Bench:
             k = "none"
         else:
             x = ctl.budget - ctl.traced - (ctl.grid - ctl.grid_done)
-            q, slew = ctl.quotient(), ctl.scales[j + 1] >> 1
+            q, slew, rise = ctl.quotient(), ctl.scales[j + 1] >> 1, ctl.scales[j + 1] << 1
             law = "seeded" if ctl.profile is not None else "first"
             deep = ctl.scales[j + 2] < BG.U_MIN         # a first frame's row below 45
-            k = ("x<=0" if x <= 0 else f"{law}_sat" if q > BG.U_MAX else f"{law}_slew" if q < slew
+            k = ("x<=0" if x <= 0 else f"{law}_rise" if q > rise and rise <= BG.U_MAX else
+                 f"{law}_sat" if q > BG.U_MAX else f"{law}_slew" if q < slew
                  else "first_deep" if deep else f"{law}_min" if q < BG.U_MIN else f"{law}_mid")
         self.law[k] = self.law.get(k, 0) + 1
 
@@ -450,8 +455,8 @@ async def test_random_frames(dut):
         await random_sequence(b, rng, W, H, rng.choice((8, 16, 32)), rng.randint(1, 3), rng.randint(2, 3),
                               gap=rng.choice(((0, 0), (0, 3), (0, 20))))
     b.summary()
-    for k in ("first_mid", "first_slew", "first_sat", "first_min", "first_deep", "seeded_mid", "seeded_slew",
-              "seeded_sat", "x<=0", "none", "out_mid", "out_max", "out_min",
+    for k in ("first_mid", "first_slew", "first_sat", "first_rise", "first_min", "first_deep", "seeded_mid",
+              "seeded_slew", "seeded_sat", "seeded_rise", "x<=0", "none", "out_mid", "out_max", "out_min",
               "w_below", "w_half", "w_quarter", "w_seed", "w_capped", "w_uncapped", "w_floored"):
         assert b.law.get(k, 0) > 0, f"law branch {k} never taken: {b.law}"
 

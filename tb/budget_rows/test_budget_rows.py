@@ -1,8 +1,9 @@
 """budget_rows: per tile row, the traced pixels at the writer's inputs, handed to the budget
-controller in row order once each of the row's tiles has sent its last pixel (docs/budget.md
-section 3). The bench plays the tile generator's rule (a row starts only when the row two above
-it was handed on), spreads the tiles over the inputs, interleaves their pixels at random and
-checks every row's count against its own tally."""
+controller in dispatch order (docs/budget.md sections 2 and 3: rows interleaved,
+msr_model.budget.row_order) once each of the row's tiles has sent its last pixel, flagged when it
+is the frame's bottom row. The bench plays the tile generator's rule (a row starts only when the
+row two before it in that order was handed on), spreads the tiles over the inputs, interleaves
+their pixels at random and checks every row's count against its own tally."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -19,18 +20,23 @@ TILE_LOG2 = {8: 3, 16: 4, 32: 5}
 
 
 def tiles_of(W, H, T):
-    for ty in range((H + T - 1) // T):
+    """(position, pixels) of every tile in dispatch order."""
+    from msr_model.budget import row_order
+    for k, ty in enumerate(row_order((H + T - 1) // T)):
         for tx in range((W + T - 1) // T):
-            yield ty, [(x, y) for y in range(ty * T, min(H, ty * T + T)) for x in range(tx * T, min(W, tx * T + T))]
+            yield k, [(x, y) for y in range(ty * T, min(H, ty * T + T)) for x in range(tx * T, min(W, tx * T + T))]
 
 
 async def run_frame(dut, rng, W, H, T, p_traced, p_ready):
     n_in = int(dut.NUM_IN.value)
     nty = (H + T - 1) // T
     dut.width_i.value, dut.height_i.value, dut.tile_log2_i.value = W, H, TILE_LOG2[T]
+    from msr_model.budget import row_order
+    order = row_order(nty)
     dut.start_i.value = 1
     await RisingEdge(dut.clk_i)
     dut.start_i.value = 0
+    await RisingEdge(dut.clk_i)                  # (the unit sets its open rows; a_rows_set)
     todo = list(tiles_of(W, H, T))
     streams = [[] for _ in range(n_in)]          # per input: (y, traced, last) still to send
     want = [0] * nty
@@ -54,7 +60,8 @@ async def run_frame(dut, rng, W, H, T, p_traced, p_ready):
         await ReadOnly()
         if int(dut.row_valid_o.value) and int(dut.row_ready_i.value):
             r = int(dut.row_idx_o.value)
-            assert r == len(handed), f"row {r} handed on, expected row {len(handed)}"
+            assert r == len(handed), f"position {r} handed on, expected {len(handed)}"
+            assert int(dut.row_bottom_o.value) == (order[r] == nty - 1), f"position {r}: bottom flag"
             handed.append(int(dut.row_traced_o.value))
         busy = int(dut.busy_o.value)
         await RisingEdge(dut.clk_i)
@@ -74,8 +81,9 @@ async def test_rows(dut):
     rng = seeded_rng(dut, 4242)
     await start_clock_and_reset(dut, {"clear_i": 0, "start_i": 0, "pix_fire_i": 0, "row_ready_i": 0})
     await RisingEdge(dut.clk_i)
+    # 13 rows (S = 2), 38 (S = 8), 65 (S = 16: four phases of five rows, the rest of four)
     cases = [(1, 1, 8, 1.0, 1.0), (70, 50, 16, 0.3, 0.5), (33, 100, 8, 0.0, 0.2),
-             (64, 64, 32, 1.0, 0.9), (130, 9, 16, 0.5, 0.05)]
+             (64, 64, 32, 1.0, 0.9), (130, 9, 16, 0.5, 0.05), (20, 300, 8, 0.4, 0.6), (9, 520, 8, 0.6, 0.3)]
     for _ in range(3):
         cases.append((rng.randint(1, 90), rng.randint(1, 90), rng.choice((8, 16, 32)), rng.random(), rng.random() * 0.9 + 0.1))
     for c in cases:
@@ -85,6 +93,7 @@ async def test_rows(dut):
     dut.start_i.value = 1
     await RisingEdge(dut.clk_i)
     dut.start_i.value = 0
+    await RisingEdge(dut.clk_i)
     dut.pix_fire_i.value = 1
     dut.pix_y_i.value = 0
     dut.pix_traced_i.value = 1

@@ -956,7 +956,10 @@ async def test_budget(dut):
         await program_budget(env, 300)
         await expect_refused(dut, env, ERR_BUDGET, "a budget in a top without the controller")
         return
-    for W, H, tile, levels, thr, gain, frac in ((48, 72, 8, 2, [6, 12], 0, 0.35), (40, 40, 8, 3, [8, 16, 32], 60, 0.2)):
+    # 9 tile rows (dispatched interleaved at S = 2), 5 (row-major), 17 (S = 4, the bottom row,
+    # 6 pixels high, fifth in the order)
+    for W, H, tile, levels, thr, gain, frac in ((48, 72, 8, 2, [6, 12], 0, 0.35), (40, 40, 8, 3, [8, 16, 32], 60, 0.2),
+                                                (24, 134, 8, 2, [6, 12], 30, 0.3)):
         params = Params(tile=tile, levels=levels, thr=tuple(thr), fov_gain=gain)
         G = grid_count(W, H, params)
         budget = G + int((W * H - G) * frac)

@@ -117,19 +117,25 @@ async def reset(dut):
 
 @cocotb.test()
 async def test_budget_rows(dut):
-    """BUDGET_EN: the walker starts a tile row only once its scale is known (row_ok_i for
-    row_idx_o), and every tile's thresholds are its row's, scaled as docs/budget.md section 1
-    (msr_model.budget.scale_threshold) on top of the foveation."""
+    """BUDGET_EN: a budget frame's walker takes the tile rows in the interleaved order of
+    docs/budget.md section 2 (msr_model.budget.row_order), starts a row only once its scale is
+    known (row_ok_i for row_idx_o, the row's position in that order), and every tile's
+    thresholds are its row's, scaled and dithered as section 1 (scale_threshold with
+    thr_dither) on top of the foveation."""
     if not int(dut.BUDGET_EN.value):
         return                                  # a top without the stage: test_frames covers it
-    from msr_model.budget import scale_threshold
+    from msr_model.budget import row_order, scale_threshold, thr_dither
     n_eng = int(dut.NUM_ENGINES.value)
     rng = seeded_rng(dut, 777 + n_eng)
     await reset(dut)
-    for W, H, T, L, gain, gap in ((100, 70, 16, 3, 40, 150), (37, 90, 8, 2, 0, 60), (300, 64, 32, 3, 255, 0)):
+    # 5 rows (row-major), 12 rows (S = 2), 2 rows, 38 rows (S = 8, the last phase shorter)
+    for W, H, T, L, gain, gap in ((100, 70, 16, 3, 40, 150), (37, 90, 8, 2, 0, 60), (300, 64, 32, 3, 255, 0),
+                                  (70, 300, 8, 3, 90, 40)):
         thr = tuple(rng.randint(0, 255) for _ in range(3))
         nty = (H + T - 1) // T
-        m = [rng.choice((8, 255, 256, 257, 8190, rng.randint(8, 8190))) for _ in range(nty)]
+        m = [rng.choice((8, 255, 256, 257, 8190, rng.randint(8, 8190))) for _ in range(nty)]   # by position
+        order = row_order(nty)
+        pos_of = {r: k for k, r in enumerate(order)}
         released = [2]
         now = [0]
 
@@ -160,7 +166,7 @@ async def test_budget_rows(dut):
             await ReadOnly()
             if int(dut.desc_valid_o.value):
                 d = unpack_desc(int(dut.desc_o.value))
-                assert d["y0"] // T < released[0], f"row {d['y0'] // T} handed out before its scale"
+                assert pos_of[d["y0"] // T] < released[0], f"row {d['y0'] // T} handed out before its scale"
                 got.append(d)
             if int(dut.done_o.value):
                 break
@@ -168,10 +174,13 @@ async def test_budget_rows(dut):
         else:
             raise AssertionError("budget frame never done")
         task.cancel()
-        want = expected_tiles(W, H, T, L, 0, thr, gain, 0)
+        want = sorted(expected_tiles(W, H, T, L, 0, thr, gain, 0), key=lambda w: (pos_of[w["y0"] // T], w["x0"]))
         for w in want:
-            w["thr"] = tuple(scale_threshold(t, m[w["y0"] // T]) for t in w["thr"])
-        assert got == want
+            k, tx, ty = pos_of[w["y0"] // T], w["x0"] // T, w["y0"] // T
+            w["thr"] = tuple(scale_threshold(t, m[k], thr_dither(tx, ty)) for t in w["thr"])
+        assert len(got) == len(want)
+        for i, (g, w) in enumerate(zip(got, want)):
+            assert g == w, f"tile {i} ({W}x{H} T{T}): got {g}, want {w}"
         if gap:
             assert now[0] >= gap * (nty - 2), "the walker did not wait for the rows' scales"
         await RisingEdge(dut.clk_i)
@@ -185,4 +194,4 @@ def test_tile_gen(engines, budget):
     run_cocotb("msr_tile_gen", "test_tile_gen", HERE, {"NUM_ENGINES": engines, "BUDGET_EN": budget},
                f"e{engines}" + ("_budget" if budget else ""),
                sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_clr_reg.sv",
-                        RTL / "system/msr_tile_gen.sv"])
+                        RTL / "system/msr_budget_pkg.sv", RTL / "system/msr_tile_gen.sv"])
