@@ -49,9 +49,10 @@ def reference(scene: str, w: int, h: int, mode: str, cache: Path) -> np.ndarray:
     return load_rgb(p)
 
 
-def run(ref, params, rule, cfg=None, fixed=None) -> dict:
+def run(ref, params, rule, cfg=None, fixed=None, fixed_dither=False) -> dict:
     h, w = ref.shape[:2]
-    r = BG.select_budget(ImageRenderer(ref), w, h, params, cfg or BG.BudgetConfig(0), rule=rule, fixed_scale=fixed)
+    r = BG.select_budget(ImageRenderer(ref), w, h, params, cfg or BG.BudgetConfig(0), rule=rule, fixed_scale=fixed,
+                         fixed_dither=fixed_dither)
     bc = r.stats["budget_control"]
     return {"traced": r.stats["traced"], "psnr": psnr(ref, r.frame), "scale_per_row": bc["scale_per_row"],
             "traced_per_row": bc["traced_per_row"], "activity_per_row": bc["activity_per_row"],
@@ -67,10 +68,10 @@ def curve_psnr(curve: dict, traced: int) -> float | None:
     return None
 
 
-def evaluate_scene(ref, params, rule, budgets, frames, log) -> dict:
+def evaluate_scene(ref, params, rule, budgets, frames, log, fixed_dither=False) -> dict:
     h, w = ref.shape[:2]
     total = w * h
-    curve = {u: run(ref, params, rule, fixed=u) for u in LADDER}
+    curve = {u: run(ref, params, rule, fixed=u, fixed_dither=fixed_dither) for u in LADDER}
     out = {"budgets": {}}
     for pct in budgets:
         B = total * pct // 100
@@ -88,7 +89,7 @@ def evaluate_scene(ref, params, rule, budgets, frames, log) -> dict:
                 if tb <= f["traced"] <= ta and b - a > 2:
                     mid = int(round(math.sqrt(a * b)))
                     if mid not in curve:
-                        curve[mid] = run(ref, params, rule, fixed=mid)
+                        curve[mid] = run(ref, params, rule, fixed=mid, fixed_dither=fixed_dither)
         rec = []
         for k, f in enumerate(seq):
             fixed = curve_psnr(curve, f["traced"])
@@ -191,6 +192,9 @@ def main(argv=None):
     ap.add_argument("--example", default="teapots", help="scene of the per-row picture")
     ap.add_argument("--out", default=None, help="default out/budget/WxH")
     ap.add_argument("--docs", action="store_true", help="also copy the plots to docs/img/budget_*.png")
+    ap.add_argument("--fixed-dither", action="store_true",
+                    help="the fixed-threshold curve with the budget frames' dither (a uniform scale as the "
+                         "controller's rows see it) instead of rounded thresholds (a user's fixed setting)")
     a = ap.parse_args(argv)
     W, H = a.width, a.height
     out = Path(a.out or REPO / f"out/budget/{W}x{H}")
@@ -210,14 +214,14 @@ def main(argv=None):
         f"{grid} = {100 * grid / (W * H):.2f} % of the frame, budgets {budgets} %, {len(scenes)} scenes")
     result = {"config": {"width": W, "height": H, "mode": a.mode, "params": params.as_dict(), "rule": a.rule,
                          "budgets": budgets, "frames": a.frames, "grid": grid, "prior_shift": BG.PRIOR_SHIFT,
-                         "ladder": list(LADDER)}, "scenes": {}}
+                         "ladder": list(LADDER), "fixed_dither": a.fixed_dither}, "scenes": {}}
     t0 = time.perf_counter()
     example = None
     for sc in scenes:
         sid = scene_id(sc)
         ref = reference(sc, W, H, a.mode, cache)
         log(f"{sid} ({time.perf_counter() - t0:.0f} s)")
-        res = evaluate_scene(ref, params, a.rule, budgets, a.frames, log)
+        res = evaluate_scene(ref, params, a.rule, budgets, a.frames, log, a.fixed_dither)
         res["budgets"] = {str(k): v for k, v in res["budgets"].items()}
         result["scenes"][sid] = res
         if sid == a.example:

@@ -178,10 +178,13 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
   logic [TIDX_W-1:0] ty_next;
   logic              row_end;                       // the walker's tile is its row's last
   assign row_end   = {1'b0, ctl_q.tx} + 1'b1 == ntx_q;
-  assign ty_next   = ({1'b0, ctl_q.ty} < nty_s_q) ? ctl_q.ty + (smask_q + 1'b1)
-                                                  : (ctl_q.ty & smask_q) + 1'b1;
-  assign walk_last = row_end && (ctl_q.ty & smask_q) == smask_q &&
-                     !({1'b0, ctl_q.ty} < nty_s_q);
+  // (a top without the budget keeps the row-major walker's own logic, gate for gate)
+  assign ty_next   = !BUDGET_EN                      ? ctl_q.ty + 1'b1 :
+                     ({1'b0, ctl_q.ty} < nty_s_q)    ? ctl_q.ty + (smask_q + 1'b1)
+                                                     : (ctl_q.ty & smask_q) + 1'b1;
+  assign walk_last = row_end && (!BUDGET_EN ? {1'b0, ctl_q.ty} + 1'b1 == nty_q
+                                            : (ctl_q.ty & smask_q) == smask_q &&
+                                              !({1'b0, ctl_q.ty} < nty_s_q));
   assign row_idx_o = BUDGET_EN ? pos_q : ctl_q.ty;
 
   // The frame's tile grid, latched at START (a clear leaves it: only a START reads it).
