@@ -68,14 +68,15 @@ def curve_psnr(curve: dict, traced: int) -> float | None:
     return None
 
 
-def evaluate_scene(ref, params, rule, budgets, frames, log, fixed_dither=False) -> dict:
+def evaluate_scene(ref, params, rule, budgets, frames, log, fixed_dither=False, first_seed="256") -> dict:
     h, w = ref.shape[:2]
     total = w * h
     curve = {u: run(ref, params, rule, fixed=u, fixed_dither=fixed_dither) for u in LADDER}
     out = {"budgets": {}}
     for pct in budgets:
         B = total * pct // 100
-        seq, cfg = [], BG.BudgetConfig(B)
+        u0 = BG.SCALE_ONE if first_seed == "256" else BG.budget_seed(w, h, B, params)
+        seq, cfg = [], BG.BudgetConfig(B, scale_init=u0)
         for _ in range(frames):
             f = run(ref, params, rule, cfg)
             seq.append(f)
@@ -192,6 +193,9 @@ def main(argv=None):
     ap.add_argument("--example", default="teapots", help="scene of the per-row picture")
     ap.add_argument("--out", default=None, help="default out/budget/WxH")
     ap.add_argument("--docs", action="store_true", help="also copy the plots to docs/img/budget_*.png")
+    ap.add_argument("--first-seed", choices=("256", "budget"), default="256",
+                    help="SCALE_INIT of a sequence's first frame: 256 (the registers' default) or a "
+                         "driver's seed from the budget alone (msr_model.budget.budget_seed)")
     ap.add_argument("--fixed-dither", action="store_true",
                     help="the fixed-threshold curve with the budget frames' dither (a uniform scale as the "
                          "controller's rows see it) instead of rounded thresholds (a user's fixed setting)")
@@ -214,14 +218,15 @@ def main(argv=None):
         f"{grid} = {100 * grid / (W * H):.2f} % of the frame, budgets {budgets} %, {len(scenes)} scenes")
     result = {"config": {"width": W, "height": H, "mode": a.mode, "params": params.as_dict(), "rule": a.rule,
                          "budgets": budgets, "frames": a.frames, "grid": grid, "prior_shift": BG.PRIOR_SHIFT,
-                         "ladder": list(LADDER), "fixed_dither": a.fixed_dither}, "scenes": {}}
+                         "ladder": list(LADDER), "fixed_dither": a.fixed_dither, "first_seed": a.first_seed},
+              "scenes": {}}
     t0 = time.perf_counter()
     example = None
     for sc in scenes:
         sid = scene_id(sc)
         ref = reference(sc, W, H, a.mode, cache)
         log(f"{sid} ({time.perf_counter() - t0:.0f} s)")
-        res = evaluate_scene(ref, params, a.rule, budgets, a.frames, log, a.fixed_dither)
+        res = evaluate_scene(ref, params, a.rule, budgets, a.frames, log, a.fixed_dither, a.first_seed)
         res["budgets"] = {str(k): v for k, v in res["budgets"].items()}
         result["scenes"][sid] = res
         if sid == a.example:

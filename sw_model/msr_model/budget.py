@@ -213,6 +213,18 @@ def row_order(nty: int) -> list[int]:
     return out
 
 
+def budget_seed(width: int, height: int, budget: int, params: Params, c: int = 38) -> int:
+    """A first frame's SCALE_INIT from the budget alone, for a driver with no previous frame:
+    u_0 = clamp(round(c * sqrt(W * H / (B' - G)))), B' = min(B, W * H). Fitted on the scale the
+    evaluation's sequences settle at (1080p, thr 8, 16, 32, docs/budget.md section 7: c = 34 to
+    40 at 5 to 20 %); the thresholds' own values move it (thresholds twice as large settle at a
+    scale sqrt(2) smaller). A driver's choice: the hardware reads SCALE_INIT as written."""
+    spare = min(int(budget), width * height) - grid_count(width, height, params)
+    if spare <= 0:
+        return U_MAX
+    return clamp_scale(int(c * (width * height / spare) ** 0.5 + 0.5))
+
+
 @dataclass(frozen=True)
 class BudgetConfig:
     """The budget registers: BUDGET (pixels, 0 = off), SCALE_INIT (seed u_0, 1.0 = 256, 0 read

@@ -319,3 +319,12 @@ def test_cli_bad_budget_prev(tmp_path, picture):
     bad.write_text("{}")
     r = _cli("select", picture, "--budget", "30%", "--budget-prev", bad, "--out", tmp_path / "o.png")
     assert r.returncode == 2 and "budget-prev" in r.stderr
+
+
+def test_budget_seed_from_the_budget_alone():
+    p = Params(tile=16, levels=3, thr=(8, 16, 32))
+    assert [BG.budget_seed(1920, 1080, 1920 * 1080 * k // 100, p) for k in (5, 10, 20)] == [313, 149, 94]
+    g = BG.grid_count(64, 64, p)
+    assert BG.budget_seed(64, 64, g, p) == BG.U_MAX                   # nothing above the grid
+    assert BG.budget_seed(64, 64, g + 1, p) == BG.U_MAX               # clamped
+    assert BG.budget_seed(64, 64, 1 << 24, p) == BG.U_MIN             # the whole frame: clamped
