@@ -45,7 +45,6 @@ rtl/system/msr_budget_rows.sv
 rtl/system/msr_budget_grid.sv
 rtl/system/msr_budget_mem.sv
 rtl/system/msr_budget_law.sv
-rtl/system/msr_budget_seed_w.sv
 rtl/system/msr_budget_mul_ops.sv
 rtl/system/msr_budget_ctrl.sv
 rtl/system/msr_budget.sv

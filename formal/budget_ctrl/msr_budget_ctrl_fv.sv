@@ -125,7 +125,7 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
   // entered with it loaded (or done), so the wait plus the steps left never exceeds 25; the
   // divider counts its 12 steps from the law on.
   wire mul_wait = dut.state_q inside {ST_G, ST_WH, ST_GL, ST_PL, ST_N0,
-                                      ST_M0, ST_ACT, ST_NUM, ST_DEN, ST_SQ, ST_PFC, ST_PB};
+                                      ST_M0, ST_ACT, ST_NUM, ST_DEN, ST_SQ, ST_PB};
   a_mul_cnt:   assert property (@(posedge clk_i) disable iff (!rst_ni) dut.u_mul.cnt_q <= 5'd25);
   a_mul_done:  assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 dut.u_mul.done_q == (dut.u_mul.cnt_q == '0));

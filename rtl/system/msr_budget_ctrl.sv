@@ -2,7 +2,7 @@
 // sw_model/msr_model/budget.py, class Controller, bit for bit). This module is the state
 // machine, the scale slots and the shared multiplier and divider; the frame's constants and the
 // law's running sums are msr_budget_law's registers, the multiplier's operands by state
-// msr_budget_mul_ops's choice, the seed pass's weight msr_budget_seed_w's.
+// msr_budget_mul_ops's choice.
 //
 // Why sequential: a tile row lasts thousands of clocks and the law runs once per row, so one
 // bit-serial multiplier (msr_shift_add_mul, up to 36 x 25 bits, as many clocks as the multiplier
@@ -145,16 +145,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [MEM_W-1:0] mem_wdata;
   logic             pass;                  // the seed pass: position pass_q's word
   logic [ROW_W-1:0] pass_q;
-  logic [ROW_W-1:0] pass_row_q;            // ... the tile row at that position (next_row)
-  // The dispatch order's stride and nty - S, settled two clocks after the frame's nty (the seed
-  // pass begins after the start's chain of products).
-  logic [2:0]       ord_lgs_q;
-  logic [ROW_W-1:0] ord_nty_s_q;
-  always_ff @(posedge clk_i) begin
-    ord_lgs_q   <= row_stride_log2(frm_q.nty);
-    ord_nty_s_q <= frm_q.nty - (ROW_W'(1) << ord_lgs_q);
-  end
-  assign pass      = state_q inside {ST_PRD, ST_PWT, ST_PFL, ST_PFC, ST_PMUL, ST_PB};
+  assign pass      = state_q inside {ST_PRD, ST_PWT, ST_PW, ST_PMUL, ST_PB};
   assign mem_addr  = pass ? pass_q[8:0] : rows_done_q[8:0];
   // A row's own word {u_j, a_j} (a_j the product of ST_ACT), or the seed pass's product b_k.
   assign mem_wdata = pass ? MEM_W'(mul_prod) : {u_q[base_q], 28'(mul_prod)};
@@ -258,22 +249,11 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [5:0]      n0_last_q;
   always_ff @(posedge clk_i) n0_last_q <= grid_axis(frm_q.h_last, cfg.levels);
 
-  // The seed pass's weight w(u'_k, u0) and row k's floor (msr_budget_seed_w): ST_PFL loads the
-  // floor product (p_k >> FLOOR_SHIFT) * u'_k, ST_PFC registers w from it for ST_PMUL.
-  logic [10:0] pass_floor_q, pass_w_q;
-  msr_budget_seed_w #(.PROD_W(PROD_W)) u_seed_w (
-    .clk_i,
-    .u0_i       (frm_q.u0),
-    .p_full_i   (frm_q.p_full),
-    .p_last_i   (frm_q.p_last),
-    .row_last_i (pass_row_q == frm_q.nty - ROW_W'(1)),
-    .u_prev_i   (pass_u),
-    .a_prev_i   (pass_a),
-    .take_i     (state_q == ST_PFC && mul_done),
-    .prod_i     (mul_prod),
-    .floor_o    (pass_floor_q),
-    .w_o        (pass_w_q)
-  );
+  // The seed pass's weight w(u'_k, u0) = min(u'_k, u0) (docs/budget.md section 4), registered
+  // from the word's register every clock: the word is there from ST_PW on, so w is at ST_PMUL,
+  // which loads a'_k * w (a compare into the multiplier's load was once the top's worst path).
+  logic [10:0] pass_w_q;
+  always_ff @(posedge clk_i) pass_w_q <= (pass_u > frm_q.u0) ? frm_q.u0 : pass_u;
 
   // The operands of the product that loads this clock, by the state that loads it.
   msr_budget_mul_ops u_mul_ops (
@@ -288,8 +268,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .u_row_i      (u_q[base_q]),
     .u_new_i      (u_new),
     .pass_a_i     (pass_a),
-    .pass_u_i     (pass_u),
-    .pass_floor_i (pass_floor_q),
     .pass_w_i     (pass_w_q),
     .op_o         (mop)
   );
@@ -323,12 +301,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         mem_re  = 1'b1;
         state_d = ST_PWT;
       end
-      ST_PWT: state_d = ST_PFL;
-      ST_PFL: begin
-        mul_load = 1'b1;
-        state_d  = ST_PFC;
-      end
-      ST_PFC: if (mul_done) state_d = ST_PMUL;
+      ST_PWT: state_d = ST_PW;
+      ST_PW:  state_d = ST_PMUL;
       ST_PMUL: begin
         mul_load = 1'b1;
         state_d  = ST_PB;
@@ -380,7 +354,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       act_q             <= 1'b0;
       rows_done_q       <= '0;
       pass_q            <= '0;
-      pass_row_q        <= '0;
       row_last_q        <= 1'b0;
       row_new_q         <= 1'b0;
       u_q               <= '{default: '0};
@@ -451,7 +424,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             row_last_q <= frm_q.nty == ROW_W'(1);
             row_new_q  <= frm_q.nty > ROW_W'(2);
             pass_q     <= '0;
-            pass_row_q <= '0;
           end
           ST_FLR, ST_ACT: ;
           ST_SQ0: u_q[slot2] <= u_new;
@@ -474,7 +446,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           end
           ST_PB: if (mul_done) begin
             pass_q     <= pass_q + ROW_W'(1);
-            pass_row_q <= next_row(pass_row_q, ord_lgs_q, ord_nty_s_q);
           end
           default: ;
         endcase

@@ -6,7 +6,7 @@
 // A check or a start (seq_load_i) loads G = line(W) * line(H) whatever the state; otherwise the
 // state's own product (a product done in a chain state starts the next: start G, W * H, g and p
 // of the last row, N0, m0; the law's numerator, then its denominator; the row's floor and
-// activity; the seed pass's floor and b_k; the new scale's square).
+// activity; the seed pass's b_k; the new scale's square).
 //
 // Timing: each operand is one flat AND-OR choice of its sources, a source shared by the
 // products that use it. A multiplexer per product and state, nested, was the controller's
@@ -30,8 +30,6 @@ module msr_budget_mul_ops import msr_pkg::*; import msr_budget_pkg::*; #(
   input  logic [10:0]      u_row_i,        // the finished row's scale u_j
   input  logic [10:0]      u_new_i,        // the new scale u_{j+2}
   input  logic [27:0]      pass_a_i,       // the seed pass: a'_k ...
-  input  logic [10:0]      pass_u_i,       // ... u'_k ...
-  input  logic [10:0]      pass_floor_i,   // ... p_k >> FLOOR_SHIFT ...
   input  logic [10:0]      pass_w_i,       // ... and w(u'_k, u0)
   output budget_mul_op_t   op_o            // the product's operands
 );
@@ -48,7 +46,6 @@ module msr_budget_mul_ops import msr_pkg::*; import msr_budget_pkg::*; #(
            | (nn0_i                 & {MC_W{g && state_i == ST_LAW && !frm_i.seeded}})
            | (MC_W'(floor_ex_i)     & {MC_W{g && state_i == ST_FLR}})
            | (MC_W'(pass_a_i)       & {MC_W{g && state_i == ST_PMUL}})
-           | (MC_W'(pass_floor_i)   & {MC_W{g && state_i == ST_PFL}})
            | (MC_W'(u_new_i)        & {MC_W{g && state_i == ST_SQ0}});
     // the multiplier left-aligned: n bits at the top
     op_o.b = ({cfg_i.line_h, 12'd0}             & {MP_W{!g}})
@@ -60,7 +57,6 @@ module msr_budget_mul_ops import msr_pkg::*; import msr_budget_pkg::*; #(
            | (law_i.p_left                      & {MP_W{g && state_i == ST_LAW && !frm_i.seeded}})
            | ({u_row_i, 14'd0}                  & {MP_W{g && state_i == ST_FLR}})
            | ({pass_w_i, 14'd0}                 & {MP_W{g && state_i == ST_PMUL}})
-           | ({pass_u_i, 14'd0}                 & {MP_W{g && state_i == ST_PFL}})
            | ({u_new_i, 14'd0}                  & {MP_W{g && state_i == ST_SQ0}});
     op_o.n = !g                                   ? ST_W'(13) :
              (state_i == ST_G)                    ? ST_W'(13) :

@@ -14,10 +14,6 @@ package msr_budget_pkg;
   // A row's activity is at least its pixels >> FLOOR_SHIFT times its scale (docs/budget.md).
   localparam int unsigned FLOOR_SHIFT = 7;
   localparam logic [10:0] U_MAX = 11'd1448;
-  // The seed pass counts half of a row's distance above a seed u0 >= SEED_ABOVE_HALF, a quarter
-  // above one >= SEED_ABOVE_QUARTER (msr_budget_seed_w; docs/budget.md, v4).
-  localparam logic [10:0] SEED_ABOVE_HALF = 11'd256;
-  localparam logic [10:0] SEED_ABOVE_QUARTER = 11'd128;
   localparam logic [10:0] Q_SAT = 11'd1449;      // U_MAX + 1: "no budget left" / saturated
   /* verilator lint_on UNUSEDPARAM */
 
@@ -109,8 +105,7 @@ package msr_budget_pkg;
     ST_FIN,      // SCALE_OUT, the memory's tag
     ST_PRD,      // seed pass (a seeded start): read row k's word {u'_k, a'_k}
     ST_PWT,      // the word in the RAM's output register, then registered once more
-    ST_PFL,      // (p_k >> FLOOR_SHIFT) * u'_k loaded: the row's activity if it was floored
-    ST_PFC,      // floored = (a'_k == that product); w(u'_k, u0) registered
+    ST_PW,       // w = min(u'_k, u0) registered
     ST_PMUL,     // a'_k * w(u'_k, u0) loaded
     ST_PB        // b_k written back in its place, Btot += b_k
   } budget_state_e;

@@ -39,10 +39,11 @@ frame holds (docs/budget.md, "The first frame's range").
 with Q the pixels and G_rem the initial grid of the rows not finished, N0 = ((B - G) * u_0) >>
 PRIOR_SHIFT and P0 = (W * H) >> PRIOR_SHIFT (the seed's guess "u_0 traces B", weighted as that
 part of a frame). Seeded, from the previous frame's activity a'_k and scale u'_k of every
-position (the activity memory; profiles outside the controller are per tile row, top to bottom): A_prev = sum of a'_k * w(u'_k, u_0) (seed_weight) and A_done its part over
-rows <= j; a row that ran below the seed is counted as if its excess fell as 1 / u^2 between its
-own scale and the seed (docs/budget.md, "The seeded law"), and one that ran above a large seed as
-if it rose faster than 1 / u down to the seed ("The seed pass above the seed", v4). After the last row SCALE_OUT = clamp(N // (B - G)):
+position (the activity memory; profiles outside the controller are per tile row, top to
+bottom): A_prev = sum of a'_k * w(u'_k, u_0), w = min(u'_k, u_0) (seed_weight), and A_done its
+part over positions <= j; a row that ran below the seed is counted as if its excess fell as
+1 / u^2 between its own scale and the seed (docs/budget.md, "The seeded law"). After the last
+row SCALE_OUT = clamp(N // (B - G)):
 the one scale that, on this frame's activity, traces B; it and the activity memory seed the next
 frame.
 
@@ -73,8 +74,6 @@ U_MAX = 1448                       # m = 8190: thresholds x 32 (u: 11 bits)
 PRIOR_SHIFT = 6                    # default weight of the seed's guess: 1/64 of a frame
 PRIOR_SHIFT_MAX = 7
 FLOOR_SHIFT = 7                    # activity floor of a row: its pixels >> 7 (docs/budget.md)
-SEED_ABOVE_HALF = 256               # seed pass: a row above the seed counts half its distance when u0 >= this
-SEED_ABOVE_QUARTER = 128            # ... a quarter when u0 >= this (v4, docs/budget.md)
 BUDGET_MAX = (1 << 24) - 1         # BUDGET register: 24 bits (W * H <= 2^24)
 ERR_BUDGET = 14                    # STATUS.ERROR: budget below the frame's initial grid
 ERR_PROFILE = 15                   # STATUS.ERROR: seeded from a profile of another tile-row count
@@ -150,23 +149,13 @@ def clamp_scale(u: int, lo: int = U_MIN) -> int:
     return min(U_MAX, max(lo, int(u)))
 
 
-def seed_weight(u_prev: int, u0: int, floored: bool = False) -> int:
-    """The seed pass's factor w of a row that ran at u_prev, for a frame seeded at u0 (b = a' * w).
-    Below u0: u_prev (the row's excess taken to fall as 1 / u^2 up to u0). Above u0: u0 plus the
-    distance d = min(u_prev - u0, u0 >> 1) >> 1 when u0 >= 256, d >> 2 when u0 >= 128, else
-    nothing (excess rising faster than 1 / u down to u0 at large scales; v4); u0 for a `floored`
-    row, whose activity was its floor (p >> FLOOR_SHIFT) * u_prev: a floor is not a measurement
-    to extrapolate, and the cap bounds what a row that ran at a large scale can claim."""
-    if u_prev <= u0:
-        return u_prev
-    if floored:
-        return u0
-    d = min(u_prev - u0, u0 >> 1)
-    if u0 >= SEED_ABOVE_HALF:
-        return u0 + (d >> 1)
-    if u0 >= SEED_ABOVE_QUARTER:
-        return u0 + (d >> 2)
-    return u0
+def seed_weight(u_prev: int, u0: int) -> int:
+    """The seed pass's factor w of a row that ran at u_prev, for a frame seeded at u0 (b = a' * w):
+    min(u_prev, u0). Below u0 the row's excess is taken to fall as 1 / u^2 up to u0 (v2), above it
+    as 1 / u (v5 returns to v3's weight: with the rows interleaved, a first frame's scales no
+    longer stray far above the seed, and v4's extra weight above it measured the same; docs/budget.md
+    section 4)."""
+    return min(int(u_prev), int(u0))
 
 
 def grid_axis(n: int, stride: int) -> int:
@@ -304,9 +293,7 @@ class Controller:
         # the row's excess (floored) of the previous frame: what the START pass writes into the
         # memory (which the hardware holds by position).
         self.prof_words = None if self.profile is None else [
-            self.profile[r] * seed_weight(int(self.cfg.profile_scales[r]), u0,
-                                          self.profile[r] == self.row_floor(k) * int(self.cfg.profile_scales[r]))
-            for k, r in enumerate(self.order)]
+            self.profile[r] * seed_weight(int(self.cfg.profile_scales[r]), u0) for r in self.order]
         self.prof_total = sum(self.prof_words) if self.profile is not None else 0
         self.prior_n = ((self.budget - self.grid) * u0) >> self.cfg.prior_shift
         self.prior_p = self.total >> self.cfg.prior_shift

@@ -47,44 +47,20 @@ def test_worked_example_by_hand():
     nxt = BG.Controller(64, 40, L2, BG.BudgetConfig(640, ctl.scale_out, 6, tuple(ctl.activity),
                                                     tuple(ctl.scales)))
     assert nxt.scales == [279, 279]
-    # the seed pass: b = a * w(u, 279) = 51200 * 256, 25600 * 256 (rows below the seed: their own
-    # u) and 29540 * 348 (row 2 ran above it, at 422: 279 + min(422 - 279, 279 >> 1) >> 1, u0 >= 256)
-    assert nxt.prof_words == [13107200, 6553600, 10279920] and nxt.prof_total == 29940720
-    nxt.finish_row(290)               # X = 190; (29940720 - 13107200) // (279 * 190) = 317
-    assert nxt.scales == [279, 279, 317]
+    # the seed pass: b = a * min(u, 279) = 51200 * 256, 25600 * 256 (rows below the seed: their
+    # own u) and 29540 * 279 (row 2 ran above it, at 422: the seed)
+    assert nxt.prof_words == [13107200, 6553600, 8241660] and nxt.prof_total == 27902460
+    nxt.finish_row(290)               # X = 190; (27902460 - 13107200) // (279 * 190) = 279
+    assert nxt.scales == [279, 279, 279]
 
 
-def test_seed_weight_branches():
-    """The seed pass's weight (docs/budget.md, "The seed pass above the seed"): a row at or below
-    the seed keeps its own scale; above it, half its distance to the seed counts when u0 >= 256,
-    a quarter when 128 <= u0 < 256, none below 128, the distance capped at u0 >> 1; w never
-    leaves [min(u', u0), max(u', u0)] nor exceeds 1.25 u0."""
+def test_seed_weight_is_the_lower_scale():
+    """The seed pass's weight (docs/budget.md section 4): a row at or below the seed keeps its own
+    scale (excess ~ 1 / u^2 up to the seed), one above it the seed's (v5, as v3)."""
     assert BG.seed_weight(200, 279) == 200 and BG.seed_weight(279, 279) == 279
-    assert BG.seed_weight(400, 279) == 279 + 60              # (400 - 279) >> 1, under the cap
-    assert BG.seed_weight(422, 279) == 279 + 69              # the cap: (279 >> 1) >> 1
-    assert BG.seed_weight(1448, 256) == 256 + 64             # u0 = 256: half of 128
-    assert BG.seed_weight(300, 255) == 255 + 11              # u0 = 255: a quarter of 45
-    assert BG.seed_weight(1448, 255) == 255 + 31             # a quarter of the cap 127
-    assert BG.seed_weight(1448, 128) == 128 + 16
-    assert BG.seed_weight(1448, 127) == 127                  # u0 < 128: the seed itself
-    assert BG.seed_weight(400, 279, floored=True) == 279     # a floored row: the seed
-    assert BG.seed_weight(200, 279, floored=True) == 200     # (below the seed: its own u)
-    for u0 in (45, 127, 128, 255, 256, 700, 1448):
-        for u in (32, 45, 100, 127, 128, 255, 256, 257, 1000, 1448):
-            w = BG.seed_weight(u, u0)
-            assert min(u, u0) <= w <= max(u, u0) and w <= u0 + (u0 >> 2)
-            assert BG.seed_weight(u, u0, True) == min(u, u0)
-
-
-def test_seed_pass_floored_row():
-    """A row whose activity was its floor, a' = (p >> 7) * u', is not extrapolated above the
-    seed (the floor is not a measurement): 64 x 40, row 2 (8 pixels high: floor 4) ran at 422
-    and traced its grid alone, a' = 4 * 422."""
+    assert BG.seed_weight(422, 279) == 279 and BG.seed_weight(1448, 45) == 45
     cfg = BG.BudgetConfig(640, 279, 6, (51200, 25600, 4 * 422), (256, 256, 422))
-    nxt = BG.Controller(64, 40, L2, cfg)
-    assert nxt.prof_words == [51200 * 256, 25600 * 256, 4 * 422 * 279]
-    cfg = BG.BudgetConfig(640, 279, 6, (51200, 25600, 5 * 422), (256, 256, 422))
-    assert BG.Controller(64, 40, L2, cfg).prof_words[2] == 5 * 422 * 348    # one pixel more
+    assert BG.Controller(64, 40, L2, cfg).prof_words == [51200 * 256, 25600 * 256, 4 * 422 * 279]
 
 
 def test_activity_floor_by_hand():

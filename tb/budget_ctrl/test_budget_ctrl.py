@@ -205,18 +205,11 @@ class Bench:
                               profile_scales=tuple(self.mem_u) if seeded else None)
         self.ctl = BG.Controller(W, H, params, cfg)
         if seeded:
-            # which branch of the seed pass's weight w(u'_k, u0) every row's word took
+            # which branch of the seed pass's weight w(u'_k, u0) = min(u'_k, u0) every word took
             u0s = cfg.seed
-            for k, r in enumerate(self.ctl.order):
-                a, u = self.mem[r], self.mem_u[r]
-                floored = a == self.ctl.row_floor(k) * u
-                k = ("w_below" if u <= u0s else "w_floored" if floored else
-                     "w_half" if u0s >= BG.SEED_ABOVE_HALF else
-                     "w_quarter" if u0s >= BG.SEED_ABOVE_QUARTER else "w_seed")
+            for u in self.mem_u:
+                k = "w_below" if u <= u0s else "w_seed"
                 self.law[k] = self.law.get(k, 0) + 1
-                if k in ("w_half", "w_quarter"):
-                    k = "w_capped" if u - u0s > u0s >> 1 else "w_uncapped"
-                    self.law[k] = self.law.get(k, 0) + 1
         self.upd, self.pending, self.act = 0, False, False
         await self.clock(start=1)
         self.starting = True
@@ -367,8 +360,7 @@ async def random_sequence(bench, rng, W, H, T, L, n_frames, gap=(0, 3)):
 async def test_worked_example(dut):
     """docs/budget.md section 5: 64 x 40, T 16, L 2, B 640, the first frame's rows 300, 200,
     130 (u_2 = 422, m = 696, SCALE_OUT = 279), then the seeded frame (row 0 traces 290:
-    u_2 = 317 from the seed pass's words, row 2's weighted 279 + min(422 - 279, 279 >> 1) >> 1
-    = 348)."""
+    u_2 = 279 from the seed pass's words, row 2's weighted min(422, 279) = 279)."""
     rng = seeded_rng(dut, 505)
     b = Bench(dut, rng)
     await b.reset()
@@ -390,8 +382,8 @@ async def test_worked_example(dut):
     c2 = iter((290, 200, 100))
     seen.clear()
     ctl = await b.frame(64, 40, 16, 2, 640, 279, 6, True, lambda j, g, p, u: next(c2), hook=row2)
-    assert ctl.scales[:3] == [279, 279, 317]
-    assert seen[(0, 0)] == (1, 304) and seen[(1, 2)] == (1, (317 * 317 + 128) >> 8)
+    assert ctl.scales[:3] == [279, 279, 279]
+    assert seen[(0, 0)] == (1, 304) and seen[(1, 2)] == (1, (279 * 279 + 128) >> 8)
     b.summary()
 
 
@@ -457,7 +449,7 @@ async def test_random_frames(dut):
     b.summary()
     for k in ("first_mid", "first_slew", "first_sat", "first_rise", "first_min", "first_deep", "seeded_mid",
               "seeded_slew", "seeded_sat", "seeded_rise", "x<=0", "none", "out_mid", "out_max", "out_min",
-              "w_below", "w_half", "w_quarter", "w_seed", "w_capped", "w_uncapped", "w_floored"):
+              "w_below", "w_seed"):
         assert b.law.get(k, 0) > 0, f"law branch {k} never taken: {b.law}"
 
 
@@ -493,6 +485,6 @@ def test_budget_ctrl():
     run_cocotb("msr_budget_ctrl", "test_budget_ctrl", HERE, {}, "",
                sources=[RTL / "msr_pkg.sv", RTL / "system/msr_budget_pkg.sv", RTL / "prim/msr_shift_add_mul.sv", RTL / "prim/msr_seq_div.sv",
                         RTL / "system/msr_budget_grid.sv", RTL / "system/msr_budget_mem.sv",
-                        RTL / "system/msr_budget_law.sv", RTL / "system/msr_budget_seed_w.sv",
+                        RTL / "system/msr_budget_law.sv",
                         RTL / "system/msr_budget_mul_ops.sv",
                         RTL / "system/msr_budget_ctrl.sv"])
