@@ -436,7 +436,10 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   assign cfg_o          = cfg_q;
   assign busy_o         = (state_q != ST_IDLE);
   assign err_o          = err_q;
-  assign done_set_o     = frame_done_q && (state_q == ST_RUN);
+  // A soft reset in the very clock the frame completes aborts it (the state goes to ST_DRAIN):
+  // DONE stays clear. The register block's hwset outranks its hwclr, so without the gate a
+  // STATUS read after that soft reset said DONE (found by make soak, seed 697819125).
+  assign done_set_o     = frame_done_q && (state_q == ST_RUN) && !soft_reset_i;
   assign done_clr_o     = start_q || soft_reset_i;
   assign cfg_err_set_o  = refused_q;
   assign wdog_set_o     = wd_fire;

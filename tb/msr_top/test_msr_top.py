@@ -456,6 +456,55 @@ async def wait_idle_within(env, limit):
 
 
 @cocotb.test()
+async def test_soft_reset_at_done(dut):
+    """A soft reset written in the very clock a frame completes: the frame is aborted and STATUS
+    reads 0 (DONE too: CTRL.SOFT_RESET clears it, and the register block's hardware set outranks
+    its clear, so msr_cfg_ctrl must not set it then). Found by make soak (seed 697819125). The
+    bench times the write around the frame's measured end until the two coincide."""
+    env, rng = await setup(dut, 17)
+    env.set_pauses(0.0)
+    env.render.max_lat = 1
+    env.render.ready_p = 1.0
+    u = dut.u_ctrl
+    hit = [False]
+
+    async def watch():
+        while True:
+            await RisingEdge(dut.clk_i)
+            await ReadOnly()
+            if int(u.soft_reset_i.value) and int(u.frame_done_q.value) and int(u.state_q.value) == 3:
+                hit[0] = True
+    task = cocotb.start_soon(watch())
+    img = make_image(rng, 16, 8)
+    # the frame's length from START's write to its completion (deterministic here)
+    env.render.image = img
+    await env.program(16, 8, 8, 1, 0, [8], 0)
+    await env.wr(R.CTRL, R.CTRL_START_MASK)
+    n = 0
+    while not int(u.frame_done_q.value):
+        await RisingEdge(dut.clk_i)
+        n += 1
+        assert n < 20000, "the frame never completed"
+    await env.wait_idle()
+    await env.wr(R.STATUS, R.STATUS_DONE_MASK)
+    for k in range(max(0, n - 24), n + 8):
+        env.render.image = img
+        await env.program(16, 8, 8, 1, 0, [8], 0)
+        await env.wr(R.CTRL, R.CTRL_START_MASK)
+        await ClockCycles(dut.clk_i, k)
+        await env.wr(R.CTRL, R.CTRL_SOFT_RESET_MASK)
+        st = await env.wait_idle()
+        assert st & ~R.STATUS_DONE_MASK == 0, f"delay {k}: STATUS {st:#x} after soft reset"
+        if hit[0]:
+            assert st == 0, f"delay {k}: soft reset in the completing clock left STATUS {st:#x}"
+            break
+        await env.wr(R.STATUS, R.STATUS_DONE_MASK)
+    task.cancel()
+    assert hit[0], f"no delay in {max(0, n - 24)}..{n + 7} put the soft reset in the completing clock"
+    await env.frame(16, 8, 8, 1, 0, [8], 0)
+
+
+@cocotb.test()
 async def test_watchdog(dut):
     """Faults a neighbour can cause, each ended by the watchdog (WATCHDOG set, frame running) or
     by a soft reset whose wait the watchdog cuts (WATCHDOG set, or 0: the fixed drain bound):
