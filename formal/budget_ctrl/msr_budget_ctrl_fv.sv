@@ -164,9 +164,15 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
                                 !start_seq || (!dut.act_q && dut.rows_done_q == '0 &&
                                 dut.base_q == 2'd0 && ok_u0(dut.u_q[0]) && ok_u0(dut.u_q[1]) &&
                                 dut.frm_q.nty != '0));
+  // (the row count's companions: the next row and the rows left, kept beside it)
+  a_rows_next: assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                dut.rows_next_q == dut.rows_done_q + ROW_W'(1));
+  a_rows_left: assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                !dut.act_q || dut.rows_left_q == dut.frm_q.nty - dut.rows_done_q);
   a_last:      assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 !dut.act_q || (dut.row_last_q == (dut.rows_done_q + ROW_W'(1) == dut.frm_q.nty) &&
-                                dut.row_new_q == (dut.rows_done_q + ROW_W'(2) < dut.frm_q.nty)));
+                                dut.row_new_q == ((ROW_W+1)'(dut.rows_done_q) + (ROW_W+1)'(2) <
+                                                  (ROW_W+1)'(dut.frm_q.nty))));
   // A row's update runs in a frame (or finishes in the six clocks a new start takes through the
   // grid unit: the start drops act_q at once, its sequence restarts the state machine), and only
   // the last row's ends in ST_FIN (no new scale).

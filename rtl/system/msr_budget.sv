@@ -33,6 +33,11 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
   input  logic [TROW_W-1:0]        row_idx_i,        // the row the walker is in
   output logic                     row_ok_o,         // its scale is known
   output logic [12:0]              row_m_o,          // its threshold multiplier
+  // ... and its tile grid and row order (held through the frame from the second clock on).
+  input  logic [TROW_W:0]          ntx_i,            // tiles per row
+  input  logic [TROW_W:0]          nty_i,            // tile rows
+  input  logic [TROW_W-1:0]        smask_i,          // the order's stride S, less one
+  input  logic [TROW_W:0]          nty_s_i,          // nty - S
   // Finished pixels at the writer's inputs.
   input  logic [NUM_IN-1:0]        pix_fire_i,
   input  coord_t [NUM_IN-1:0]      pix_y_i,
@@ -62,9 +67,11 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
     .rst_ni       (rst_ni),
     .clear_i      (clear_i),
     .start_i      (bud_start),
-    .width_i      (raw_i.width),
-    .height_i     (raw_i.height),
     .tile_log2_i  (lg),
+    .ntx_i        (ntx_i),
+    .nty_i        (nty_i),
+    .smask_i      (smask_i),
+    .nty_s_i      (nty_s_i),
     .pix_fire_i   (pix_fire_i),
     .pix_y_i      (pix_y_i),
     .pix_traced_i (traced),

@@ -100,6 +100,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   budget_frame_t     frm_q;                // the frame's constants (check and start)
   budget_law_t       law_q;                // the running sums and the law's operands
   logic [ROW_W-1:0]  rows_done_q;
+  logic [ROW_W-1:0]  rows_next_q;           // rows_done + 1
+  logic [ROW_W-1:0]  rows_left_q;           // nty - rows_done (from the first scales on)
   logic              row_last_q, row_new_q; // row rows_done is the last; it sets a new scale
   logic [10:0]       u_q [3];
   logic [12:0]       m_q [3];
@@ -353,6 +355,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       checking_q        <= 1'b0;
       act_q             <= 1'b0;
       rows_done_q       <= '0;
+      rows_next_q       <= ROW_W'(1);
+      rows_left_q       <= '0;
       pass_q            <= '0;
       row_last_q        <= 1'b0;
       row_new_q         <= 1'b0;
@@ -383,7 +387,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       // (rows_done < nty while act_q; row rows_done + 1 is in the frame unless rows_done is
       // the last: equalities, not three magnitude compares)
       row_ok_q <= act_q && (row_idx_i == rows_done_q ||
-                            (row_idx_i == rows_done_q + ROW_W'(1) && !row_last_q));
+                            (row_idx_i == rows_next_q && !row_last_q));
       row_m_q  <= m_q[(row_idx_i == rows_done_q) ? base_q : slot1];
 
       // The input pulses drop the old answers at once (the sequence starts six clocks later).
@@ -401,6 +405,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         if (check_p && !start_p) check_done_q <= 1'b0;
         if (start_p) begin
           rows_done_q       <= '0;
+          rows_next_q       <= ROW_W'(1);
           base_q            <= '0;
           mem_valid_q       <= 1'b0;
           scale_out_valid_q <= 1'b0;
@@ -421,22 +426,27 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             m_q[0] <= 13'((mul_prod + PROD_W'(128)) >> 8);
             m_q[1] <= 13'((mul_prod + PROD_W'(128)) >> 8);
             act_q      <= 1'b1;
+            rows_left_q <= frm_q.nty;
             row_last_q <= frm_q.nty == ROW_W'(1);
-            row_new_q  <= frm_q.nty > ROW_W'(2);
+            row_new_q  <= frm_q.nty[ROW_W-1:2] != '0 || frm_q.nty[1:0] == 2'd3;   // nty > 2
             pass_q     <= '0;
           end
           ST_FLR, ST_ACT: ;
           ST_SQ0: u_q[slot2] <= u_new;
           ST_SQ: if (mul_done) begin
             if (row_new_q) m_q[slot2] <= 13'((mul_prod + PROD_W'(128)) >> 8);
-            rows_done_q <= rows_done_q + ROW_W'(1);
-            row_last_q  <= rows_done_q + ROW_W'(2) == frm_q.nty;
-            row_new_q   <= rows_done_q + ROW_W'(3) < frm_q.nty;
+            // (the next row's flags from the rows left: equalities and bits, one decrement)
+            rows_done_q <= rows_next_q;
+            rows_next_q <= rows_next_q + ROW_W'(1);
+            rows_left_q <= rows_left_q - ROW_W'(1);
+            row_last_q  <= rows_left_q == ROW_W'(2);               // rows_done + 2 == nty
+            row_new_q   <= rows_left_q[ROW_W-1:2] != '0;          // rows_done + 3 < nty
             base_q      <= slot1;
           end
           ST_FIN: begin
             scale_out_q       <= u_new;                // clamp(q) (ST_SLEW)
-            rows_done_q       <= rows_done_q + ROW_W'(1);
+            rows_done_q       <= rows_next_q;
+            rows_next_q       <= rows_next_q + ROW_W'(1);
             base_q            <= slot1;
             act_q             <= 1'b0;
             scale_out_valid_q <= 1'b1;
@@ -473,6 +483,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= (frm_q.seeded ? U_MIN : U_MIN_FIRST) &&
                              u_q[base_q] <= U_MAX)
   `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < frm_q.nty)
+  `MSR_ASSERT(a_rows_count, act_q |-> rows_next_q == rows_done_q + ROW_W'(1) &&
+                                      rows_left_q == frm_q.nty - rows_done_q)
   `MSR_ASSERT(a_shift_fits, state_q inside {ST_WH, ST_N0} && mul_done |->
               mul_prod[PROD_W-1:ACT_W] == '0)
   `MSR_ASSERT(a_num_fits, state_q == ST_NUM && mul_done |-> mul_prod[PROD_W-1] == 1'b0)

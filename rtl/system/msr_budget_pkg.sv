@@ -143,18 +143,29 @@ package msr_budget_pkg;
   endfunction
 
   // The row dispatched after row r: r + S within its phase, else the next phase's first row,
-  // (r mod S) + 1. nty_s = nty - S (a register of the frame): r < nty_s is r + S < nty.
-  function automatic logic [BUD_ROW_W-1:0] next_row(logic [BUD_ROW_W-1:0] r, logic [2:0] lgs,
-                                                     logic [BUD_ROW_W-1:0] nty_s);
-    logic [BUD_ROW_W-1:0] s;
-    s = BUD_ROW_W'(1) << lgs;
-    return (r < nty_s) ? r + s : (r & (s - 1'b1)) + 1'b1;
+  // (r mod S) + 1. s = S, smask = S - 1, nty_s = nty - S (registers of the frame): r < nty_s is
+  // r + S < nty.
+  function automatic logic [BUD_ROW_W-1:0] next_row(logic [BUD_ROW_W-1:0] r,
+                                                     logic [BUD_ROW_W-1:0] s,
+                                                     logic [BUD_ROW_W-1:0] smask,
+                                                     logic [BUD_ROW_W:0] nty_s);
+    return ({1'b0, r} < nty_s) ? r + s : (r & smask) + 1'b1;
   endfunction
 
   // The law's clamp [lo, U_MAX]: lo = U_MIN, or U_MIN_FIRST for a first frame's row whose
   // predecessor runs at U_MIN or below.
   function automatic logic [10:0] clamp_u(logic [10:0] v, logic [10:0] lo);
-    return (v > U_MAX) ? U_MAX : (v < lo) ? lo : v;
+    return less_u(U_MAX, v) ? U_MAX : less_u(v, lo) ? lo : v;
+  endfunction
+
+  // a < b on scales, as plain logic from the top bit down: the clamp's bounds are constants (or
+  // one of two), where a carry chain (and the packer's two extra carry cells around each
+  // chain, on ECP5) cost several times the few LUTs the logic folds to.
+  function automatic logic less_u(logic [10:0] a, logic [10:0] b);
+    logic lt;
+    lt = 1'b0;
+    for (int i = 0; i < 11; i++) lt = (!a[i] && b[i]) || (!(a[i] ^ b[i]) && lt);
+    return lt;
   endfunction
 
 endpackage : msr_budget_pkg

@@ -10,7 +10,9 @@
 // position j), so three counter pairs indexed by position mod 3 suffice; a slot is cleared when
 // the controller takes its row, and its next row (three on) cannot have a pixel before then.
 // The rows of the three open positions are registers (hrow_q), moved on by next_row at each
-// take, so a pixel's slot is which of them its tile row is.
+// take, so a pixel's slot is which of them its tile row is. The frame's tile grid and the
+// order's stride are the tile generator's (its walker's registers, set by the second clock
+// after the start): one copy of the tile counts in the top, not one per unit.
 //
 // Timing: S1 registers each input's slot (position mod 3: the open row its tile row equals,
 // three compares with registers), traced and last flags; S2 adds the per-slot counts (0..NUM_IN
@@ -27,9 +29,12 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   input  logic                     rst_ni,        // asynchronous reset, active low
   input  logic                     clear_i,       // synchronous clear
   input  logic                     start_i,       // pulse: a budget frame begins (cfg below)
-  input  dim_t                     width_i,       // W, stable for the frame
-  input  dim_t                     height_i,      // H
-  input  logic [2:0]               tile_log2_i,   // log2 T: 3, 4 or 5
+  input  logic [2:0]               tile_log2_i,   // log2 T: 3, 4 or 5, at start_i
+  // The tile generator's grid and order, from the second clock after start_i to the frame's end.
+  input  logic [TROW_W:0]          ntx_i,         // tiles per row
+  input  logic [TROW_W:0]          nty_i,         // tile rows
+  input  logic [TROW_W-1:0]        smask_i,       // the order's stride S, less one
+  input  logic [TROW_W:0]          nty_s_i,       // nty - S
   // Finished pixels, as the writer takes them.
   input  logic [NUM_IN-1:0]        pix_fire_i,    // input i's pixel is taken this clock
   input  coord_t [NUM_IN-1:0]      pix_y_i,       // its row
@@ -47,28 +52,17 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   localparam int unsigned INC_W = $clog2(NUM_IN + 1);    // pixels of one slot in a clock
 
   logic [2:0]              lg_q;                          // log2 T
-  logic [TROW_W-1:0]       ntx_q, nty_q;                  // tiles per row, rows
   logic                    act_q;                         // rows left to hand on
   logic [TROW_W-1:0]       head_q;                        // the oldest open row's position
   slot_t                   hslot_q;                       // its slot
   logic [2:0][TROW_W-1:0]  hrow_q;                        // the rows of positions head .. head + 2
   logic                    bottom_q;                      // hrow_q[0] is row nty - 1
-  logic [2:0]              lgs_q;                         // the order's stride, log2 S
-  logic [TROW_W-1:0]       nty_s_q;                       // nty - S
-  logic                    set_q;                         // the clock after a start
+  logic [1:0]              set_q;                         // the two clocks after a start
   logic [2:0][CNT_W-1:0]   traced_q;
   logic [2:0][TROW_W-1:0]  tiles_q;                       // tiles of the row whose last pixel came
   // S1
   logic [NUM_IN-1:0]       s1_v_q, s1_tr_q, s1_last_q;
   slot_t [NUM_IN-1:0]      s1_slot_q;
-
-  // ceil(n / 2^lg), lg in 3..5 (the tile split of msr_budget_pkg; one add)
-  function automatic logic [TROW_W-1:0] tiles_of(dim_t n, logic [2:0] lg);
-    logic [12:0] q;
-    logic [5:0]  r;
-    {q, r} = split_tile(n, lg);
-    return TROW_W'(q + 13'(r != '0));                    // < 2^10: n <= 4096, lg >= 3
-  endfunction
 
   // The tile row of pixel row y: y >> lg.
   function automatic logic [TROW_W-1:0] tile_row(coord_t y, logic [2:0] lg);
@@ -106,7 +100,7 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   endfunction
 
   logic take;
-  assign row_valid_o  = act_q && (tiles_q[hslot_q] == ntx_q);
+  assign row_valid_o  = act_q && ({1'b0, tiles_q[hslot_q]} == ntx_i);
   assign take         = row_valid_o && row_ready_i;
   assign row_idx_o    = head_q;
   assign row_bottom_o = bottom_q;
@@ -166,30 +160,27 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
       if (take) begin
         head_q  <= head_q + 1'b1;
         hslot_q <= slot_add(hslot_q, 2'd1);
-        if (head_q + 1'b1 == nty_q) act_q <= 1'b0;
+        if ({1'b0, head_q} + 1'b1 == nty_i) act_q <= 1'b0;
       end
     end
   end
 
-  // The open rows: after a start (from nty_q, the clock after) rows 0, S and 2S (S <= nty / 4,
-  // or S = 1); each take moves them on by one position. Pixels come only once the controller
-  // has the first scales, many clocks later (a_rows_set).
-  logic [TROW_W-1:0] s_row;                               // S
-  assign s_row = TROW_W'(1) << lgs_q;
+  // The open rows: two clocks after a start (once the tile generator's grid and stride are
+  // set) rows 0, S and 2S (S <= nty / 4, or S = 1); each take moves them on by one position.
+  // Pixels come only once the controller has the first scales, many clocks later (a_rows_set).
+  logic [TROW_W-1:0] s_row;                               // S = 2^k from S - 1 = 2^k - 1
+  assign s_row = {smask_i[TROW_W-2:0], 1'b1} & ~smask_i;
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) set_q <= 1'b0;
-    else         set_q <= start_i && !clear_i;
+    if (!rst_ni) set_q <= '0;
+    else         set_q <= {set_q[0], start_i && !clear_i};
   end
   always_ff @(posedge clk_i) begin
-    if (start_i) begin
-      lgs_q <= row_stride_log2(tiles_of(height_i, tile_log2_i));
-    end else if (set_q) begin
-      nty_s_q  <= nty_q - s_row;
+    if (set_q[1]) begin
       hrow_q   <= {s_row << 1, s_row, TROW_W'(0)};
-      bottom_q <= nty_q == TROW_W'(1);
+      bottom_q <= nty_i == (TROW_W + 1)'(1);
     end else if (take) begin
-      hrow_q   <= {next_row(hrow_q[2], lgs_q, nty_s_q), hrow_q[2], hrow_q[1]};
-      bottom_q <= hrow_q[1] == nty_q - 1'b1;
+      hrow_q   <= {next_row(hrow_q[2], s_row, smask_i, nty_s_i), hrow_q[2], hrow_q[1]};
+      bottom_q <= {1'b0, hrow_q[1]} + 1'b1 == nty_i;
     end
   end
 
@@ -209,11 +200,7 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
     s1_slot_q <= s1_slot_d;
     s1_tr_q   <= pix_traced_i;
     s1_last_q <= pix_last_i;
-    if (start_i) begin
-      lg_q  <= tile_log2_i;
-      ntx_q <= tiles_of(width_i, tile_log2_i);
-      nty_q <= tiles_of(height_i, tile_log2_i);
-    end
+    if (start_i) lg_q <= tile_log2_i;
   end
 
   /* verilator lint_off SYNCASYNCNET */
@@ -224,7 +211,7 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
                  tile_row(pix_y_i[i], lg_q) == hrow_q[1] ||
                  tile_row(pix_y_i[i], lg_q) == hrow_q[2]),
                 clk_i, !rst_ni || clear_i)
-    `MSR_ASSERT(a_rows_set, pix_fire_i[i] && act_q |-> !set_q, clk_i, !rst_ni || clear_i)
+    `MSR_ASSERT(a_rows_set, pix_fire_i[i] && act_q |-> set_q == '0, clk_i, !rst_ni || clear_i)
   end
   `MSR_ASSERT(a_restart_idle, take_q |-> inc_tr[tslot_q] == '0 && inc_la[tslot_q] == '0,
               clk_i, !rst_ni || clear_i)

@@ -52,6 +52,12 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
   output logic [TROW_W-1:0]      row_idx_o,     // the walker's row: its position in the order
   input  logic                   row_ok_i,      // its scale is known (this clock)
   input  logic [12:0]            row_m_i,       // its threshold multiplier m (1.0 = 256)
+  // The frame's tile grid and row order (registers; from the second clock after start_i):
+  // the budget's row counters follow the same order (msr_budget_rows).
+  output logic [TROW_W:0]        ntx_o,         // tiles per row
+  output logic [TROW_W:0]        nty_o,         // tile rows
+  output logic [TROW_W-1:0]      smask_o,       // the order's stride S, less one
+  output logic [TROW_W:0]        nty_s_o,       // nty - S
   // Descriptor to the engines: valid goes to exactly one engine that is ready.
   output logic [NUM_ENGINES-1:0] desc_valid_o,  // offer to engine i
   input  logic [NUM_ENGINES-1:0] desc_ready_i,  // engine i can take a tile
@@ -186,6 +192,10 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
                                             : (ctl_q.ty & smask_q) == smask_q &&
                                               !({1'b0, ctl_q.ty} < nty_s_q));
   assign row_idx_o = BUDGET_EN ? pos_q : ctl_q.ty;
+  assign ntx_o     = ntx_q;
+  assign nty_o     = nty_q;
+  assign smask_o   = smask_q;
+  assign nty_s_o   = nty_s_q;
 
   // The frame's tile grid, latched at START (a clear leaves it: only a START reads it).
   always_ff @(posedge clk_i or negedge rst_ni) begin

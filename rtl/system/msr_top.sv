@@ -121,6 +121,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   logic [COORD_W-3:0] tg_row;
   logic               tg_row_ok;
   logic [12:0]        tg_row_m;
+  logic [COORD_W-2:0] tg_ntx, tg_nty, tg_nty_s;   // the walker's grid and row order
+  logic [COORD_W-3:0] tg_smask;
 
   msr_tile_gen #(.NUM_ENGINES(NUM_ENGINES), .BUDGET_EN(BUDGET_EN)) u_tile_gen (
     .clk_i, .rst_ni, .clear_i (drain), .start_i (start),
@@ -128,6 +130,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .metric_i (cfg.metric), .rule_i (cfg.rule), .thr_i (cfg.thr), .fov_gain_i (cfg.fov_gain),
     .bud_en_i (cfg.bud.pixels != '0),
     .row_idx_o (tg_row), .row_ok_i (tg_row_ok), .row_m_i (tg_row_m),
+    .ntx_o (tg_ntx), .nty_o (tg_nty), .smask_o (tg_smask), .nty_s_o (tg_nty_s),
     .desc_valid_o (eng_desc_valid), .desc_ready_i (desc_sp_ready & {NUM_ENGINES{run}}),
     .desc_o (desc),
     .busy_o (tg_busy), .done_o (tg_done)
@@ -277,6 +280,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .err_budget_o (bud_err_budget), .err_profile_o (bud_err_profile),
       .start_i (start), .busy_o (bud_busy),
       .row_idx_i (tg_row), .row_ok_o (tg_row_ok), .row_m_o (tg_row_m),
+      .ntx_i (tg_ntx), .nty_i (tg_nty), .smask_i (tg_smask), .nty_s_i (tg_nty_s),
       .pix_fire_i (wr_pix_valid & wr_pix_ready),
       .pix_y_i (wr_pix_y), .pix_src_i (wr_pix_src), .pix_last_i (wr_pix_last),
       .scale_out_o (scale_out), .scale_out_valid_o (scale_out_valid)
@@ -291,7 +295,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     assign scale_out       = '0;
     assign scale_out_valid = 1'b0;
     logic unused_budget;
-    assign unused_budget = ^{bud_check, raw_q, tg_row};
+    assign unused_budget = ^{bud_check, raw_q, tg_row, tg_ntx, tg_nty, tg_smask, tg_nty_s};
   end
 
   // ---- Watchdog progress -------------------------------------------------------------------------

@@ -27,16 +27,28 @@ def tiles_of(W, H, T):
             yield k, [(x, y) for y in range(ty * T, min(H, ty * T + T)) for x in range(tx * T, min(W, tx * T + T))]
 
 
-async def run_frame(dut, rng, W, H, T, p_traced, p_ready):
-    n_in = int(dut.NUM_IN.value)
-    nty = (H + T - 1) // T
-    dut.width_i.value, dut.height_i.value, dut.tile_log2_i.value = W, H, TILE_LOG2[T]
-    from msr_model.budget import row_order
-    order = row_order(nty)
+async def start_frame(dut, W, H, T):
+    """A start pulse, then the tile generator's grid and order registers as it sets them: the
+    counts the clock after the start, the stride S the clock after that (until then S = 1)."""
+    from msr_model.budget import row_stride_log2
+    ntx, nty = (W + T - 1) // T, (H + T - 1) // T
+    s = 1 << row_stride_log2(nty)
+    dut.tile_log2_i.value = TILE_LOG2[T]
     dut.start_i.value = 1
     await RisingEdge(dut.clk_i)
     dut.start_i.value = 0
+    dut.ntx_i.value, dut.nty_i.value, dut.smask_i.value, dut.nty_s_i.value = ntx, nty, 0, nty - 1
+    await RisingEdge(dut.clk_i)
+    dut.smask_i.value, dut.nty_s_i.value = s - 1, nty - s
     await RisingEdge(dut.clk_i)                  # (the unit sets its open rows; a_rows_set)
+
+
+async def run_frame(dut, rng, W, H, T, p_traced, p_ready):
+    n_in = int(dut.NUM_IN.value)
+    nty = (H + T - 1) // T
+    from msr_model.budget import row_order
+    order = row_order(nty)
+    await start_frame(dut, W, H, T)
     todo = list(tiles_of(W, H, T))
     streams = [[] for _ in range(n_in)]          # per input: (y, traced, last) still to send
     want = [0] * nty
@@ -89,11 +101,7 @@ async def test_rows(dut):
     for c in cases:
         await run_frame(dut, rng, *c)
     # a clear mid-frame forgets it: the next frame counts from zero
-    dut.width_i.value, dut.height_i.value, dut.tile_log2_i.value = 40, 40, 3
-    dut.start_i.value = 1
-    await RisingEdge(dut.clk_i)
-    dut.start_i.value = 0
-    await RisingEdge(dut.clk_i)
+    await start_frame(dut, 40, 40, 8)
     dut.pix_fire_i.value = 1
     dut.pix_y_i.value = 0
     dut.pix_traced_i.value = 1
