@@ -7,11 +7,12 @@ against the fixed-threshold setting that traces as many pixels, on the evaluatio
 
 Per scene: the renderer's full render (Embree, cached as PNG under OUT/cache) is the rendering
 unit and the reference (the renderer is deterministic, so each method still asks only for the
-pixels it traces). Per budget: a sequence of FRAMES frames of the same view, the first seeded
-with SCALE_INIT = 1.0, each later one with the previous frame's SCALE_OUT and row activities.
+pixels it traces). Per budget: a sequence of FRAMES frames of the same view, the first with
+the driver's seed (budget.first_frame_config, or the registers' reset values with
+--first-seed 256), each later one with the previous frame's SCALE_OUT and row activities.
 The fixed-threshold curve: the same thresholds at one scale u for the whole frame, u on a
-half-octave ladder plus the midpoints around every budget point; PSNR at a traced count is
-read off that curve linearly in log(traced). Output: OUT/results.json, OUT/*.png.
+half-octave ladder, refined by bisection down to adjacent scales around every frame's traced
+count; PSNR at a traced count is read off that curve linearly in log(traced). Output: OUT/results.json, OUT/*.png.
 """
 from __future__ import annotations
 
@@ -68,29 +69,42 @@ def curve_psnr(curve: dict, traced: int) -> float | None:
     return None
 
 
-def evaluate_scene(ref, params, rule, budgets, frames, log, fixed_dither=False, first_seed="256") -> dict:
+def first_config(w, h, B, params, first_seed="auto", prior_shift=None) -> BG.BudgetConfig:
+    """A sequence's first frame: the driver's seed (first_frame_config), or the registers' reset
+    values (SCALE_INIT 1.0, PRIOR_SHIFT 6) with first_seed "256"; prior_shift overrides either."""
+    cfg = BG.first_frame_config(w, h, B, params) if first_seed == "auto" else BG.BudgetConfig(B)
+    return cfg if prior_shift is None else BG.BudgetConfig(B, cfg.scale_init, prior_shift)
+
+
+def evaluate_scene(ref, params, rule, budgets, frames, log, fixed_dither=False, first_seed="auto",
+                   prior_shift=None) -> dict:
     h, w = ref.shape[:2]
     total = w * h
     curve = {u: run(ref, params, rule, fixed=u, fixed_dither=fixed_dither) for u in LADDER}
     out = {"budgets": {}}
     for pct in budgets:
         B = total * pct // 100
-        u0 = BG.SCALE_ONE if first_seed == "256" else BG.budget_seed(w, h, B, params)
-        seq, cfg = [], BG.BudgetConfig(B, scale_init=u0)
+        seq, cfg = [], first_config(w, h, B, params, first_seed, prior_shift)
         for _ in range(frames):
             f = run(ref, params, rule, cfg)
             seq.append(f)
             cfg = BG.BudgetConfig(B, f["scale_out"], BG.PRIOR_SHIFT, tuple(f["activity_per_row"]),
                                   tuple(f["scale_per_row"]))
-        # refine the curve around every frame's traced count: the midpoint of the bracketing scales
+        # Refine the curve around every frame's traced count by bisection, down to adjacent
+        # scales: the fixed setting "at the same count" is then read between the two fixed
+        # settings a user can actually choose on either side of it, whichever points other
+        # frames added (one midpoint, as before 2026-12-05, left brackets of up to 10 scales, and
+        # rounded thresholds jump inside them: cornell at 20 % from 368 038 to 574 478 traced).
         for f in seq:
-            us = sorted(curve)
-            tr = [curve[u]["traced"] for u in us]          # falls with u
-            for a, b, ta, tb in zip(us, us[1:], tr, tr[1:]):
-                if tb <= f["traced"] <= ta and b - a > 2:
-                    mid = int(round(math.sqrt(a * b)))
-                    if mid not in curve:
-                        curve[mid] = run(ref, params, rule, fixed=mid, fixed_dither=fixed_dither)
+            while True:
+                us = sorted(curve)
+                tr = [curve[u]["traced"] for u in us]          # falls with u
+                br = [(a, b) for a, b, ta, tb in zip(us, us[1:], tr, tr[1:])
+                      if tb <= f["traced"] <= ta and b - a > 1 and ta != tb]
+                if not br:
+                    break
+                a, b = br[0]
+                curve[(a + b) // 2] = run(ref, params, rule, fixed=(a + b) // 2, fixed_dither=fixed_dither)
         rec = []
         for k, f in enumerate(seq):
             fixed = curve_psnr(curve, f["traced"])
@@ -193,9 +207,13 @@ def main(argv=None):
     ap.add_argument("--example", default="teapots", help="scene of the per-row picture")
     ap.add_argument("--out", default=None, help="default out/budget/WxH")
     ap.add_argument("--docs", action="store_true", help="also copy the plots to docs/img/budget_*.png")
-    ap.add_argument("--first-seed", choices=("256", "budget"), default="256",
-                    help="SCALE_INIT of a sequence's first frame: 256 (the registers' default) or a "
-                         "driver's seed from the budget alone (msr_model.budget.budget_seed)")
+    ap.add_argument("--first-seed", choices=("auto", "256"), default="auto",
+                    help="a sequence's first frame: auto, the driver's seed (msr_model.budget.first_frame_config: "
+                         "SCALE_INIT from the frame size, budget and thresholds, PRIOR_SHIFT 3), as the CLI "
+                         "and make sim write it; or 256, the registers' reset values (SCALE_INIT 1.0, PRIOR_SHIFT 6)")
+    ap.add_argument("--prior-shift", type=int, default=None,
+                    help="PRIOR_SHIFT of a sequence's first frame instead of the --first-seed choice's "
+                         "(the seeded frames do not use the prior)")
     ap.add_argument("--fixed-dither", action="store_true",
                     help="the fixed-threshold curve with the budget frames' dither (a uniform scale as the "
                          "controller's rows see it) instead of rounded thresholds (a user's fixed setting)")
@@ -217,7 +235,9 @@ def main(argv=None):
     log(f"eval_budget: {W}x{H}, T {a.tile}, L {a.levels}, thr {params.thr}, rule {a.rule}, initial grid "
         f"{grid} = {100 * grid / (W * H):.2f} % of the frame, budgets {budgets} %, {len(scenes)} scenes")
     result = {"config": {"width": W, "height": H, "mode": a.mode, "params": params.as_dict(), "rule": a.rule,
-                         "budgets": budgets, "frames": a.frames, "grid": grid, "prior_shift": BG.PRIOR_SHIFT,
+                         "budgets": budgets, "frames": a.frames, "grid": grid,
+                         "prior_shift": first_config(W, H, W * H * budgets[0] // 100, params, a.first_seed,
+                                                     a.prior_shift).prior_shift,
                          "ladder": list(LADDER), "fixed_dither": a.fixed_dither, "first_seed": a.first_seed},
               "scenes": {}}
     t0 = time.perf_counter()
@@ -226,12 +246,14 @@ def main(argv=None):
         sid = scene_id(sc)
         ref = reference(sc, W, H, a.mode, cache)
         log(f"{sid} ({time.perf_counter() - t0:.0f} s)")
-        res = evaluate_scene(ref, params, a.rule, budgets, a.frames, log, a.fixed_dither, a.first_seed)
+        res = evaluate_scene(ref, params, a.rule, budgets, a.frames, log, a.fixed_dither, a.first_seed,
+                             a.prior_shift)
         res["budgets"] = {str(k): v for k, v in res["budgets"].items()}
         result["scenes"][sid] = res
         if sid == a.example:
             pct = budgets[len(budgets) // 2]
-            f1 = run(ref, params, a.rule, BG.BudgetConfig(W * H * pct // 100))
+            f1 = run(ref, params, a.rule, first_config(W, H, W * H * pct // 100, params, a.first_seed,
+                                                       a.prior_shift))
             example = {"scene": sid, "pct": pct, "source": f1["source"], "row_pixels": W * a.tile,
                        "frames": res["budgets"][str(pct)]["frames"][:2]}
         (out / "results.json").write_text(json.dumps(result, indent=1) + "\n")

@@ -84,7 +84,8 @@ def rule_of(a) -> str:
 
 
 def budget_of(a, width: int, height: int, params: Params):
-    """The frame's budget registers (msr_model.budget.BudgetConfig: first frame, SCALE_INIT 1.0),
+    """The frame's budget registers (msr_model.budget.first_frame_config: a first frame with the
+    driver's seed from the frame size, budget and thresholds),
     or None without a budget; a budget below the frame's initial grid is refused here, as START
     would refuse it (STATUS.ERROR 14)."""
     from msr_model import budget as BG
@@ -96,7 +97,7 @@ def budget_of(a, width: int, height: int, params: Params):
         raise UsageError(f"BUDGET={a.budget}: {e}") from None
     if pixels == 0:
         return None
-    cfg = BG.BudgetConfig(budget=pixels)
+    cfg = BG.first_frame_config(width, height, pixels, params)     # the driver's seed (SCALE_INIT, PRIOR_SHIFT)
     try:
         BG.Controller(width, height, params, cfg)
     except BG.BudgetRefused as e:

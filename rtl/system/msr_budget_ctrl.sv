@@ -147,7 +147,11 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [MEM_W-1:0] mem_wdata;
   logic             pass;                  // the seed pass: position pass_q's word
   logic [ROW_W-1:0] pass_q;
-  assign pass      = state_q inside {ST_PRD, ST_PWT, ST_PW, ST_PMUL, ST_PB};
+  // pass from a flip-flop (in_pass_q, set from the next state), not decoded from state_q: the
+  // decode into the memory's address was the budget top's worst path (seed 1, 9.90 ns into the
+  // DP16KD). The same value every clock (a_in_pass).
+  logic             in_pass_q;
+  assign pass      = in_pass_q;
   assign mem_addr  = pass ? pass_q[8:0] : rows_done_q[8:0];
   // A row's own word {u_j, a_j} (a_j the product of ST_ACT), or the seed pass's product b_k.
   assign mem_wdata = pass ? MEM_W'(mul_prod) : {u_q[base_q], 28'(mul_prod)};
@@ -352,6 +356,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       state_q           <= ST_IDLE;
+      in_pass_q         <= 1'b0;
       checking_q        <= 1'b0;
       act_q             <= 1'b0;
       rows_done_q       <= '0;
@@ -375,6 +380,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       row_m_q           <= '0;
     end else if (clear_i) begin
       state_q      <= ST_IDLE;
+      in_pass_q    <= 1'b0;
       act_q        <= 1'b0;
       check_done_q <= 1'b0;
       err_budget_q <= 1'b0;
@@ -399,6 +405,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       if (start_p || check_p) begin
         // Both begin with the grid constants and G (the multiplier is loaded below).
         state_q     <= ST_G;
+        in_pass_q   <= 1'b0;
         checking_q  <= !start_p;
         act_q       <= 1'b0;
         row_ok_q    <= 1'b0;
@@ -413,7 +420,8 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           u_q[1]            <= cfg.u0;
         end
       end else begin
-        state_q <= state_d;
+        state_q   <= state_d;
+        in_pass_q <= state_d inside {ST_PRD, ST_PWT, ST_PW, ST_PMUL, ST_PB};
         unique case (state_q)
           ST_G: if (mul_done) begin
             if (checking_q) begin
@@ -482,6 +490,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
               row_traced_i <= p_sel)
   `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= (frm_q.seeded ? U_MIN : U_MIN_FIRST) &&
                              u_q[base_q] <= U_MAX)
+  `MSR_ASSERT(a_in_pass, in_pass_q == (state_q inside {ST_PRD, ST_PWT, ST_PW, ST_PMUL, ST_PB}))
   `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < frm_q.nty)
   `MSR_ASSERT(a_rows_count, act_q |-> rows_next_q == rows_done_q + ROW_W'(1) &&
                                       rows_left_q == frm_q.nty - rows_done_q)

@@ -73,6 +73,7 @@ U_MIN_FIRST = 32                   # m = 4: thresholds x 1/64 (a first frame's r
 U_MAX = 1448                       # m = 8190: thresholds x 32 (u: 11 bits)
 PRIOR_SHIFT = 6                    # default weight of the seed's guess: 1/64 of a frame
 PRIOR_SHIFT_MAX = 7
+AUTO_PRIOR_SHIFT = 3               # the driver's PRIOR_SHIFT beside a seed from budget_seed (1/8 frame)
 FLOOR_SHIFT = 7                    # activity floor of a row: its pixels >> 7 (docs/budget.md)
 BUDGET_MAX = (1 << 24) - 1         # BUDGET register: 24 bits (W * H <= 2^24)
 ERR_BUDGET = 14                    # STATUS.ERROR: budget below the frame's initial grid
@@ -202,16 +203,44 @@ def row_order(nty: int) -> list[int]:
     return out
 
 
-def budget_seed(width: int, height: int, budget: int, params: Params, c: int = 38) -> int:
-    """A first frame's SCALE_INIT from the budget alone, for a driver with no previous frame:
-    u_0 = clamp(round(c * sqrt(W * H / (B' - G)))), B' = min(B, W * H). Fitted on the scale the
-    evaluation's sequences settle at (1080p, thr 8, 16, 32, docs/budget.md section 7: c = 34 to
-    40 at 5 to 20 %); the thresholds' own values move it (thresholds twice as large settle at a
-    scale sqrt(2) smaller). A driver's choice: the hardware reads SCALE_INIT as written."""
+SEED_C = 33.4                      # budget_seed's constant (fitted at 960x540 and 640x480)
+SEED_PIXELS_REF = 1920 * 1080      # budget_seed's reference frame size
+SEED_THR_REF = 16.0                # budget_seed's reference threshold (geometric mean of 8, 16, 32)
+
+
+def budget_seed(width: int, height: int, budget: int, params: Params, c: float = SEED_C) -> int:
+    """A first frame's SCALE_INIT for a driver with no previous frame, from the frame's size, the
+    budget and the thresholds (docs/budget.md section 7, "The first frame's seed"):
+
+        u_0 = clamp(round(c * sqrt(W * H / (B' - G)) * (W0 * H0 / (W * H)) ** (1/4)
+                            * sqrt(thr_ref / thr_g)))
+
+    B' = min(B, W * H); W0 * H0 = 1920 * 1080; thr_g the geometric mean of the levels' thresholds,
+    thr_ref = 16 (that of 8, 16, 32). The square root of the budget's share above the grid is the
+    shape of the scales the evaluation's sequences settle at; a smaller frame of the same view has
+    more colour change per pixel (the fourth root of the pixel count, measured: the settled scales
+    of 960x540 and 640x480 need 1.41 and 1.61 times the constant of 1080p without it); thresholds
+    k times larger settle at a scale sqrt(k) smaller (m = u^2 multiplies them). c = 33.4 is
+    fitted on the settled scales of 960x540 and 640x480 (1080p alone gives 34.8). A driver's
+    choice: the hardware reads SCALE_INIT as written."""
     spare = min(int(budget), width * height) - grid_count(width, height, params)
     if spare <= 0:
         return U_MAX
-    return clamp_scale(int(c * (width * height / spare) ** 0.5 + 0.5))
+    thr_g = float(np.exp(np.mean(np.log(np.maximum(np.asarray(params.thr, dtype=np.float64), 1.0)))))
+    u = c * (width * height / spare) ** 0.5 * (SEED_PIXELS_REF / (width * height)) ** 0.25 \
+        * (SEED_THR_REF / thr_g) ** 0.5
+    return clamp_scale(int(u + 0.5))
+
+
+def first_frame_config(width: int, height: int, budget: int, params: Params) -> "BudgetConfig":
+    """The driver's registers for a first budget frame, with no previous frame to seed it:
+    SCALE_INIT = budget_seed(...) and PRIOR_SHIFT = AUTO_PRIOR_SHIFT (3: a seed fitted to the
+    budget is worth more than the reset value 1.0, so the law counts its guess as an eighth of a
+    frame instead of a 64th). What the CLI (`select --budget` without --scale-init or
+    --budget-prev), `make sim BUDGET=` and eval_budget.py write; measured in docs/budget.md
+    section 7, "The first frame's seed"."""
+    return BudgetConfig(int(budget), scale_init=budget_seed(width, height, budget, params),
+                        prior_shift=AUTO_PRIOR_SHIFT)
 
 
 @dataclass(frozen=True)

@@ -60,15 +60,24 @@ def _add_select_flags(p):
     p.add_argument("--budget", type=_budget_arg, default=None, metavar="N|P%",
                    help="ray budget (docs/budget.md): traced pixels per frame, or P%% of the frame's "
                         "pixels; 0 = off (the default: exactly as without the flag)")
-    p.add_argument("--scale-init", type=_int_in(0, BG.U_MAX, "--scale-init"), default=None, metavar="U",
-                   help=f"budget: the seed scale of the first two tile rows (1.0 = 256, 0 = 1.0; "
-                        f"register SCALE_INIT; default from --budget-prev, else {BG.SCALE_ONE})")
+    p.add_argument("--scale-init", type=_scale_init_arg, default=None, metavar="U|auto",
+                   help=f"budget: the seed scale of the first two tile rows (register SCALE_INIT, 1.0 = "
+                        f"{BG.SCALE_ONE}, 0 = 1.0), or auto: the driver's seed from the frame size, budget "
+                        f"and thresholds (budget.first_frame_config). Default: from --budget-prev, else auto")
     p.add_argument("--prior-shift", type=_int_in(0, BG.PRIOR_SHIFT_MAX, "--prior-shift"),
-                   default=BG.PRIOR_SHIFT, metavar="S",
-                   help=f"budget: weight of the seed's guess, a frame >> S (default {BG.PRIOR_SHIFT})")
+                   default=None, metavar="S",
+                   help=f"budget: weight of the seed's guess, a frame >> S (default {BG.AUTO_PRIOR_SHIFT} "
+                        f"with the auto seed, else {BG.PRIOR_SHIFT}, the register's reset value)")
     p.add_argument("--budget-prev", default=None, metavar="STATS.json",
                    help="budget: seed from the previous frame's STATS.json (its final scale and its "
                         "activity per tile row), as the hardware seeds the next frame")
+
+
+def _scale_init_arg(text):
+    """--scale-init: `auto` or an integer 0..U_MAX."""
+    if str(text).strip().lower() == "auto":
+        return "auto"
+    return _int_in(0, BG.U_MAX, "--scale-init")(text)
 
 
 def _budget_arg(text):
@@ -94,9 +103,14 @@ def _budget_config(args, width: int, height: int) -> BG.BudgetConfig:
             scale_init = prev["scale_out"]
     elif args.budget is None and args.scale_init is not None:
         raise UsageError("--scale-init needs --budget")
-    cfg = BG.BudgetConfig(budget=pixels, scale_init=BG.SCALE_ONE if scale_init is None else scale_init,
-                          prior_shift=args.prior_shift, profile=profile,
-                          profile_scales=profile_scales)
+    prior_shift = args.prior_shift
+    if scale_init in (None, "auto"):              # a first frame: the driver's seed
+        auto = BG.first_frame_config(width, height, pixels, _params(args)) if pixels else BG.BudgetConfig()
+        scale_init = auto.scale_init
+        prior_shift = auto.prior_shift if prior_shift is None else prior_shift
+    cfg = BG.BudgetConfig(budget=pixels, scale_init=scale_init,
+                          prior_shift=BG.PRIOR_SHIFT if prior_shift is None else prior_shift,
+                          profile=profile, profile_scales=profile_scales)
     if pixels:
         BG.Controller(width, height, _params(args), cfg)      # refuses a budget below the grid now
     return cfg

@@ -299,8 +299,34 @@ def test_cli_bad_budget_prev(tmp_path, picture):
 
 def test_budget_seed_from_the_budget_alone():
     p = Params(tile=16, levels=3, thr=(8, 16, 32))
-    assert [BG.budget_seed(1920, 1080, 1920 * 1080 * k // 100, p) for k in (5, 10, 20)] == [313, 149, 94]
+    # c * sqrt(W * H / (B - G)) * (1920 * 1080 / (W * H)) ** (1/4) * sqrt(16 / thr_g), by hand:
+    # 1080p at 10 %: B - G = 207 360 - 73 080 = 134 280, 33.4 * sqrt(15.443) = 131.25 -> 131
+    assert [BG.budget_seed(1920, 1080, 1920 * 1080 * k // 100, p) for k in (5, 10, 20)] == [275, 131, 82]
+    # a quarter of the pixels (960x540, G = 18 270): 33.4 * sqrt(518 400 / 33 570) * sqrt(2) = 185.6
+    assert BG.budget_seed(960, 540, 960 * 540 // 10, p) == 186
+    # thresholds twice as large: a scale sqrt(2) smaller (131.25 / 1.414 = 92.8)
+    assert BG.budget_seed(1920, 1080, 1920 * 1080 // 10, Params(tile=16, levels=3, thr=(16, 32, 64))) == 93
     g = BG.grid_count(64, 64, p)
     assert BG.budget_seed(64, 64, g, p) == BG.U_MAX                   # nothing above the grid
     assert BG.budget_seed(64, 64, g + 1, p) == BG.U_MAX               # clamped
-    assert BG.budget_seed(64, 64, 1 << 24, p) == BG.U_MIN             # the whole frame: clamped
+    assert BG.budget_seed(1920, 1080, 1 << 24, p) == BG.U_MIN         # the whole frame: 34, clamped
+    cfg = BG.first_frame_config(1920, 1080, 207360, p)                  # the driver's first frame
+    assert (cfg.budget, cfg.scale_init, cfg.prior_shift, cfg.profile) == (207360, 131, BG.AUTO_PRIOR_SHIFT, None)
+
+
+def test_cli_first_frame_seed(tmp_path, picture):
+    """select --budget without --scale-init writes the driver's seed (first_frame_config); an
+    explicit --scale-init and --prior-shift are written as given."""
+    base = [picture, "--levels", "3", "--thr", "8,16,32", "--budget", "20%"]
+    want = BG.first_frame_config(96, 64, 96 * 64 // 5, Params(tile=16, levels=3, thr=(8, 16, 32)))
+    runs = {"auto": [], "u": ["--scale-init", "300", "--prior-shift", "5"], "a5": ["--scale-init", "auto", "--prior-shift", "5"]}
+    got = {}
+    for k, extra in runs.items():
+        s = tmp_path / f"{k}.json"
+        r = _cli("select", *base, *extra, "--out", tmp_path / f"{k}.png", "--stats", s)
+        assert r.returncode == 0, r.stderr
+        bc = json.loads(s.read_text())["budget_control"]
+        got[k] = (bc["scale_init"], bc["prior_shift"])
+    assert got == {"auto": (want.scale_init, 3), "u": (300, 5), "a5": (want.scale_init, 5)}
+    r = _cli("select", *base, "--scale-init", "autox", "--out", tmp_path / "x.png")
+    assert r.returncode == 2 and "--scale-init" in r.stderr
