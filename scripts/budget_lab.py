@@ -78,8 +78,14 @@ class Curves:
         return float(np.interp(math.log(traced), np.log(t[o]), p[o]))
 
 
-def sequence(c: Curves, budget: int, frames: int, controller=BG.Controller, prior_shift=BG.PRIOR_SHIFT) -> list[dict]:
-    out, seed, prof, prof_u = [], BG.SCALE_ONE, None, None
+def sequence(c: Curves, budget: int, frames: int, controller=BG.Controller, prior_shift=None,
+             first_seed: str = "auto") -> list[dict]:
+    """Frames of one scene at one budget: the first with the driver's seed (first_frame_config;
+    "256": the registers' reset values), each later one seeded by the one before. prior_shift
+    overrides the first frame's PRIOR_SHIFT."""
+    first = BG.first_frame_config(c.width, c.height, budget, PARAMS) if first_seed == "auto" else BG.BudgetConfig(budget)
+    out, seed, prof, prof_u = [], first.scale_init, None, None
+    prior_shift = first.prior_shift if prior_shift is None else prior_shift
     for _ in range(frames):
         ctl = controller(c.width, c.height, PARAMS,
                          BG.BudgetConfig(budget, scale_init=seed, prior_shift=prior_shift, profile=prof,
@@ -103,7 +109,9 @@ def main(argv=None) -> int:
     ap.add_argument("--scenes", default=None, help="comma-separated (default: the evaluation set)")
     ap.add_argument("--budgets", default="5,10,20")
     ap.add_argument("--frames", type=int, default=3)
-    ap.add_argument("--prior-shift", type=int, default=BG.PRIOR_SHIFT)
+    ap.add_argument("--prior-shift", type=int, default=None, help="the first frame's (default: --first-seed's)")
+    ap.add_argument("--first-seed", choices=("auto", "256"), default="auto",
+                    help="the first frame: the driver's seed (first_frame_config) or the reset values")
     a = ap.parse_args(argv)
     from msr_eval.scenes import MODEL_FILES
     scenes = a.scenes.split(",") if a.scenes else ["cornell", "showcase", "bunny", "duck", "teapots", "engine",
@@ -118,7 +126,7 @@ def main(argv=None) -> int:
         return 2
     for b in (int(x) for x in a.budgets.split(",")):
         runs = [sequence(Curves(f, a.width, a.height), a.width * a.height * b // 100, a.frames,
-                         prior_shift=a.prior_shift) for f in files]
+                         prior_shift=a.prior_shift, first_seed=a.first_seed) for f in files]
         for k in range(a.frames):
             e = [abs(r[k]["error_pct"]) for r in runs]
             db = [r[k]["db_vs_fixed"] for r in runs]
