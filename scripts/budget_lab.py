@@ -83,9 +83,9 @@ def sequence(c: Curves, budget: int, frames: int, controller=BG.Controller, prio
     """Frames of one scene at one budget: the first with the driver's seed (first_frame_config;
     "256": the registers' reset values), each later one seeded by the one before. prior_shift
     overrides the first frame's PRIOR_SHIFT."""
-    first = BG.first_frame_config(c.width, c.height, budget, PARAMS) if first_seed == "auto" else BG.BudgetConfig(budget)
-    out, seed, prof, prof_u = [], first.scale_init, None, None
-    prior_shift = first.prior_shift if prior_shift is None else prior_shift
+    from eval_budget import first_config         # the script's folder (run as a script)
+    first = first_config(c.width, c.height, budget, PARAMS, first_seed, prior_shift)
+    out, seed, prof, prof_u, prior_shift = [], first.scale_init, None, None, first.prior_shift
     for _ in range(frames):
         ctl = controller(c.width, c.height, PARAMS,
                          BG.BudgetConfig(budget, scale_init=seed, prior_shift=prior_shift, profile=prof,
