@@ -44,6 +44,7 @@ rtl/system/msr_tile_gen.sv
 rtl/system/msr_budget_rows.sv
 rtl/system/msr_budget_grid.sv
 rtl/system/msr_budget_mem.sv
+rtl/system/msr_budget_pass.sv
 rtl/system/msr_budget_law.sv
 rtl/system/msr_budget_mul_ops.sv
 rtl/system/msr_budget_ctrl.sv

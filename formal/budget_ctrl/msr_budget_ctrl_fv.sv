@@ -166,7 +166,7 @@ module msr_budget_ctrl_fv import msr_pkg::*; import msr_budget_pkg::*; #(
                                 dut.frm_q.nty != '0));
   // (the seed pass's flag, registered from the next state, is the state's decode)
   a_in_pass:   assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                dut.in_pass_q == (dut.state_q inside {ST_PRD, ST_PWT, ST_PW, ST_PMUL, ST_PB}));
+                                dut.u_pass.in_pass_q == (dut.state_q inside {ST_PRD, ST_PWT, ST_PW, ST_PMUL, ST_PB}));
   // (the row count's companions: the next row and the rows left, kept beside it)
   a_rows_next: assert property (@(posedge clk_i) disable iff (!rst_ni)
                                 dut.rows_next_q == dut.rows_done_q + ROW_W'(1));

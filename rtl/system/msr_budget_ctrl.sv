@@ -20,10 +20,12 @@
 // counted only after every one of its tiles left). row_ok_o and row_m_o are registered: they
 // answer the row_idx_i of the clock before; a start or clear drops row_ok_o at once.
 //
-// Activity memory (msr_budget_mem): row j's update writes {u_j, a_j}; a seeded start's seed pass
-// first rewrites every word as b_k = a_k * w(u_k, u0), and row j's update reads b_j before it
-// writes. Valid, with its row count, once a budget frame finished every row; a start
-// invalidates it (it is being rewritten); a clear keeps a finished frame's memory.
+// Activity memory (msr_budget_mem, behind msr_budget_pass): row j's update writes {u_j, a_j}; a
+// seeded start's seed pass first rewrites every word as b_k = a_k * w(u_k, u0), and row j's
+// update reads b_j before it writes. Valid, with its row count, once a budget frame finished
+// every row; a start invalidates it (it is being rewritten); a clear keeps a finished frame's
+// memory. This state machine steps the pass; msr_budget_pass holds its row counter, the
+// memory's address and data selection and the weight.
 //
 `include "msr_assert.svh"
 
@@ -68,7 +70,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   localparam int unsigned MP_W   = BUD_MP_W;     // multiplier (25)
   localparam int unsigned PROD_W = MC_W + MP_W;  // 61
   localparam int unsigned REM_W  = PROD_W + 1;   // 62: holds den << 11
-  localparam int unsigned MEM_DEPTH = 512;
 
   // ---- The configuration and the grid constants, six clocks after the pulses --------------
   // The check's flags and the row read-back drop at the input pulse itself (below).
@@ -140,29 +141,32 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
     .prod_o  (mul_prod)
   );
 
-  // ---- Activity memory (msr_budget_mem): the word two clocks after its read ---------------
+  // ---- Activity memory and the seed pass (msr_budget_pass): the word two clocks after its read
   logic [MEM_W-1:0] mem_word_q;
   logic             mem_re, mem_we;
-  logic [8:0]       mem_addr;
-  logic [MEM_W-1:0] mem_wdata;
-  logic             pass;                  // the seed pass: position pass_q's word
-  logic [ROW_W-1:0] pass_q;
-  // pass from a flip-flop (in_pass_q, set from the next state), not decoded from state_q: the
-  // decode into the memory's address was the budget top's worst path (seed 1, 9.90 ns into the
-  // DP16KD). The same value every clock (a_in_pass).
-  logic             in_pass_q;
-  assign pass      = in_pass_q;
-  assign mem_addr  = pass ? pass_q[8:0] : rows_done_q[8:0];
-  // A row's own word {u_j, a_j} (a_j the product of ST_ACT), or the seed pass's product b_k.
-  assign mem_wdata = pass ? MEM_W'(mul_prod) : {u_q[base_q], 28'(mul_prod)};
+  logic             pass, pass_last;       // the seed pass; its row is the last
+  logic [27:0]      pass_a;                // a'_k of the pass's word
+  logic [10:0]      pass_w_q;              // w(u'_k, u0), registered
 
-  msr_budget_mem #(.W(MEM_W), .DEPTH(MEM_DEPTH)) u_mem (
+  msr_budget_pass #(.MEM_W(MEM_W), .ROW_W(ROW_W)) u_pass (
     .clk_i,
-    .re_i    (mem_re),
-    .we_i    (mem_we),
-    .addr_i  (mem_addr),
-    .wdata_i (mem_wdata),
-    .word_o  (mem_word_q)
+    .rst_ni,
+    .restart_i   (clear_i || start_p || check_p),
+    .state_i     (state_q),
+    .state_d_i   (state_d),
+    .mul_done_i  (mul_done),
+    .mul_prod_i  (mul_prod[MEM_W-1:0]),
+    .mem_re_i    (mem_re),
+    .mem_we_i    (mem_we),
+    .rows_done_i (rows_done_q),
+    .u_row_i     (u_q[base_q]),
+    .u0_i        (frm_q.u0),
+    .nty_i       (frm_q.nty),
+    .pass_o      (pass),
+    .pass_last_o (pass_last),
+    .mem_word_o  (mem_word_q),
+    .pass_a_o    (pass_a),
+    .pass_w_o    (pass_w_q)
   );
 
   // ---- The frame's constants and the law's registers (msr_budget_law) ----------------------
@@ -210,11 +214,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
                         frm_q.bud, law_q.n0, law_q.p_row, law_q.ex, law_q.slew, law_q.rise,
                         law_q.u_mx, law_q.deep};
 
-  // The seed pass's operands: row k's word {u_k, a_k} (from msr_budget_mem's second register).
-  logic [10:0]      pass_u;
-  logic [27:0]      pass_a;
-  assign {pass_u, pass_a} = mem_word_q;
-
   // ---- Divider (msr_seq_div): the saturation test, then quotient bits 10..0 ---------------
   // Loaded by the law (ST_LAW) or by the two products (ST_NUM, ST_DEN); steps in ST_DIV.
   logic             div_init, div_load_num, div_load_den, div_last;
@@ -254,12 +253,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // into the multiplier's load it was the unit's worst path.
   logic [5:0]      n0_last_q;
   always_ff @(posedge clk_i) n0_last_q <= grid_axis(frm_q.h_last, cfg.levels);
-
-  // The seed pass's weight w(u'_k, u0) = min(u'_k, u0) (docs/budget.md section 4), registered
-  // from the word's register every clock: the word is there from ST_PW on, so w is at ST_PMUL,
-  // which loads a'_k * w (a compare into the multiplier's load was once the top's worst path).
-  logic [10:0] pass_w_q;
-  always_ff @(posedge clk_i) pass_w_q <= (pass_u > frm_q.u0) ? frm_q.u0 : pass_u;
 
   // The operands of the product that loads this clock, by the state that loads it.
   msr_budget_mul_ops u_mul_ops (
@@ -315,7 +308,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       end
       ST_PB: if (mul_done) begin
         mem_we  = 1'b1;
-        state_d = (pass_q + ROW_W'(1) == frm_q.nty) ? ST_IDLE : ST_PRD;
+        state_d = pass_last ? ST_IDLE : ST_PRD;
       end
       ST_ACT: if (mul_done) begin
         mem_we  = 1'b1;
@@ -356,13 +349,11 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       state_q           <= ST_IDLE;
-      in_pass_q         <= 1'b0;
       checking_q        <= 1'b0;
       act_q             <= 1'b0;
       rows_done_q       <= '0;
       rows_next_q       <= ROW_W'(1);
       rows_left_q       <= '0;
-      pass_q            <= '0;
       row_last_q        <= 1'b0;
       row_new_q         <= 1'b0;
       u_q               <= '{default: '0};
@@ -380,7 +371,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       row_m_q           <= '0;
     end else if (clear_i) begin
       state_q      <= ST_IDLE;
-      in_pass_q    <= 1'b0;
       act_q        <= 1'b0;
       check_done_q <= 1'b0;
       err_budget_q <= 1'b0;
@@ -405,7 +395,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       if (start_p || check_p) begin
         // Both begin with the grid constants and G (the multiplier is loaded below).
         state_q     <= ST_G;
-        in_pass_q   <= 1'b0;
         checking_q  <= !start_p;
         act_q       <= 1'b0;
         row_ok_q    <= 1'b0;
@@ -421,7 +410,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
         end
       end else begin
         state_q   <= state_d;
-        in_pass_q <= state_d inside {ST_PRD, ST_PWT, ST_PW, ST_PMUL, ST_PB};
         unique case (state_q)
           ST_G: if (mul_done) begin
             if (checking_q) begin
@@ -437,7 +425,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             rows_left_q <= frm_q.nty;
             row_last_q <= frm_q.nty == ROW_W'(1);
             row_new_q  <= frm_q.nty[ROW_W-1:2] != '0 || frm_q.nty[1:0] == 2'd3;   // nty > 2
-            pass_q     <= '0;
           end
           ST_FLR, ST_ACT: ;
           ST_SQ0: u_q[slot2] <= u_new;
@@ -461,9 +448,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             frame_done_q      <= 1'b1;
             mem_valid_q       <= 1'b1;
             mem_rows_q        <= frm_q.nty;
-          end
-          ST_PB: if (mul_done) begin
-            pass_q     <= pass_q + ROW_W'(1);
           end
           default: ;
         endcase
@@ -490,7 +474,6 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
               row_traced_i <= p_sel)
   `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= (frm_q.seeded ? U_MIN : U_MIN_FIRST) &&
                              u_q[base_q] <= U_MAX)
-  `MSR_ASSERT(a_in_pass, in_pass_q == (state_q inside {ST_PRD, ST_PWT, ST_PW, ST_PMUL, ST_PB}))
   `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < frm_q.nty)
   `MSR_ASSERT(a_rows_count, act_q |-> rows_next_q == rows_done_q + ROW_W'(1) &&
                                       rows_left_q == frm_q.nty - rows_done_q)

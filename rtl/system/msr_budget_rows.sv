@@ -15,7 +15,7 @@
 // after the start): one copy of the tile counts in the top, not one per unit.
 //
 // Timing: S1 registers each input's slot (position mod 3: the open row its tile row equals,
-// three compares with registers), traced and last flags; S2 adds the per-slot counts (0..NUM_IN
+// two masked equalities of its pixel row with registers), traced and last flags; S2 adds the per-slot counts (0..NUM_IN
 // each) into the counters.
 `include "msr_assert.svh"
 `include "msr_flops.svh"
@@ -56,6 +56,8 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   logic [TROW_W-1:0]       head_q;                        // the oldest open row's position
   slot_t                   hslot_q;                       // its slot
   logic [2:0][TROW_W-1:0]  hrow_q;                        // the rows of positions head .. head + 2
+  logic [1:0][COORD_W-1:3] hy_q;                          // the first pixel rows of head, head + 1
+  logic                    ign3_q, ign4_q;                // y bits 3, 4 are below the tile row (lg)
   logic                    bottom_q;                      // hrow_q[0] is row nty - 1
   logic [1:0]              set_q;                         // the two clocks after a start
   logic [2:0][CNT_W-1:0]   traced_q;
@@ -174,12 +176,27 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
     if (!rst_ni) set_q <= '0;
     else         set_q <= {set_q[0], start_i && !clear_i};
   end
+  // hy_q: the first pixel rows of the open rows at positions head and head + 1 (row << lg), so
+  // that a pixel's slot is two masked equalities on its pixel row (in_row, below), not a shift
+  // by lg per input and two compares after it: those were over half of this unit's LUTs (887
+  // against 476 LUT4 on ECP5 at four inputs). An open row is a row of the frame, so row << lg
+  // < H fits a pixel row (a_slot_exact checks the equalities against the tile rows).
+  // (bits 3 and up: a tile row starts at a multiple of 8; a row of the frame is below 512)
+  function automatic logic [COORD_W-1:3] row_y(logic [COORD_W-4:0] r, logic [2:0] lg);
+    unique case (lg)
+      3'd3:    return r;
+      3'd5:    return r << 2;
+      default: return r << 1;
+    endcase
+  endfunction
   always_ff @(posedge clk_i) begin
     if (set_q[1]) begin
       hrow_q   <= {s_row << 1, s_row, TROW_W'(0)};
+      hy_q     <= {row_y(s_row[COORD_W-4:0], lg_q), (COORD_W - 3)'(0)};
       bottom_q <= nty_i == (TROW_W + 1)'(1);
     end else if (take) begin
       hrow_q   <= {next_row(hrow_q[2], s_row, smask_i, nty_s_i), hrow_q[2], hrow_q[1]};
+      hy_q     <= {row_y(hrow_q[2][COORD_W-4:0], lg_q), hy_q[1]};
       bottom_q <= {1'b0, hrow_q[1]} + 1'b1 == nty_i;
     end
   end
@@ -187,12 +204,18 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   // S1: the row's slot from which open position its tile row is (0..2; 2 if neither of the
   // first two). hrow_q and hslot_q move together, so the slot is the same whether S1 saw the
   // old or the new head.
+  // (pixel row y is in tile row r iff y's bits from lg up equal those of r << lg)
+  function automatic logic in_row(logic [COORD_W-1:3] y, logic [COORD_W-1:3] hy, logic ign3,
+                                  logic ign4);
+    return y[COORD_W-1:5] == hy[COORD_W-1:5] && (ign4 || y[4] == hy[4]) && (ign3 || y[3] == hy[3]);
+  endfunction
   slot_t [NUM_IN-1:0] s1_slot_d;
   always_comb begin
     for (int unsigned i = 0; i < NUM_IN; i++) begin
-      logic [TROW_W-1:0] r;
-      r = tile_row(pix_y_i[i], lg_q);
-      s1_slot_d[i] = slot_add(hslot_q, (r == hrow_q[0]) ? 2'd0 : (r == hrow_q[1]) ? 2'd1 : 2'd2);
+      logic [COORD_W-1:3] y;
+      y = pix_y_i[i][COORD_W-1:3];
+      s1_slot_d[i] = slot_add(hslot_q, in_row(y, hy_q[0], ign3_q, ign4_q) ? 2'd0 :
+                                       in_row(y, hy_q[1], ign3_q, ign4_q) ? 2'd1 : 2'd2);
     end
   end
 
@@ -200,7 +223,11 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
     s1_slot_q <= s1_slot_d;
     s1_tr_q   <= pix_traced_i;
     s1_last_q <= pix_last_i;
-    if (start_i) lg_q <= tile_log2_i;
+    if (start_i) begin
+      lg_q   <= tile_log2_i;
+      ign3_q <= tile_log2_i != 3'd3;
+      ign4_q <= tile_log2_i == 3'd5;
+    end
   end
 
   /* verilator lint_off SYNCASYNCNET */
@@ -211,6 +238,11 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
                  tile_row(pix_y_i[i], lg_q) == hrow_q[1] ||
                  tile_row(pix_y_i[i], lg_q) == hrow_q[2]),
                 clk_i, !rst_ni || clear_i)
+    for (genvar k = 0; k < 2; k++) begin : g_exact
+      `MSR_ASSERT(a_slot_exact, pix_fire_i[i] && act_q && set_q == '0 |->
+                  in_row(pix_y_i[i][COORD_W-1:3], hy_q[k], ign3_q, ign4_q) ==
+                  (tile_row(pix_y_i[i], lg_q) == hrow_q[k]), clk_i, !rst_ni || clear_i)
+    end
     `MSR_ASSERT(a_rows_set, pix_fire_i[i] && act_q |-> set_q == '0, clk_i, !rst_ni || clear_i)
   end
   `MSR_ASSERT(a_restart_idle, take_q |-> inc_tr[tslot_q] == '0 && inc_la[tslot_q] == '0,

@@ -336,12 +336,16 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
   if (BUDGET_EN) begin : g_budget
     localparam int unsigned P_W = THR_W + 13;       // thr' * m
     logic [4:0][12:0]                m_q;           // m of the tile in S1..S5
+    logic [4:0][7:0]                 dith_q;        // its dither d in S1..S5
     logic [MAX_LEVELS-1:0][P_W-1:0] prod6_q;       // S6: thr' * m per level
     logic [7:0]                      dith6_q;       // S6: the tile's dither d
     tile_desc_t                      desc6_q, desc7_q, desc7_d;
-    // d = bit-reversed (tx + ty) mod 256: neighbouring tiles far apart in [0, 255]
-    logic [7:0] txy;
-    assign txy = 8'(desc_q.x0 >> lg_q) + 8'(desc_q.y0 >> lg_q);
+    // d = bit-reversed (tx + ty) mod 256: neighbouring tiles far apart in [0, 255]. Formed from
+    // the walker's tile indices as the tile enters S1 and carried with it, not from the
+    // descriptor's origin (x0 >> lg, y0 >> lg: two shifts by the tile size in front of the add).
+    logic [7:0] txy, txy_rev;
+    assign txy     = 8'(ctl_q.tx) + 8'(ctl_q.ty);
+    assign txy_rev = {<<{txy}};
     always_comb begin
       desc7_d = desc6_q;
       for (int k = 0; k < MAX_LEVELS; k++) begin
@@ -353,8 +357,9 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
     always_ff @(posedge clk_i) begin
       if (en) begin
         m_q     <= {m_q[3:0], bud_en_i ? row_m_i : 13'd256};
+        dith_q  <= {dith_q[3:0], txy_rev};
         desc6_q <= desc_q;
-        dith6_q <= {<<{txy}};
+        dith6_q <= dith_q[4];
         for (int k = 0; k < MAX_LEVELS; k++) prod6_q[k] <= P_W'(desc_q.thr[k]) * P_W'(m_q[4]);
         desc7_q <= desc7_d;
       end
