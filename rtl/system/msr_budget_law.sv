@@ -35,7 +35,7 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
   output logic [17:0]       floor_ex_o,      // max(c_j - g_j, p_j >> FLOOR_SHIFT)
   output logic [BUD_ACT_W-1:0] nn0_o,        // N + N0
   output logic              x_pos_o,         // X > 0
-  output logic [10:0]       u_new_o          // clamp(min(max(q, u_{j+1} >> 1), 2 u_{j+1}))
+  output logic [10:0]       u_new_o          // clamp(min(max(q, fall(u_{j+1})), 2 u_{j+1}))
 );
   localparam int unsigned WH_W   = BUD_WH_W;
   localparam int unsigned ACT_W  = BUD_ACT_W;
@@ -123,10 +123,12 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
     end
     // (the last row has no next scale to slew from: SCALE_OUT = clamp(q) through the same step,
     // in [U_MIN, U_MAX] like u0, since it seeds the next frame)
-    // The scale moves by at most a factor of two per row either way (v5): min(max(q, u >> 1),
-    // 2 u) as two compares of q beside each other (u >> 1 < 2 u), not one after the other.
+    // The scale rises at most to twice a row's and falls at most to half (first frame) or by a
+    // quarter (seeded): min(max(q, fall(u)), 2 u) as two compares of q beside each other
+    // (fall(u) < 2 u), not one after the other.
     if (run_i && state_i == ST_LAW) begin
-      law_q.slew <= row_last_i ? '0 : u_next_i >> 1;
+      law_q.slew <= row_last_i   ? '0 :
+                    frm_q.seeded ? u_next_i - (u_next_i >> 2) : u_next_i >> 1;
       law_q.rise <= (row_last_i || u_next_i[10]) ? '1 : {u_next_i[9:0], 1'b0};
       law_q.deep <= !row_last_i && u_next_i <= U_MIN;
     end

@@ -69,7 +69,7 @@ package msr_budget_pkg;
     logic signed [26:0]   x_rem;      // X = (B' - G) + Gd - C, kept as a running sum
     logic [17:0]          p_row;      // the finished row's p_j
     logic [17:0]          ex;         // c_j - g_j >= 0 (the floor is applied from it a clock later)
-    logic [10:0]          slew;       // u_{j+1} >> 1
+    logic [10:0]          slew;       // fall(u_{j+1}): u >> 1, seeded u - (u >> 2)
     logic [10:0]          rise;       // 2 u_{j+1}, saturated at 2047 (2047 for the last row)
     logic                 deep;       // u_{j+1} <= U_MIN (a first frame's lo is U_MIN_FIRST)
     logic [10:0]          u_mx;       // min(max(q, u_{j+1} >> 1), 2 u_{j+1})

@@ -26,7 +26,13 @@ which engine was faster). After each finished position j:
     X   = B - C - G_rem                # budget left above the initial grid of the rows to come
     q   = ((N + N0) * Q) // ((P + P0) * X)           # first frame: the rows seen so far, extrapolated
     q   = (A_prev - A_done) // (u_0 * X)               # seeded: the previous frame's row activities
-    u_{j+2} = clamp(min(max(q, u_{j+1} >> 1), 2 u_{j+1}))   # X <= 0: U_MAX + 1; at most 2x a row
+    u_{j+2} = clamp(min(max(q, fall(u_{j+1})), 2 u_{j+1}))  # X <= 0: U_MAX + 1; at most 2x a row
+    fall(u) = u >> 1 (first frame), u - (u >> 2) (seeded)     # at most 1/2 or 1/4 down a row
+
+A seeded frame's scale falls by at most a quarter per row: its rows' scales start near where
+the previous frame settled, and a row whose activity below about u = 55 rises much faster
+than the law's model would otherwise pull the rows after it down too far at once (docs/budget.md,
+"The seeded fall limit").
 
 clamp(v) = min(U_MAX, max(lo, v)) with lo = U_MIN (45), except in a first frame once row j + 1
 already runs at U_MIN or below: then lo = U_MIN_FIRST (32). A first frame knows nothing of the
@@ -374,7 +380,13 @@ class Controller:
             self.scale_out = U_MAX if spare <= 0 else clamp_scale(self.n_act // spare)
         elif j + 2 < self.nty:
             u1 = self.scales[j + 1]
-            self.scales.append(clamp_scale(min(max(self.quotient(), u1 >> 1), u1 << 1), self.scale_floor(j)))
+            self.scales.append(clamp_scale(min(max(self.quotient(), self.scale_fall(u1)), u1 << 1),
+                                           self.scale_floor(j)))
+
+    def scale_fall(self, u1: int) -> int:
+        """The least u_{j+2} before the clamp: u_{j+1} >> 1 in a first frame (a scale at most halves
+        per row), u_{j+1} - (u_{j+1} >> 2) in a seeded frame (at most a quarter down)."""
+        return u1 - (u1 >> 2) if self.profile is not None else u1 >> 1
 
     def scale_floor(self, j: int) -> int:
         """lo of the clamp of u_{j+2}: U_MIN_FIRST in a first frame once u_{j+1} <= U_MIN."""

@@ -218,6 +218,23 @@ def test_a_first_frame_reaches_below_u_min_a_seeded_frame_does_not():
     assert min(seeded.scales) == BG.U_MIN and seeded.scale_out == BG.U_MIN
 
 
+def test_a_seeded_frame_falls_by_at_most_a_quarter_per_row():
+    # Rows that trace only their grid against most of the frame: q is far below every scale, so
+    # the fall limit sets each next scale. A first frame halves per row; a seeded frame
+    # (the same budget, seed 256) takes u - (u >> 2) per row down to U_MIN.
+    w, h = 256, 160
+    cfg = BG.BudgetConfig(w * h * 9 // 10)
+    first = BG.Controller(w, h, L2, cfg)
+    for r in range(first.nty):
+        first.finish_row(BG.row_grid(w, first.row_height(r), L2))
+    seeded = BG.Controller(w, h, L2, BG.BudgetConfig(cfg.budget, 256, profile=first.activity,
+                                                     profile_scales=first.scale_of_rows()))
+    for r in range(seeded.nty):
+        seeded.finish_row(BG.row_grid(w, seeded.row_height(r), L2))
+    assert seeded.scales == [256, 256, 192, 144, 108, 81, 61, 46, 45, 45]
+    assert first.scales[:5] == [256, 256, 128, 64, 45]
+
+
 def test_spent_budget_raises_the_scale_twofold_per_row():
     # Nothing left above the grid (q = U_MAX + 1): the scale rises, but by at most 2x a row (v5).
     ctl = BG.Controller(64, 64, L2, BG.BudgetConfig(budget=BG.grid_count(64, 64, L2) + 10))

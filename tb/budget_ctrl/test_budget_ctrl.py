@@ -274,7 +274,7 @@ class Bench:
             k = "none"
         else:
             x = ctl.budget - ctl.traced - (ctl.grid - ctl.grid_done)
-            q, slew, rise = ctl.quotient(), ctl.scales[j + 1] >> 1, ctl.scales[j + 1] << 1
+            q, slew, rise = ctl.quotient(), ctl.scale_fall(ctl.scales[j + 1]), ctl.scales[j + 1] << 1
             law = "seeded" if ctl.profile is not None else "first"
             deep = ctl.scales[j + 2] < BG.U_MIN         # a first frame's row below 45
             k = ("x<=0" if x <= 0 else f"{law}_rise" if q > rise and rise <= BG.U_MAX else
@@ -485,6 +485,7 @@ def test_budget_ctrl():
     run_cocotb("msr_budget_ctrl", "test_budget_ctrl", HERE, {}, "",
                sources=[RTL / "msr_pkg.sv", RTL / "system/msr_budget_pkg.sv", RTL / "prim/msr_shift_add_mul.sv", RTL / "prim/msr_seq_div.sv",
                         RTL / "system/msr_budget_grid.sv", RTL / "system/msr_budget_mem.sv",
+                        RTL / "system/msr_budget_pass.sv",
                         RTL / "system/msr_budget_law.sv",
                         RTL / "system/msr_budget_mul_ops.sv",
                         RTL / "system/msr_budget_ctrl.sv"])
