@@ -2,7 +2,8 @@
 // sw_model/msr_model/budget.py, class Controller, bit for bit). This module is the state
 // machine, the scale slots and the shared multiplier and divider; the frame's constants and the
 // law's running sums are msr_budget_law's registers, the multiplier's operands by state
-// msr_budget_mul_ops's choice.
+// msr_budget_mul_ops's choice, the activity memory's address, data and the seed pass's row
+// counter msr_budget_pass's.
 //
 // Why sequential: a tile row lasts thousands of clocks and the law runs once per row, so one
 // bit-serial multiplier (msr_shift_add_mul, up to 36 x 25 bits, as many clocks as the multiplier
