@@ -410,7 +410,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           u_q[1]            <= cfg.u0;
         end
       end else begin
-        state_q   <= state_d;
+        state_q <= state_d;
         unique case (state_q)
           ST_G: if (mul_done) begin
             if (checking_q) begin

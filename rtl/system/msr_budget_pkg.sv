@@ -72,7 +72,7 @@ package msr_budget_pkg;
     logic [10:0]          slew;       // fall(u_{j+1}): u >> 1, seeded u - (u >> 2)
     logic [10:0]          rise;       // 2 u_{j+1}, saturated at 2047 (2047 for the last row)
     logic                 deep;       // u_{j+1} <= U_MIN (a first frame's lo is U_MIN_FIRST)
-    logic [10:0]          u_mx;       // min(max(q, u_{j+1} >> 1), 2 u_{j+1})
+    logic [10:0]          u_mx;       // min(max(q, fall(u_{j+1})), 2 u_{j+1})
   } budget_law_t;
 
   // A product's operands (msr_budget_mul_ops): b's low n bits are the multiplier, handed over

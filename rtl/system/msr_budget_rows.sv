@@ -15,8 +15,8 @@
 // after the start): one copy of the tile counts in the top, not one per unit.
 //
 // Timing: S1 registers each input's slot (position mod 3: the open row its tile row equals,
-// two masked equalities of its pixel row with registers), traced and last flags; S2 adds the per-slot counts (0..NUM_IN
-// each) into the counters.
+// two masked equalities of its pixel row with registers), traced and last flags; S2 adds the
+// per-slot counts (0..NUM_IN each) into the counters.
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
@@ -179,7 +179,7 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   // hy_q: the first pixel rows of the open rows at positions head and head + 1 (row << lg), so
   // that a pixel's slot is two masked equalities on its pixel row (in_row, below), not a shift
   // by lg per input and two compares after it: those were over half of this unit's LUTs (887
-  // against 476 LUT4 on ECP5 at four inputs). An open row is a row of the frame, so row << lg
+  // against 467 LUT4 on ECP5 at four inputs). An open row is a row of the frame, so row << lg
   // < H fits a pixel row (a_slot_exact checks the equalities against the tile rows).
   // (bits 3 and up: a tile row starts at a multiple of 8; a row of the frame is below 512)
   function automatic logic [COORD_W-1:3] row_y(logic [COORD_W-4:0] r, logic [2:0] lg);

@@ -29,10 +29,11 @@ which engine was faster). After each finished position j:
     u_{j+2} = clamp(min(max(q, fall(u_{j+1})), 2 u_{j+1}))  # X <= 0: U_MAX + 1; at most 2x a row
     fall(u) = u >> 1 (first frame), u - (u >> 2) (seeded)     # at most 1/2 or 1/4 down a row
 
-A seeded frame's scale falls by at most a quarter per row: its rows' scales start near where
-the previous frame settled, and a row whose activity below about u = 55 rises much faster
-than the law's model would otherwise pull the rows after it down too far at once (docs/budget.md,
-"The seeded fall limit").
+A seeded frame's scale falls by at most a quarter per row: it starts near where the previous
+frame settled, so a large step down is the model's error more than the content's (below about
+u = 55 some scenes' rows trace far more than 1 / u^2 predicts, and one step too far at the
+frame's end overshoots the budget with no row left to make up for it; docs/budget.md, "The
+seeded fall limit").
 
 clamp(v) = min(U_MAX, max(lo, v)) with lo = U_MIN (45), except in a first frame once row j + 1
 already runs at U_MIN or below: then lo = U_MIN_FIRST (32). A first frame knows nothing of the
