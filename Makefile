@@ -48,9 +48,9 @@ help: ## list the targets
 setup:
 	@bash scripts/setup.sh
 
-# rtl/msr.f, read once for every flow by its one reader (tb/common/msr_runner.py):
+# rtl/msr.f, read once for every flow by its one reader (flow/msr_flow/filelist.py):
 # MSR_RTL_FILES the sources in order, MSR_RTL_OPTS its tool options (+incdir+...).
-MSR_RTL_ARGS  := $(shell python3 tb/common/msr_runner.py)
+MSR_RTL_ARGS  := $(shell python3 flow/msr_flow/filelist.py)
 MSR_RTL_FILES := $(filter-out +% -%,$(MSR_RTL_ARGS))
 MSR_RTL_OPTS  := $(filter +% -%,$(MSR_RTL_ARGS))
 

@@ -1,5 +1,5 @@
 # make coverage: the cocotb benches built with Verilator --coverage-line --coverage-user
-# (MSR_COVERAGE=1 in tb/common/msr_runner.py: builds under build/tb_cov/, one coverage.dat
+# (MSR_COVERAGE=1 in flow/msr_flow/runner.py: builds under build/tb_cov/, one coverage.dat
 # per simulation run under build/coverage/dat/, functional bins under build/coverage/func/),
 # then scripts/coverage_report.py merges them into build/coverage/summary.json (line_percent
 # over rtl/, cover_points_hit, cover_points_total, per file, functional bins) and

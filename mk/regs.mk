@@ -3,17 +3,17 @@
 # synthesis and the simulations never need the generator; `make regs-check` (part of
 # `make test`) regenerates into build/ and fails if the committed files are stale.
 REGS_RDL  := rtl/regs/msr_regs.rdl
-REGS_GEN  := rtl/regs/msr_regs.sv rtl/regs/msr_regs_pkg.sv sim/msr_regs.h tb/common/msr_regs.py docs/regs.md
+REGS_GEN  := rtl/regs/msr_regs.sv rtl/regs/msr_regs_pkg.sv sim/msr_regs.h flow/msr_flow/regs.py docs/regs.md
 
 .PHONY: regs regs-check
 
 define regs_generate # $(1) = output root (repo root or a scratch folder)
-	mkdir -p $(1)/rtl/regs $(1)/sim $(1)/tb/common $(1)/docs
+	mkdir -p $(1)/rtl/regs $(1)/sim $(1)/flow/msr_flow $(1)/docs
 	$(ENV) peakrdl regblock $(REGS_RDL) -o $(1)/rtl/regs --cpuif passthrough --default-reset arst_n \
 	    --rt-read-fanin --rt-read-response \
 	    --err-if-bad-addr
 	$(ENV) peakrdl c-header $(REGS_RDL) -o $(1)/sim/msr_regs.h
-	$(ENV) python scripts/gen_reg_consts.py $(REGS_RDL) $(1)/tb/common/msr_regs.py
+	$(ENV) python scripts/gen_reg_consts.py $(REGS_RDL) $(1)/flow/msr_flow/regs.py
 	$(ENV) peakrdl markdown $(REGS_RDL) -o $(1)/docs/regs.md
 endef
 

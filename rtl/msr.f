@@ -1,7 +1,7 @@
-// The one source-of-truth file list (package first, then primitives, engine, system).
-// Every flow reads it: cocotb, the Verilator harness, make lint, make synth, msr.core.
-+incdir+rtl/prim
-rtl/msr_pkg.sv
+// The one source-of-truth file list: packages, primitives, engine, tile generator, budget,
+// frame-buffer writer, control, top. Every flow reads it; msr.core is generated from it.
++incdir+rtl/prim+rtl/fbw+rtl/top+rtl/checkers
+rtl/pkg/msr_pkg.sv
 rtl/prim/msr_lzc.sv
 rtl/prim/msr_clr_reg.sv
 rtl/prim/msr_dup_reg.sv
@@ -34,27 +34,27 @@ rtl/engine/msr_ctx_drain.sv
 rtl/engine/msr_tile_engine.sv
 rtl/regs/msr_regs_pkg.sv
 rtl/regs/msr_regs.sv
-rtl/system/msr_sys_pkg.sv
-rtl/system/msr_axil_cpuif.sv
-rtl/system/msr_reg_if.sv
-rtl/system/msr_watchdog.sv
-rtl/system/msr_cfg_ctrl.sv
-rtl/system/msr_budget_pkg.sv
-rtl/system/msr_tile_gen.sv
-rtl/system/msr_budget_rows.sv
-rtl/system/msr_budget_grid.sv
-rtl/system/msr_budget_mem.sv
-rtl/system/msr_budget_pass.sv
-rtl/system/msr_budget_law.sv
-rtl/system/msr_budget_mul_ops.sv
-rtl/system/msr_budget_ctrl.sv
-rtl/system/msr_budget.sv
-rtl/system/msr_render_mux.sv
-rtl/system/msr_fbw_pkg.sv
-rtl/system/msr_fbw_rowbuf.sv
-rtl/system/msr_fbw_addr.sv
-rtl/system/msr_fbw_aw.sv
-rtl/system/msr_fbw_w.sv
-rtl/system/msr_fb_writer.sv
-rtl/system/msr_perf_counters.sv
-rtl/system/msr_top.sv
+rtl/pkg/msr_sys_pkg.sv
+rtl/ctrl/msr_axil_cpuif.sv
+rtl/ctrl/msr_reg_if.sv
+rtl/ctrl/msr_watchdog.sv
+rtl/ctrl/msr_cfg_ctrl.sv
+rtl/budget/msr_budget_pkg.sv
+rtl/tilegen/msr_tile_gen.sv
+rtl/budget/msr_budget_rows.sv
+rtl/budget/msr_budget_grid.sv
+rtl/budget/msr_budget_mem.sv
+rtl/budget/msr_budget_pass.sv
+rtl/budget/msr_budget_law.sv
+rtl/budget/msr_budget_mul_ops.sv
+rtl/budget/msr_budget_ctrl.sv
+rtl/budget/msr_budget.sv
+rtl/top/msr_render_mux.sv
+rtl/fbw/msr_fbw_pkg.sv
+rtl/fbw/msr_fbw_rowbuf.sv
+rtl/fbw/msr_fbw_addr.sv
+rtl/fbw/msr_fbw_aw.sv
+rtl/fbw/msr_fbw_w.sv
+rtl/fbw/msr_fb_writer.sv
+rtl/ctrl/msr_perf_counters.sv
+rtl/top/msr_top.sv

@@ -45,7 +45,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 from synth import (ENGINE, TOP, bb_param_names, default_params, modules_in, params_text,  # the script's folder
                    pixels_per_clock, read_cmd, read_filelist)
-from msr_runner import rtl_digest, with_macros   # the installed msr_tb package
+from msr_flow.filelist import rtl_digest, with_macros# the installed msr_tb package
 
 OUT = ROOT / "build" / "asic"
 DOC = ROOT / "docs" / "asic.md"

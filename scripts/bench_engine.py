@@ -164,7 +164,7 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
 
 
 def main() -> int:
-    from msr_runner import run_cocotb
+    from msr_flow.runner import run_cocotb
     if RULE not in RULES:
         print(f"bench_engine: MSR_BENCH_RULE={RULE!r} is not one of {', '.join(RULES)}", file=sys.stderr)
         return 2

@@ -30,8 +30,8 @@ from pathlib import Path
 
 from msr_model import Params, spec
 from msr_model.clitools import EXIT_BAD_INPUT, Parser, RunFailed, UsageError, int_list, run_main
-from msr_harness import RTL_RULES, GoldenFrames, HarnessRun, compare
-from msr_runner import rtl_digest  # what RTL the figures were measured on
+from msr_flow.harness import RTL_RULES, GoldenFrames, HarnessRun, compare
+from msr_flow.filelist import rtl_digest# what RTL the figures were measured on
 
 ROOT = Path(__file__).resolve().parents[1]
 

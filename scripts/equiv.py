@@ -31,7 +31,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-from msr_runner import rtl_incdirs, rtl_sources   # the installed msr_tb package
+from msr_flow.filelist import rtl_incdirs, rtl_sources# the installed msr_tb package
 
 
 def defining_file(unit: str, files: list[Path]) -> Path:

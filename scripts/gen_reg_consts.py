@@ -3,7 +3,7 @@
     python scripts/gen_reg_consts.py rtl/regs/msr_regs.rdl OUT.py
 
 Emits, for every register, `<REG>` = byte offset (arrays: `<REG>_<i>`), and for every field
-`<REG>_<FIELD>_LSB` / `_WIDTH` / `_MASK`. Used by the cocotb tests (tb/common/msr_regs.py).
+`<REG>_<FIELD>_LSB` / `_WIDTH` / `_MASK`. Used by the cocotb tests (flow/msr_flow/regs.py).
 """
 import sys
 

@@ -15,7 +15,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from msr_runner import rtl_sources, with_macros
+from msr_flow.filelist import rtl_sources, with_macros
 
 ROOT = Path(__file__).resolve().parents[1]
 

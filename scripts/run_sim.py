@@ -28,7 +28,7 @@ import numpy as np
 
 from msr_model import Params, RULES, save_png, spec
 from msr_model.clitools import Parser, RunFailed, UsageError, int_in, int_list, run_main
-from msr_harness import RTL_RULES, GoldenFrames, HarnessRun, compare
+from msr_flow.harness import RTL_RULES, GoldenFrames, HarnessRun, compare
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -22,7 +22,7 @@ import numpy as np
 
 from msr_model import save_png, spec
 from msr_model.clitools import RunFailed, UsageError, int_in
-from msr_harness import GoldenFrames, HarnessRun, compare
+from msr_flow.harness import GoldenFrames, HarnessRun, compare
 
 ROOT = Path(__file__).resolve().parents[1]
 DEFAULT_PATH = ROOT / "sim" / "paths" / "cornell_orbit.json"   # the default scene's orbit

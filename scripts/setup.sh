@@ -30,7 +30,7 @@ fi
 
 # Python environment; the stamp records which requirements and package files it was built from.
 stamp=".venv/.setup-stamp"
-want="$(cat requirements.txt sw_model/pyproject.toml tb/pyproject.toml | sha256sum | cut -d' ' -f1)"
+want="$(cat requirements.txt sw_model/pyproject.toml tb/pyproject.toml flow/pyproject.toml | sha256sum | cut -d' ' -f1)"
 if [ ! -x .venv/bin/python ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
   echo "setup: creating .venv from requirements.txt"
   PY="${PYTHON:-python3}"
@@ -38,7 +38,9 @@ if [ ! -x .venv/bin/python ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; th
   .venv/bin/python -m pip install -q --upgrade pip
   .venv/bin/python -m pip install -q -r requirements.txt
   .venv/bin/python -m pip install -q --no-deps --no-build-isolation -e sw_model
-  # the benches' and scripts' libraries (tb/common: runner, harness, register constants)
+  # the build and run library (flow/: file list, runners, harness, register constants, flows)
+  .venv/bin/python -m pip install -q --no-deps --no-build-isolation -e flow
+  # the benches' own helpers (tb/common: cocotb helpers, functional coverage)
   .venv/bin/python -m pip install -q --no-deps --no-build-isolation -e tb
   echo "$want" > "$stamp"
 fi

@@ -36,7 +36,7 @@ def main(argv=None) -> int:
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "soak")
     args = ap.parse_args(argv)
 
-    from msr_runner import run_cocotb
+    from msr_flow.runner import run_cocotb
 
     args.out.mkdir(parents=True, exist_ok=True)
     frames_log = args.out / "frames.jsonl"

@@ -40,7 +40,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from msr_runner import rtl_digest, rtl_sources  # the one reader of rtl/msr.f
+from msr_flow.filelist import rtl_digest, rtl_sources# the one reader of rtl/msr.f
 from tqdm import tqdm
 
 ROOT = Path(__file__).resolve().parents[1]

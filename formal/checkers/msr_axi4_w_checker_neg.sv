@@ -2,7 +2,7 @@
 // every rule but rule VIOL assumed kept. The bmc job must then fail on exactly the assertion
 // of rule VIOL (formal/run_formal.py checks the label): each assertion can fire, and fires on
 // its own rule.
-`include "../checkers/msr_chk_axi.svh"
+`include "msr_chk_axi.svh"
 
 module msr_axi4_w_checker_neg #(
   parameter int unsigned VIOL = 0

@@ -1,6 +1,6 @@
 // Negative test of msr_axil_checker: every AXI4-Lite signal free, reset in the first cycle,
 // every rule but rule VIOL assumed kept; the bmc job must fail on exactly that rule's assertion.
-`include "../checkers/msr_chk_axi.svh"
+`include "msr_chk_axi.svh"
 
 module msr_axil_checker_neg #(
   parameter int unsigned VIOL = 0

@@ -7,7 +7,7 @@
 // the slave is free within AXI4 (B only for a completed burst, held until taken); the engine is
 // a legal one: whole tiles, row-major, T-aligned origins inside the frame, the last flag on a
 // tile's last pixel, valid held until taken, codes below 32.
-`include "../checkers/msr_chk_axi.svh"
+`include "msr_chk_axi.svh"
 
 module msr_fb_writer_fv import msr_pkg::*; (
   input logic        clk_i,

@@ -7,7 +7,7 @@
 // arithmetic written plainly here; the row's buffer is its input's; a take only of a requesting
 // input, one at a time; the credit bound (rows taken and not yet out at most the queue's 8);
 // idle only with none in flight. Bounded.
-`include "../system/msr_fbw_types.svh"
+`include "msr_fbw_types.svh"
 
 module msr_fbw_addr_fv import msr_pkg::*; import msr_fbw_pkg::*; #(
   localparam int unsigned DW   = 32,

@@ -7,7 +7,7 @@
 // oldest outstanding burst; every row taken yields its bursts (one per plane, two when the
 // plane crosses 4 KiB; the code plane only with src_en), none lost or duplicated, and exactly
 // one of them is marked as the row's last.
-`include "../system/msr_fbw_types.svh"
+`include "msr_fbw_types.svh"
 
 module msr_fbw_aw_fv import msr_fbw_pkg::*; #(
   localparam int unsigned DW      = 32,

@@ -9,7 +9,7 @@
 // With LIVE set, the master always takes responses, and every request is answered within
 // five cycles.
 `include "msr_regs_map.svh"
-`include "../checkers/msr_chk_axi.svh"
+`include "msr_chk_axi.svh"
 
 module msr_regs_fv #(
   parameter bit LIVE = 1'b0

@@ -15,7 +15,7 @@
 // rtl/prim/msr_assert.svh, the rule of its MSR_ASSERT macros). The handshake rules (valid held,
 // payload stable) come from msr_chk_stable.sv, one instance a channel.
 `include "msr_assert.svh"
-`include "../checkers/msr_chk_axi.svh"
+`include "msr_chk_axi.svh"
 // Verification IP, not design: no coverage points (make coverage reports the design's lines).
 /* verilator coverage_off */
 module msr_axil_checker #(

@@ -8,7 +8,7 @@
 // responses on purpose (AXI has no abort; docs/system.md, "Watchdog"); a normal clear comes
 // only when the writer is idle, where resetting the checker changes nothing. A B response
 // that arrives after a forced clear is still an orphan for the checker, as for the RTL.
-`include "../checkers/msr_chk_axi.svh"
+`include "msr_chk_axi.svh"
 bind msr_fb_writer msr_axi4_w_checker #(
   .ADDR_W(32), .DATA_W(AXI_DATA_W), .ID_W(ID_W), .MAX_OUT(2 * MAX_OUT)
 ) u_axi4_w_chk (

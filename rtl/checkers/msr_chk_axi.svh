@@ -3,7 +3,7 @@
 // or watch them (formal/checkers, formal/regs, formal/fb_writer) all expand these macros, so a
 // channel's signals, widths and names are listed in one place.
 //
-// Include it as `include "../checkers/msr_chk_axi.svh"`: the flows find it through their
+// Include it as `include "msr_chk_axi.svh"`: the flows find it through their
 // rtl/prim include folder (+incdir+rtl/prim of rtl/msr.f; the .sby files copy rtl/prim and
 // rtl/checkers headers to prim/ and checkers/ and read with -I prim).
 //
@@ -16,7 +16,7 @@
 // harness that plays the master of a slave under test; output, input for one that watches a
 // master under test).
 //   `MSR_AXIL_PORTS_P(P, ...), `MSR_AXI4_AW_PORTS_P(P, ...) (and _WD_, _B_): the same with
-// the names prefixed by P (the accelerator's own ports, rtl/system/msr_axi_ports.svh).
+// the names prefixed by P (the accelerator's own ports, rtl/top/msr_axi_ports.svh).
 //   `MSR_AXIL_CONN(P, X)  `MSR_AXI4_W_CONN(P, X) (and _AW_, _WD_, _B_ per channel)
 // connect an instance's ports PORT<name> to the signals SIG<name> (either prefix may be empty:
 // `MSR_AXIL_CONN(, s_axil_) binds a checker to a slave's s_axil_* ports).

@@ -14,7 +14,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 import bench_hw  # noqa: E402
-from msr_harness import GoldenFrames, MemoryLayout  # noqa: E402
+from msr_flow.harness import GoldenFrames, MemoryLayout  # noqa: E402
 
 HARNESS = bench_hw.harness_path(ROOT / "build" / "bench", 1, 16)
 
@@ -95,7 +95,7 @@ def test_stats_carry_the_build_and_the_layout(tmp_path):
     """The harness says what it is and where it wrote: the one-engine build, 16 tags, its
     memory layout, the frame's registers; the scripts take these instead of constants."""
     _need_harness()
-    from msr_harness import HarnessRun
+    from msr_flow.harness import HarnessRun
     p = bench_hw.params_for(8, 2)
     rtl = HarnessRun(HARNESS, "cornell", 20, 12, p, latency=0, jitter=0, quiet=True).run()
     st = rtl.stats

@@ -3,7 +3,7 @@ import re
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-from msr_runner import rtl_sources  # noqa: E402  (the one reader of rtl/msr.f)
+from msr_flow.filelist import rtl_sources# noqa: E402  (the one reader of rtl/msr.f)
 
 
 def filelist():

@@ -76,7 +76,7 @@ def test_rtl_digest_follows_the_rtl(tmp_path, monkeypatch):
     hdr.write_text("`define X 1\n")
     flist = tmp_path / "rtl" / "msr.f"
     flist.write_text(f"+incdir+{tmp_path / 'rtl'}\n{src}\n")
-    import msr_runner
+    from msr_flow import filelist as msr_runner
     monkeypatch.setattr(msr_runner, "ROOT", tmp_path)
     d0 = msr_runner.rtl_digest(flist)
     hdr.write_text("`define X 2\n")

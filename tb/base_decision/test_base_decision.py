@@ -14,7 +14,7 @@ import cocotb
 from cocotb.clock import Clock
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
 
-from msr_runner import run_cocotb
+from msr_flow.runner import run_cocotb
 from msr_tb import pack_rgb, seeded_rng
 
 from msr_model import rules, spec

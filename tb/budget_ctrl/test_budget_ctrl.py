@@ -1,4 +1,4 @@
-"""budget_ctrl: the ray-budget controller's arithmetic (rtl/system/msr_budget_ctrl.sv) against
+"""budget_ctrl: the ray-budget controller's arithmetic (rtl/budget/msr_budget_ctrl.sv) against
 the golden model msr_model.budget.Controller (docs/budget.md sections 1-4 and 6), clock by clock.
 
 Every clock the bench asks the controller about one row position (row_idx_i: the tile rows
@@ -481,11 +481,12 @@ async def test_large_frames(dut):
 
 
 def test_budget_ctrl():
-    from msr_runner import RTL, run_cocotb
+    from msr_flow.filelist import RTL
+    from msr_flow.runner import run_cocotb
     run_cocotb("msr_budget_ctrl", "test_budget_ctrl", HERE, {}, "",
-               sources=[RTL / "msr_pkg.sv", RTL / "system/msr_budget_pkg.sv", RTL / "prim/msr_shift_add_mul.sv", RTL / "prim/msr_seq_div.sv",
-                        RTL / "system/msr_budget_grid.sv", RTL / "system/msr_budget_mem.sv",
-                        RTL / "system/msr_budget_pass.sv",
-                        RTL / "system/msr_budget_law.sv",
-                        RTL / "system/msr_budget_mul_ops.sv",
-                        RTL / "system/msr_budget_ctrl.sv"])
+               sources=[RTL / "pkg/msr_pkg.sv", RTL / "budget/msr_budget_pkg.sv", RTL / "prim/msr_shift_add_mul.sv", RTL / "prim/msr_seq_div.sv",
+                        RTL / "budget/msr_budget_grid.sv", RTL / "budget/msr_budget_mem.sv",
+                        RTL / "budget/msr_budget_pass.sv",
+                        RTL / "budget/msr_budget_law.sv",
+                        RTL / "budget/msr_budget_mul_ops.sv",
+                        RTL / "budget/msr_budget_ctrl.sv"])

@@ -116,7 +116,8 @@ async def test_rows(dut):
 
 @pytest.mark.parametrize("n_in", [1, 4])
 def test_budget_rows(n_in):
-    from msr_runner import RTL, run_cocotb
+    from msr_flow.filelist import RTL
+    from msr_flow.runner import run_cocotb
     run_cocotb("msr_budget_rows", "test_budget_rows", HERE, {"NUM_IN": n_in}, f"n{n_in}",
-               sources=[RTL / "msr_pkg.sv", RTL / "system/msr_budget_pkg.sv",
-                        RTL / "system/msr_budget_rows.sv"])
+               sources=[RTL / "pkg/msr_pkg.sv", RTL / "budget/msr_budget_pkg.sv",
+                        RTL / "budget/msr_budget_rows.sv"])

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import cocotb
 
-from msr_runner import run_cocotb
+from msr_flow.runner import run_cocotb
 from msr_tb import pack_rgb, seeded_rng, start_clock_and_reset, stream
 
 from msr_model import spec

@@ -178,17 +178,18 @@ async def test_random_frames(dut):
 @pytest.mark.parametrize("n_in,width,max_out,seed", [(4, 256, 8, 77), (3, 128, 1, 78), (1, 32, 8, 79),
                                                    (2, 64, 4, 80)])
 def test_fb_writer(n_in, width, max_out, seed):
-    from msr_runner import ROOT, RTL, rtl_entries, run_cocotb
+    from msr_flow.filelist import ROOT, RTL, rtl_entries
+    from msr_flow.runner import run_cocotb
     # The AXI4 protocol checker bound to the writer (rtl/checkers/msr_checker_binds.sv).
     checkers = [ROOT / e for e in rtl_entries(RTL / "checkers" / "checkers.f")]
     run_cocotb("msr_fb_writer", "test_fb_writer", HERE,
                {"MAX_OUT": max_out, "NUM_IN": n_in, "AXI_DATA_W": width}, f"i{n_in}_w{width}_o{max_out}",
-               sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_clr_reg.sv",
+               sources=[RTL / "pkg/msr_pkg.sv", RTL / "prim/msr_clr_reg.sv",
                         RTL / "prim/msr_seg_add.sv", RTL / "prim/msr_fifo.sv",
                         RTL / "prim/msr_onehot_to_bin.sv", RTL / "prim/msr_rr_arb.sv",
                         RTL / "prim/msr_spill_reg.sv",
-                        RTL / "system/msr_fbw_pkg.sv", RTL / "system/msr_fbw_rowbuf.sv",
-                        RTL / "system/msr_fbw_addr.sv", RTL / "system/msr_fbw_aw.sv",
-                        RTL / "system/msr_fbw_w.sv", RTL / "system/msr_fb_writer.sv", *checkers,
+                        RTL / "fbw/msr_fbw_pkg.sv", RTL / "fbw/msr_fbw_rowbuf.sv",
+                        RTL / "fbw/msr_fbw_addr.sv", RTL / "fbw/msr_fbw_aw.sv",
+                        RTL / "fbw/msr_fbw_w.sv", RTL / "fbw/msr_fb_writer.sv", *checkers,
                         RTL / "checkers" / "msr_checker_binds.sv"],
                extra_env={"SEED": str(seed), "NUM_IN": str(n_in), "AXI_DATA_W": str(width)})

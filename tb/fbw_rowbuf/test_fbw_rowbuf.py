@@ -35,12 +35,12 @@ def field(v, i, width):
 
 
 def pix_word(x, y, rgb, src, last):
-    """pix_word_t (rtl/msr_pkg.sv), MSB first: x[12] y[12] rgb[24] src[8] last[1]."""
+    """pix_word_t (rtl/pkg/msr_pkg.sv), MSB first: x[12] y[12] rgb[24] src[8] last[1]."""
     return (x << 45) | (y << 33) | (rgb << 9) | (src << 1) | int(last)
 
 
 def fb_cfg(fb_base, fb_stride, src_en, src_base, src_stride):
-    """fb_cfg_t (rtl/system/msr_fbw_pkg.sv), MSB first: fb_base fb_stride src_en src_base src_stride."""
+    """fb_cfg_t (rtl/fbw/msr_fbw_pkg.sv), MSB first: fb_base fb_stride src_en src_base src_stride."""
     return (fb_base << 97) | (fb_stride << 65) | (src_en << 64) | (src_base << 32) | src_stride
 
 
@@ -222,7 +222,8 @@ async def test_rows(dut):
 
 @pytest.mark.parametrize("n_in,width", [(2, 256), (1, 32), (3, 64)])
 def test_fbw_rowbuf(n_in, width):
-    from msr_runner import RTL, run_cocotb
+    from msr_flow.filelist import RTL
+    from msr_flow.runner import run_cocotb
     run_cocotb("msr_fbw_rowbuf", "test_fbw_rowbuf", HERE, {"NUM_IN": n_in, "AXI_DATA_W": width}, "",
-               sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_clr_reg.sv", RTL / "system/msr_fbw_pkg.sv",
-                        RTL / "system/msr_fbw_rowbuf.sv"])
+               sources=[RTL / "pkg/msr_pkg.sv", RTL / "prim/msr_clr_reg.sv", RTL / "fbw/msr_fbw_pkg.sv",
+                        RTL / "fbw/msr_fbw_rowbuf.sv"])

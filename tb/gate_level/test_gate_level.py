@@ -25,7 +25,8 @@ import pytest
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
-from msr_runner import run_cocotb, rtl_sources
+from msr_flow.filelist import rtl_sources
+from msr_flow.runner import run_cocotb
 from msr_tb import next_cycle, settle, start_clock_and_reset
 
 NETLIST = ROOT / "build" / "asic" / "msr_tile_engine.sim.v"

@@ -15,7 +15,8 @@ from pathlib import Path
 import cocotb
 import numpy as np
 
-from msr_runner import ROOT, run_cocotb
+from msr_flow.filelist import ROOT
+from msr_flow.runner import run_cocotb
 from msr_tb import pack_rgb, seeded_rng, start_clock_and_reset, stream, unpack_rgb
 
 from msr_model import spec

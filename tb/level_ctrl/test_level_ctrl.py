@@ -12,7 +12,7 @@ from pathlib import Path
 
 import cocotb
 
-from msr_runner import run_cocotb
+from msr_flow.runner import run_cocotb
 from msr_tb import next_cycle, settle, start_clock_and_reset
 
 from msr_model import spec

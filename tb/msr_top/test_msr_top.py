@@ -23,7 +23,7 @@ from cocotb.clock import Clock  # noqa: E402
 from cocotb.triggers import ClockCycles, RisingEdge, ReadOnly, Timer  # noqa: E402
 from cocotbext.axi import AxiLiteBus, AxiLiteMaster, AxiRamWrite, AxiWriteBus  # noqa: E402
 
-import msr_regs as R  # noqa: E402  (generated from rtl/regs/msr_regs.rdl)
+from msr_flow import regs as R  # noqa: E402  (generated from rtl/regs/msr_regs.rdl)
 from msr_funcov import backpressure, partial, record  # noqa: E402
 
 MEM = 1 << 18
@@ -1075,7 +1075,8 @@ async def test_budget(dut):
 
 @pytest.mark.parametrize("engines,outstanding,ctx,width", [(4, 16, 8, 256), (3, 4, 3, 64)])
 def test_msr_top(engines, outstanding, ctx, width):
-    from msr_runner import ROOT, rtl_entries, rtl_sources, run_cocotb
+    from msr_flow.filelist import ROOT, rtl_entries, rtl_sources
+    from msr_flow.runner import run_cocotb
     # The AXI protocol checkers bound to the writer and the register block (rtl/checkers). Their
     # own build folder (_chk): scripts/soak.py builds this bench from rtl/msr.f alone, and two
     # source lists in one folder would rebuild each other (or race under pytest -n 2).
@@ -1089,7 +1090,8 @@ def test_msr_top(engines, outstanding, ctx, width):
 def test_msr_top_patent_only():
     """msr_top built with LINDILATE 0 (issue 31: the rules a top carries): test_rule's
     patent-only branch (RULE 1 refused, patent frames bit-exact)."""
-    from msr_runner import rtl_sources, run_cocotb
+    from msr_flow.filelist import rtl_sources
+    from msr_flow.runner import run_cocotb
     run_cocotb("msr_top", "test_msr_top", HERE,
                {"NUM_ENGINES": 2, "MAX_OUTSTANDING": 16, "NUM_CTX": 3, "AXI_DATA_W": 256, "LINDILATE": 0},
                "patent_only", extra_env={"NUM_ENGINES": "2", "LINDILATE": "0"}, sources=rtl_sources(),
@@ -1099,7 +1101,8 @@ def test_msr_top_patent_only():
 def test_msr_top_budget():
     """msr_top built with the ray-budget controller (BUDGET_EN 1): test_budget's sequences and
     refusals, and random frames with the budget off bit-exact as without it."""
-    from msr_runner import rtl_sources, run_cocotb
+    from msr_flow.filelist import rtl_sources
+    from msr_flow.runner import run_cocotb
     run_cocotb("msr_top", "test_msr_top", HERE,
                {"NUM_ENGINES": 3, "MAX_OUTSTANDING": 16, "NUM_CTX": 3, "AXI_DATA_W": 64, "BUDGET_EN": 1},
                "budget", extra_env={"NUM_ENGINES": "3", "BUDGET_EN": "1"}, sources=rtl_sources(),

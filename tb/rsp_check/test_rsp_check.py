@@ -19,7 +19,7 @@ from pathlib import Path
 import cocotb
 import pytest
 
-from msr_runner import run_cocotb
+from msr_flow.runner import run_cocotb
 from msr_tb import next_cycle, seeded_rng, settle, start_clock_and_reset
 
 CTX_W, TADDR_W = 3, 10

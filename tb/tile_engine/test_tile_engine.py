@@ -21,7 +21,7 @@ import cocotb
 import numpy as np
 import pytest
 
-from msr_runner import run_cocotb
+from msr_flow.runner import run_cocotb
 from msr_tb import next_cycle, pack_rgb, settle, start_clock_and_reset, unpack_rgb
 from msr_funcov import record, size_class
 
@@ -385,7 +385,7 @@ def test_bad_parameters_rejected(params):
     message."""
     import subprocess
 
-    from msr_runner import ROOT, rtl_sources
+    from msr_flow.filelist import ROOT, rtl_sources
     # the package, the primitives and the engine's units: everything below the system level
     srcs = [str(s) for s in rtl_sources() if s.name == "msr_pkg.sv" or s.parent.name in ("prim", "engine")]
     cmd = ["verilator", "--lint-only", "-Irtl/prim", "--top-module", "msr_tile_engine"]

@@ -18,7 +18,7 @@ TILE_ENC = {8: 0, 16: 1, 32: 2}
 
 
 def unpack_desc(v: int) -> dict:
-    """tile_desc_t (rtl/msr_pkg.sv), packed MSB first: rule x0 y0 w h levels metric thr[2] thr[1]
+    """tile_desc_t (rtl/pkg/msr_pkg.sv), packed MSB first: rule x0 y0 w h levels metric thr[2] thr[1]
     thr[0] (64 bits)."""
     assert v >> 64 == 0, f"descriptor wider than 64 bits: {v:#x}"
     return {"thr": tuple((v >> (8 * k)) & 0xFF for k in range(3)), "metric": (v >> 24) & 1,
@@ -190,8 +190,9 @@ async def test_budget_rows(dut):
 
 @pytest.mark.parametrize("engines,budget", [(1, 0), (3, 0), (4, 0), (4, 1)])
 def test_tile_gen(engines, budget):
-    from msr_runner import RTL, run_cocotb
+    from msr_flow.filelist import RTL
+    from msr_flow.runner import run_cocotb
     run_cocotb("msr_tile_gen", "test_tile_gen", HERE, {"NUM_ENGINES": engines, "BUDGET_EN": budget},
                f"e{engines}" + ("_budget" if budget else ""),
-               sources=[RTL / "msr_pkg.sv", RTL / "prim/msr_clr_reg.sv",
-                        RTL / "system/msr_budget_pkg.sv", RTL / "system/msr_tile_gen.sv"])
+               sources=[RTL / "pkg/msr_pkg.sv", RTL / "prim/msr_clr_reg.sv",
+                        RTL / "budget/msr_budget_pkg.sv", RTL / "tilegen/msr_tile_gen.sv"])

@@ -9,7 +9,7 @@
 // dropped, open bursts complete; then every unit is cleared. Watchdog (WATCHDOG register): no
 // progress on the ports for that many cycles ends the frame, or a soft reset's wait, by force.
 `include "msr_assert.svh"
-`include "../system/msr_axi_ports.svh"
+`include "msr_axi_ports.svh"
 
 module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES     = 4,    // parallel tile engines (claim 11)
@@ -50,7 +50,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   output logic [NUM_ENGINES-1:0] dbg_tile_done_o, // engine i's last pixel of a tile is written
   output coord_t [NUM_ENGINES-1:0] dbg_pix_x_o,   // engine i's pixel (with dbg_tile_done_o)
   output coord_t [NUM_ENGINES-1:0] dbg_pix_y_o,
-  // The buses (rtl/system/msr_axi_ports.svh): the AXI4-Lite register port s_axil_* (7-bit byte
+  // The buses (rtl/top/msr_axi_ports.svh): the AXI4-Lite register port s_axil_* (7-bit byte
   // address) and the AXI4 frame-buffer write master m_axi_*.
   `MSR_TOP_BUS_PORTS(AXI_ID_W, AXI_DATA_W)
 );

@@ -6,8 +6,8 @@
 // register. A row's buffer is free once W2 reads its last beat (free_*_o, registered).
 `include "msr_assert.svh"
 `include "msr_flops.svh"
-`include "../system/msr_fbw_types.svh"
-`include "../system/msr_axi_ports.svh"
+`include "msr_fbw_types.svh"
+`include "msr_axi_ports.svh"
 
 module msr_fbw_w import msr_fbw_pkg::*; #(
   parameter int unsigned NUM_IN     = 4,     // pixel streams (engines)

@@ -5,11 +5,11 @@
 // these macros (in the manner of the pulp-platform AXI typedef and assign macros). A unit
 // passes its own width parameters; a connect macro ties each port to the signal of the same
 // name in the instantiating scope. Included through the include folder rtl/prim as
-// "../system/msr_axi_ports.svh". A macro ends its list (no trailing comma) and stands last in
+// "../top/msr_axi_ports.svh". A macro ends its list (no trailing comma) and stands last in
 // a port or connection list, one to a list: Verible parses a macro call only there.
 `ifndef MSR_AXI_PORTS_SVH
 `define MSR_AXI_PORTS_SVH
-`include "../checkers/msr_chk_axi.svh"
+`include "msr_chk_axi.svh"
 
 // AXI4-Lite slave: ADDR_W byte-address bits, DATA_W data bits (AWPROT and ARPROT are ignored).
 `define MSR_AXIL_SLAVE_PORTS(ADDR_W, DATA_W) \

@@ -1,8 +1,6 @@
-"""The one cocotb runner library of the RTL tests: reads the one source-of-truth file list
-rtl/msr.f, builds each (top level, parameter set) into its own folder under build/tb/ and
-runs a cocotb test module. Used by every tb/<unit>/test_<unit>.py, scripts/bench_engine.py,
-scripts/lint_rtl.py and scripts/synth.py (`rtl_sources`); run as a script it prints the file
-list with its options, for the Makefiles (`MSR_RTL_FILES`).
+"""The cocotb runner of the RTL tests: builds each (top level, parameter set) into its own
+folder under build/tb/ from the sources of rtl/msr.f (msr_flow.filelist) and runs a cocotb
+test module. Used by every tb/<unit>/test_<unit>.py and the engine benchmark.
 
 Environment (set by `make coverage`, `make soak` or by hand):
   SEED=N            the seed of every random bench (overrides the bench's fixed default);
@@ -14,76 +12,11 @@ Environment (set by `make coverage`, `make soak` or by hand):
   MSR_FUNCOV_FILE   where the benches append their functional bins (the soak sets it)"""
 from __future__ import annotations
 
-import functools
 import os
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-RTL = ROOT / "rtl"
-FILE_LIST = RTL / "msr.f"
-
-
-def rtl_entries(file_list: Path = FILE_LIST) -> list[str]:
-    """Every entry of rtl/msr.f in order, as written: tool options ('+incdir+...', '-...') and
-    source files relative to the repository; '//' and '#' start comments."""
-    out = []
-    for line in file_list.read_text().splitlines():
-        out += line.split("//")[0].split("#")[0].split()
-    return out
-
-
-@functools.lru_cache(maxsize=1)
-def macro_bodies() -> dict[str, str]:
-    """Every `define of the RTL's headers (rtl/*/*.svh): name -> body. A unit that writes its
-    flops or bus ports through a macro (msr_flops.svh, msr_axi_ports.svh) names the modules
-    inside the body only there; readers that find a unit's submodules by name in its text
-    (lint's closure, the ASIC flow's hierarchy) add the bodies of the macros it uses. Read once
-    a process: those readers ask for every file and module."""
-    import re
-    out = {}
-    for h in sorted(RTL.glob("*/*.svh")):
-        text = h.read_text()
-        for m in re.finditer(r"^`define\s+(\w+)(.*?)(?<!\\)$", text, re.M | re.S):
-            out[m.group(1)] = m.group(2)
-    return out
-
-
-def with_macros(text: str, bodies: dict[str, str] | None = None) -> str:
-    """text and, appended, the bodies of the macros it uses (transitively)."""
-    import re
-    bodies = macro_bodies() if bodies is None else bodies
-    seen, todo, extra = set(), [text], []
-    while todo:
-        for name in re.findall(r"`(\w+)", todo.pop()):
-            if name in bodies and name not in seen:
-                seen.add(name)
-                extra.append(bodies[name])
-                todo.append(bodies[name])
-    return "\n".join([text, *extra])
-
-
-def rtl_sources(file_list: Path = FILE_LIST) -> list[Path]:
-    """Source files of rtl/msr.f in order (package first), as absolute paths."""
-    return [ROOT / e for e in rtl_entries(file_list) if not e.startswith(("+", "-"))]
-
-
-def rtl_incdirs(file_list: Path = FILE_LIST) -> list[Path]:
-    """Include folders named by `+incdir+DIR` lines of rtl/msr.f, as absolute paths."""
-    return [ROOT / d for e in rtl_entries(file_list) if e.startswith("+incdir+")
-            for d in e[len("+incdir+"):].split("+") if d]
-
-
-def rtl_digest(file_list: Path = FILE_LIST) -> str:
-    """A short content hash of the RTL that rtl/msr.f names (its sources and the headers of its
-    include folders). A measured figure records it (make bench), so a later reader (make synth's
-    pixels per clock) can tell whether the figure was taken on the RTL it is combined with."""
-    import hashlib
-    h = hashlib.sha256()
-    files = rtl_sources(file_list) + sorted(p for d in rtl_incdirs(file_list) for p in d.glob("*.svh"))
-    for p in files:
-        h.update(str(p.relative_to(ROOT)).encode() + b"\0" + p.read_bytes() + b"\0")
-    return h.hexdigest()[:12]
+from .filelist import ROOT, rtl_incdirs, rtl_sources
 
 
 def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict | None = None,
@@ -159,6 +92,3 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
                              f"{replay}pytest {test_dir.relative_to(ROOT) if test_dir.is_absolute() else test_dir}"
                              ) from None
 
-
-if __name__ == "__main__":
-    print(" ".join(rtl_entries()))

@@ -9,7 +9,7 @@
 // queue (S5) that the AW side takes from (row_valid_o / row_ready_i).
 `include "msr_assert.svh"
 `include "msr_flops.svh"
-`include "../system/msr_fbw_types.svh"
+`include "msr_fbw_types.svh"
 
 module msr_fbw_addr import msr_pkg::*; import msr_fbw_pkg::*; #(
   parameter int unsigned NUM_IN     = 4,     // pixel streams (engines)

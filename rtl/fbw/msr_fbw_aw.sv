@@ -9,8 +9,8 @@
 // order for theirs (so a failing response names its burst).
 `include "msr_assert.svh"
 `include "msr_flops.svh"
-`include "../system/msr_fbw_types.svh"
-`include "../system/msr_axi_ports.svh"
+`include "msr_fbw_types.svh"
+`include "msr_axi_ports.svh"
 
 module msr_fbw_aw import msr_fbw_pkg::*; #(
   parameter int unsigned NUM_IN     = 4,     // pixel streams (engines)

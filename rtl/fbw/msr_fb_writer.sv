@@ -38,8 +38,8 @@
 // pixels per clock); 128 bits would cap the writer at 3.2 pixels per clock.
 `include "msr_assert.svh"
 `include "msr_flops.svh"
-`include "../system/msr_fbw_types.svh"
-`include "../system/msr_axi_ports.svh"
+`include "msr_fbw_types.svh"
+`include "msr_axi_ports.svh"
 
 module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
   parameter int unsigned NUM_IN     = 4,     // pixel streams (engines)

@@ -5,7 +5,7 @@
 // The generated block's field structs (hwif) stay in here: the system sees the registers as
 // the typed bundles of msr_sys_pkg (the configuration as written, the control fields, the
 // status, the counters' read-back).
-`include "../system/msr_axi_ports.svh"
+`include "msr_axi_ports.svh"
 module msr_reg_if
   import msr_sys_pkg::*;
 (

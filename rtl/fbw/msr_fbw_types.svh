@@ -2,7 +2,7 @@
 // of the pulp-platform AXI typedef macros): the writer declares them with its widths and each
 // unit declares them again in its header from the same parameters, so a unit stands alone
 // (lint, its own bench) and the layout is written once, here. Included through the include
-// folder rtl/prim as "../system/msr_fbw_types.svh"; buf_t comes from msr_fbw_pkg.
+// folder rtl/prim as "../fbw/msr_fbw_types.svh"; buf_t comes from msr_fbw_pkg.
 `ifndef MSR_FBW_TYPES_SVH
 `define MSR_FBW_TYPES_SVH
 

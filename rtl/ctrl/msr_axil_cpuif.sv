@@ -14,7 +14,7 @@
 // the block's acknowledgements, which cannot wait, always find room. A read is answered five
 // clocks after its AR handshake at the earliest, a write four after its last of AW / W.
 `include "msr_assert.svh"
-`include "../system/msr_axi_ports.svh"
+`include "msr_axi_ports.svh"
 
 module msr_axil_cpuif #(
   parameter int unsigned ADDR_W    = 7,   // byte address bits
