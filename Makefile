@@ -7,7 +7,7 @@ SHELL        := /bin/bash
 PY   := .venv/bin/python
 ENV  := source scripts/env.sh &&
 
-# make sim parameters (see ../shared/spec/contracts.md); empty means the tool's default.
+# make sim parameters (see docs/spec/contracts.md); empty means the tool's default.
 SCENE    ?= cornell
 WIDTH    ?= 640
 HEIGHT   ?= 480

@@ -1,5 +1,5 @@
 # make sim: one frame of a scene through the RTL (Verilator C++ harness, Embree over DPI-C)
-# and the golden model; see ../shared/spec/contracts.md "Full simulation" and docs/system.md.
+# and the golden model; see docs/spec/contracts.md "Full simulation" and docs/system.md.
 # The harness is built without tracing; WAVES=1 builds a second one with FST tracing.
 SIM_WAVES_ON := $(filter 1 yes true,$(WAVES))
 # BUDGET=N or BUDGET=P% (docs/budget.md): the frame holds a ray budget of N traced pixels (P % of

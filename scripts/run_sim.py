@@ -7,7 +7,7 @@
 
 Writes frame.png, source_map.png (read back from the RTL's memory), golden.png,
 golden_source_map.png, reference.png and report.json into DIR (default out/sim/<scene>/)
-(../shared/spec/contracts.md, "Full simulation"), summary.png (the run in one picture,
+(docs/spec/contracts.md, "Full simulation"), summary.png (the run in one picture,
 msr_model.overview) and prints a one-screen summary.
 
 Exit status and last line (msr_model.clitools): 0 and "make sim: passed: ..." when the RTL

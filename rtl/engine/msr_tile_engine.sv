@@ -1,4 +1,4 @@
-// Tile engine: tiles in, their final pixels out (spec ../shared/spec/algorithm.md).
+// Tile engine: tiles in, their final pixels out (spec docs/spec/algorithm.md).
 //
 //   desc  : msr_ctx_alloc: the lowest free context c takes it (msr_tile_ctx: descriptor,
 //           level controller, pass barrier, tile buffer)

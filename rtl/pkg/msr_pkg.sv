@@ -1,5 +1,5 @@
 // Shared types and constants of the multi-level selective rendering accelerator.
-// The arithmetic they carry is defined in ../shared/spec/algorithm.md.
+// The arithmetic they carry is defined in docs/spec/algorithm.md.
 //
 // Naming: parameters and constants ALL_CAPS, types *_t, enums *_e (lowRISC style).
 package msr_pkg;

@@ -1,4 +1,4 @@
-"""msr_model: the contract of multi-level selective rendering (../shared/spec/algorithm.md).
+"""msr_model: the contract of multi-level selective rendering (docs/spec/algorithm.md).
 
 - spec:        the spec's rules (thresholds, tiles, grids, decision, interpolation, source codes)
 - passview:    one pass as a decision rule sees it (`PassView`)
@@ -7,7 +7,7 @@
 - tile_model:  per-tile step-by-step model in the hardware's order, `tile_schedule`, `run_tile`
 - renderer:    the rendering-unit protocol and the one checked render call
 - image_renderer: a picture as the rendering unit; embree: the Embree rendering unit
-- cli:         `python -m msr_model select|render` (../shared/spec/contracts.md)
+- cli:         `python -m msr_model select|render` (docs/spec/contracts.md)
 
 Research code (other rules, other methods, sweeps) lives in msr_eval, on top of this API.
 """

@@ -1,4 +1,4 @@
-"""Camera paths (../shared/spec/contracts.md, third round): a sequence's view per frame.
+"""Camera paths (docs/spec/contracts.md, third round): a sequence's view per frame.
 
 A path file is JSON, {"keys": [{"frame": 0, "eye": [x, y, z], "target": [x, y, z], "fov": 40},
 ...]}: frame numbers ascending, eye and target in model units, the vertical field of view in

@@ -1,4 +1,4 @@
-"""Command line of the golden model (../shared/spec/contracts.md).
+"""Command line of the golden model (docs/spec/contracts.md).
 
     python -m msr_model select IMAGE.png --tile 16 --levels 2 --thr 8,16 [--metric max|sum]
         [--fov-gain 0] [--rule patent|lindilate|lindilate2d] --out OUT.png --source-map MAP.png --stats STATS.json

@@ -1,4 +1,4 @@
-"""The spec's arithmetic, one function per rule of ../shared/spec/algorithm.md.
+"""The spec's arithmetic, one function per rule of docs/spec/algorithm.md.
 
 Everything here works on Python ints and on numpy integer arrays alike, so the vectorised
 frame model (golden.py), the per-tile step model (tile_model.py) and the cocotb tests all

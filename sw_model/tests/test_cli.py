@@ -1,4 +1,4 @@
-"""The `python -m msr_model select IMAGE.png` contract (../shared/spec/contracts.md)."""
+"""The `python -m msr_model select IMAGE.png` contract (docs/spec/contracts.md)."""
 import json
 import subprocess
 import sys
