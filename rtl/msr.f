@@ -15,6 +15,7 @@ rtl/prim/msr_shift_add_mul.sv
 rtl/prim/msr_seq_div.sv
 rtl/prim/msr_tile_sram.sv
 rtl/engine/msr_base_decision.sv
+rtl/engine/msr_interp.sv
 rtl/engine/msr_decision_pipe.sv
 rtl/engine/msr_border_pkg.sv
 rtl/engine/msr_level_ctrl.sv

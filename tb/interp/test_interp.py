@@ -1,6 +1,6 @@
 """msr_interp against spec.interpolate.
 
-1. A pure-Python proof that the reciprocal constants of rtl/engine/msr_decision_pipe.sv divide exactly:
+1. A pure-Python proof that the reciprocal constants of rtl/engine/msr_interp.sv divide exactly:
    for every g in 2..8 and every numerator 0..2047 (the 11-bit range; the largest reachable
    numerator is 8*255+4 = 2044), (n * ceil(2^14/g)) >> 14 == n // g. The constants are read
    from the RTL source, not copied.
@@ -21,7 +21,7 @@ from msr_tb import pack_rgb, seeded_rng, start_clock_and_reset, stream, unpack_r
 
 from msr_model import spec
 
-SRC = ROOT / "rtl" / "engine" / "msr_decision_pipe.sv"
+SRC = ROOT / "rtl" / "engine" / "msr_interp.sv"
 
 
 def rtl_reciprocals() -> tuple[int, dict[int, int]]:
