@@ -3,7 +3,7 @@
 //
 // The constants load the controller's multiplier at a check or a start; computed straight from
 // the configuration (behind msr_budget's check/frame mux and the tile-size decode) they were
-// the budget unit's worst path (62.5 MHz alone on ECP5). So the configuration is registered,
+// the budget unit's worst path. So the configuration is registered,
 // the constants from it registered again, and the pulses come out six clocks late with them
 // (check_o, start_o): the configuration must hold from the input pulse on. A clear drops a
 // pulse in flight.
@@ -48,7 +48,7 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
   end
 
   // Stages 2 to 6: the constants, a few adds per clock (in one clock they were 49 generic
-  // logic levels, 56.6 MHz alone on ECP5). The configuration goes out from stage 1 and the
+  // logic levels). The configuration goes out from stage 1 and the
   // constants that need no more from stage 2: it holds from the input pulse on, so they hold
   // when the pulse comes out.
   // Stage 2: each axis split at the tile size, the shift T / S, and what needs no more.
@@ -77,7 +77,7 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
   assign u0      = clamp_u((scale_init_q == '0) ? 11'd256 : scale_init_q, U_MIN);
   // Stages 3 and 4: line(N) = floor(N / T) * n0(T) + n0(N mod T), n0(T) = T / S + 1 as
   // T >= 8 >= S: the full tiles' part and the rest's n0 side by side, then their sum (in one
-  // clock, the rest's n0 and the two adds were the budget unit's worst path, 96 MHz). One path
+  // clock, the rest's n0 and the two adds were the budget unit's worst path). One path
   // for both axes, W and H on alternate clocks (ax_q): each line is ready two clocks after
   // stage 2, the other one clock later.
   logic             ax_q, ax2_q;                     // the axis in stage 3, 4: 0 = W, 1 = H

@@ -65,8 +65,8 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
   // front. One adder for both: + b_k in the seed pass (ST_PB), - b_j at a row's update (ST_ACC).
   // Row j's update subtracts the very word the seed pass added for row j (the memory holds it
   // until that update), so Btot - Bd never goes below 0 and the max is not built: a saturation
-  // on the subtract's borrow was the top's worst path (46-bit carry into the registers' reset,
-  // 9.42 ns). a_b_rest_no_borrow checks it in every bench.
+  // on the subtract's borrow was the top's worst path (a 46-bit carry into the registers'
+  // reset). a_b_rest_no_borrow checks it in every bench.
   logic             b_sub;
   logic [MEM_W-1:0] b_opd;
   assign b_sub  = !pass_i;

@@ -2,7 +2,7 @@
 // synchronous read and one write port at a shared address, no reset (two ECP5 EBRs at 512 x 39).
 // The read word is registered twice: rdata_q is the block RAM's own read register, word_o a
 // second register, so no consumer sees the RAM's clock-to-output (into the controller's 45-bit
-// sum and the seed pass's compare it was the unit's worst path, 71 MHz in the top).
+// sum and the seed pass's compare it was the unit's worst path in the top).
 module msr_budget_mem #(
   parameter int unsigned  W     = 39,                 // word bits
   parameter int unsigned  DEPTH = 512,                // tile rows

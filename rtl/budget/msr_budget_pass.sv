@@ -10,8 +10,8 @@
 //     stores the product b_k = a'_k * w in its place.
 //
 // The pass flag is a flip-flop set from the controller's next state, not a decode of its
-// present state: the decode into the memory's address was the budget top's worst path (seed 1,
-// 9.90 ns into the DP16KD). a_in_pass checks it is the same value every clock.
+// present state: the decode into the memory's address (the DP16KD's) was the budget top's
+// worst path. a_in_pass checks it is the same value every clock.
 `include "msr_assert.svh"
 
 module msr_budget_pass import msr_budget_pkg::*; #(
@@ -73,7 +73,7 @@ module msr_budget_pass import msr_budget_pkg::*; #(
 
   // The word's {u'_k, a'_k}. The weight is registered from the word's register every clock:
   // the word is there from ST_PW on, so w is at ST_PMUL, which loads a'_k * w (a compare into
-  // the multiplier's load was once the top's worst path).
+  // the multiplier's load was the top's worst path).
   logic [10:0] pass_u;
   logic [10:0] pass_w_q;
   assign {pass_u, pass_a_o} = mem_word_o;

@@ -117,7 +117,7 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   slot_t                  tslot_q;                       // the slot taken
   `MSR_CLR_REG(u_take_q, 3, clear_i || start_i, 1'b1, {take, hslot_q}, {take_q, tslot_q})
   // Per slot the clock's counts first (a small popcount of the inputs), then one add: not a
-  // chain of NUM_IN wide adders (that chain was 36 levels, 51 MHz on its own).
+  // chain of NUM_IN wide adders (that chain was 36 logic levels).
   logic [2:0][INC_W-1:0] inc_tr, inc_la;
   always_comb begin
     for (int unsigned s = 0; s < 3; s++) begin
@@ -178,8 +178,8 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   end
   // hy_q: the first pixel rows of the open rows at positions head and head + 1 (row << lg), so
   // that a pixel's slot is two masked equalities on its pixel row (in_row, below), not a shift
-  // by lg per input and two compares after it: those were over half of this unit's LUTs (887
-  // against 467 LUT4 on ECP5 at four inputs). An open row is a row of the frame, so row << lg
+  // by lg per input and two compares after it: those were over half of this unit's LUTs on
+  // ECP5 at four inputs. An open row is a row of the frame, so row << lg
   // < H fits a pixel row (a_slot_exact checks the equalities against the tile rows).
   // (bits 3 and up: a tile row starts at a multiple of 8; a row of the frame is below 512)
   function automatic logic [COORD_W-1:3] row_y(logic [COORD_W-4:0] r, logic [2:0] lg);

@@ -123,7 +123,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   // forty thousand loads. Every unit clears on the same clock, one after ST_CLEAR (the next
   // frame's START is two clocks further at the earliest: ST_SAMPLE, ST_CHECK). Each engine's
   // pixel slice drains from a register of its own, loaded from the next state: drain_o on every
-  // clock, not its decode across the die (88.9 MHz on a seed of the default top at 89d43ec).
+  // clock, not its decode across the die (that decode set the default top's clock).
   logic                   clear_q;
   logic [NUM_ENGINES-1:0] eng_clear_q, eng_drain_q;
   // The copies are msr_dup_reg flip-flops: as one register, synthesis merged them into one.
@@ -140,8 +140,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
 
   // The events of the tiles-in-flight count are registered on their way in: a tile handed to
   // an engine (the generator's dispatch, which reads RUN) and a tile's last pixel taken by the
-  // writer (its row state). Each path through the count's adder set the clock (glue 10.0 ns,
-  // flat top 11.95 ns). The count moves a clock later; DONE also waits while a dispatch is on
+  // writer (its row state). Each path through the count's adder set the clock (in the glue
+  // and in the flat top). The count moves a clock later; DONE also waits while a dispatch is on
   // its way, so DONE comes a clock later, never earlier. Events in the units' clear clock are
   // dropped, as the units drop them.
   logic                   desc_fire_q;
@@ -157,8 +157,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
                progress_q)
 
   // The writer's idle flag, registered on its way in: it is an OR over every stage of the
-  // writer, and that tree into the state register set the flat top's clock (10.5 ns, seed 2,
-  // issue 31). It reads a clock late, and only late in turning false: the writer leaves idle
+  // writer, and that tree into the state register set the flat top's clock. It reads a clock
+  // late, and only late in turning false: the writer leaves idle
   // only by taking a pixel. In RUN the frame's last pixel reaches the count two clocks after
   // the writer takes it (tile_done_q, then tif_q), when the registered flag already shows
   // the writer busy, so DONE never comes early. In DRAIN no pixel reaches the writer (drain_o
@@ -309,7 +309,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   // clock decides, that no check failed and the budget's verdict (all settled by then: the
   // checks at STEP_CMP, the budget check within 21 clocks, asserted below). Decided from the
   // step compare and bud_bad in the same clock, accept was six LUTs deep into the memory
-  // error registers' enable: the BUDGET_EN = 1 top's worst path on two of five seeds (61d2d60).
+  // error registers' enable: the BUDGET_EN = 1 top's worst path on some placement seeds.
   logic       overlap, decide_q, chk_none_q;
   logic [1:0] bud_bad_q;
   assign overlap = raw_q.fb.src_en && lt_q[0] && lt_q[1];
@@ -438,7 +438,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   assign err_o          = err_q;
   // A soft reset in the very clock the frame completes aborts it (the state goes to ST_DRAIN):
   // DONE stays clear. The register block's hwset outranks its hwclr, so without the gate a
-  // STATUS read after that soft reset said DONE (found by make soak, seed 697819125).
+  // STATUS read after that soft reset would say DONE.
   assign done_set_o     = frame_done_q && (state_q == ST_RUN) && !soft_reset_i;
   assign done_clr_o     = start_q || soft_reset_i;
   assign cfg_err_set_o  = refused_q;

@@ -36,8 +36,8 @@ module msr_perf_counters import msr_pkg::*; import msr_sys_pkg::*; #(
 
   // Each engine's handshake (counted only while a frame runs) and its source code, registered
   // by the writer's inputs: the per-kind counts below then start at flip-flops, not at the
-  // handshakes' wires and the controller's state decode (the default top's worst path on
-  // ECP5 at 3fb0e1e, seeds 2 and 3: those wires into this sum, 9 LUT levels; issue 31).
+  // handshakes' wires and the controller's state decode (those wires into this sum, 9 LUT
+  // levels, were the default top's worst path on ECP5).
   `MSR_CLR_REG(u_hs_q, NUM_ENGINES * (1 + $bits(src_t)), clear_i, 1'b1,
                {pix_hs_i & {NUM_ENGINES{en_i}}, pix_src_i}, {hs_q, src_q})
 

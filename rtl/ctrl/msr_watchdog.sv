@@ -4,8 +4,8 @@
 //
 // The compare is registered: the clock before the count reaches the limit, hit_q is loaded
 // from "count == limit - 1, and the count is not cleared", so the fire is one flip-flop and the
-// controller's next-state logic sees no 32-bit compare (at a5d6dc9 the count-to-state path
-// set the default top's clock on ECP5: seed 2, 96.86 MHz, issue 31). The limit - 1 is a
+// controller's next-state logic sees no 32-bit compare (the count-to-state path set the
+// default top's clock on ECP5). The limit - 1 is a
 // register too; a limit written while counting takes effect two clocks later, which moves a
 // fire by at most two clocks and never fires below the smaller of the two limits minus two.
 `include "msr_assert.svh"

@@ -3,7 +3,7 @@
 //
 // The write reaches its context a clock after the output or the response check decided it:
 // the contexts sit across the engine's area, and the decision -> context path (its pending
-// count's adder behind) was the placed top's worst path at 10.9 ns. Nothing waits on a write
+// count's adder behind) was the placed top's worst path. Nothing waits on a write
 // but the context itself (its pending count and pass barrier see the write when it lands), so
 // the register only delays a barrier by one clock. A clear drops a write on its way. A retro
 // request is one more pending write of its context (registered like the write). The response

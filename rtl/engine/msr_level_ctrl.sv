@@ -375,7 +375,7 @@ module msr_level_ctrl
   logic              o2a;
 
   // back and fwd as tables of the gap (one LUT per bit) rather than two adders in series with
-  // the add to cur and the compare: that chain of carries was the top's critical path on a seed.
+  // the add to cur and the compare: that chain of carries was the top's critical path.
   always_comb begin
     back = '0;
     fwd  = '0;

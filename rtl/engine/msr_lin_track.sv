@@ -21,7 +21,7 @@
 // needs no decode of the IS context) and the position's line. The engine's shared IS registers
 // fan out to the descriptor choice and the RD stage across the engine, and the path from them
 // through the tracker choice and the line compare into the trackers set the flat top's clock
-// (10.1 ns, 7.6 of them wire, issue 31). The values are those of IS.
+// (most of it wire). The values are those of IS.
 //
 // Reset: only those two update flags (under the engine's clear, like IS's valid bit). Every
 // other register here is loaded under its stage's valid bit, the trackers of a context by the
@@ -84,7 +84,7 @@ module msr_lin_track import msr_pkg::*; #(
   // "The granted position is on a new line", compared per context: ln_next_q is one-hot, so
   // this is the granted context's compare. Through the choice of the granted tracker first
   // (an AND-OR over the contexts), then one compare, the trackers' load enable was 7 LUT
-  // levels deep (the BUDGET_EN = 1 top's worst path on seed 2, 9.4 ns); per context it is 3.
+  // levels deep (a worst path of the BUDGET_EN = 1 top); per context it is 3.
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_moved
     assign ln_moved[c] = ln_line_q != ln_cur_q[c];
   end

@@ -126,7 +126,7 @@ module msr_tile_ctx
   );
 
   // ctrl_room is the spill register's "second entry empty", a flip-flop: the controller's
-  // advance (the clock enable of its walk state) no longer waits for the engine's grant.
+  // advance (the clock enable of its walk state) does not wait for the engine's grant.
   msr_spill_reg #(.WIDTH($bits(step_t))) u_step_slice (
     .clk_i, .rst_ni, .clear_i,
     .valid_i (ctrl_valid), .ready_o (ctrl_room), .data_i (ctrl_step),
@@ -188,9 +188,8 @@ module msr_tile_ctx
   // flip-flops: the arbiter's path (the engine's longest) starts right there. The mux sits in
   // the arbiter (msr_ctx_issue), beside the grant register, so that the path may cross the
   // engine once (from these flip-flops) rather than twice (grant -> context -> arbiter). The
-  // placer is still free to put its LUT beside the context, and did (61d2d60, all three seeds of
-  // the default top, 9.2-9.4 ns); without the move the top was slower on the same seeds (edb9d9c),
-  // its worst paths elsewhere: placement noise, the move kept.
+  // placer is still free to put its LUT beside the context (and does on the default top); with
+  // the mux in the context instead the top was no faster, its worst paths elsewhere.
   // A retro request (retro_i) adds one pending write like an issue; it comes only while the
   // position that caused it is pending, so it never meets a zero count.
   logic pend_zero_q, pend_zero_d, pend_one, cand_tail_q, cand_head_q, pend_up;

@@ -109,7 +109,7 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
   // ---- The frame's settings, a registered copy at the writer ------------------------------
   // The settings come from the configuration controller's latch across the die; the stride
   // multiples' adders and the input slices' row-end test read this copy instead (that wire
-  // set the default top's clock on ECP5 at a5d6dc9, seed 1, issue 31). The settings are
+  // set the default top's clock on ECP5). The settings are
   // constant during a frame and reach the copy a clock after START, long before the frame's
   // first pixel (a_frame_settled).
   fb_cfg_t    fb_q;
@@ -121,7 +121,7 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
   // ---- Input slices: the writer's end of the wire from the engines -------------------------
   // A pixel's row-end test (x mod T == T-1 or x == W-1) is taken on the way in and travels with
   // it as a registered bit: the row buffers' flags then see a register, not a comparator behind
-  // the wire (that decode set the default top's clock on ECP5, issue 31).
+  // the wire (that decode set the default top's clock on ECP5).
   lcoord_t                tmask;
   logic      [NUM_IN-1:0] sl_valid, sl_ready, sl_end;
   pix_word_t [NUM_IN-1:0] sl_pix;

@@ -160,8 +160,8 @@ module msr_fbw_addr import msr_pkg::*; import msr_fbw_pkg::*; #(
   logic   [1:0][12:0] s4_pe_q;                  // address [11:0] + bytes - 1
   // S0..S4 never stall: a row enters S0 only with a place reserved for it in the S5 queue
   // (a credit), so the stage registers load every clock, without an enable. (A ready chain
-  // back through the stages was an enable on some 600 flip-flops: its fan-out net alone was
-  // 6.9 ns after placement.) S5 is a short FIFO; AWREADY's way back ends at its pop.
+  // back through the stages was an enable on some 600 flip-flops, and its fan-out net alone
+  // was a long path after placement.) S5 is a short FIFO; AWREADY's way back ends at its pop.
   row_t               s5_d;
   cs_t    [1:0]       s2_cs_d;
   logic   [1:0][11:0] s3_lo_d;
@@ -249,7 +249,7 @@ module msr_fbw_addr import msr_pkg::*; import msr_fbw_pkg::*; #(
       // S2: six addends to a carry-save pair
       st   = (p != 0) ? fb_i.src_stride : fb_i.fb_stride;
       // S1m: the stride multiples, registered: each y bit selects in 64 multiplexers, and
-      // that fan-out alone was most of the glue's worst placed path (10.4 ns) when the
+      // that fan-out alone was most of the glue's worst placed path when the
       // carry-save level sat behind it in the same clock.
       // Radix-8 digit k of y selects its multiple, shifted to its weight 8^k.
       for (int unsigned k = 0; k < 4; k++) begin

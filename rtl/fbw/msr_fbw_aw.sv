@@ -172,8 +172,8 @@ module msr_fbw_aw import msr_fbw_pkg::*; #(
   assign b_unexpected_o = b_hs && !b_expected;
   assign budget_d       = budget_q + OUT_W'(aw_push) - OUT_W'(b_pop);
 
-  // The two flags' next values without the counts' adders behind them (the placed top's path
-  // at fef40d6: onbus_q -> "a B is expected" -> budget adder -> budget compare): compares of
+  // The two flags' next values without the counts' adders behind them (a long placed path:
+  // onbus_q -> "a B is expected" -> budget adder -> budget compare): compares of
   // the count registers, and the late AW push / B pop through one gate. aw_push needs out_ok_q,
   // so a full budget only shrinks. a_budget_flags checks both against the compares.
   assign b_pop      = b_hs && b_expected;

@@ -2,7 +2,7 @@
 // placement (a copy beside each group of far loads). Written as one register, the copies have
 // the same inputs and the optimiser merges them back into one flip-flop (Yosys opt_merge did
 // exactly that to the controller's per-engine clear and drain registers, so their one output
-// ran across the die: issue 31); `keep` on each copy's process stops the merge.
+// ran across the die); `keep` on each copy's process stops the merge.
 module msr_dup_reg #(
   parameter int unsigned COPIES = 2,      // flip-flops
   parameter logic        RESET  = 1'b0    // value after reset

@@ -45,9 +45,9 @@ module msr_rr_arb #(
   if (PREFIX) begin : g_prefix_or
     // A prefix OR in LUTs, for an arbiter whose requesters are spread over the die: a carry
     // chain sits in one column, and the placer pulled the render mux's four queue heads across
-    // to it and back (7.6 of 10.3 ns was wire in the default top); LUTs can sit beside the
+    // to it and back (most of that path was wire in the default top); LUTs can sit beside the
     // queues. Where the requesters are close, the carry chain is the faster (the writer's
-    // input arbiter lost about 4 MHz on the top with this). Same function: bit i is set while
+    // input arbiter made the top slower with this). Same function: bit i is set while
     // no request is set below it.
     always_comb begin
       logic seen;
@@ -71,8 +71,8 @@ module msr_rr_arb #(
     // above i: those above the last winner, unless i is), so grant i is request i and none of
     // the masked requests, one AND-OR of the requests and flip-flops (two LUT levels at N = 4)
     // beside requester i. For the render mux: its queue heads' pops went through the prefix
-    // chain at the port and back, 7.5 of 9.5 ns wire in the BUDGET_EN = 1 top (61d2d60, seeds
-    // 2 and 5). The pointer's next value (above_d) still comes from the chain, off that path.
+    // chain at the port and back, a path mostly of wire in the BUDGET_EN = 1 top. The
+    // pointer's next value (above_d) still comes from the chain, off that path.
     typedef logic [N-1:0][N-1:0] outrank_t;
     function automatic outrank_t outrank_of(logic [N-1:0] above);
       outrank_t m;

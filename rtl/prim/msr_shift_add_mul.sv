@@ -36,7 +36,7 @@ module msr_shift_add_mul #(
 
   // done_o is a flip-flop, set from the next step count: a zero test of the count register
   // drove the divider's loads straight from the product's state (the budget unit's worst path
-  // on ECP5, 91.8 MHz).
+  // on ECP5).
   logic done_q;
   `MSR_CLR_REG_RST(u_done_q, 1, 1'b1, clear_i, load_i || !done_q,
                    load_i ? (steps_i == '0) : (cnt_q == S_W'(1)), done_q)

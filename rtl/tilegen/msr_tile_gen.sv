@@ -23,7 +23,7 @@
 // whose mean is the rounding's 128: a row's mean threshold then moves smoothly with m instead
 // of in integer steps): S6 the products (multiplier blocks on an FPGA), registered straight out
 // of them, and d, S7 the add and the saturation (in one clock, the block and its wires in and
-// out made the top's worst path: 77 MHz). With bud_en_i low the frame is walked row-major and
+// out made the top's worst path). With bud_en_i low the frame is walked row-major and
 // m = 256 (every thr'' = thr' whatever d), so its descriptors are those of a top without it; a
 // top built without it (BUDGET_EN = 0) has neither stage nor the wait nor the order.
 `include "msr_assert.svh"

@@ -63,7 +63,7 @@ module msr_render_mux import msr_pkg::*; #(
   // ---- Request queues ------------------------------------------------------------------------
   // Each queue's head sits in a spill register: the arbiter's requests and the data it picks
   // come from flip-flops, not from the FIFO's count and its LUT-RAM read (in the flat top that
-  // path, queue state -> arbiter -> the pick of the head -> the port register, was 10.6 ns).
+  // path, queue state -> arbiter -> the pick of the head -> the port register, was too long).
   logic  [NUM_ENGINES-1:0] fq_valid, fq_ready, rq_valid, rq_pop, rq_push_ready;
   rreq_t [NUM_ENGINES-1:0] fq_data, rq_data;
 

@@ -14,7 +14,7 @@
 module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES     = 4,    // parallel tile engines (claim 11)
   parameter int unsigned MAX_OUTSTANDING = 64,   // render requests in flight per engine (tags)
-  parameter int unsigned NUM_CTX         = 7,    // tile contexts per engine (2..16; issue 31)
+  parameter int unsigned NUM_CTX         = 7,    // tile contexts per engine (2..16)
   parameter int unsigned AXI_ID_W        = 4,    // frame-buffer AXI ID width
   parameter int unsigned AXI_DATA_W      = 256,  // frame-buffer AXI data width (32..256)
   // The rules built in (beside CONFIG.RULE, the run-time choice): 1 both (the default top);
@@ -192,7 +192,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
 
     // A register slice on the request wire to the render mux: without it the engine's output
     // stage (a free tag, the trace bit, the request register's load) and the mux's queue
-    // were one path across the die, 8.7 ns of its 10.2 ns wire (flat top, seed 1).
+    // were one path across the die, most of it wire (flat top).
     msr_spill_reg #(.WIDTH(2 * $bits(coord_t) + ETAG_W)) u_req_slice (
       .clk_i, .rst_ni, .clear_i (eng_clear[i]),
       .valid_i (eng_req_valid[i]), .ready_o (eng_req_ready[i]),

@@ -159,10 +159,9 @@ def clamp_scale(u: int, lo: int = U_MIN) -> int:
 
 def seed_weight(u_prev: int, u0: int) -> int:
     """The seed pass's factor w of a row that ran at u_prev, for a frame seeded at u0 (b = a' * w):
-    min(u_prev, u0). Below u0 the row's excess is taken to fall as 1 / u^2 up to u0 (v2), above it
-    as 1 / u (v5 returns to v3's weight: with the rows interleaved, a first frame's scales no
-    longer stray far above the seed, and v4's extra weight above it measured the same; docs/budget.md
-    section 4)."""
+    min(u_prev, u0). Below u0 the row's excess is taken to fall as 1 / u^2 up to u0, above it
+    as 1 / u (with the rows interleaved, a first frame's scales do not stray far above the seed,
+    and a heavier weight above it measures the same; docs/budget.md section 4)."""
     return min(int(u_prev), int(u0))
 
 

@@ -9,7 +9,7 @@ interpolated. Two rules are part of the contract:
   traced anyway when the same gap fails that test on the previous or the next line of the
   pass inside the same tile.
 
-- "lindilate2d" (issue 30, not in the RTL): lindilate's decisions; at the last level's V
+- "lindilate2d" (evaluation only, not in the RTL): lindilate's decisions; at the last level's V
   pass an interpolated pixel is the mean of six final neighbours (its two and the four
   diagonal corners) where they agree within the threshold (`diagonal_smooth`). A rule may
   carry such a reconstruction as its `interpolate` attribute (golden.interpolated_values).

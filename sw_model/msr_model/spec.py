@@ -14,7 +14,7 @@ import numpy as np
 MAX_FRAME = 4096
 TILE_SIZES = (8, 16, 32)
 LEVEL_RANGE = (1, 2, 3)
-# An evaluation-only extension (issue 30, docs/rules.md "L = 4"): a fourth level, initial grid
+# An evaluation-only extension (docs/rules.md "L = 4"): a fourth level, initial grid
 # stride 16. algorithm.md and the RTL stop at 3; a Params with extension=True may use 4.
 EXT_LEVEL_RANGE = (1, 2, 3, 4)
 METRICS = ("max", "sum")
