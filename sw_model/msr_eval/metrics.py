@@ -1,32 +1,13 @@
-"""Image-quality metrics and the analysis of a sweep's records: PSNR, SSIM, FLIP, Pareto
-fronts, the traced fraction needed for a target PSNR, set means, rule against patent."""
+"""The analysis of a sweep's records: Pareto fronts, the traced fraction needed for a target
+PSNR, set means, rule against patent. The metrics themselves (PSNR, SSIM, FLIP, flicker) are
+msr_model.metrics, re-exported here."""
 from __future__ import annotations
 
 import numpy as np
 
+from msr_model.metrics import PSNR_CAP, capped, flicker, flip, format_db, psnr, psnr_of_mse, ssim  # noqa: F401
+
 TARGETS_DB = (35.0, 40.0)
-PSNR_CAP = 100.0            # an identical frame (infinite PSNR) counts as 100 dB in means
-
-
-def psnr(ref, img):
-    mse = np.mean((ref.astype(np.float64) - img.astype(np.float64)) ** 2)
-    return None if mse == 0 else float(10 * np.log10(255.0 ** 2 / mse))
-
-
-def ssim(ref, img):
-    from skimage.metrics import structural_similarity
-    return float(structural_similarity(ref, img, channel_axis=2, data_range=255))
-
-
-def flip(ref, img, want_map=False):
-    import flip_evaluator
-    emap, mean, _ = flip_evaluator.evaluate(ref.astype(np.float32) / 255, img.astype(np.float32) / 255,
-                                            "LDR", applyMagma=False)
-    return (float(mean), np.asarray(emap)[..., 0]) if want_map else float(mean)
-
-
-def capped(p):
-    return PSNR_CAP if p is None else min(p, PSNR_CAP)
 
 
 def pareto(points):

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from msr_model.metrics import format_db
+
 FAMILY_NAMES = {
     "full": "full render", "grid2": "uniform grid, every 2nd pixel, bilinear",
     "grid4": "uniform grid, every 4th pixel, bilinear", "checkerboard": "checkerboard (4-neighbour mean)",
@@ -42,8 +44,8 @@ def needed_cell(d):
 
 
 def db(p):
-    """A PSNR in dB (two decimals); `exact` for None (identical frames)."""
-    return "exact" if p is None else f"{p:.2f}"
+    """A PSNR in dB for a table cell (two decimals, no unit); "identical" for identical frames."""
+    return format_db(p).removesuffix(" dB")
 
 
 # --- figures ------------------------------------------------------------------------------------
@@ -91,3 +93,45 @@ def finish_scene_grid(plt, fig, axes, nscenes, ylabel, title, path):
     fig.tight_layout(rect=(0, 0.12 if axes.shape[0] == 1 else 0.08, 1, 1))
     fig.savefig(path, dpi=70)
     plt.close(fig)
+
+
+# --- pages: Jinja2 templates (msr_eval/templates/) ---------------------------------------------
+
+TEMPLATES = Path(__file__).resolve().parent / "templates"
+
+
+def need(d, bold: bool = False):
+    """A needed-fraction entry ({"fraction", "how"}) as a cell: `x`, `<= x` (even the cheapest
+    setting gets there), `not reached`; `-` for None (no such family)."""
+    if d is None:
+        return "-"
+    s = pct(d["fraction"], d.get("how"))
+    return f"**{s}**" if bold and d["fraction"] is not None else s
+
+
+def num(v, digits: int = 2, unit: str = ""):
+    """A number with `digits` decimals (and a unit), `-` for None."""
+    return "-" if v is None else f"{v:.{digits}f}{unit}"
+
+
+def pc(f, digits: int = 1, signed: bool = False):
+    """A fraction in % (digits decimals, optionally signed), `-` for None."""
+    return "-" if f is None else (f"{100 * f:+.{digits}f}" if signed else f"{100 * f:.{digits}f}")
+
+
+def family(f):
+    """A family's name on the pages (FAMILY_NAMES, else the key)."""
+    return FAMILY_NAMES.get(f, f)
+
+
+def render(name: str, **ctx) -> str:
+    """Render the template `name` (msr_eval/templates/) with `ctx`; undefined names fail."""
+    import jinja2
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)), undefined=jinja2.StrictUndefined,
+                             trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=True,
+                             autoescape=False)
+    env.filters.update(pct=pct, need=need, db=db, num=num, pc=pc, family=family, needed_cell=needed_cell)
+    text = env.get_template(name).render(**ctx)
+    while "\n\n\n" in text:                       # one blank line between blocks, whatever the loops left
+        text = text.replace("\n\n\n", "\n\n")
+    return text.rstrip("\n") + "\n"

@@ -25,7 +25,7 @@ import time
 
 import numpy as np
 
-from .metrics import capped, psnr
+from .metrics import capped, psnr, psnr_of_mse
 
 # The sample counts tried, smallest first (antialiasing grids: 16 = 256 samples per pixel, 32 =
 # 1024): the first whose two-seed PSNR reaches CONV_TARGET_DB is the reference (else the last).
@@ -84,7 +84,7 @@ def task_converged(backend: str, scene: str, mode: str, width: int, height: int,
         top = np.sort(d)[::-1][:max(1, d.size // 100)]
         info["mse_share_top1pct"] = float(top.sum() / d.sum()) if d.sum() else 0.0
         tried.append({"spp": g * g, "psnr_two_seeds": info["psnr_two_seeds"]})
-        if info["psnr_two_seeds"] is None or info["psnr_two_seeds"] >= CONV_TARGET_DB:
+        if info["psnr_two_seeds"] >= CONV_TARGET_DB:
             break
     if check:
         info["tried"] = tried
@@ -93,7 +93,8 @@ def task_converged(backend: str, scene: str, mode: str, width: int, height: int,
 
 
 def tile_psnrs(ref, img, tile: int = TILE) -> np.ndarray:
-    """PSNR (capped) of every tile x tile tile (partial tiles at the right and bottom count)."""
+    """PSNR of every tile x tile tile (partial tiles at the right and bottom count; inf where
+    the tile is identical)."""
     h, w = ref.shape[:2]
     d = (ref.astype(np.float64) - img.astype(np.float64)) ** 2
     ty, tx = -(-h // tile), -(-w // tile)
@@ -103,10 +104,7 @@ def tile_psnrs(ref, img, tile: int = TILE) -> np.ndarray:
     cnt[:h, :w] = 3
     s = pad.reshape(ty, tile, tx, tile, 3).sum(axis=(1, 3, 4))
     n = cnt.reshape(ty, tile, tx, tile).sum(axis=(1, 3))
-    mse = s / n
-    with np.errstate(divide="ignore"):
-        p = np.where(mse > 0, 10 * np.log10(255.0 ** 2 / np.where(mse > 0, mse, 1)), np.inf)
-    return np.minimum(p, 100.0)
+    return psnr_of_mse(s / n)
 
 
 def tile_min_psnr(ref, img, tile: int = TILE) -> float:

@@ -347,7 +347,8 @@ def task_scene(scene: str, width: int, height: int, frames: int, log=print,
     over the threshold sweep, and rule + reuse at `reuse_scales`."""
     from msr_model import ImageRenderer
     from msr_model.embree import open_renderer
-    from .temporal import _flicker, _psnr, orbit_path
+    from msr_model.metrics import capped, flicker, psnr
+    from .temporal import orbit_path
     with open_renderer(scene, width, height) as r:
         view = r.view()
     path = orbit_path(view, frames)
@@ -377,12 +378,12 @@ def task_scene(scene: str, width: int, height: int, frames: int, log=print,
             state[key] = PrevFrame(res.frame, res.depth, cam, res.age)
             err = res.frame.astype(np.int16) - full.astype(np.int16)
             m = per[key]
-            m["psnr"].append(_psnr(full, res.frame))
+            m["psnr"].append(capped(psnr(full, res.frame)))      # finite: averaged and interpolated below
             m["traced"].append(res.traced / (width * height))
             m["saved"].append(res.saved / (width * height))
             m["reused"].append(res.reused / (width * height))
             if key in err_prev:
-                m["flicker"].append(_flicker(err_prev[key], err))
+                m["flicker"].append(flicker(err_prev[key], err))
             err_prev[key] = err
         log(f"reuse: {scene} frame {k + 1}/{frames} ({time.perf_counter() - t0:.1f} s)")
     return {"cameras": cams, "unit": unit,
@@ -463,7 +464,7 @@ def plot(result: dict, out_dir: Path) -> list[Path]:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from .temporal import scene_name
+    from msr_model.scenes import scene_id
     scenes = list(result["scenes"])
     colours = {"patent": "tab:blue", "lindilate": "tab:orange"}
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -479,7 +480,7 @@ def plot(result: dict, out_dir: Path) -> list[Path]:
             p = [np.mean(runs[f"{rule}|reuse|{s}"]["psnr"][1:]) for s in REUSE_SCALES]
             t = [100 * np.mean(runs[f"{rule}|reuse|{s}"]["traced"][1:]) for s in REUSE_SCALES]
             ax.plot(p, t, "*", ms=10, color=colours[rule], label=f"{rule} + reuse")
-        ax.set_title(scene_name(scene), fontsize=10)
+        ax.set_title(scene_id(scene), fontsize=10)
         ax.set_xlabel("mean PSNR vs full render (dB)")
     axes[0][0].set_ylabel("traced % (rays per pixel)")
     p1 = _save(plt, fig, axes, out_dir / "reuse_curves.png")
@@ -491,7 +492,7 @@ def plot(result: dict, out_dir: Path) -> list[Path]:
                 m = runs[f"{rule}|{mode}|1.0"]
                 axes[0][j].plot([100 * t for t in m["traced"]], ls, color=colours[rule], lw=1, label=f"{rule} {mode}")
                 axes[1][j].plot(range(1, 1 + len(m["flicker"])), m["flicker"], ls, color=colours[rule], lw=1)
-        axes[0][j].set_title(scene_name(scene), fontsize=10)
+        axes[0][j].set_title(scene_id(scene), fontsize=10)
         axes[1][j].set_xlabel("frame")
     axes[0][0].set_ylabel("traced % (thr 8,16,32)")
     axes[1][0].set_ylabel("flicker (rms change of error)")
@@ -501,7 +502,7 @@ def plot(result: dict, out_dir: Path) -> list[Path]:
 
 def markdown_table(result: dict) -> str:
     """The measured table of docs/reuse.md."""
-    from .temporal import scene_name
+    from msr_model.scenes import scene_id
     px = result["width"] * result["height"]
     lines = ["| scene | rule | thr | PSNR +reuse | traced % +reuse | traced % alone at equal PSNR | rays saved / frame "
              "(% of alone) | traced % alone same thr (PSNR) | reused % | flicker +reuse / alone same thr / alone equal "
@@ -511,7 +512,7 @@ def markdown_table(result: dict) -> str:
             saved = (f"{e['saved_equal_q'] * px:,.0f} ({100 * e['saved_rel']:.1f} %)"
                      if math.isfinite(e["saved_equal_q"]) else "outside the sweep")
             t_eq = f"{100 * e['traced_alone_equal_q']:.2f}" if math.isfinite(e["traced_alone_equal_q"]) else "-"
-            lines.append(f"| {scene_name(scene)} | {e['rule']} | {','.join(map(str, e['thr']))} | "
+            lines.append(f"| {scene_id(scene)} | {e['rule']} | {','.join(map(str, e['thr']))} | "
                          f"{e['psnr_reuse']:.2f} | {100 * e['traced_reuse']:.2f} | {t_eq} | {saved} | "
                          f"{100 * e['traced_alone_same_thr']:.2f} ({e['psnr_alone_same_thr']:.2f}) | "
                          f"{100 * e['reused']:.1f} | {e['flicker_reuse']:.2f} / {e['flicker_alone_same_thr']:.2f} / "

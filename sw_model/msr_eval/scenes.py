@@ -3,7 +3,7 @@ and these Debian-packaged model files, the textured ones among them, and the id 
 by in records, caches and tables."""
 from __future__ import annotations
 
-from pathlib import Path
+from msr_model.scenes import scene_id  # noqa: F401  (the one definition; used from here too)
 
 # Debian-packaged real models (glmark2-data, assimp-testmodels) used besides the built-ins.
 MODEL_FILES = [
@@ -18,8 +18,3 @@ MODEL_FILES = [
 ]
 # Scenes whose surfaces carry diffuse textures (scene ids), reported on their own.
 TEXTURED_SCENES = ("duck", "teapots", "spider", "CesiumMilkTruck", "BoxTextured")
-
-
-def scene_id(scene: str) -> str:
-    """A built-in scene's name, or a model file's stem (spaces as underscores)."""
-    return Path(scene).stem.replace(" ", "_") if ("/" in scene or "." in scene) else scene

@@ -1,4 +1,4 @@
-"""Sequences (issue 33): image quality over a moving camera, and flicker.
+"""Sequences: image quality over a moving camera, and flicker.
 
 A still cannot show selective rendering's own temporal failure: a pixel interpolated in one
 frame and traced in the next changes although the scene did not. Each scene of the sequence
@@ -26,6 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from msr_model import Params
+from msr_model.metrics import capped, flicker, psnr
+from msr_model.scenes import scene_id
 
 from .sweep import Setting
 
@@ -73,16 +75,6 @@ def orbit_path(view, frames: int, degrees: float = ORBIT_DEG):
     return CameraPath.from_dict({"keys": keys}, source="orbit")
 
 
-def _flicker(err_prev, err) -> float:
-    d = err.astype(np.float64) - err_prev.astype(np.float64)
-    return float(np.sqrt(np.mean(d * d)))
-
-
-def _psnr(ref, img) -> float:
-    mse = float(np.mean((ref.astype(np.float64) - img.astype(np.float64)) ** 2))
-    return 99.0 if mse == 0 else 10 * math.log10(255.0 ** 2 / mse)
-
-
 def task_scene(scene: str, width: int, height: int, cameras: list[str], sweep: list[Setting]) -> dict:
     """One scene's sequence: per frame its full render and every setting on it; only the last
     frame's errors are kept (for the flicker of the next)."""
@@ -97,10 +89,10 @@ def task_scene(scene: str, width: int, height: int, cameras: list[str], sweep: l
             key = f"{st.family}|{st.label}"
             res = st.run(ImageRenderer(full), width, height)
             err = res.frame.astype(np.int16) - full.astype(np.int16)
-            out[key]["psnr"].append(_psnr(full, res.frame))
+            out[key]["psnr"].append(psnr(full, res.frame))
             out[key]["traced"].append(res.traced / (width * height))
             if key in prev:
-                out[key]["flicker"].append(_flicker(prev[key], err))
+                out[key]["flicker"].append(flicker(prev[key], err))
             prev[key] = err
     return out
 
@@ -128,7 +120,7 @@ def run(scenes, frames: int, width: int, height: int, executor=None, log=print) 
             m = per[key]
             sc["methods"][key] = {
                 "family": st.family, "label": st.label, **m,
-                "psnr_mean": float(np.mean(m["psnr"])), "psnr_worst": float(np.min(m["psnr"])),
+                "psnr_mean": float(np.mean([capped(p) for p in m["psnr"]])), "psnr_worst": capped(min(m["psnr"])),
                 "traced_mean": float(np.mean(m["traced"])),
                 "flicker_mean": float(np.mean(m["flicker"])) if m["flicker"] else 0.0,
                 "flicker_worst": float(np.max(m["flicker"])) if m["flicker"] else 0.0}
@@ -136,10 +128,6 @@ def run(scenes, frames: int, width: int, height: int, executor=None, log=print) 
         log(f"temporal: {scene}: {frames} frames, {len(sweep)} settings")
     result["seconds"] = round(time.perf_counter() - t0, 1)
     return result
-
-
-def scene_name(scene: str) -> str:
-    return Path(scene).stem if "/" in scene else scene
 
 
 def plot(result: dict, path: Path) -> None:
@@ -158,7 +146,7 @@ def plot(result: dict, path: Path) -> None:
             axes[0][j].plot(m["psnr"], ls, color=colours.get(m["family"], "k"), lw=1, label=lab)
             axes[1][j].plot(range(1, 1 + len(m["flicker"])), m["flicker"], ls, color=colours.get(m["family"], "k"),
                             lw=1)
-        axes[0][j].set_title(scene_name(scene), fontsize=10)
+        axes[0][j].set_title(scene_id(scene), fontsize=10)
         axes[1][j].set_xlabel("frame")
     axes[0][0].set_ylabel("PSNR vs full render (dB)")
     axes[1][0].set_ylabel("flicker (rms change of error)")
@@ -182,7 +170,7 @@ def markdown(result: dict, img_rel: str) -> str:
              "adds to the motion that the full render has.",
              ""]
     keys = [f"{s['family']}|{s['label']}" for s in result["settings"]]
-    head = "| setting | " + " | ".join(scene_name(s) for s in result["scenes"]) + " | mean |"
+    head = "| setting | " + " | ".join(scene_id(s) for s in result["scenes"]) + " | mean |"
     lines += ["### Mean traced % / mean PSNR (dB) / worst PSNR (dB) / mean flicker / worst flicker", "",
               head, "|---|" + "---|" * (len(result["scenes"]) + 1)]
     for key in keys:

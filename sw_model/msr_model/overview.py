@@ -17,6 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import spec
+from .metrics import format_db, psnr
+from .metrics import ssim as ssim_of  # noqa: F401  (the name the sim flows import)
 from .palette import draw_legend, font, legend_boxes, legend_entries, legend_size, source_rgb
 
 MAX_PANEL_W = 640            # frames wider than this are reduced by an integer factor
@@ -33,7 +35,7 @@ class RunInfo:
     scene: str
     params: spec.Params
     rule: str = "patent"
-    psnr_db: float | None = None          # None with identical frames: shown as "inf"
+    psnr_db: float | None = None          # inf with identical frames: shown as "identical"
     ssim: float | None = None
     cycles: int | None = None
     bit_exact: bool | None = None
@@ -138,23 +140,9 @@ def abs_error(frame: np.ndarray, reference: np.ndarray) -> np.ndarray:
     return np.abs(frame.astype(np.int16) - reference.astype(np.int16)).max(axis=2).astype(np.uint8)
 
 
-SSIM_WIN = 7      # skimage's default window: SSIM is not defined on a frame smaller than it
-
-
-def ssim_of(reference: np.ndarray, frame: np.ndarray) -> float | None:
-    """SSIM of frame against reference (skimage, 7x7 window); None for a frame narrower or
-    lower than the window, where SSIM is not defined (reports carry null, not a made-up value)."""
-    from skimage.metrics import structural_similarity
-    if min(reference.shape[:2]) < SSIM_WIN:
-        return None
-    return float(structural_similarity(reference, frame, channel_axis=2, data_range=255))
-
-
-def psnr_ssim(reference: np.ndarray, frame: np.ndarray) -> tuple[float | None, float | None]:
-    """PSNR in dB (None for identical frames) and SSIM of frame against reference (ssim_of)."""
-    mse = float(np.mean((reference.astype(np.float64) - frame.astype(np.float64)) ** 2))
-    psnr = None if mse == 0 else 10 * math.log10(255.0 ** 2 / mse)
-    return psnr, ssim_of(reference, frame)
+def psnr_ssim(reference: np.ndarray, frame: np.ndarray) -> tuple[float, float | None]:
+    """PSNR in dB (inf for identical frames) and SSIM (None below 7x7) of frame against reference."""
+    return psnr(reference, frame), ssim_of(reference, frame)
 
 
 def error_scale(err: np.ndarray) -> int:
@@ -179,16 +167,12 @@ def traced_per_tile(source: np.ndarray, tile: int) -> np.ndarray:
 
 # --- the figure -------------------------------------------------------------------------------
 
-def _fmt_db(p):
-    return "inf" if p is None or not np.isfinite(p) else f"{p:.2f} dB"
-
-
 def title_lines(info: RunInfo, width: int, height: int, traced_fraction: float) -> tuple[str, str]:
     p = info.params
     fov = f"fov gain {p.fov_gain}" if p.fov_gain else "no foveation (fov gain 0)"
     first = (f"{info.scene}  {width}x{height}   T {p.tile}   L {p.levels}   thr {','.join(map(str, p.thr))}   "
              f"metric {p.metric}   {fov}   rule {info.rule}")
-    parts = [f"traced {100 * traced_fraction:.1f} %", f"PSNR {_fmt_db(info.psnr_db)}"]
+    parts = [f"traced {100 * traced_fraction:.1f} %", f"PSNR {format_db(info.psnr_db)}"]
     if info.ssim is not None:
         parts.append(f"SSIM {info.ssim:.4f}")
     if info.cycles is not None:

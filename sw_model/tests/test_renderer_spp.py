@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from msr_model import SpecError
+from msr_model.metrics import psnr
 
 # No skip on a missing renderer: make test builds it first, and a skip would hide a failure.
 from msr_model import embree  # noqa: E402
@@ -15,11 +16,6 @@ W, H = 48, 32
 def _full(scene, q, **kw):
     with embree.open_renderer(scene, W, H, q, **kw) as r:
         return r.render_full(progress=False)
-
-
-def _psnr(a, b):
-    mse = np.mean((a.astype(float) - b.astype(float)) ** 2)
-    return 99.0 if mse == 0 else 10 * np.log10(255 ** 2 / mse)
 
 
 @pytest.mark.parametrize("scene", ["cornell", "showcase"])
@@ -36,17 +32,17 @@ def test_seed_and_grid():
     b = _full("cornell", "heavy", grid=4, seed=2)
     ref = _full("cornell", "heavy")
     assert (a != b).any() and (a != ref).any()          # another seed: other noise
-    assert _psnr(a, b) > 24                             # ... of the same picture
+    assert psnr(a, b) > 24                             # ... of the same picture
     # 16x the samples: the two-seed distance shrinks by well over 6 dB
     a16 = _full("cornell", "heavy", grid=16, seed=1)
     b16 = _full("cornell", "heavy", grid=16, seed=2)
-    assert _psnr(a16, b16) > _psnr(a, b) + 6
+    assert psnr(a16, b16) > psnr(a, b) + 6
     # the fast mode has no noise: a seed changes nothing at the pixel centre, the grid antialiases
     assert (_full("cornell", "fast", seed=7) == _full("cornell", "fast")).all()
     f8, fast = _full("cornell", "fast", grid=8, seed=1), _full("cornell", "fast")
     f8b = _full("cornell", "fast", grid=8, seed=2)
     assert (f8 != fast).any()
-    assert _psnr(f8, f8b) > _psnr(f8, fast) + 3 and _psnr(f8, f8b) > 30   # edge coverage only
+    assert psnr(f8, f8b) > psnr(f8, fast) + 3 and psnr(f8, f8b) > 30   # edge coverage only
     with embree.open_renderer("cornell", W, H, "heavy", grid=16, seed=5) as r:
         assert r.samples_per_pixel == 256 and r.seed == 5
     # the same (grid, seed) gives the same pixels in any order
