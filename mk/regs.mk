@@ -3,7 +3,7 @@
 # synthesis and the simulations never need the generator; `make regs-check` (part of
 # `make test`) regenerates into build/ and fails if the committed files are stale.
 REGS_RDL  := rtl/regs/msr_regs.rdl
-REGS_GEN  := rtl/regs/msr_regs.sv rtl/regs/msr_regs_pkg.sv sim/msr_regs.h flow/msr_flow/regs.py docs/regs.md
+REGS_GEN  := rtl/regs/msr_regs.sv rtl/regs/msr_regs_pkg.sv rtl/regs/msr_err_codes.svh sim/msr_regs.h flow/msr_flow/regs.py docs/regs.md
 
 .PHONY: regs regs-check
 
@@ -13,8 +13,9 @@ define regs_generate # $(1) = output root (repo root or a scratch folder)
 	    --rt-read-fanin --rt-read-response \
 	    --err-if-bad-addr
 	$(ENV) peakrdl c-header $(REGS_RDL) -o $(1)/sim/msr_regs.h
-	$(ENV) python scripts/gen_reg_consts.py $(REGS_RDL) $(1)/flow/msr_flow/regs.py
+	$(ENV) python -m msr_flow.regs_gen $(REGS_RDL) $(1)/flow/msr_flow/regs.py
 	$(ENV) peakrdl markdown $(REGS_RDL) -o $(1)/docs/regs.md
+	$(ENV) python -m msr_flow.regs_codes $(REGS_RDL) $(1)/rtl/regs/msr_err_codes.svh --md $(1)/docs/regs.md
 endef
 
 regs: setup

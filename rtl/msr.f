@@ -1,6 +1,6 @@
 // The one source-of-truth file list: packages, primitives, engine, tile generator, budget,
 // frame-buffer writer, control, top. Every flow reads it; msr.core is generated from it.
-+incdir+rtl/prim+rtl/fbw+rtl/top+rtl/checkers
++incdir+rtl/prim+rtl/regs+rtl/fbw+rtl/top+rtl/checkers
 rtl/pkg/msr_pkg.sv
 rtl/prim/msr_lzc.sv
 rtl/prim/msr_clr_reg.sv

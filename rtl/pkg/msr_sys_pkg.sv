@@ -69,25 +69,8 @@ package msr_sys_pkg;
     bud_cfg_t              bud;
   } cfg_t;
 
-  // STATUS.ERROR codes (rtl/regs/msr_regs.rdl).
-  typedef enum logic [3:0] {
-    ERR_NONE       = 4'd0,
-    ERR_FRAME_SIZE = 4'd1,
-    ERR_TILE       = 4'd2,
-    ERR_LEVELS     = 4'd3,
-    ERR_FB_STRIDE  = 4'd4,
-    ERR_FB_BASE    = 4'd5,
-    ERR_SRC_STRIDE = 4'd6,
-    ERR_SRC_BASE   = 4'd7,
-    ERR_AXI_WRITE  = 4'd8,
-    ERR_FB_WRAP    = 4'd9,
-    ERR_SRC_WRAP   = 4'd10,
-    ERR_OVERLAP    = 4'd11,
-    ERR_WATCHDOG   = 4'd12,  // no progress for WATCHDOG cycles: frame or drain ended by force
-    ERR_RULE       = 4'd13,  // CONFIG.RULE not 0 (patent) or 1 (lindilate)
-    ERR_BUDGET     = 4'd14,  // 0 < BUDGET < the initial grid, or a budget in a top without it
-    ERR_PROFILE    = 4'd15   // SEEDED without an activity memory of this tile-row count
-  } err_e;
+  // STATUS.ERROR codes: err_e, generated from rtl/regs/msr_regs.rdl (make regs).
+`include "msr_err_codes.svh"
 
   // The register fields the configuration controller acts on.
   typedef struct packed {

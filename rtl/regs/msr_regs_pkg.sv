@@ -321,4 +321,23 @@ package msr_regs_pkg;
         msr_regs__BUDGET__out_t BUDGET;
         msr_regs__BUDGET_CTRL__out_t BUDGET_CTRL;
     } msr_regs__out_t;
+
+    typedef enum logic [3:0] {
+        msr_regs__status_error_e__NONE = 'h0,
+        msr_regs__status_error_e__FRAME_SIZE = 'h1,
+        msr_regs__status_error_e__TILE = 'h2,
+        msr_regs__status_error_e__LEVELS = 'h3,
+        msr_regs__status_error_e__FB_STRIDE = 'h4,
+        msr_regs__status_error_e__FB_BASE = 'h5,
+        msr_regs__status_error_e__SRC_STRIDE = 'h6,
+        msr_regs__status_error_e__SRC_BASE = 'h7,
+        msr_regs__status_error_e__AXI_WRITE = 'h8,
+        msr_regs__status_error_e__FB_WRAP = 'h9,
+        msr_regs__status_error_e__SRC_WRAP = 'ha,
+        msr_regs__status_error_e__OVERLAP = 'hb,
+        msr_regs__status_error_e__WATCHDOG = 'hc,
+        msr_regs__status_error_e__RULE = 'hd,
+        msr_regs__status_error_e__BUDGET = 'he,
+        msr_regs__status_error_e__PROFILE = 'hf
+    } msr_regs__status_error_e_e;
 endpackage

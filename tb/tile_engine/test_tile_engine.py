@@ -21,6 +21,7 @@ import cocotb
 import numpy as np
 import pytest
 
+from msr_flow.filelist import rtl_incdirs
 from msr_flow.runner import run_cocotb
 from msr_tb import next_cycle, pack_rgb, settle, start_clock_and_reset, unpack_rgb
 from msr_funcov import record, size_class
@@ -388,7 +389,7 @@ def test_bad_parameters_rejected(params):
     from msr_flow.filelist import ROOT, rtl_sources
     # the package, the primitives and the engine's units: everything below the system level
     srcs = [str(s) for s in rtl_sources() if s.name == "msr_pkg.sv" or s.parent.name in ("prim", "engine")]
-    cmd = ["verilator", "--lint-only", "-Irtl/prim", "--top-module", "msr_tile_engine"]
+    cmd = ["verilator", "--lint-only", *[f"-I{d}" for d in rtl_incdirs()], "--top-module", "msr_tile_engine"]
     cmd += [f"-G{k}={v}" for k, v in params.items()]
     p = subprocess.run(cmd + srcs, cwd=ROOT, capture_output=True, text=True)
     assert p.returncode != 0, "illegal parameters were accepted"
