@@ -1,4 +1,4 @@
-# Golden model benchmark (issue 2): 1080p wall time of the vectorised model.
+# Golden model benchmark: 1080p wall time of the vectorised model.
 .PHONY: bench-golden
 bench-golden: setup
 	$(ENV) python scripts/bench_golden.py

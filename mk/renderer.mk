@@ -1,4 +1,4 @@
-# The rendering unit (issue 3): the Embree 3 ray tracer as one shared library, used by the
+# The rendering unit: the Embree 3 ray tracer as one shared library, used by the
 # Python golden model (ctypes) and the RTL simulation (DPI-C), plus its GoogleTest unit tests.
 # One set of flags for every object, so every flow gets bit-identical pixels.
 RENDER_DIR      := sw_model/renderer

@@ -1,4 +1,4 @@
-# RTL of the tile engine (issue 4): lint and the engine throughput benchmark.
+# RTL of the tile engine: lint and the engine throughput benchmark.
 # make lint: Verilator -Wall and slang per module, Verible per file, over rtl/msr.f;
 # fails on any warning (waivers live in the RTL, per signal / line, each with a reason).
 .PHONY: lint bench-engine

@@ -1,38 +1,7 @@
-"""Python constants from the SystemRDL register map (peakrdl has no plain-constants exporter).
-
-    python scripts/gen_reg_consts.py rtl/regs/msr_regs.rdl OUT.py
-
-Emits, for every register, `<REG>` = byte offset (arrays: `<REG>_<i>`), and for every field
-`<REG>_<FIELD>_LSB` / `_WIDTH` / `_MASK`. Used by the cocotb tests (flow/msr_flow/regs.py).
-"""
+"""Python constants from the SystemRDL register map: entry point of `python -m msr_flow.regs_gen` (the logic and the options are there)."""
 import sys
 
-from systemrdl import RDLCompiler
-from systemrdl.node import FieldNode, RegNode
-
-
-def main(src: str, out: str) -> int:
-    rdlc = RDLCompiler()
-    rdlc.compile_file(src)
-    root = rdlc.elaborate()
-    top = root.top
-    lines = [f'"""Register map of {top.inst_name}: generated from {src} by scripts/gen_reg_consts.py; do not edit."""', ""]
-    for node in top.descendants(unroll=True):
-        if isinstance(node, RegNode):
-            name = node.inst_name + ("".join(f"_{i}" for i in node.current_idx) if node.is_array else "")
-            lines.append(f"{name} = 0x{node.absolute_address:02X}")
-        elif isinstance(node, FieldNode):
-            reg = node.parent
-            if reg.is_array and any(reg.current_idx):
-                continue  # array entries share the field layout of entry 0
-            prefix = f"{reg.inst_name}_{node.inst_name}"
-            lines.append(f"{prefix}_LSB = {node.lsb}")
-            lines.append(f"{prefix}_WIDTH = {node.width}")
-            lines.append(f"{prefix}_MASK = 0x{((1 << node.width) - 1) << node.lsb:08X}")
-    with open(out, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    return 0
-
+from msr_flow.regs_gen import main
 
 if __name__ == "__main__":
-    sys.exit(main(*sys.argv[1:]))
+    sys.exit(main())

@@ -1,4 +1,4 @@
-"""scripts/bench_hw.py: a tiny sweep (one engine, one small frame) through the real harness.
+"""make bench (msr_flow.bench.hw): a tiny sweep (one engine, one small frame) through the real harness.
 
 The one-engine harness is built by `make test` (TEST_DEPS in mk/bench.mk); a plain pytest run
 without it fails with the make command to run.
@@ -12,9 +12,10 @@ from pathlib import Path
 
 import pytest
 
+from msr_flow.bench import hw as bench_hw
+from msr_flow.harness import GoldenFrames, MemoryLayout
+
 ROOT = Path(__file__).resolve().parents[2]
-import bench_hw  # noqa: E402
-from msr_flow.harness import GoldenFrames, MemoryLayout  # noqa: E402
 
 HARNESS = bench_hw.harness_path(ROOT / "build" / "bench", 1, 16)
 

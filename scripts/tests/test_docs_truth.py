@@ -1,5 +1,5 @@
 """Figures the documents state that the RTL also holds: each is read from the code and from
-the document, and the test fails when they part (issue 35: docs true to the code).
+the document, and the test fails when they part (docs true to the code).
 
 A figure is read from what the hardware is built from (a parameter's default, an enum's
 members, the register stages of a pipeline), not from a comment, and from the document by

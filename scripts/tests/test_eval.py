@@ -6,9 +6,8 @@ import pytest
 
 from msr_eval import sweep as S
 from msr_eval.executors import SerialExecutor, make_executor
+from msr_eval import cli as ev
 from msr_eval.metrics import fraction_for, pareto
-
-import eval as ev
 
 
 def test_pareto_and_fraction_for_by_hand():
@@ -55,7 +54,7 @@ def test_small_eval_run(tmp_path):
             assert 0 < r["traced_fraction"] <= 1
             assert r["psnr"] is None or r["psnr"] > 10
             assert 0 <= r["flip"] <= 1 and -1 <= r["ssim"] <= 1
-            # scored against the converged reference too (issue 17)
+            # scored against the converged reference too
             assert r["psnr_conv"] is None or r["psnr_conv"] > 10
             assert 0 <= r["flip_conv"] <= 1 and -1 <= r["ssim_conv"] <= 1
             assert r["tile32_min_psnr_conv"] <= (r["psnr_conv"] or 100) + 1e-9
@@ -109,7 +108,7 @@ def test_dask_sweep_equals_serial(tmp_path):
 
 
 def test_full_size_store_resumes_and_recomputes_only_changed_families(tmp_path, monkeypatch):
-    """The full-size flow at a small size (issue 30): the heavy mode alone gets a converged
+    """The full-size flow at a small size: the heavy mode alone gets a converged
     reference, its sample count from the ladder file, one seed; references and records go to
     the store; a second run takes everything from the store (nothing rendered at the converged
     count, nothing computed); a family whose signature changes is computed alone."""

@@ -2,8 +2,9 @@
 import re
 from pathlib import Path
 
+from msr_flow.filelist import rtl_sources   # the one reader of rtl/msr.f
+
 ROOT = Path(__file__).resolve().parents[2]
-from msr_flow.filelist import rtl_sources# noqa: E402  (the one reader of rtl/msr.f)
 
 
 def filelist():

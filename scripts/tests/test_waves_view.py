@@ -1,7 +1,7 @@
-"""scripts/gen_gtkw.py's view: the save file opens zoomed on the recorded window with marker A
+"""The GTKWave view of make sim WAVES=1 (msr_flow.waves): the save file opens zoomed on the recorded window with marker A
 at the tile's start and B at its end (GTKWave's `*zoom marker a b ...` line)."""
 
-import gen_gtkw
+from msr_flow import waves as gen_gtkw
 
 
 class FakeDump:

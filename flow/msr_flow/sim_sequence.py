@@ -22,9 +22,9 @@ import numpy as np
 
 from msr_model import save_png, spec
 from msr_model.clitools import RunFailed, UsageError, int_in
-from msr_flow.harness import GoldenFrames, HarnessRun, compare
+from .harness import GoldenFrames, HarnessRun, compare
 
-ROOT = Path(__file__).resolve().parents[1]
+from .filelist import ROOT
 DEFAULT_PATH = ROOT / "sim" / "paths" / "cornell_orbit.json"   # the default scene's orbit
 STRIP_ROWS, STRIP_W = 8, 240
 
