@@ -1,12 +1,15 @@
-"""The synthesis report's bookkeeping (no Yosys run): parameters read from the RTL, the
+"""The synthesis flow's bookkeeping (no Yosys run): parameters read from the RTL, the
 bottom-up roll-up of the top, memory bits from an RTLIL dump, the job graph (its plan and the
-order and failure rules of its runner)."""
+order and failure rules of its runner), the report's merge and the page rendered from it."""
 import json
+import re
 import subprocess
 
 import pytest
 
-import synth
+from msr_flow import synth
+from msr_flow.filelist import rtl_digest
+from msr_flow.synth import cli, floorplan, page, report
 
 
 def test_default_params_read_from_the_module_headers():
@@ -44,7 +47,7 @@ def test_memory_bits_sum_every_memory_cell():
 
 
 def test_pixel_rate_per_lut4(tmp_path, monkeypatch):
-    monkeypatch.setattr(synth, "BENCH_REPORT", tmp_path / "report.json")
+    monkeypatch.setattr(report, "BENCH_REPORT", tmp_path / "report.json")
     row = synth.add_pixel_rate({"fmax_mhz": 100.0, "luts": 50_000})
     assert row["pixels_per_clock"] == synth.DEFAULT_PIXELS_PER_CLOCK
     assert row["pixels_per_second_per_lut4"] == round(100e6 * synth.DEFAULT_PIXELS_PER_CLOCK / 50_000, 1)
@@ -57,9 +60,9 @@ def test_pixel_rate_per_lut4(tmp_path, monkeypatch):
 
 def test_pixel_rate_says_when_the_bench_is_stale(tmp_path, monkeypatch):
     """The bench report names the RTL it measured; a figure of other RTL is flagged, not hidden."""
-    monkeypatch.setattr(synth, "BENCH_REPORT", tmp_path / "report.json")
-    now = synth.rtl_digest()
-    assert len(now) == 12 and now == synth.rtl_digest()          # deterministic
+    monkeypatch.setattr(report, "BENCH_REPORT", tmp_path / "report.json")
+    now = rtl_digest()
+    assert len(now) == 12 and now == rtl_digest()          # deterministic
     for digest, stale in ((now, False), ("0123456789ab", True)):
         (tmp_path / "report.json").write_text(json.dumps(
             {"rtl_digest": digest, "goals": {"pixels_per_clock_4_engines_latency_256": {"measured": 3.75}}}))
@@ -123,7 +126,7 @@ def test_floorplan_puts_each_engine_in_its_quarter(tmp_path):
             x, y, ebr = bel.split("/")
             e = int(name[len("g_engine["):].split("]")[0])
             xy.setdefault(e, []).append((int(x[1:]), int(y[1:])))
-            base = max(b for b in synth.ECP5_EBR_LEFT + synth.ECP5_EBR_RIGHT if b <= int(x[1:]))
+            base = max(b for b in floorplan.ECP5_EBR_LEFT + floorplan.ECP5_EBR_RIGHT if b <= int(x[1:]))
             assert int(ebr[3:]) == (int(x[1:]) - base) // 2           # EBRi at group + 2i
     for e, pts in xy.items():                                      # left / right, top / bottom
         xs, ys = {p[0] for p in pts}, {p[1] for p in pts}
@@ -165,7 +168,7 @@ def test_floorplan_of_the_lindilate_engine_six_block_rams_per_context(tmp_path, 
     for name, bel in bels.items():
         x, y, ebr = bel.split("/")
         e = int(name[len("g_engine["):].split("]")[0])
-        base = max(b for b in synth.ECP5_EBR_LEFT + synth.ECP5_EBR_RIGHT if b <= int(x[1:]))
+        base = max(b for b in floorplan.ECP5_EBR_LEFT + floorplan.ECP5_EBR_RIGHT if b <= int(x[1:]))
         assert int(ebr[3:]) == (int(x[1:]) - base) // 2
         assert (int(x[1:]) < 64) == (e % 2 == 0)
         assert int(y[1:]) in ((22, 46) if e < 2 else (70, 82))
@@ -178,7 +181,7 @@ def test_floorplan_of_the_lindilate_engine_six_block_rams_per_context(tmp_path, 
 
 
 def test_combine_seeds_median_best_worst():
-    """The flat top over seeds (issue 31): fmax_mhz is the median seed's (the lower middle for
+    """The flat top over seeds: fmax_mhz is the median seed's (the lower middle for
     an even count), best and worst name their seeds, a failed seed is listed with its error."""
     rows = [{"seed": 1, "fmax_mhz": 99.5, "seconds": 10, "luts": 7}, {"seed": 2, "fmax_mhz": 103.0, "seconds": 12,
                                                                         "luts": 8},
@@ -198,7 +201,7 @@ def test_combine_seeds_median_best_worst():
     assert "error" in synth.combine_seeds([{"seed": 1, "error": "x"}])
 
 
-# --- the job graph (issue 35): declared jobs, run in dependency order -------------------------
+# --- the job graph: declared jobs, run in dependency order -------------------------------------
 
 def _recording_jobs(calls, fail=()):
     def fn(name):
@@ -280,7 +283,7 @@ def test_plan_of_the_whole_design():
     assert by_key[("net", "msr_top")].deps == (("net", "msr_top_glue"), ("net", synth.ENGINE))
     for seed in (1, 2, 3):
         j = by_key[("ecp5", f"msr_top@{seed}")]
-        assert j.fn is synth.ecp5_place and j.deps == (("net", "msr_top"),) and j.args[1:] == (seed, True, synth.ECP5_SEED_TIMEOUT_S)
+        assert j.fn is synth.ecp5_place and j.deps == (("net", "msr_top"),) and j.args[1:] == (seed, True, synth.ECP5_SEED_TIMEOUT_S, 100)
     assert by_key[("ecp5", "msr_top_glue")].deps == (("net", "msr_top_glue_cut"),)
     assert {m for (kind, m) in by_key if kind == "ecp5"} >= set(synth.ECP5_UNITS)
     generic = {w for (kind, w) in by_key if kind == "generic"}
@@ -320,7 +323,7 @@ def test_merge_rows_marks_the_unit_run():
 def test_doc_pixel_rate_is_the_top_rows(monkeypatch, tmp_path):
     """A --merge rewrites docs/synthesis.md on a machine that may have no bench report: the doc's
     pixels per clock stays the one the top's row was computed with, not the fallback constant."""
-    monkeypatch.setattr(synth, "BENCH_REPORT", tmp_path / "absent.json")
+    monkeypatch.setattr(report, "BENCH_REPORT", tmp_path / "absent.json")
     rep = {"ecp5": {synth.TOP: {"pixels_per_clock": 3.715, "pixels_per_clock_source": "out/bench/report.json"}}}
     assert synth.doc_pixels_per_clock(rep) == (3.715, "out/bench/report.json")
     assert synth.doc_pixels_per_clock({"ecp5": {}}) == (synth.DEFAULT_PIXELS_PER_CLOCK,
@@ -336,9 +339,90 @@ def test_run_commit_dirty_only_for_rtl(monkeypatch):
         out = "abc1234\n" if cmd[1] == "describe" else (" M rtl/x.sv\n" if dirty else "")
         return subprocess.CompletedProcess(cmd, 0, stdout=out, stderr="")
 
-    monkeypatch.setattr(synth.subprocess, "run", fake_run)
+    monkeypatch.setattr(report.subprocess, "run", fake_run)
     dirty = False
     assert synth.run_commit() == "abc1234"
     dirty = True
     assert synth.run_commit() == "abc1234-dirty"
     assert any(c[-1] == "rtl" for c in calls)
+
+
+def test_merge_carries_the_top_summary_with_the_top_row():
+    """A merged msr_top row brings its top_ecp5 summary (what outside tools read), so the two
+    never disagree; a merge of other units leaves the summary alone."""
+    full = {"generic": {}, "ecp5": {"msr_top": {"luts": 1}}, "top_ecp5": {"luts": 1}}
+    unit = {"generic": {}, "ecp5": {"msr_top": {"luts": 2}}, "top_ecp5": {"luts": 2}}
+    assert synth.merge_rows(full, unit, ["msr_top"])["top_ecp5"] == {"luts": 2}
+    other = {"generic": {}, "ecp5": {"msr_regs": {"luts": 3}}}
+    assert synth.merge_rows(full, other, ["msr_regs"])["top_ecp5"] == {"luts": 1}
+
+
+def test_front_end_reads_every_include_folder_of_the_file_list():
+    files = synth.read_filelist()
+    cmd = synth.read_cmd(files, "msr_top", "msr_tile_engine", {"NUM_ENGINES": 2})
+    assert {"rtl/prim", "rtl/fbw", "rtl/top"} <= set(re.findall(r"-I (\S+)", cmd))
+    assert " -G NUM_ENGINES=2" in cmd and "--blackboxed-module msr_tile_engine" in cmd
+    assert all(f in cmd for f in files)
+
+
+# --- the page: docs/synthesis.md rendered from a report through the Jinja2 template ----------------
+
+def _committed():
+    return json.loads(synth.DOC.with_suffix(".json").read_text())
+
+
+def test_page_has_a_row_per_run_with_its_figures():
+    rep = _committed()
+    text = synth.render(rep)
+    lines = text.splitlines()
+    for mod, runs in rep["generic"].items():
+        for kind, r in runs.items():
+            want = (f"| `{mod}` | {synth.params_text(r['params'])} | {page.UNIT_RUN.sub('', kind)}"
+                    + (" (unit run)" if "unit run" in kind else "") + f" | {synth.fmt(r['cells'])} | ")
+            assert sum(ln.startswith(want) for ln in lines) == 1, want
+    for mod, r in rep["ecp5"].items():
+        name = "`msr_top` glue" if mod == "msr_top_glue" else f"`{mod}`"
+        row = [ln for ln in lines if ln.startswith(f"| {name}") and f"| {synth.fmt(r['luts'])} |" in ln
+               and f"| {r['fmax_mhz']} |" in ln]
+        assert len(row) == 1, mod
+    top = rep["ecp5"]["msr_top"]
+    assert f"median\n{top['fmax_median']['fmax_mhz']} MHz (seed {top['fmax_median']['seed']})" in text
+    assert f"latches in all runs: {rep['latches_total']}." in text
+
+
+def test_page_names_no_commit_and_no_issue():
+    """Merged rows say they come from a unit run, not at which commit."""
+    rep = _committed()
+    rep["generic"]["msr_lzc"] = {"inferred (unit run at abc1234-dirty)": rep["generic"]["msr_lzc"]["inferred"]}
+    rep["ecp5"]["msr_regs"]["merged_from"] = "unit run at abc1234"
+    text = synth.render(rep)
+    assert "| `msr_lzc` | defaults | inferred (unit run) |" in text
+    assert "| `msr_regs` (unit run) |" in text
+    assert not re.search(r"\bat [0-9a-f]{7}\b|abc1234|[Ii]ssue \d", text)
+
+
+def test_page_of_failed_runs_and_a_top_without_seeds():
+    rep = _committed()
+    rep["generic"]["msr_lzc"] = {"inferred": {"error": "yosys failed for msr_lzc_inf: ERROR: boom"}}
+    rep["ecp5"] = {"msr_regs": {"error": "nextpnr-ecp5 failed"}}
+    text = synth.render(rep)
+    assert "| `msr_lzc` | | inferred | error: yosys failed for msr_lzc_inf: ERROR: boom | | | | |" in text
+    assert "| `msr_regs` | | error: nextpnr-ecp5 failed |" in text
+    assert "placement seeds" not in text and "![" not in text
+
+
+def test_render_option_rewrites_the_page_from_the_json(tmp_path, monkeypatch):
+    doc, js = tmp_path / "synthesis.md", tmp_path / "synthesis.json"
+    js.write_text(json.dumps(_committed()))
+    monkeypatch.setattr(cli, "DOC", doc)
+    monkeypatch.setattr(cli, "DOC_JSON", js)
+    monkeypatch.setattr(cli, "write_doc", lambda rep: page.write_doc(rep, doc))
+    monkeypatch.setattr(cli, "ROOT", tmp_path)
+    assert synth.main(["--render"]) == 0
+    assert doc.read_text() == synth.render(_committed())
+
+
+def test_committed_page_is_the_committed_json_rendered():
+    """docs/synthesis.md is generated: it must be what the template makes of docs/synthesis.json
+    (python -m msr_flow.synth --render writes it again)."""
+    assert synth.DOC.read_text() == synth.render(_committed())

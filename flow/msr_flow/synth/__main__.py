@@ -1,0 +1,5 @@
+import sys
+
+from msr_flow.synth.cli import main
+
+sys.exit(main())
