@@ -29,7 +29,7 @@ from msr_model import Params
 from msr_model.metrics import capped, flicker, psnr
 from msr_model.scenes import scene_id
 
-from .sweep import Setting
+from .sweep_space import Setting
 
 # The sequence set: five scenes, two of them textured (duck: COLLADA with a TGA map,
 # CesiumMilkTruck: glTF with an embedded-URI PNG).
