@@ -1,22 +1,29 @@
 # Standard cells: every unit, one tile engine and the default top mapped to the OSU 0.18 um
-# library and timed with OpenSTA (scripts/asic.py). Report: build/asic/report.json, page
-# docs/asic.md.
+# library and timed with OpenSTA (the package msr_flow.asic, flow/msr_flow/asic/). Report:
+# build/asic/report.json; the page docs/asic.md is rendered from docs/asic.json, which a full
+# run rewrites.
 #   make asic                       everything: about 20 min the first time on a loaded 2-core
 #                                   machine; a rerun on unchanged RTL reuses the Yosys results
 #                                   (stamps in build/asic/) and only redoes the timing
 #   make asic UNIT=msr_decision_pipe one unit (build/asic/report_partial.json)
 #   make asic ASIC_ARGS=--period-ns=4 another clock target
+#   make asic-doc                   docs/asic.md again from docs/asic.json (seconds, no tools)
 ASIC_ARGS ?=
-.PHONY: asic
+.PHONY: asic asic-doc
 asic: setup
-	$(ENV) python scripts/asic.py $(if $(UNIT),--modules $(UNIT)) $(ASIC_ARGS)
+	$(ENV) python -m msr_flow.asic $(if $(UNIT),--modules $(UNIT)) $(ASIC_ARGS)
+
+asic-doc: setup
+	$(ENV) python -m msr_flow.asic --doc-only
 
 # The gate-level netlist of one tile engine for the gate-level bench (tb/gate_level), rebuilt
-# when the RTL or the flow changes (about 3 min on an idle machine). make test-gate runs the
-# bench (its model's build is some ten minutes; make test leaves it out: pytest.ini's `gate`).
+# when the RTL or the flow that maps it changes (about 3 min on an idle machine). make test-gate
+# runs the bench (its model's build is some ten minutes; make test leaves it out: pytest.ini's
+# `gate`).
+ASIC_FLOW_FILES := $(wildcard flow/msr_flow/asic/*.py flow/msr_flow/synth/*.py) flow/msr_flow/filelist.py
 ASIC_GATE_NETLIST := build/asic/msr_tile_engine.sim.v
-$(ASIC_GATE_NETLIST): $(MSR_RTL_FILES) scripts/asic.py scripts/synth.py syn/asic/sram_macro.json | setup
-	$(ENV) python scripts/asic.py --netlist-only
+$(ASIC_GATE_NETLIST): $(MSR_RTL_FILES) $(ASIC_FLOW_FILES) syn/asic/sram_macro.json | setup
+	$(ENV) python -m msr_flow.asic --netlist-only
 
 .PHONY: test-gate
 test-gate: setup $(ASIC_GATE_NETLIST)

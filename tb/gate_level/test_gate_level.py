@@ -37,7 +37,7 @@ MACROS = ROOT / "build" / "asic" / "msr_tile_engine.macros.v"
 def max_outstanding() -> int:
     """The netlist's tag count: the default top's MAX_OUTSTANDING (scripts/asic.py maps the
     engine with the top's parameters)."""
-    from synth import TOP, default_params, read_filelist   # scripts/ (pytest.ini's pythonpath)
+    from msr_flow.synth import TOP, default_params, read_filelist
     return default_params(read_filelist(), TOP)["MAX_OUTSTANDING"]
 
 # tiles per profile (fast, jitter, long); about half of them in each rule

@@ -1,0 +1,82 @@
+"""docs/asic.md, rendered from the report (docs/asic.json) with the Jinja2 template
+templates/asic.md.j2: the template holds the prose, this module the number formats."""
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import jinja2
+
+from ..filelist import ROOT
+from ..synth import ENGINE, TOP, params_text
+from .config import CELL_MODELS, DOC, GATE_RESULTS, SCALING, rel
+
+TEMPLATES = Path(__file__).resolve().parents[1] / "templates"
+
+
+def fmt_int(n) -> str:
+    """1 234 567: thousands apart by a space (the page's style)."""
+    return f"{n:,}".replace(",", " ") if isinstance(n, (int, float)) else str(n)
+
+
+def pct(share: float) -> str:
+    return f"{100 * share:.0f}"
+
+
+def path_text(p: dict | None, cells: int = 40) -> str:
+    """A critical path in a sentence: its ends (with their registers' names), arrival, slack,
+    gate count and the cells along it."""
+    if not p:
+        return "(none)"
+    seq = " -> ".join(p["cells"][:cells]) + (" ..." if len(p["cells"]) > cells else "")
+    start = p["start"].split(" (")[0] + (f" (register `{p['start_register']}`)" if p.get("start_register") else "")
+    end = p["end"].split(" (")[0] + (f" (register `{p['end_register']}`)" if p.get("end_register") else "")
+    return (f"from {start} to {end}, arrival {p['arrival_ns']} ns, slack {p['slack_ns']} ns, "
+            f"{p['depth']} gates: {seq}")
+
+
+def path_end(p: dict, key: str) -> str:
+    """A path end for the table: the register's name, else the port or pin."""
+    return f"`{p[key + '_register']}`" if p.get(key + "_register") else f"`{p.get(key, '').split(' ')[0]}`"
+
+
+def gate_level_result(results: Path = GATE_RESULTS) -> dict | None:
+    """The gate-level bench's last result (cocotb's results.xml), None when it has not run here."""
+    if not results.is_file():
+        return None
+    failed = any(t.tag in ("failure", "error") for t in ET.parse(results).iter())
+    where = rel(results) if results.is_relative_to(ROOT) else str(results)
+    return {"result": "FAILED" if failed else "passed", "from": where}
+
+
+def gate_level_text(gl: dict | None) -> str:
+    if not gl:
+        return "not run yet (`make test-gate` runs it)"
+    return f"{gl['result']} (`make test-gate`, {gl['from']})"
+
+
+def environment() -> jinja2.Environment:
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(TEMPLATES), trim_blocks=True, lstrip_blocks=True,
+                             keep_trailing_newline=True, undefined=jinja2.Undefined, autoescape=False)
+    env.filters.update(num=fmt_int, pct=pct, iround=round, params=params_text, path_text=path_text,
+                       path_end=path_end)
+    return env
+
+
+def render(report: dict) -> str:
+    """The page's text from a report (build/asic/report.json's schema)."""
+    mods = report["modules"]
+    eng, top = mods.get(ENGINE, {}), mods.get(TOP, {})
+    top_ok = bool(top) and "error" not in top
+    types = top.get("cells_by_type", {}) if top_ok else {}
+    return environment().get_template("asic.md.j2").render(
+        report=report, clk=report["clock"], mods=mods, eng=eng, top=top, ENGINE=ENGINE, TOP=TOP,
+        ecp5=report.get("ecp5"), sram=report["sram_model"], src=report["sram_model"]["source"],
+        scaling=SCALING, cell_models=str(CELL_MODELS), gate_level=gate_level_text(report.get("gate_level")),
+        top_share=top.get("sequential_share", 0) if top_ok else 0,
+        dffsr=types.get("DFFSR", 0), dff=types.get("DFFPOSX1", 0),
+        top_area=max(1.0, top.get("area_um2", 1.0) if top_ok else 1.0))
+
+
+def write_doc(report: dict, doc: Path = DOC) -> None:
+    doc.write_text(render(report))
