@@ -1,4 +1,4 @@
-"""Committed converged references and records (docs/converged/WxH/): what lets a long
+"""Committed converged references and records (data/converged/WxH/): what lets a long
 converged run resume on a new machine from the repository instead of from out/.
 
 A heavy 1080p converged reference takes minutes (1024 samples per pixel: about 8 minutes on
@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[2]
-STORE = REPO / "docs" / "converged"
+STORE = REPO / "data" / "converged"
 LADDER = STORE / "ladder.json"
 
 _FLOAT_DIGITS = 5            # significant digits of the floats in the committed tables
@@ -39,7 +39,7 @@ def frame_sha(frame: np.ndarray) -> str:
 
 
 def ladder() -> dict:
-    """Per scene id, the heavy converged sample count the quick-size ladder chose (docs/converged/ladder.json)."""
+    """Per scene id, the heavy converged sample count the quick-size ladder chose (data/converged/ladder.json)."""
     if not LADDER.is_file():
         return {}
     return json.loads(LADDER.read_text()).get("scenes", {})

@@ -1,4 +1,4 @@
-"""The converged head-to-head that leads docs/results.md (issue 30): per scene, the traced
+"""The converged head-to-head that leads docs/results.md: per scene, the traced
 fraction at which each group of methods is as close to the converged image as tracing every
 pixel is, and the same 1 and 3 dB below that, beside the 40 and 35 dB points.
 
@@ -122,157 +122,71 @@ def _pct(f):
     return "-" if f is None else f"{100 * f:.1f}"
 
 
-def docs_lines(analysis: dict, cfg: dict, fig: str | None = None, conv_info: dict | None = None,
-               heldout: dict | None = None) -> list[str]:
-    """The section that leads docs/results.md (and, when given, the held-out scenes' tables)."""
-    L = _tables(analysis, cfg, fig, conv_info, f"## The head-to-head at {cfg['width']}x{cfg['height']} against "
-                "the converged image (read this first)", True)
-    if heldout:
-        hc = heldout["config"]
-        L += _tables(heldout["head_to_head"], hc, None, heldout.get("head_to_head_references"),
-                     f"## Held-out scenes at {hc['width']}x{hc['height']}: the same comparison on models outside the set",
-                     False, "Scenes that no rule was designed or tuned on: " +
-                     ", ".join(f"`{s}`" for s in hc.get("scene_sources", hc["scenes"])) +
-                     f"; converged references of {hc.get('conv_spp', 256)} samples per pixel, one seed "
-                     f"(`scripts/eval.py --heldout`, run {hc.get('date_utc', '')}, {hc.get('runtime_s', 0) / 60:.0f} min).\n")
-    return L
+TARGETS = (("eq", "equal quality"), ("eq-1", "1 dB below"), ("eq-3", "3 dB below"))
 
 
-def _tables(analysis: dict, cfg: dict, fig, conv_info, title: str, intro: bool, lead: str = "") -> list[str]:
-    L = []
-    w = L.append
-    names = {k: n for k, n, *_ in GROUPS}
+def context(analysis: dict, conv_info: dict | None = None) -> dict:
+    """The numbers of the head-to-head tables (templates/_headline.j2) from `analyse`'s output:
+    per scene and group the needed-fraction entries, ours against the best DACS, SSIM / FLIP /
+    worst tile at the equal-quality point, the common grid and the references. Nothing here is
+    formatted; the templates do that."""
     scenes = list(analysis)
-    w(title + "\n")
-    if lead:
-        w(lead)
-    if not intro:
-        return L + _body(analysis, scenes, names, None, conv_info, w_level="###")
-    w_level = "###"
-    w("The question a user asks: **to get a frame as close to the noise-free image as tracing every "
-      "pixel gets, what fraction of the pixels must each method trace?** Heavy renderer (16 samples "
-      "per pixel, area light and ambient occlusion); the converged reference is the same renderer with "
-      "256 or 1024 samples per pixel, the count the quick-size ladder chose per scene "
-      "([converged/ladder.json](converged/ladder.json), two-seed figures there). `eq` is the full "
-      "render's own PSNR against it; a method may get there below 100 % (interpolation averages "
-      "noise). Every family can trace everything (threshold 0), so its front ends at (100 %, eq). "
-      "Each group's figure is its best family's, each family read on its own Pareto front, "
-      "peers included: DACS over both block statistics (largest channel variance, luma "
-      "variance), VRS over both tile sizes, the patent's rule and ours over L = 2 and 3 and T = 16 "
-      "and 32, threshold shapes s, 2s, 4s to s, 8s, 64s, and at L = 4 with T = 32 (an extension: "
-      "a stride-16 initial grid, beyond algorithm.md's L <= 3). Methods: "
-      "[dacs.md](dacs.md); the new rule: [rules.md](rules.md#lindilate2d), its L = 4 grid: "
-      "[rules.md](rules.md#the-l--4-extension-a-stride-16-initial-grid).\n")
-    return L + _body(analysis, scenes, names, fig, conv_info, w_level)
-
-
-def _body(analysis, scenes, names, fig, conv_info, w_level: str) -> list[str]:
-    L = []
-    w = L.append
-    cols = [k for k, *_ in GROUPS]
-    w(f"{w_level} Traced % at the equal-quality point (as close to the converged image as the full render)\n")
-    w("| scene | eq (dB) | " + " | ".join(names[k] for k in cols) + " | best peer - best ours |")
-    w("|---|---:|" + "---:|" * len(cols) + "---:|")
+    groups = [{"key": k, "name": n} for k, n, *_ in GROUPS]
+    rows = []
     for sc in scenes:
         a = analysis[sc]
         ours, peer = _best_of(a, OURS), _best_of(a, PEERS)
-        diff = None if ours[0] is None or peer[0] is None else peer[0] - ours[0]
-        cells = []
-        for k in cols:
-            v = _need(a, k)
-            s = _pct(v)
-            if v is not None and a["groups"][k]["needed"]["eq"]["how"] == "at_or_below":
-                s = f"<= {s}"            # even the group's cheapest setting is that good
-            if k == ours[1] or k == peer[1]:
-                s = f"**{s}**"
-            cells.append(s)
-        w(f"| {sc} | {a['eq']:.2f} | " + " | ".join(cells) + f" | {'-' if diff is None else f'{100 * diff:+.1f}'} |")
-    means = {k: [_need(analysis[s], k) for s in scenes] for k in cols}
-    w("| **mean** | | " + " | ".join(_pct(sum(v) / len(v)) if v and None not in v else "-" for v in means.values())
-      + " | |")
-    w("")
-    w("`<= x`: the group's cheapest setting (its floor: the initial grid and tile borders) is "
-      "already as close to the converged image as the full render, so the point lies at or below "
-      "x; on such scenes the comparison is between the methods' floors.\n")
-    w("Ours against the best DACS (4x4 or 8x8, either statistic), scene by scene: fewer traced "
-      "pixels (by more than 0.1 % of the frame), the same, more; and the mean traced % of each.\n")
-    w("| point | ours fewer | same | DACS fewer | mean, best of ours | mean, best DACS |")
-    w("|---|---:|---:|---:|---:|---:|")
-    for t, label in (("eq", "equal quality"), ("eq-1", "1 dB below"), ("eq-3", "3 dB below")):
+        cells = {}
+        for k, *_ in GROUPS:
+            g = a["groups"].get(k)
+            cells[k] = None if g is None else g["needed"]
+        rows.append({"scene": sc, "eq": a["eq"], "needed": cells, "best_ours": ours[1], "best_peer": peer[1],
+                     "peer_minus_ours": None if ours[0] is None or peer[0] is None else peer[0] - ours[0]})
+    means = {}
+    for k, *_ in GROUPS:
+        v = [_need(analysis[s], k) for s in scenes]
+        means[k] = sum(v) / len(v) if v and None not in v else None
+    summary = []
+    for t, label in TARGETS:
         o = [_best_of(analysis[s], OURS, t)[0] for s in scenes]
         p = [_best_of(analysis[s], PEERS, t)[0] for s in scenes]
-        pairs = [(a, b) for a, b in zip(o, p) if a is not None and b is not None]
-        fewer = sum(1 for a, b in pairs if a < b - 1e-3)
-        more = sum(1 for a, b in pairs if a > b + 1e-3)
-        mo = sum(a for a, _ in pairs) / len(pairs) if pairs else None
-        mp = sum(b for _, b in pairs) / len(pairs) if pairs else None
-        w(f"| {label} | {fewer} | {len(pairs) - fewer - more} | {more} | {_pct(mo)} | {_pct(mp)} |")
-    w("")
-    for t, title in (("eq-1", "1 dB below the full render"), ("eq-3", "3 dB below the full render"),
-                     ("40", "40 dB"), ("35", "35 dB")):
-        w(f"{w_level} Traced % for {title}\n")
-        w("| scene | " + " | ".join(names[k] for k in cols) + " |")
-        w("|---|" + "---:|" * len(cols))
-        for sc in scenes:
-            a = analysis[sc]
-            cells = []
-            for k in cols:
-                g = a["groups"].get(k)
-                if g is None:
-                    cells.append("-")
-                    continue
-                n = g["needed"][t]
-                cells.append("not reached" if n["fraction"] is None else
-                             (f"<= {_pct(n['fraction'])}" if n["how"] == "at_or_below" else _pct(n["fraction"])))
-            w(f"| {sc} | " + " | ".join(cells) + " |")
-        w("")
-    w(f"{w_level} At the equal-quality point: SSIM, FLIP and the worst 32x32 tile\n")
-    w("Of each group's cheapest recorded setting reaching `eq` (the full render itself where none does "
-      "below 100 %); SSIM and FLIP against the converged reference; the worst tile's PSNR shows the "
-      "local failures that a frame's mean hides.\n")
-    w("| scene | " + " | ".join(f"{names[k]} SSIM / FLIP / worst tile" for k in EQ_KEYS) + " |")
-    w("|---|" + "---|" * len(EQ_KEYS))
+        pairs = [(x, y) for x, y in zip(o, p) if x is not None and y is not None]
+        fewer = [s for s, x, y in zip(scenes, o, p) if x is not None and y is not None and x < y - 1e-3]
+        more = [s for s, x, y in zip(scenes, o, p) if x is not None and y is not None and x > y + 1e-3]
+        summary.append({"target": t, "label": label, "fewer": fewer, "more": more,
+                        "same": len(pairs) - len(fewer) - len(more),
+                        "mean_ours": sum(x for x, _ in pairs) / len(pairs) if pairs else None,
+                        "mean_dacs": sum(y for _, y in pairs) / len(pairs) if pairs else None})
+    at_eq = []
     for sc in scenes:
         a = analysis[sc]
         cells = []
         for k in EQ_KEYS:
             at = a["groups"].get(k, {}).get("at_eq") or a["full"]
-            ss, fl, tl = at.get("ssim_conv"), at.get("flip_conv"), at.get("tile32_min_psnr_conv")
-            cells.append(" / ".join("-" if v is None else f"{v:.4f}" if i < 2 else f"{v:.1f} dB"
-                                    for i, v in enumerate((ss, fl, tl))))
-        w(f"| {sc} | " + " | ".join(cells) + " |")
-    w("")
-    w(f"{w_level} PSNR against the converged image on a common grid of traced fractions (mean over the scenes)\n")
-    w("Each group's front read at the same traced fractions; `-` where a group cannot trace that few "
-      "(DACS 4x4 traces at least its first pass, one pixel in 16).\n")
-    w("| group | " + " | ".join(f"{int(100 * f)} %" for f in GRID) + " | " +
-      " | ".join(f"band {int(100 * lo)}-{int(100 * hi)} %" for lo, hi in BANDS) + " |")
-    w("|---|" + "---:|" * (len(GRID) + len(BANDS)))
-    for k in cols:
+            cells.append({"ssim": at.get("ssim_conv"), "flip": at.get("flip_conv"),
+                          "tile": at.get("tile32_min_psnr_conv")})
+        at_eq.append({"scene": sc, "cells": cells})
+    grid = []
+    for k, n, *_ in GROUPS:
         vals = []
         for f in GRID:
             v = [analysis[s]["groups"].get(k, {}).get("grid", {}).get(f"{f:.2f}") for s in scenes]
             vals.append(None if not v or None in v else sum(v) / len(v))
-        bands = []
         for lo, hi in BANDS:
             v = [analysis[s]["groups"].get(k, {}).get("bands", {}).get(f"{int(100 * lo)}-{int(100 * hi)}")
                  for s in scenes]
-            bands.append(None if not v or None in v else sum(v) / len(v))
-        w(f"| {names[k]} | " + " | ".join("-" if v is None else f"{v:.2f}" for v in vals + bands) + " |")
-    w("")
-    if fig:
-        w(f"![Pareto fronts per scene against the converged image]({fig})\n")
-    if conv_info:
-        w(f"{w_level} The converged references of this run\n")
-        w("| scene | samples per pixel | render time (s) | from | two seeds at 192x108 (ladder) |")
-        w("|---|---:|---:|---|---|")
-        for sc in scenes:
-            ci = conv_info.get(sc) or {}
-            lad = ci.get("ladder") or {}
-            w(f"| {sc} | {ci.get('spp', '-')} | {ci.get('render_s', 0):.0f} | {ci.get('from', 'rendered')} | "
-              + ", ".join(f"{k} spp {v:.2f} dB" for k, v in lad.items()) + " |")
-        w("")
-    return L
+            vals.append(None if not v or None in v else sum(v) / len(v))
+        grid.append({"name": n, "vals": vals})
+    all_full = [sc for sc in scenes
+                if all((g["needed"]["eq"]["fraction"] or 1.0) >= 1.0 - 1e-9 for g in analysis[sc]["groups"].values())]
+    refs = [{"scene": sc, **(conv_info or {}).get(sc, {})} for sc in scenes] if conv_info else []
+    return {"scenes": scenes, "groups": groups, "rows": rows, "means": means, "summary": summary,
+            "eq_keys": [{"key": k, "name": dict((g["key"], g["name"]) for g in groups)[k]} for k in EQ_KEYS],
+            "at_eq": at_eq, "grid_cols": [f"{int(100 * f)} %" for f in GRID] +
+            [f"band {int(100 * lo)}-{int(100 * hi)} %" for lo, hi in BANDS], "grid": grid,
+            "eq_min": min(analysis[s]["eq"] for s in scenes) if scenes else None,
+            "eq_max": max(analysis[s]["eq"] for s in scenes) if scenes else None,
+            "all_full": all_full, "refs": refs}
 
 
 def plot_fronts(records, path, title, mode: str = "heavy"):

@@ -37,7 +37,7 @@ TILE = 32                                  # the local-failure tile
 
 def conv_grids_for(mode: str, override: int | None = None, ladder_grid: int | None = None) -> tuple:
     """The grids tried for a mode: just `override` if given; else, in heavy mode, the one grid
-    that the quick-size ladder chose for the scene (`ladder_grid`, docs/converged/ladder.json,
+    that the quick-size ladder chose for the scene (`ladder_grid`, data/converged/ladder.json,
     used by the full-size run); else CONV_GRIDS[mode]."""
     if override:
         return (int(override),)

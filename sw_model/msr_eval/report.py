@@ -1,8 +1,11 @@
-"""Pictures and docs of an eval run: curves, set Pareto plots, example strips, and
-docs/results.md with docs/img/ (scripts/eval.py --docs).
+"""Pictures and pages of an eval run: curves, set Pareto plots, example strips, and the
+results pages (docs/results.md, docs/results/*.md) rendered from the Jinja2 templates in
+msr_eval/templates/ with the numbers of the run's records (data/results.json).
 
-The hand-written discussion lives in docs/results_notes.md and is pasted in after the
-headline, so a re-run refreshes every number and figure without losing the text.
+    python -m msr_eval.report                      # the pages from data/results.json (no rendering)
+    python -m msr_eval.report --from-records out/eval/results.json --docs-dir /tmp/docs
+
+Every number on the pages comes from the records; the templates hold the words only.
 """
 from __future__ import annotations
 
@@ -13,241 +16,169 @@ import numpy as np
 
 from msr_model.palette import legend_image, source_rgb
 
-from .conv_report import docs_lines as conv_lines
-from .headline import docs_lines as head_lines
+from . import conv_report as CR
+from . import headline as HL
 from .metrics import capped, flip, pareto
-from .present import FAMILY_NAMES, db, finish_scene_grid, needed_cell, scene_grid, scene_panel, small_png
+from .present import FAMILY_NAMES, finish_scene_grid, render, scene_grid, scene_panel, small_png
 from .textured import section as textured_section
 
 
-HOW_TO_RERUN = """## How to rerun
+REPO = Path(__file__).resolve().parents[2]
 
-    make eval                                  # quick run: 192x108, every scene, fast and heavy -> out/eval/
-    make eval FULL=1                           # this page: 1920x1080, every scene, both modes, + docs/
-    make eval FULL=1 EVAL_ARGS="--modes heavy" # the converged head-to-head alone (heavy renderer)
-    make eval FULL=1 EVAL_ARGS="--conv-check"  # also the second-seed render of each converged reference
-    make eval FULL=1 DASK_SCHEDULER=tcp://host:8786   # the sweep's tasks on an existing Dask cluster
-    make eval DASK_SCHEDULER=serial            # everything in one process
-    .venv/bin/python scripts/eval.py --report-only --docs   # only rewrite this page from out/eval/results.json
-    make eval EVAL_ARGS="--conv-grid 16"       # converged references at one sample count (--no-conv: none)
-
-The sweep (scenes x modes x methods x settings) runs as tasks on Dask distributed
-(`msr_eval.sweep`): by default a LocalCluster with one worker per CPU; `DASK_SCHEDULER=` or the
-environment variable `MSR_DASK_SCHEDULER` names an existing scheduler (its workers need this
-repository's `sw_model` installed, `pip install -e sw_model`, and the renderer library at the
-same path or `MSR_RENDER_LIB`). The records are the same, bit for bit, as a serial run's
-(`scripts/tests/test_eval.py` compares a two-worker LocalCluster with the serial sweep); only
-the wall-time fields differ. References and records are cached per scene and mode under
-`out/eval/cache/` (keyed by the renderer library and the code); a scene and mode's records
-are written as soon as its settings and key metrics are in (the key metrics run ahead of later
-pairs' settings), so an interrupted run keeps every finished pair and resumes from there. At
-full size the converged references and every finished scene's records are also written to
-`docs/converged/` (committed; [converged/README.md](converged/README.md)), and a run on another
-machine takes them back where they are provably the same computation, so the two-hour run can
-be finished in parts. The speed-up table is measured afterwards in the main process, alone. Code:
-`scripts/eval.py` (command line), `msr_eval.metrics`, `msr_eval.sweep`, `msr_eval.report`.
-"""
+# The generated pages beside results.md: (file, template, what; {mode} expands per mode)
+PAGES = (
+    ("converged.md", "results/converged.md.j2", "every table against the converged image at full size: 40 and 35 dB, "
+     "SSIM / FLIP / worst tile at the equal-quality point, the common grid of traced fractions, the references, "
+     "every family's fractions and cheapest setting for 40 dB, the peers at equal traced fraction"),
+    ("heldout.md", "results/heldout.md.j2", "every table of the held-out scenes"),
+    ("full_render.md", "results/full_render.md.j2", "scores against the renderer's own full render, both modes: set "
+     "means, every family's fractions for 35 / 40 dB, the new rules against the patent's, textured scenes and the "
+     "G-buffer rule, the wall-time speed-up, sequences (flicker), figures and example frames"),
+    ("key_settings_{mode}.md", "results/key_settings.md.j2", "PSNR / SSIM / FLIP at the key settings, {mode} renderer"),
+)
 
 
-def write_docs(result: dict, out: Path, docs: Path):
+def write_docs(result: dict, out: Path, docs: Path, data: Path | None = None):
+    """The results pages: docs/results.md and docs/results/*.md, rendered from the templates
+    (msr_eval/templates/) with the numbers of `result`; the figures of the run in `out` (if
+    any) downscaled into docs/img/; `result` itself, floats to 5 significant digits, to
+    DATA/results.json (default: data/ beside docs/). The pages are rendered from that rounded
+    copy, so `python -m msr_eval.report` on the committed file gives the same pages."""
+    docs, out = Path(docs), Path(out)
+    data = Path(data) if data is not None else docs.parent / "data"
     cfg = result["config"]
     img = docs / "img"
-    img.mkdir(parents=True, exist_ok=True)
-    figs = []
     for mode in cfg["modes"]:
         for kind in ("pareto", "curves"):
             src = out / f"{kind}_{mode}.png"
             if src.is_file():
                 small_png(src, img / f"eval_{kind}_{mode}.png", 900)
-                figs.append((kind, mode, f"img/eval_{kind}_{mode}.png"))
-    for ex in result["examples"]:
-        small_png(out / ex["file"], img / f"eval_{ex['file']}", 968, None)
+    for ex in result.get("examples") or []:
+        if (out / ex["file"]).is_file():
+            small_png(out / ex["file"], img / f"eval_{ex['file']}", 968, None)
         ex["doc_file"] = f"img/eval_{ex['file']}"
-
-    L = []
-    w = L.append
-    w("# Image quality against traced pixels\n")
-    w(f"Generated by `make eval FULL=1` (scripts/eval.py) on {cfg['date_utc']}, commit {cfg['git']}, "
-      f"{cfg['width']}x{cfg['height']}, renderer backend `{cfg['backend']}` (library {cfg['renderer_lib']}), "
-      f"modes {', '.join(cfg['modes'])}, run time {cfg['runtime_s'] / 60:.0f} min. Raw numbers: "
-      "`out/eval/results.json` (every scene x method x setting; copied to docs/results.json).\n")
-    w(f"Scene set ({len(cfg['scenes'])}): " + ", ".join(f"`{s}`" for s in cfg["scene_sources"]) + "\n")
-    notes = docs / "results_notes.md"
-    if result.get("head_to_head"):                # the converged head-to-head leads (msr_eval.headline)
-        fig = None
-        src = out / "fronts_headline.png"
-        if src.is_file():
-            small_png(src, img / "eval_fronts_headline.png", 1100)
-            fig = "img/eval_fronts_headline.png"
-        heldout = None
-        hfs = sorted((docs / "converged").glob("heldout_*.json"))
-        if hfs:                                   # scripts/eval.py --heldout
-            heldout = json.loads(hfs[-1].read_text())
-        L.extend(head_lines(result["head_to_head"], cfg, fig, result.get("head_to_head_references"), heldout))
-        hnotes = docs / "results_headline_notes.md"       # hand-written findings, pasted in
-        if hnotes.is_file():
-            w(hnotes.read_text())
-    w(HOW_TO_RERUN)
-    if result.get("converged"):                   # the converged comparison leads (msr_eval.reference)
-        cfigs = []
-        for mode in cfg["modes"]:
-            src = out / f"fronts_conv_{mode}.png"
-            if src.is_file():
-                small_png(src, img / f"eval_fronts_conv_{mode}.png", 900)
-                cfigs.append((mode, f"img/eval_fronts_conv_{mode}.png"))
-        cnotes = docs / "results_converged_notes.md"      # hand-written findings, pasted in
-        L.extend(conv_lines({**result, "_conv_notes": cnotes.read_text() if cnotes.is_file() else None}, cfigs))
-        w("## Against the renderer's own full render\n")
-        w("Everything below scores against the renderer's full render of the same mode (the "
-          "evaluation's original reference), as before.\n")
-
-    w("## Headline\n")
-    for mode, h in result["headline"].items():
-        b, c = h["best_psnr_at_most_15pct"], h["cheapest_40db_mean"]
-        line = f"- **{mode}** renderer: "
-        if b:
-            line += (f"best mean PSNR with <= 15 % traced: **{b['psnr_mean']:.2f} dB** (worst scene "
-                     f"{b['psnr_min']:.2f} dB) at {100 * b['traced_fraction']:.1f} % traced, "
-                     f"{FAMILY_NAMES.get(b['family'], b['family'])}, {b['label']}. ")
-        if c:
-            line += (f"Cheapest setting with >= 40 dB mean: {100 * c['traced_fraction']:.1f} % traced "
-                     f"({FAMILY_NAMES.get(c['family'], c['family'])}, {c['label']}, worst scene {c['psnr_min']:.2f} dB).")
-        w(line)
-    w("")
-    if notes.is_file():
-        w(notes.read_text())
-
-    w("## Traced fraction needed for 35 dB and 40 dB\n")
-    w("Per scene and method: the traced fraction (%) at which the method's PSNR first reaches the "
-      "target. Taken on the method's Pareto front over its threshold sweep (settings sorted by "
-      "traced fraction, keeping only those that beat every cheaper one), linearly interpolated in "
-      "(fraction, PSNR) between the two front points around the target. `<= x`: even the cheapest "
-      "setting of the sweep reaches it (x is that setting's fraction); `not reached`: no setting "
-      "does. Single-setting methods (grids, checkerboard) give their own fraction or `not reached`.\n")
-    needed = result["needed_fraction"]
-    scenes = cfg["scenes"]
     for mode in cfg["modes"]:
-        fams = [f for f in FAMILY_NAMES if any(f in needed[s].get(mode, {}) for s in scenes) and f != "full"]
-        w(f"### {mode} renderer\n")
-        w("| method | " + " | ".join(f"{s} 35 / 40" for s in scenes) + " | set mean 35 / 40 |")
-        w("|---" * (len(scenes) + 2) + "|")
-        setn = result["headline"].get(mode, {}).get("set_needed", {})
-        for f in fams:
-            cells = [needed_cell(needed[s].get(mode, {}).get(f)) for s in scenes]
-            cells.append(needed_cell(setn.get(f)))
-            w(f"| {FAMILY_NAMES[f]} | " + " | ".join(cells) + " |")
-        w("")
+        if (out / f"fronts_conv_{mode}.png").is_file():
+            small_png(out / f"fronts_conv_{mode}.png", img / f"eval_fronts_conv_{mode}.png", 900)
+    for src, dst, w in (("fronts_headline.png", "eval_fronts_headline.png", 1100),
+                        ("temporal.png", "eval_temporal.png", 1100)):
+        if (out / src).is_file():
+            small_png(out / src, img / dst, w)
+    data.mkdir(parents=True, exist_ok=True)
+    result = _round(result)
+    (data / "results.json").write_text(json.dumps(result, separators=(",", ":")))
+    write_pages(result, docs, data)
 
-    L.extend(textured_section(result))
 
-    w("## New decision rules against the patent's rule\n")
-    w("PSNR of the rule minus the PSNR of the patent's rule (L=3, T=16, same threshold scales) at "
-      "the same traced fraction, the patent's value interpolated along its Pareto front; over the "
-      "rule's settings that fall inside the patent curve's range. Positive = the new rule is better.\n")
-    rc = result["rule_vs_patent"]
-    for fam in ("multi_L3_T16_dilate", "multi_L3_T16_linear", "multi_L3_T16_lindilate", "multi_L3_T16_diag"):
-        if fam not in rc:
+def _heldout(data: Path):
+    """(file name, head-to-head context, config) of the newest held-out run under DATA/converged/."""
+    hfs = sorted((data / "converged").glob("heldout_*.json"))
+    if not hfs:
+        return None
+    d = _round(json.loads(hfs[-1].read_text()))
+    hc = {"scene_sources": d["config"].get("scenes", []), "conv_spp": 256, "date_utc": "", **d["config"]}
+    return hfs[-1].name, HL.context(d["head_to_head"], d.get("head_to_head_references")), hc
+
+
+def write_pages(result: dict, docs: Path, data: Path) -> list[Path]:
+    """Render every page from `result` (as stored in DATA/results.json) and the held-out record;
+    returns the files written."""
+    docs, data = Path(docs), Path(data)
+    cfg = result["config"]
+    recs = result["records"]
+    if any("psnr_conv" in r and r["mode"] == "heavy" for r in recs):
+        analysis = HL.analyse(recs, "heavy")            # from the stored records, the code of now
+    else:
+        analysis = result.get("head_to_head") or {}
+    h = HL.context(analysis, result.get("head_to_head_references")) if analysis else None
+    ho = _heldout(data)
+    (docs / "results").mkdir(parents=True, exist_ok=True)
+    pages = []
+    for f, _, what in PAGES:
+        if f == "heldout.md" and not ho:
             continue
-        for mode, per in rc[fam].items():
-            w(f"- {FAMILY_NAMES[fam]}, {mode}: " + "; ".join(
-                f"{s} {v['mean_delta_db']:+.2f} dB (min {v['min_delta_db']:+.2f}, max {v['max_delta_db']:+.2f}, n={v['n']})"
-                if v["n"] else f"{s} no overlap" for s, v in sorted(per.items())))
-    w("")
+        if f == "converged.md" and not result.get("converged"):
+            continue
+        for m in (cfg["modes"] if "{mode}" in f else [None]):
+            pages.append({"file": f.format(mode=m), "what": what.format(mode=m)})
+    written = []
 
-    w("## Quality at the key settings (PSNR / SSIM / FLIP)\n")
-    w("For each scene, mode and method, the cheapest setting of its sweep that reaches 40 dB "
-      "(or its best setting if none does). FLIP: NVIDIA FLIP (flip-evaluator, LDR, 67 ppd), mean "
-      "error, lower is better.\n")
+    def put(path: Path, text: str):
+        path.write_text(text)
+        written.append(path)
+
+    if h:
+        s = h["summary"]
+        put(docs / "results.md", render("results.md.j2", cfg=cfg, h=h, s0=s[0], s1=s[1], s3=s[2],
+                                        ho=ho[1] if ho else None, ho_cfg=ho[2] if ho else None, pages=pages))
+    figs = [{"mode": m, "path": f"img/eval_fronts_conv_{m}.png"} for m in cfg["modes"]
+            if (docs / "img" / f"eval_fronts_conv_{m}.png").is_file()]
+    if result.get("converged"):
+        put(docs / "results" / "converged.md", render("results/converged.md.j2", cfg=cfg, h=h, c=CR.context(result),
+                                                      figs=figs, up="../"))
+    if ho:
+        put(docs / "results" / "heldout.md", render("results/heldout.md.j2", cfg=ho[2], h=ho[1], file=ho[0]))
+    put(docs / "results" / "full_render.md", render("results/full_render.md.j2", **_full_render(result, docs)))
+    keys = set(cfg.get("key_families") or FAMILY_NAMES)
     for mode in cfg["modes"]:
-        w(f"### {mode} renderer\n")
-        w("| scene | method | setting | traced % | PSNR dB | SSIM | FLIP |")
-        w("|---|---|---|---|---|---|---|")
-        for s in scenes:
+        rows = []
+        for sc in cfg["scenes"]:
             for f in FAMILY_NAMES:
-                if f == "full":
+                if f == "full" or f not in keys:
                     continue
-                rs = [r for r in result["records"] if r["scene"] == s and r["mode"] == mode and r["family"] == f]
+                rs = [r for r in recs if r["scene"] == sc and r["mode"] == mode and r["family"] == f]
                 if not rs:
                     continue
                 ok = [r for r in rs if r["psnr"] is None or r["psnr"] >= 40]
-                r = min(ok, key=lambda r: r["traced_fraction"]) if ok else max(rs, key=lambda r: r["psnr"] or 1e9)
-                ss = f"{r['ssim']:.4f}" if "ssim" in r else "-"
-                fl = f"{r['flip']:.4f}" if "flip" in r else "-"
-                w(f"| {s} | {FAMILY_NAMES[f]} | {r['label']} | {100 * r['traced_fraction']:.1f} | "
-                  f"{db(r['psnr'])} | {ss} | {fl} |")
-        w("")
+                rows.append(min(ok, key=lambda r: r["traced_fraction"]) if ok else
+                            max(rs, key=lambda r: r["psnr"] or 1e9))
+        put(docs / "results" / f"key_settings_{mode}.md",
+            render("results/key_settings.md.j2", cfg=cfg, mode=mode, rows=rows))
+    return written
 
-    if result["speedup"]:
-        w("## Wall-time speedup on the live renderer\n")
-        w("Selective render (decisions included, the renderer asked pass by pass as the golden model "
-          "does) against the full render, same renderer object type, same frame size; the setting is "
-          "the cheapest of the family that reaches 40 dB on that scene. `bit-equal`: the live run gave "
-          "the same frame as the run on the cached reference.\n")
-        w("| scene | mode | method | setting | traced % | full s | selective s | speedup | bit-equal |")
-        w("|---|---|---|---|---|---|---|---|---|")
-        for s in result["speedup"]:
-            w(f"| {s['scene']} | {s['mode']} | {FAMILY_NAMES.get(s['family'], s['family'])} | {s['label']} | "
-              f"{100 * s['traced_fraction']:.1f} | {s['full_render_s']:.2f} | {s['selective_s']:.2f} | "
-              f"{s['speedup']:.2f}x | {s['bit_equal_to_cached_run']} |")
-        w("")
 
+def _full_render(result: dict, docs: Path) -> dict:
+    """The context of results/full_render.md.j2."""
+    cfg = result["config"]
+    needed = result["needed_fraction"]
+    scenes = cfg["scenes"]
+    headline = [{"mode": m, "best": hd.get("best_psnr_at_most_15pct"), "cheap": hd.get("cheapest_40db_mean")}
+                for m, hd in result["headline"].items()]
+    need = []
+    for mode in cfg["modes"]:
+        setn = result["headline"].get(mode, {}).get("set_needed", {})
+        fams = [f for f in FAMILY_NAMES if f != "full" and any(f in needed[s].get(mode, {}) for s in scenes)]
+        need.append({"mode": mode, "rows": [{"family": f, "cells": [needed[s].get(mode, {}).get(f) for s in scenes],
+                                             "set": setn.get(f)} for f in fams]})
+    rules = []
+    for fam, per in result["rule_vs_patent"].items():
+        for mode, sc in per.items():
+            rules.append({"family": fam, "mode": mode, "scenes": [{"scene": k, **v} for k, v in sorted(sc.items())]})
+    temporal = None
     if result.get("temporal"):
         from .temporal import markdown
-        src = out / "temporal.png"
-        if src.is_file():
-            small_png(src, img / "eval_temporal.png", 1100)
-        w(markdown(result["temporal"], "img/eval_temporal.png"))
-    w("## Figures\n")
-    for kind, mode, path in figs:
-        what = "Mean over the scene set (Pareto front)" if kind == "pareto" else "Per scene"
-        w(f"{what}, {mode} renderer:\n\n![{kind} {mode}]({path})\n")
-    if result["examples"]:
-        w("Examples (frame | source map in the palette of `msr_model.palette`, the same as `make sim`'s "
-          "summary.png, legend under each strip | FLIP error map, magma, black = no error):\n")
-        for ex in result["examples"]:
-            w(f"- `{ex['scene']}`, {ex['mode']}, {FAMILY_NAMES.get(ex['family'], ex['family'])} {ex['label']}: "
-              f"{100 * ex['traced_fraction']:.1f} % traced, {db(ex['psnr'])} dB\n\n  ![{ex['scene']}]({ex['doc_file']})\n")
-    L.extend(appendices(docs))
-    (docs / "results.md").write_text("\n".join(L) + "\n")
-    # compact copy for the repository: floats to 5 significant digits, no indentation
-    (docs / "results.json").write_text(json.dumps(_round(result), separators=(",", ":")))
+        temporal = markdown(result["temporal"], "../img/eval_temporal.png")
+    figs = [{"kind": k, "mode": m, "path": f"img/eval_{k}_{m}.png"} for m in cfg["modes"] for k in ("pareto", "curves")
+            if (docs / "img" / f"eval_{k}_{m}.png").is_file()]
+    return {"cfg": cfg, "headline": headline, "needed": need, "rules": rules,
+            "textured": "\n".join(textured_section(result)).strip(), "speedup": result.get("speedup") or [],
+            "temporal": temporal.strip() if temporal else None, "figs": figs,
+            "examples": result.get("examples") or []}
 
 
-# Earlier runs kept on the same page (issue 30, one results page): (file under docs/appendix/,
-# title). Their own headings move two levels down; links into docs/ are rebased.
-APPENDICES = (
-    ("quick_converged.md", "Appendix A: the converged comparison at the quick size (192x108, 13 scenes, both modes)"),
-    ("fast_16spp_1080p.md", "Appendix B: the complete 1920x1080 run against the 16-spp full render, both modes "
-                            "(2026-11-30, 13 scenes, textured ones included)"),
-)
-
-
-def appendices(docs: Path) -> list[str]:
-    """The appendix sections of results.md from docs/appendix/ (missing files are skipped)."""
-    import re
-    out = []
-    for name, title in APPENDICES:
-        f = docs / "appendix" / name
-        if not f.is_file():
-            continue
-        out.append(f"## {title}\n")
-        out.append(f"Kept as generated (source: [appendix/{name}](appendix/{name})).\n")
-        for line in f.read_text().splitlines():
-            if line.startswith("#"):
-                line = "##" + line if not line.startswith("# ") else "### " + line[2:]
-            line = re.sub(r"\]\((?!https?:|#)([^)]+)\)", lambda m: f"]({_rebase(m.group(1), name)})", line)
-            out.append(line)
-        out.append("")
-    return out
-
-
-def _rebase(link: str, name: str) -> str:
-    """A relative link of an appendix page (written for docs/ or docs/eval_1080p/) as seen from docs/."""
-    if not name.startswith("fast_16spp"):         # written in docs/: its links hold as they are
-        return link
-    if link.startswith("img/"):
-        return "appendix/" + link
-    return link[3:] if link.startswith("../") else "appendix/" + link
+def main(argv=None):
+    """Rewrite the results pages from the committed records: no rendering, no sweep."""
+    import argparse
+    ap = argparse.ArgumentParser(description=main.__doc__)
+    ap.add_argument("--from-records", default=str(REPO / "data" / "results.json"), metavar="JSON",
+                    help="the run's records (default data/results.json)")
+    ap.add_argument("--docs-dir", default=str(REPO / "docs"))
+    ap.add_argument("--data-dir", default=None, help="where the held-out record is read (default: the JSON's folder)")
+    a = ap.parse_args(argv)
+    src = Path(a.from_records)
+    result = json.loads(src.read_text())
+    for f in write_pages(result, Path(a.docs_dir), Path(a.data_dir) if a.data_dir else src.parent):
+        print(f)
 
 
 def _round(v):
@@ -349,3 +280,7 @@ def example_strip(ref, res, panel_w):
         strip.paste(im, (i * (panel_w + 4), 0))
     strip.paste(legend, (0, ph))
     return strip
+
+
+if __name__ == "__main__":
+    main()

@@ -1,7 +1,7 @@
-"""Why DACS wins where it wins (issue 30, item 4): per 32x32 tile, where a rule's error against
+"""Why DACS wins where it wins : per 32x32 tile, where a rule's error against
 the converged image exceeds DACS's at the same traced fraction, and what those tiles hold.
 
-For one scene (heavy renderer, converged reference from docs/converged/ or rendered), two
+For one scene (heavy renderer, converged reference from data/converged/ or rendered), two
 methods are run at settings with nearly the same traced fraction (each family's setting
 closest to a target fraction). Per tile: the squared error against the converged image of
 each, the 16-spp full render's own error there (its noise), the converged image's gradient
