@@ -107,10 +107,9 @@ def write_pages(result: dict, docs: Path, data: Path) -> list[Path]:
         path.write_text(text)
         written.append(path)
 
-    if h:
-        s = h["summary"]
-        put(docs / "results.md", render("results.md.j2", cfg=cfg, h=h, s0=s[0], s1=s[1], s3=s[2],
-                                        ho=ho[1] if ho else None, ho_cfg=ho[2] if ho else None, pages=pages))
+    s = h["summary"] if h else [None] * 3
+    put(docs / "results.md", render("results.md.j2", cfg=cfg, h=h, s0=s[0], s1=s[1], s3=s[2],
+                                    ho=ho[1] if ho else None, ho_cfg=ho[2] if ho else None, pages=pages))
     figs = [{"mode": m, "path": f"img/eval_fronts_conv_{m}.png"} for m in cfg["modes"]
             if (docs / "img" / f"eval_fronts_conv_{m}.png").is_file()]
     if result.get("converged"):
