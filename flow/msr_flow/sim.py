@@ -18,15 +18,13 @@ a model file that cannot be read, a rule that is not one of the RTL's), nothing 
 from __future__ import annotations
 
 import json
-import os
 import subprocess
 import sys
 import time
 from pathlib import Path
 
-import numpy as np
-
-from msr_model import Params, RULES, save_png, spec
+from msr_model import Params, RULES, metrics, save_png, spec
+from msr_model.scenes import scene_id
 from msr_model.clitools import Parser, RunFailed, UsageError, int_in, int_list, run_main
 from .harness import RTL_RULES, GoldenFrames, HarnessRun, compare
 
@@ -105,11 +103,6 @@ def budget_of(a, width: int, height: int, params: Params):
     return cfg
 
 
-def scene_label(scene: str) -> str:
-    p = Path(scene)
-    return p.stem if (p.suffix or os.sep in scene) else scene
-
-
 def run(a) -> int:
     W, H, params = params_of(a)
     rule = rule_of(a)
@@ -117,7 +110,7 @@ def run(a) -> int:
     harness = Path(a.harness)
     if not harness.is_file():
         raise UsageError(f"harness {harness} not built (run make sim)")
-    out = Path(a.out or ROOT / "out" / "sim" / scene_label(a.scene))
+    out = Path(a.out or ROOT / "out" / "sim" / scene_id(a.scene))
     if out.exists() and not out.is_dir():
         raise UsageError(f"OUT {out} is not a folder")
     if str(a.frames).strip() or str(a.camera_path).strip():
@@ -166,11 +159,8 @@ def run(a) -> int:
         raise RunFailed(f"BUDGET={a.budget}: the harness {harness} is a top without the budget controller "
                         f"(build it with make sim BUDGET=...)")
     verdict = compare(rtl, golden)
-    from skimage.metrics import peak_signal_noise_ratio
-    from msr_model.overview import ssim_of
-    psnr = (float(peak_signal_noise_ratio(reference, frame, data_range=255))
-            if (reference != frame).any() else float("inf"))
-    ssim = ssim_of(reference, frame)      # None below 7x7: not defined there
+    psnr = metrics.psnr(reference, frame)         # inf for identical frames
+    ssim = metrics.ssim(reference, frame)         # None below 7x7: not defined there
 
     save_png(out / "frame.png", frame)
     save_png(out / "source_map.png", source)
@@ -187,7 +177,7 @@ def run(a) -> int:
         "traced_fraction": traced / pixels,
         "traced": traced,
         "interpolated": pixels - traced,
-        "psnr_db": psnr if np.isfinite(psnr) else None,
+        "psnr_db": psnr,
         "ssim": ssim,
         "cycles": st["cycles"],
         "pixels": pixels,
@@ -222,7 +212,7 @@ def run(a) -> int:
     (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
     from msr_model.overview import RunInfo, write_summary
     write_summary(out / "summary.png", frame, reference, source,
-                  RunInfo(scene=scene_label(a.scene), params=params, rule=rule, psnr_db=report["psnr_db"], ssim=ssim,
+                  RunInfo(scene=scene_id(a.scene), params=params, rule=rule, psnr_db=report["psnr_db"], ssim=ssim,
                           cycles=st["cycles"], bit_exact=report["bit_exact"],
                           budget=0 if budget is None else budget.budget,
                           scale_per_row=None if budget is None else report["budget_control"]["scale_per_row"]))
@@ -237,7 +227,7 @@ def run(a) -> int:
         bc = report["budget_control"]
         print(f"  ray budget                : {budget.budget} pixels, traced {bc['budget_error']:+.2%} off it; "
               f"SCALE_OUT {bc['scale_out_rtl']} (golden {bc['scale_out']})")
-    print(f"  quality vs full render    : PSNR {'inf' if not np.isfinite(psnr) else f'{psnr:.2f}'} dB, "
+    print(f"  quality vs full render    : PSNR {metrics.format_db(psnr)}, "
           f"SSIM {'not defined below 7x7' if ssim is None else f'{ssim:.4f}'}")
     print(f"  RTL cycles                : {st['cycles']} ({st['cycles'] / pixels:.3f} cycles/pixel)")
     print(f"  simulation speed          : {st['sim_cycles_per_second'] / 1e6:.2f} Mcycles/s, "

@@ -47,11 +47,6 @@ def cameras_of(a, n: int) -> tuple[list[str], str]:
         raise UsageError(str(e)) from None
 
 
-def _psnr(ref, img) -> float | None:
-    from skimage.metrics import peak_signal_noise_ratio
-    return float(peak_signal_noise_ratio(ref, img, data_range=255)) if (ref != img).any() else None
-
-
 def _thumb(img: np.ndarray) -> np.ndarray:
     from PIL import Image
     h, w = img.shape[:2]
@@ -123,12 +118,12 @@ def run_sequence(a, W: int, H: int, params, rule: str, budget, harness: Path, ou
         raise RunFailed(f"BUDGET={a.budget}: the harness {harness} is a top without the budget controller")
     entries, frames = [], []
     for k, (r, g, ref) in enumerate(zip(rtl, goldens, refs)):
-        from msr_model.overview import ssim_of
+        from msr_model.metrics import psnr, ssim
         v = compare(r, g)
         traced = int((r.source < spec.SRC_INTERP_BASE).sum())
         e = {"frame": k, "bit_exact": v["bit_exact"], "traced_fraction": traced / (W * H), "traced": traced,
-             "psnr_db": _psnr(ref, r.frame),
-             "ssim": ssim_of(ref, r.frame),
+             "psnr_db": psnr(ref, r.frame),
+             "ssim": ssim(ref, r.frame),
              "cycles": r.stats["cycles"], "camera": cams[k],
              "mismatched_pixels": v["mismatched_pixels"], "mismatched_codes": v["mismatched_codes"]}
         if budget is not None:
@@ -145,12 +140,13 @@ def run_sequence(a, W: int, H: int, params, rule: str, budget, harness: Path, ou
     pick = sorted({round(i * (n - 1) / max(1, min(n, STRIP_ROWS) - 1)) for i in range(min(n, STRIP_ROWS))})
     write_strip(out / "summary_strip.png", [(k, rtl[k].frame, rtl[k].source, refs[k]) for k in pick])
     ok = all(e["bit_exact"] for e in entries) and all(e.get("scale_out_equal", True) for e in entries)
-    psnrs = [e["psnr_db"] for e in entries if e["psnr_db"] is not None]
+    from msr_model.metrics import capped, format_db
+    psnrs = [e["psnr_db"] for e in entries]
     seq = {"bit_exact": ok, "frames": entries, "scene": a.scene, "width": W, "height": H, "rule": rule,
            "params": params.as_dict(), "quality": a.quality, "camera_path": path_file,
            "budget": 0 if budget is None else budget.budget, "num_frames": n,
            "cycles_total": sum(e["cycles"] for e in entries),
-           "psnr_db_mean": float(np.mean(psnrs)) if psnrs else None,
+           "psnr_db_mean": float(np.mean([capped(p) for p in psnrs])) if psnrs else None,   # finite
            "psnr_db_worst": float(min(psnrs)) if psnrs else None,
            "pictures": pics + ["summary_strip.png"], "wall_seconds": round(time.perf_counter() - t0, 2)}
     (out / "sequence.json").write_text(json.dumps(seq, indent=2) + "\n")
@@ -159,7 +155,7 @@ def run_sequence(a, W: int, H: int, params, rule: str, budget, harness: Path, ou
     for e in entries:
         extra = f", scale out {e['scale_out_rtl']} ({e['budget_error']:+.2%} off the budget)" if budget is not None else ""
         print(f"  frame {e['frame']:4d}: {'bit exact' if e['bit_exact'] else 'NOT bit exact'}, traced "
-              f"{e['traced_fraction']:.1%}, PSNR {e['psnr_db'] if e['psnr_db'] is None else round(e['psnr_db'], 2)} dB, "
+              f"{e['traced_fraction']:.1%}, PSNR {format_db(e['psnr_db'])}, "
               f"{e['cycles']} cycles{extra}")
     print(f"  outputs: {out}/ (sequence.json, frame_KKKK.png, sequence.webp, sequence.gif, summary_strip.png)",
           flush=True)

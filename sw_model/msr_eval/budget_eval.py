@@ -26,19 +26,12 @@ import numpy as np
 
 from msr_model import ImageRenderer, Params, load_rgb, save_png
 from msr_model import budget as BG
+from msr_model.metrics import capped, psnr
+from msr_model.scenes import scene_id
 
 REPO = Path(__file__).resolve().parents[2]
 from msr_eval.scenes import MODEL_FILES   # the evaluation set's model files, besides the built-ins
 LADDER = (BG.U_MIN_FIRST, BG.U_MIN) + tuple(int(round(256 * 2 ** (k / 2))) for k in range(-4, 6))   # u = 32, 45, 64 .. 1448
-
-
-def psnr(ref, img) -> float:
-    mse = float(np.mean((ref.astype(np.float64) - img.astype(np.float64)) ** 2))
-    return 99.0 if mse == 0 else 10 * math.log10(255.0 ** 2 / mse)
-
-
-def scene_id(scene: str) -> str:
-    return Path(scene).stem if "/" in scene else scene
 
 
 def reference(scene: str, w: int, h: int, mode: str, cache: Path) -> np.ndarray:
@@ -62,7 +55,7 @@ def run(ref, params, rule, cfg=None, fixed=None, fixed_dither=False) -> dict:
 
 def curve_psnr(curve: dict, traced: int) -> float | None:
     """PSNR of the fixed-threshold curve at `traced`, linear in log(traced) between neighbours."""
-    pts = sorted((v["traced"], v["psnr"]) for v in curve.values())
+    pts = sorted((v["traced"], capped(v["psnr"])) for v in curve.values())     # finite: interpolated
     for (t0, p0), (t1, p1) in zip(pts, pts[1:]):
         if t0 <= traced <= t1:
             return p0 if t1 == t0 else p0 + (p1 - p0) * (math.log(traced) - math.log(t0)) / (math.log(t1) - math.log(t0))
@@ -110,7 +103,7 @@ def evaluate_scene(ref, params, rule, budgets, frames, log, fixed_dither=False, 
             fixed = curve_psnr(curve, f["traced"])
             rec.append({"frame": k + 1, "traced": f["traced"], "error_pct": 100 * (f["traced"] - B) / B,
                         "psnr": f["psnr"], "psnr_fixed": fixed,
-                        "psnr_delta": None if fixed is None else f["psnr"] - fixed,
+                        "psnr_delta": None if fixed is None else capped(f["psnr"]) - fixed,
                         "scale_per_row": f["scale_per_row"], "traced_per_row": f["traced_per_row"],
                         "scale_out": f["scale_out"]})
         out["budgets"][pct] = {"budget": B, "frames": rec}

@@ -26,6 +26,7 @@ import numpy as np
 
 from msr_model import ImageRenderer, Params
 from msr_model import budget as BG
+from msr_model.metrics import capped, psnr_of_mse
 
 REPO = Path(__file__).resolve().parents[2]
 PARAMS = Params(tile=16, levels=3, thr=(8, 16, 32))          # as eval_budget.py
@@ -33,7 +34,8 @@ LADDER = sorted({max(BG.U_MIN_FIRST, min(BG.U_MAX, round(256 * 2 ** (k / 4)))) f
 
 
 def curves(width: int, height: int, scenes: list[str], out: Path) -> None:
-    from .budget_eval import reference, scene_id
+    from msr_model.scenes import scene_id
+    from .budget_eval import reference
     cache = REPO / "out" / "budget" / f"{width}x{height}" / "cache"
     cache.mkdir(parents=True, exist_ok=True)
     out.mkdir(parents=True, exist_ok=True)
@@ -67,8 +69,8 @@ class Curves:
         return max(t, int(self.grid[r])), float(np.interp(x, self.lu, self.sse[:, r]))
 
     def psnr(self, sse: float) -> float:
-        mse = sse / (self.width * self.height * 3)
-        return 99.0 if mse == 0 else 10 * math.log10(255.0 ** 2 / mse)
+        """Capped (msr_model.metrics.capped): the curve is interpolated and differenced."""
+        return capped(psnr_of_mse(sse / (self.width * self.height * 3)))
 
     def fixed_psnr(self, traced: int) -> float:
         """PSNR of one scale for the whole frame at this traced count (linear in log traced)."""
