@@ -17,8 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import spec
-from .metrics import format_db, psnr
-from .metrics import ssim as ssim_of  # noqa: F401  (the name the sim flows import)
+from .metrics import format_db, psnr, ssim
 from .palette import draw_legend, font, legend_boxes, legend_entries, legend_size, source_rgb
 
 MAX_PANEL_W = 640            # frames wider than this are reduced by an integer factor
@@ -142,7 +141,7 @@ def abs_error(frame: np.ndarray, reference: np.ndarray) -> np.ndarray:
 
 def psnr_ssim(reference: np.ndarray, frame: np.ndarray) -> tuple[float, float | None]:
     """PSNR in dB (inf for identical frames) and SSIM (None below 7x7) of frame against reference."""
-    return psnr(reference, frame), ssim_of(reference, frame)
+    return psnr(reference, frame), ssim(reference, frame)
 
 
 def error_scale(err: np.ndarray) -> int:
