@@ -91,6 +91,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("unit", help="module name (its file is found through rtl/msr.f)")
     ap.add_argument("rev", help="git revision of the gold version")
     ap.add_argument("-G", dest="params", action="append", default=[], help="parameter override K=V")
+    ap.add_argument("--with-old", dest="with_old", action="append", default=[],
+                    help="submodule whose interface the refactor changed: the gold instantiates "
+                         "its REV version too (renamed <module>_gold)")
     ap.add_argument("--blackbox", action="append", default=None, help="module kept as a black box")
     ap.add_argument("--seq", type=int, default=1, help="equiv_simple -seq depth")
     ap.add_argument("--induct", type=int, default=2, help="equiv_induct -seq depth (2: assume at one step, prove the next)")
@@ -110,7 +113,17 @@ def main(argv: list[str] | None = None) -> int:
         raise SystemExit(f"equiv: git show {args.rev}:{rel}: {old.stderr.strip()}")
     gold_name = f"{args.unit}_gold"
     gold_file = work / f"{gold_name}.sv"
-    gold_file.write_text(re.sub(rf"\b{args.unit}\b", gold_name, old.stdout))
+    gold_text = old.stdout
+    for sub in args.with_old:
+        # the gold's own copy of a submodule whose ports changed: taken from REV, renamed
+        sub_rel = defining_file(sub, files).relative_to(ROOT)
+        sub_old = proc.run(["git", "show", f"{args.rev}:{sub_rel}"], cwd=ROOT, timeout=60)
+        if sub_old.returncode != 0:
+            raise SystemExit(f"equiv: git show {args.rev}:{sub_rel}: {sub_old.stderr.strip()}")
+        gold_text += "\n" + sub_old.stdout
+    for name in [args.unit, *args.with_old]:
+        gold_text = re.sub(rf"\b{name}\b", f"{name}_gold", gold_text)
+    gold_file.write_text(gold_text)
 
     t0 = time.monotonic()
     inc = " ".join(f"-I {d.relative_to(ROOT)}" for d in rtl_incdirs())

@@ -34,28 +34,24 @@ module msr_level_ctrl
   input  level_t  levels_i,       // L, 1..MAX_LEVELS
   output logic    step_valid_o,   // one position of one pass (registered)
   input  logic    step_ready_i,
-  output lcoord_t step_x_o,       // the position
-  output lcoord_t step_y_o,
-  output lcoord_t step_ax_o,      // neighbour A (left / top), H and V passes only
-  output lcoord_t step_ay_o,
-  output lcoord_t step_bx_o,      // neighbour B (right / bottom)
-  output lcoord_t step_by_o,
-  output gap_t    step_gap_o,     // g = b - a (0 in the initial pass)
-  output gap_t    step_off_o,     // m - a
-  output level_t  step_level_o,   // k (0 in the initial pass)
-  output logic [1:0] step_nshift_o, // log2(n_k), n_k = S >> (k-1)
-  output dir_e    step_dir_o,
-  output logic    step_first_o,   // first position of a pass (the engine's pass barrier)
-  // For the `lindilate` rule (docs/rules.md; H and V passes): the third read port's address.
-  // It reads B' = b + g, or A' = a - g where B' is outside the tile. Where B' is inside, A'
-  // (if it exists) is the A of the line's previous position, which the context keeps;
-  // where A' is not that (four cases over every n and L), B' is outside (tb/level_ctrl).
-  output logic    step_o2a_o,     // the third port reads A' (B' = b + g is outside the tile)
-  output lcoord_t step_o2_o,      // the third port's read on the line: A' if o2a, else B'
+  // The position, its neighbours, gap, level and pass (step_t). For the `lindilate` rule
+  // (docs/rules.md; H and V passes) also the third read port's address, o2: it reads
+  // B' = b + g, or A' = a - g where B' is outside the tile. Where B' is inside, A' (if it
+  // exists) is the A of the line's previous position, which the context keeps; where A' is
+  // not that (four cases over every n and L), B' is outside (tb/level_ctrl).
+  output step_t   step_o,
   output logic    busy_o          // a tile is accepted and not all positions are out
 );
 
   // The border region's constant tables: rtl/engine/msr_border_pkg.sv.
+
+  // ---- Output register: the step on offer (its first flag is out_first_q) --------------------
+  lcoord_t    step_x_q, step_y_q, step_ax_q, step_ay_q, step_bx_q, step_by_q, step_o2_q;
+  gap_t       step_gap_q, step_off_q;
+  level_t     step_level_q;
+  logic [1:0] step_nshift_q;
+  dir_e       step_dir_q;
+  logic       step_o2a_q;
 
   // ---- Tile registers (set at start) -----------------------------------------------------
   level_t  levels_q;
@@ -454,24 +450,29 @@ module msr_level_ctrl
       ry_q     <= 3'(lcoord_t'(h_i - 1'b1) & ((lcoord_t'(1) << levels_i) - 1'b1));
     end
     if (advance) begin
-      step_x_o      <= cand_x;
-      step_y_o      <= cand_y;
-      step_ax_o     <= (dir_q == DIR_V) ? lw_q.cur : cand_a;
-      step_ay_o     <= (dir_q == DIR_V) ? cand_a : lw_q.cur;
-      step_bx_o     <= (dir_q == DIR_V) ? lw_q.cur : cand_b;
-      step_by_o     <= (dir_q == DIR_V) ? cand_b : lw_q.cur;
-      step_gap_o    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_gap : '0;
-      step_off_o    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_off : '0;
-      step_level_o  <= (ws_q == WS_WALK) ? k_q : '0;
-      step_nshift_o <= 2'(levels_q - k_q + 1'b1);
-      step_dir_o    <= (ws_q == WS_WALK) ? dir_q : DIR_INIT;
-      step_o2a_o    <= o2a;
-      step_o2_o     <= o2pos;
+      step_x_q      <= cand_x;
+      step_y_q      <= cand_y;
+      step_ax_q     <= (dir_q == DIR_V) ? lw_q.cur : cand_a;
+      step_ay_q     <= (dir_q == DIR_V) ? cand_a : lw_q.cur;
+      step_bx_q     <= (dir_q == DIR_V) ? lw_q.cur : cand_b;
+      step_by_q     <= (dir_q == DIR_V) ? cand_b : lw_q.cur;
+      step_gap_q    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_gap : '0;
+      step_off_q    <= (ws_q == WS_WALK && dir_q != DIR_INIT) ? cand_off : '0;
+      step_level_q  <= (ws_q == WS_WALK) ? k_q : '0;
+      step_nshift_q <= 2'(levels_q - k_q + 1'b1);
+      step_dir_q    <= (ws_q == WS_WALK) ? dir_q : DIR_INIT;
+      step_o2a_q    <= o2a;
+      step_o2_q     <= o2pos;
     end
   end
 
   assign step_valid_o  = out_valid_q;
-  assign step_first_o  = out_first_q;
+  always_comb begin
+    step_o = '{x: step_x_q, y: step_y_q, ax: step_ax_q, ay: step_ay_q, bx: step_bx_q,
+               by: step_by_q, gap: step_gap_q, off: step_off_q, level: step_level_q,
+               nshift: step_nshift_q, dir: step_dir_q, first: out_first_q, o2a: step_o2a_q,
+               o2: step_o2_q};
+  end
   assign start_ready_o = (ws_q == WS_IDLE);
   assign busy_o        = (ws_q != WS_IDLE) || out_valid_q;
 
@@ -480,17 +481,17 @@ module msr_level_ctrl
       w_i inside {[1 : MAX_TILE]} && h_i inside {[1 : MAX_TILE]} &&
       levels_i inside {[1 : MAX_LEVELS]})
   `MSR_ASSERT(a_step_hold, step_valid_o && !step_ready_i |=> step_valid_o &&
-      $stable({step_x_o, step_y_o, step_ax_o, step_ay_o, step_bx_o, step_by_o, step_gap_o,
-               step_dir_o, step_first_o}), clk_i, !rst_ni || clear_i)
-  `MSR_ASSERT(a_gap, step_valid_o && step_dir_o != DIR_INIT |->
-      step_gap_o inside {[2 : 8]} && step_off_o == (step_gap_o >> 1))
+      $stable({step_x_q, step_y_q, step_ax_q, step_ay_q, step_bx_q, step_by_q, step_gap_q,
+               step_dir_q, out_first_q}), clk_i, !rst_ni || clear_i)
+  `MSR_ASSERT(a_gap, step_valid_o && step_dir_q != DIR_INIT |->
+      step_gap_q inside {[2 : 8]} && step_off_q == (step_gap_q >> 1))
   // The flags beside the walk state equal the compares they stand for, while they are used.
   `MSR_ASSERT(a_walk_flags, ws_q == WS_WALK |->
       pw_left0_q == (pw_q.left == '0) && pw_left1_q == (pw_q.left == (LCOORD_W+1)'(1)) &&
       lw_edge_q == (lw_q.cur == '0 || lw_q.left == '0))
-  `MSR_COVER(c_outer_a, step_valid_o && step_dir_o != DIR_INIT && step_o2a_o)
-  `MSR_COVER(c_border_gap3, step_valid_o && step_gap_o == 4'd3)
-  `MSR_COVER(c_level3, step_valid_o && step_level_o == 2'd3)
+  `MSR_COVER(c_outer_a, step_valid_o && step_dir_q != DIR_INIT && step_o2a_q)
+  `MSR_COVER(c_border_gap3, step_valid_o && step_gap_q == 4'd3)
+  `MSR_COVER(c_level3, step_valid_o && step_level_q == 2'd3)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_level_ctrl

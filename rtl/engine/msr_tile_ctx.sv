@@ -85,22 +85,6 @@ module msr_tile_ctx
   // The queue is a head register and a tail register (not a FIFO with pointers): the head's
   // fields, hence the candidate bit and the tile buffer's read addresses, come straight from
   // flip-flops, so the engine's issue path starts at a register and one LUT.
-  typedef struct packed {
-    lcoord_t    x;
-    lcoord_t    y;
-    lcoord_t    ax;
-    lcoord_t    ay;
-    lcoord_t    bx;
-    lcoord_t    by;
-    gap_t       gap;
-    gap_t       off;
-    level_t     level;
-    logic [1:0] nshift;
-    dir_e       dir;
-    logic       first;
-    logic       o2a;
-    lcoord_t    o2;
-  } step_t;
 
   logic    ctrl_valid, ctrl_room, step_valid, ctrl_busy, q_room, q_push;
   step_t   ctrl_step, step;
@@ -116,12 +100,7 @@ module msr_tile_ctx
     .start_valid_i (start_i), .start_ready_o (ctrl_start_ready),
     .w_i (desc_i.w), .h_i (desc_i.h), .levels_i (desc_i.levels),
     .step_valid_o (ctrl_valid), .step_ready_i (ctrl_room),
-    .step_x_o (ctrl_step.x), .step_y_o (ctrl_step.y),
-    .step_ax_o (ctrl_step.ax), .step_ay_o (ctrl_step.ay),
-    .step_bx_o (ctrl_step.bx), .step_by_o (ctrl_step.by),
-    .step_gap_o (ctrl_step.gap), .step_off_o (ctrl_step.off), .step_level_o (ctrl_step.level),
-    .step_nshift_o (ctrl_step.nshift), .step_dir_o (ctrl_step.dir),
-    .step_first_o (ctrl_step.first), .step_o2a_o (ctrl_step.o2a), .step_o2_o (ctrl_step.o2),
+    .step_o (ctrl_step),
     .busy_o (ctrl_busy)
   );
 

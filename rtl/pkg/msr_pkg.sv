@@ -112,6 +112,24 @@ package msr_pkg;
     DIR_V    = 2'd2      // vertical pass: neighbours above / below
   } dir_e;
 
+  // One position of one pass, as the level controller hands it on (its step_o).
+  typedef struct packed {
+    lcoord_t    x;        // the position
+    lcoord_t    y;
+    lcoord_t    ax;       // neighbour A (left / top), H and V passes only
+    lcoord_t    ay;
+    lcoord_t    bx;       // neighbour B (right / bottom)
+    lcoord_t    by;
+    gap_t       gap;      // g = b - a (0 in the initial pass)
+    gap_t       off;      // m - a
+    level_t     level;    // k (0 in the initial pass)
+    logic [1:0] nshift;   // log2(n_k), n_k = S >> (k-1)
+    dir_e       dir;
+    logic       first;    // first position of a pass (the engine's pass barrier)
+    logic       o2a;      // lindilate: the third port reads A' (B' = b + g is outside the tile)
+    lcoord_t    o2;       // lindilate: the third port's read on the line: A' if o2a, else B'
+  } step_t;
+
   localparam int unsigned TADDR_W = 2 * LCOORD_W;            // tile buffer address {y, x}
 
   // ---- Tile engine: one issued position (a context's head, carried from the issue to AB) ---

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import cocotb
 
+from msr_flow.filelist import rtl_sources
 from msr_flow.runner import run_cocotb
 from msr_tb import next_cycle, settle, start_clock_and_reset
 
@@ -126,4 +127,6 @@ async def schedule_matches_golden(dut):
 
 
 def test_level_ctrl():
-    run_cocotb("msr_level_ctrl", "test_level_ctrl", Path(__file__).parent)
+    here = Path(__file__).parent
+    run_cocotb("msr_level_ctrl_tb", "test_level_ctrl", here,
+               sources=[*rtl_sources(), here / "msr_level_ctrl_tb.sv"])

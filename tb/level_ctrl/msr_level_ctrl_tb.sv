@@ -1,0 +1,65 @@
+// Bench wrapper of msr_level_ctrl: its step_o struct as one port per field, so the cocotb
+// test reads the fields by name (a packed struct reaches cocotb as one flat vector).
+module msr_level_ctrl_tb
+  import msr_pkg::*;
+(
+  input  logic       clk_i,
+  input  logic       rst_ni,
+  input  logic       clear_i,
+  input  logic       start_valid_i,
+  output logic       start_ready_o,
+  input  ldim_t      w_i,
+  input  ldim_t      h_i,
+  input  level_t     levels_i,
+  output logic       step_valid_o,
+  input  logic       step_ready_i,
+  output lcoord_t    step_x_o,
+  output lcoord_t    step_y_o,
+  output lcoord_t    step_ax_o,
+  output lcoord_t    step_ay_o,
+  output lcoord_t    step_bx_o,
+  output lcoord_t    step_by_o,
+  output gap_t       step_gap_o,
+  output gap_t       step_off_o,
+  output level_t     step_level_o,
+  output logic [1:0] step_nshift_o,
+  output dir_e       step_dir_o,
+  output logic       step_first_o,
+  output logic       step_o2a_o,
+  output lcoord_t    step_o2_o,
+  output logic       busy_o
+);
+
+  step_t step;
+
+  msr_level_ctrl u_dut (
+    .clk_i         (clk_i),
+    .rst_ni        (rst_ni),
+    .clear_i       (clear_i),
+    .start_valid_i (start_valid_i),
+    .start_ready_o (start_ready_o),
+    .w_i           (w_i),
+    .h_i           (h_i),
+    .levels_i      (levels_i),
+    .step_valid_o  (step_valid_o),
+    .step_ready_i  (step_ready_i),
+    .step_o        (step),
+    .busy_o        (busy_o)
+  );
+
+  assign step_x_o      = step.x;
+  assign step_y_o      = step.y;
+  assign step_ax_o     = step.ax;
+  assign step_ay_o     = step.ay;
+  assign step_bx_o     = step.bx;
+  assign step_by_o     = step.by;
+  assign step_gap_o    = step.gap;
+  assign step_off_o    = step.off;
+  assign step_level_o  = step.level;
+  assign step_nshift_o = step.nshift;
+  assign step_dir_o    = step.dir;
+  assign step_first_o  = step.first;
+  assign step_o2a_o    = step.o2a;
+  assign step_o2_o     = step.o2;
+
+endmodule : msr_level_ctrl_tb
