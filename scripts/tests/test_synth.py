@@ -426,3 +426,46 @@ def test_committed_page_is_the_committed_json_rendered():
     """docs/synthesis.md is generated: it must be what the template makes of docs/synthesis.json
     (python -m msr_flow.synth --render writes it again)."""
     assert synth.DOC.read_text() == synth.render(_committed())
+
+
+def test_report_of_the_top_carries_what_outside_tools_read(tmp_path, monkeypatch):
+    """build/synth/report.json of a run with msr_top: the generic top composed from glue and
+    engines, the ECP5 top row of the median seed with its LUT4 against the device's, dp16kd and
+    fmax_seeds, and the same figures in top_ecp5."""
+    monkeypatch.setattr(report, "BENCH_REPORT", tmp_path / "absent.json")
+    design = synth.Design.read()
+    n = design.n_engines
+
+    def ecp5_row(seed, fmax, luts=60_000):
+        return {"device": "LFE5U-85F-CABGA381", "params": {}, "luts": luts, "device_luts": synth.ECP5_LUTS,
+                "lut_utilisation": round(luts / synth.ECP5_LUTS, 4), "flip_flops": 9, "block_rams": 168,
+                "dsp_mult18": 0, "fmax_mhz": fmax, "seed": seed, "seconds": 5.0}
+
+    results = {("generic", ("msr_top", "glue")): part(1000, 100, 50, 20, bb_inst=n),
+               ("generic", (synth.ENGINE, "inferred")): part(300, 30, 7, 25),
+               ("generic", (synth.ENGINE, "black box")): part(310, 31, 0, 26),
+               ("ecp5", "msr_top@1"): ecp5_row(1, 101.0), ("ecp5", "msr_top@2"): ecp5_row(2, 99.0, 61_000),
+               ("ecp5", "msr_top@3"): ecp5_row(3, 104.0)}
+    failures = []
+    rep = report.assemble(results, failures, design, ["msr_top"], (1, 2, 3), False, 0.0)
+    assert failures == [] and rep["latches_total"] == 0
+    assert rep["generic"]["msr_top"]["inferred"]["cells"] == 1000 + n * 300
+    assert list(rep["generic"]) == [synth.ENGINE, "msr_top"]                  # file-list order
+    top = rep["ecp5"]["msr_top"]
+    assert (top["fmax_mhz"], top["seed"], top["dp16kd"]) == (101.0, 1, 168)
+    summary = rep["top_ecp5"]
+    assert summary["luts"] == 60_000 and summary["device_luts"] == 83_640 and summary["fmax_mhz"] == 101.0
+    assert summary["lut_utilisation"] == round(60_000 / 83_640, 4)
+    assert (summary["dp16kd"], summary["device_dp16kd"]) == (168, 208)
+    assert [x["seed"] for x in summary["fmax_seeds"]] == [1, 2, 3]
+    assert summary["pixels_per_second_per_lut4"] == round(101e6 * report.DEFAULT_PIXELS_PER_CLOCK / 60_000, 1)
+    assert list(rep)[-3:] == ["latches_total", "seconds", "failures"]
+
+
+def test_report_counts_latches_once_and_fails_on_them():
+    design = synth.Design.read()
+    results = {("generic", ("msr_lzc", "inferred")): part(5, 0, 0, 3, latches=2)}
+    failures = []
+    rep = report.assemble(results, failures, design, ["msr_lzc"], (1,), False, 0.0)
+    assert rep["latches_total"] == 2 and failures == ["msr_lzc (inferred): 2 latches"]
+    assert "top_ecp5" not in rep and rep["ecp5"] == {}

