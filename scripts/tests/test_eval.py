@@ -76,7 +76,8 @@ def test_small_eval_run(tmp_path):
     docs.mkdir()
     ev.main(["--report-only", "--out", str(tmp_path), "--docs-dir", str(docs)])
     text = (docs / "results.md").read_text()
-    assert text.index("## Against the converged reference") < text.index("## Headline")
+    assert text.index("## The question") < text.index("## How to re-run")
+    assert (docs / "results" / "full_render.md").is_file()
     assert "DACS" in text and "VRS-like" in text
     assert data["needed_fraction"] and data["headline"]
 
@@ -225,5 +226,5 @@ def test_temporal_sequences():
         assert len(m["psnr"]) == 3 and len(m["traced"]) == 3 and len(m["flicker"]) == 2
         assert all(0 < t <= 1 for t in m["traced"]) and m["flicker_mean"] >= 0
     a = np.zeros((4, 4, 3), np.int16)
-    assert T._flicker(a, a) == 0 and T._flicker(a, a + 2) == pytest.approx(2.0)
+    assert T.flicker(a, a) == 0 and T.flicker(a, a + 2) == pytest.approx(2.0)
     assert "Sequences" in T.markdown(res, "x.png")
