@@ -1,4 +1,4 @@
-"""A decision rule that uses what the renderer knows: the G-buffer edge test (issue 14 item 7).
+"""A decision rule that uses what the renderer knows: the G-buffer edge test.
 
 With every traced pixel the rendering unit returns, beside its colour, what the primary ray
 through the pixel centre hit: an id (the material's, or the triangle's) and the depth along

@@ -1,4 +1,4 @@
-"""docs/results.md sections for textured content and the G-buffer rule (issue 14, items 6 and 7).
+"""docs/results.md sections for textured content and the G-buffer rule.
 
 `section(result)` returns the markdown lines that report.write_docs puts after the per-scene
 tables: the textured scenes' traced fraction for 35 and 40 dB by method and rule, the

@@ -119,7 +119,7 @@ def test_unknown_rule_and_bad_rule_function():
 
 
 def test_lindilate2d_decides_as_lindilate_and_smooths_the_last_v_pass():
-    """lindilate2d (issue 30): the same sources as lindilate everywhere; the same colours
+    """lindilate2d: the same sources as lindilate everywhere; the same colours
     except at the last level's V-pass interpolations, which are (2 (A + B) + the four
     diagonal corners + 4) >> 3 where the corners lie in the tile and the six agree within
     the level's threshold, checked here against a formula written out independently."""

@@ -207,7 +207,7 @@ def test_dacs_against_a_pixel_by_pixel_oracle(metric):
                 assert (res.frame == frame).all(), (w, h, thr)
 
 
-# --- issue 30: DACS on 8x8 blocks, VRS with every tier-2 rate and centred samples -------------
+# --- DACS on 8x8 blocks, VRS with every tier-2 rate and centred samples -------------
 
 def test_dacs_block8_passes_and_counts():
     """8x8 blocks: six passes after the first, each pixel decided once; the last four are the

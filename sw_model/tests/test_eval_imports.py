@@ -1,4 +1,4 @@
-"""msr_eval's modules import one another without a circle (issue 35): the pages' shared
+"""msr_eval's modules import one another without a circle: the pages' shared
 helpers live in msr_eval.present and the scene set in msr_eval.scenes, so report, conv_report,
 headline and textured each import only what sits below them. Imports inside functions count."""
 import ast

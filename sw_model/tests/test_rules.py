@@ -107,7 +107,7 @@ def test_bad_rule():
 def test_levels_4_only_as_the_evaluation_extension():
     """L = 4 (stride 16) is outside algorithm.md and the registers: refused unless the Params is
     marked as the evaluation extension, and then a complete frame whose initial grid is the
-    stride-16 grid of every tile (issue 30, docs/rules.md "L = 4")."""
+    stride-16 grid of every tile (docs/rules.md "L = 4")."""
     with pytest.raises(SpecError, match="1, 2 or 3"):
         Params(32, 4, (1, 2, 4, 8))
     with pytest.raises(SpecError, match="1 to 4"):
