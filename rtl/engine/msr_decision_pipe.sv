@@ -117,41 +117,19 @@ module msr_decision_pipe
     end
   end
 
-  // ---- S3: the decision ------------------------------------------------------------------
-  logic                        s3_valid_q;
-  logic                        s3_interp_q;
-  diff_t                       s3_d_q;
-  logic  [USER_W-1:0]          s3_user_q;
+  // ---- S3: the decision; S4 and S5 carry it beside the colour ------------------------------
+  logic              s3_valid_q, s4_valid_q;
+  logic              s3_interp_q, s4_interp_q;   // 1: interpolate, 0: trace
+  diff_t             s3_d_q, s4_d_q;
+  logic [USER_W-1:0] s3_user_q, s4_user_q;
 
   always_ff @(posedge clk_i) begin
     if (advance && s2_valid_q) begin
       s3_interp_q <= (LHS_W'(s2_d_q) << s2_nshift_q) < LHS_W'(s2_rhs_q);
-      s3_d_q      <= s2_d_q;
-      s3_user_q   <= s2_user_q;
+      {s3_d_q, s3_user_q} <= {s2_d_q, s2_user_q};
     end
-  end
-
-  // ---- S4 -------------------------------------------------------------------------------------
-  logic                        s4_valid_q;
-  logic                        s4_interp_q;
-  diff_t                       s4_d_q;
-  logic  [USER_W-1:0]          s4_user_q;
-
-  always_ff @(posedge clk_i) begin
-    if (advance && s3_valid_q) begin
-      s4_interp_q <= s3_interp_q;
-      s4_d_q      <= s3_d_q;
-      s4_user_q   <= s3_user_q;
-    end
-  end
-
-  // ---- S5: output register ---------------------------------------------------------------
-  always_ff @(posedge clk_i) begin
-    if (advance && s4_valid_q) begin
-      interp_o <= s4_interp_q;
-      diff_o   <= s4_d_q;
-      user_o   <= s4_user_q;
-    end
+    if (advance && s3_valid_q) {s4_interp_q, s4_d_q, s4_user_q} <= {s3_interp_q, s3_d_q, s3_user_q};
+    if (advance && s4_valid_q) {interp_o, diff_o, user_o} <= {s4_interp_q, s4_d_q, s4_user_q};
   end
 
   // ---- Interpolation unit: the colour, stage by stage beside the decision -------------------

@@ -47,19 +47,8 @@ module msr_level_ctrl_tb
     .busy_o        (busy_o)
   );
 
-  assign step_x_o      = step.x;
-  assign step_y_o      = step.y;
-  assign step_ax_o     = step.ax;
-  assign step_ay_o     = step.ay;
-  assign step_bx_o     = step.bx;
-  assign step_by_o     = step.by;
-  assign step_gap_o    = step.gap;
-  assign step_off_o    = step.off;
-  assign step_level_o  = step.level;
-  assign step_nshift_o = step.nshift;
-  assign step_dir_o    = step.dir;
-  assign step_first_o  = step.first;
-  assign step_o2a_o    = step.o2a;
-  assign step_o2_o     = step.o2;
+  // step_t's fields, in their declared order
+  assign {step_x_o, step_y_o, step_ax_o, step_ay_o, step_bx_o, step_by_o, step_gap_o, step_off_o,
+          step_level_o, step_nshift_o, step_dir_o, step_first_o, step_o2a_o, step_o2_o} = step;
 
 endmodule : msr_level_ctrl_tb
