@@ -28,6 +28,23 @@ def test_fusesoc_core_lists_exactly_msr_f():
     assert core_files == filelist()
 
 
+def test_fusesoc_core_is_generated_from_msr_f():
+    """msr.core's rtl fileset is written by `python -m msr_flow.filelist --core`: a stale core
+    (a file added to rtl/msr.f and not regenerated) fails here."""
+    from msr_flow.filelist import core_text
+    assert (ROOT / "msr.core").read_text() == core_text(), "run python -m msr_flow.filelist --core"
+
+
+def test_rtl_folders_hold_at_most_20_modules_and_subsystems_stay_apart():
+    """A folder per subsystem: no folder of rtl/ over 20 modules; the budget's and the
+    frame-buffer writer's units each in a folder that holds nothing else."""
+    for d in (ROOT / "rtl").iterdir():
+        if d.is_dir():
+            assert len(list(d.glob("*.sv"))) <= 20, d
+    assert all(p.name.startswith("msr_budget") for p in (ROOT / "rtl/budget").iterdir())
+    assert all(p.name.startswith(("msr_fbw", "msr_fb_writer")) for p in (ROOT / "rtl/fbw").iterdir())
+
+
 def test_core_and_sdc_reference_existing_files():
     core = (ROOT / "msr.core").read_text()
     for f in re.findall(r"^      - ([\w/.]+)", core, re.M):
