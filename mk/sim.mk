@@ -7,8 +7,10 @@ SIM_WAVES_ON := $(filter 1 yes true,$(WAVES))
 # in its own folder. Without BUDGET the harness is the default top, as before.
 BUDGET       ?=
 # FRAMES=N [CAMERA_PATH=file]: a sequence of N frames through the RTL in one harness run, the
-# camera moving along the path (default: sim/paths/cornell_orbit.json around the default scene);
-# OUT gets sequence.json, frame_KKKK.png, sequence.webp / .gif, summary_strip.png.
+# camera moving along the path (default: the scene's default orbit, a full turn about its framed
+# centre in 96 frames, msr_model.camera_path); OUT gets sequence.json, frame_KKKK.png,
+# sequence.webp / .gif, summary_strip.png. REUSE=1 (reuse across frames) is refused with exit
+# status 2 until the hardware has it.
 FRAMES       ?=
 CAMERA_PATH  ?=
 SIM_BUDGET_ON := $(strip $(BUDGET))
@@ -77,7 +79,7 @@ TEST_DEPS += build/sim/fast/Vmsr_sim_top build/sim/fast_budget/Vmsr_sim_top
 sim: setup renderer $(SIM_BIN)
 	@$(ENV) python scripts/run_sim.py --harness $(SIM_BIN) --scene "$(SCENE)" --width "$(WIDTH)" \
 	    --height "$(HEIGHT)" --tile "$(TILE)" --levels "$(LEVELS)" --thr "$(THR)" --metric "$(METRIC)" \
-	    --fov-gain "$(FOV_GAIN)" --rule "$(RULE)" --budget "$(BUDGET)" --frames "$(FRAMES)" --camera-path "$(CAMERA_PATH)" --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
+	    --fov-gain "$(FOV_GAIN)" --rule "$(RULE)" --budget "$(BUDGET)" --frames "$(FRAMES)" --camera-path "$(CAMERA_PATH)" --reuse "$(REUSE)" --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
 	    $(if $(WAVE_TILE),--wave-tile $(WAVE_TILE)) $(if $(WAVE_CYCLES),--wave-cycles $(WAVE_CYCLES))
 
 # make waves / waves-shot: the run named by OUT=, else the last make sim WAVES=1 (its folder is

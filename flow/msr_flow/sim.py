@@ -47,7 +47,9 @@ def parse(argv):
                     "(docs/budget.md; BUDGET= of make sim; empty or 0: off)")
     ap.add_argument("--frames", default="", help="a sequence of N frames in one harness run (FRAMES= of make sim)")
     ap.add_argument("--camera-path", default="", help="camera path file of the sequence (CAMERA_PATH=; default: "
-                    "the built-in orbit of the default scene)")
+                    "the scene's default orbit, msr_model.camera_path)")
+    ap.add_argument("--reuse", default="", help="REUSE= of make sim: 1 reuses the previous frame (not in the "
+                    "hardware yet: refused); empty or 0: off")
     ap.add_argument("--out", default="")
     ap.add_argument("--quality", default="fast")
     ap.add_argument("--camera", default="", help="EX,EY,EZ,TX,TY,TZ,FOV (model units, degrees); empty: the scene's view")
@@ -103,7 +105,18 @@ def budget_of(a, width: int, height: int, params: Params):
     return cfg
 
 
+def reuse_of(a) -> bool:
+    """REUSE=: empty, 0 or 1. Reuse across frames is not in the hardware yet: 1 is refused."""
+    text = str(a.reuse).strip().lower()
+    if text in ("", "0", "no", "false"):
+        return False
+    if text not in ("1", "yes", "true"):
+        raise UsageError(f"REUSE must be 0 or 1, got {a.reuse!r}")
+    raise UsageError("REUSE=1: reuse across frames is not in the hardware yet")
+
+
 def run(a) -> int:
+    reuse_of(a)
     W, H, params = params_of(a)
     rule = rule_of(a)
     budget = budget_of(a, W, H, params)

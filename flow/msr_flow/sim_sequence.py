@@ -2,15 +2,19 @@
 
 The harness programs the registers before each frame as a driver would (with a ray budget:
 each frame after the first seeded with the last frame's SCALE_OUT and activity memory, the
-driver sequence of docs/budget.md) and moves the camera between frames (frame k's view of the
-camera path, msr_model.camera_path; the built-in path orbits the default scene). Every frame is
+driver sequence of docs/budget.md, msr_model.sequence.next_budget) and moves the camera
+between frames: frame k's view of the camera path, or without one the scene's default orbit
+(msr_model.camera_path.scene_views, the views `msr_model sequence` takes too). Every frame is
 compared with the golden model on the same view. Writes into OUT:
 
 - frame_KKKK.png and source_map_KKKK.png (read back from the RTL's memory);
-- sequence.json: `frames` (per frame: frame, bit_exact, traced_fraction, psnr_db, ssim, cycles,
-  and with a budget the scale the frame ended with), the run's set-up and the verdict;
+- sequence.json: `reuse` (false: reuse is not in the hardware yet), `frames` (per frame: frame,
+  bit_exact, traced, reused, traced_fraction, psnr_db, identical, ssim, cycles, flicker, and
+  with a budget the scale the frame ended with), the sequence's `flicker`, the run's set-up and
+  the verdict;
 - sequence.webp and sequence.gif (the frames, playable), summary_strip.png (the RTL frame,
-  its source map and its error against the full render, a row per frame).
+  its source map and its error against the full render, a row per frame, the error on one
+  scale for the whole sequence).
 """
 from __future__ import annotations
 
@@ -24,25 +28,18 @@ from msr_model import save_png, spec
 from msr_model.clitools import RunFailed, UsageError, int_in
 from .harness import GoldenFrames, HarnessRun, compare
 
-from .filelist import ROOT
-DEFAULT_PATH = ROOT / "sim" / "paths" / "cornell_orbit.json"   # the default scene's orbit
 STRIP_ROWS, STRIP_W = 8, 240
 
 
-def cameras_of(a, n: int) -> tuple[list[str], str]:
-    """The view of each of n frames and the path file they come from."""
-    from msr_model.camera_path import load_path
+def cameras_of(a, W: int, H: int, n: int) -> tuple[list[str], str]:
+    """The view of each of n frames and where they come from (the path file or the orbit)."""
+    from msr_model.camera_path import scene_views
     if a.camera:
         raise UsageError("give CAMERA or CAMERA_PATH for a sequence, not both")
     path = Path(a.camera_path) if str(a.camera_path).strip() else None
-    if path is None:
-        if a.scene != "cornell":
-            raise UsageError(f"FRAMES on scene {a.scene!r} needs CAMERA_PATH=file (the built-in path "
-                             f"orbits the default scene, cornell)")
-        path = DEFAULT_PATH
     try:
-        cp = load_path(path)
-        return [cp.camera(k) for k in range(n)], str(path)
+        views = scene_views(a.scene, W, H, path, a.quality)
+        return views.cameras(n), views.source
     except spec.SpecError as e:
         raise UsageError(str(e)) from None
 
@@ -54,15 +51,18 @@ def _thumb(img: np.ndarray) -> np.ndarray:
     return np.asarray(Image.fromarray(img).resize((STRIP_W, th), Image.NEAREST))
 
 
-def write_strip(path: Path, rows: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]]) -> None:
-    """The key panels over time: per row (frame k) the RTL frame, its source map, its error."""
+def write_strip(path: Path, rows: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]], vmax: int) -> None:
+    """The key panels over time: per row (frame k) the RTL frame, its source map, its error, the
+    error on one scale for the whole sequence (0 .. vmax, written in the caption), so rows
+    compare."""
     from PIL import Image, ImageDraw
     from msr_model.overview import ERROR_CMAP, _cmap, abs_error, font, source_rgb
+    vmax = max(1, int(vmax))
     cells = []
     for k, frame, source, reference in rows:
         err = abs_error(frame, reference)
-        vmax = max(1, int(err.max()))
-        cells.append((k, [_thumb(frame), _thumb(source_rgb(source)), _thumb(_cmap(ERROR_CMAP, err / vmax))]))
+        cells.append((k, [_thumb(frame), _thumb(source_rgb(source)),
+                          _thumb(_cmap(ERROR_CMAP, np.minimum(err, vmax) / vmax))]))
     th = cells[0][1][0].shape[0]
     pad, label = 8, 70
     W = label + 3 * (STRIP_W + pad) + pad
@@ -70,7 +70,7 @@ def write_strip(path: Path, rows: list[tuple[int, np.ndarray, np.ndarray, np.nda
     im = Image.new("RGB", (W, H), (255, 255, 255))
     d = ImageDraw.Draw(im)
     f = font(14)
-    for j, cap in enumerate(("RTL frame", "source map", "abs error (per-frame max)")):
+    for j, cap in enumerate(("RTL frame", "source map", f"abs error, 0..{vmax} (all frames)")):
         d.text((label + pad + j * (STRIP_W + pad), 8), cap, fill=(0, 0, 0), font=f)
     for i, (k, pics) in enumerate(cells):
         y = 30 + i * (th + pad)
@@ -90,46 +90,39 @@ def write_animation(out: Path, frames: list[np.ndarray]) -> list[str]:
 
 
 def run_sequence(a, W: int, H: int, params, rule: str, budget, harness: Path, out: Path) -> int:
-    from msr_model.budget import BudgetConfig
-    from msr_model.embree import open_renderer
+    from msr_model.metrics import format_db, ssim
+    from msr_model.overview import abs_error
+    from msr_model.sequence import Flicker, frame_entry, next_budget, summary
     n = int_in(a.frames or "1", "FRAMES", 1, 10000)
-    cams, path_file = cameras_of(a, n)
     t0 = time.perf_counter()
-    open_renderer(a.scene, W, H, quality=a.quality, camera=cams[0]).close()   # a bad model: exit 2
+    cams, path_file = cameras_of(a, W, H, n)       # opens the scene: a bad model is exit 2 here
     out.mkdir(parents=True, exist_ok=True)
     sim = HarnessRun(harness, a.scene, W, H, params, rule=rule, quality=a.quality, latency=a.rnd_latency,
                      jitter=a.rnd_jitter, budget=budget, cameras=cams).start()
     goldens, refs = [], []
     try:
         cfg = budget
-        for k, cam in enumerate(cams):
+        for cam in cams:
             gf = GoldenFrames(a.scene, W, H, quality=a.quality, camera=cam)
             g = gf.frame(params, rule, cfg)
             goldens.append(g)
             refs.append(gf.reference)
-            if cfg is not None:     # the driver's sequence: seeded with the last frame's scale
-                bc = g.stats["budget_control"]
-                cfg = BudgetConfig(budget=cfg.budget, scale_init=bc["scale_out"], prior_shift=cfg.prior_shift,
-                                   profile=tuple(bc["activity_per_row"]),
-                                   profile_scales=tuple(bc["scale_per_row"]))
+            cfg = next_budget(cfg, g.stats)     # the driver's sequence: seeded with the last frame's scale
     finally:
         rtl = sim.wait()
     if budget is not None and not rtl[0].build.get("budget_en"):
         raise RunFailed(f"BUDGET={a.budget}: the harness {harness} is a top without the budget controller")
-    entries, frames = [], []
+    entries, frames, fl = [], [], Flicker()
     for k, (r, g, ref) in enumerate(zip(rtl, goldens, refs)):
-        from msr_model.metrics import psnr, ssim
         v = compare(r, g)
-        traced = int((r.source < spec.SRC_INTERP_BASE).sum())
-        e = {"frame": k, "bit_exact": v["bit_exact"], "traced_fraction": traced / (W * H), "traced": traced,
-             "psnr_db": psnr(ref, r.frame),
-             "ssim": ssim(ref, r.frame),
-             "cycles": r.stats["cycles"], "camera": cams[k],
+        e = {**frame_entry(k, r.frame, r.source, ref, cams[k]), "bit_exact": v["bit_exact"],
+             "ssim": ssim(ref, r.frame), "cycles": r.stats["cycles"],
              "mismatched_pixels": v["mismatched_pixels"], "mismatched_codes": v["mismatched_codes"]}
+        e["flicker"] = fl.add(r.frame, ref)
         if budget is not None:
             bc = g.stats["budget_control"]
             hw = r.stats.get("budget", {})
-            e.update(budget_error=(traced - budget.budget) / budget.budget, scale_init=bc["scale_init"],
+            e.update(budget_error=(e["traced"] - budget.budget) / budget.budget, scale_init=bc["scale_init"],
                      scale_out=bc["scale_out"], scale_out_rtl=hw.get("scale_out"),
                      scale_out_equal=bool(hw.get("scale_out_valid")) and hw.get("scale_out") == bc["scale_out"])
         entries.append(e)
@@ -138,16 +131,14 @@ def run_sequence(a, W: int, H: int, params, rule: str, budget, harness: Path, ou
         save_png(out / f"source_map_{k:04d}.png", r.source)
     pics = write_animation(out, frames)
     pick = sorted({round(i * (n - 1) / max(1, min(n, STRIP_ROWS) - 1)) for i in range(min(n, STRIP_ROWS))})
-    write_strip(out / "summary_strip.png", [(k, rtl[k].frame, rtl[k].source, refs[k]) for k in pick])
+    err_max = max(int(abs_error(r.frame, ref).max()) for r, ref in zip(rtl, refs))
+    write_strip(out / "summary_strip.png", [(k, rtl[k].frame, rtl[k].source, refs[k]) for k in pick], err_max)
     ok = all(e["bit_exact"] for e in entries) and all(e.get("scale_out_equal", True) for e in entries)
-    from msr_model.metrics import capped, format_db
-    psnrs = [e["psnr_db"] for e in entries]
-    seq = {"bit_exact": ok, "frames": entries, "scene": a.scene, "width": W, "height": H, "rule": rule,
+    seq = {"bit_exact": ok, "reuse": False, "frames": entries, **fl.summary(), **summary(entries),
+           "scene": a.scene, "width": W, "height": H, "rule": rule,
            "params": params.as_dict(), "quality": a.quality, "camera_path": path_file,
            "budget": 0 if budget is None else budget.budget, "num_frames": n,
-           "cycles_total": sum(e["cycles"] for e in entries),
-           "psnr_db_mean": float(np.mean([capped(p) for p in psnrs])) if psnrs else None,   # finite
-           "psnr_db_worst": float(min(psnrs)) if psnrs else None,
+           "cycles_total": sum(e["cycles"] for e in entries), "strip_error_max": err_max,
            "pictures": pics + ["summary_strip.png"], "wall_seconds": round(time.perf_counter() - t0, 2)}
     (out / "sequence.json").write_text(json.dumps(seq, indent=2) + "\n")
     print(f"make sim: {a.scene} {W}x{H}, {n} frames on {path_file}, rule {rule}"
@@ -157,6 +148,7 @@ def run_sequence(a, W: int, H: int, params, rule: str, budget, harness: Path, ou
         print(f"  frame {e['frame']:4d}: {'bit exact' if e['bit_exact'] else 'NOT bit exact'}, traced "
               f"{e['traced_fraction']:.1%}, PSNR {format_db(e['psnr_db'])}, "
               f"{e['cycles']} cycles{extra}")
+    print(f"  flicker {seq['flicker']:.3f} (rms change of the error, frame to frame)")
     print(f"  outputs: {out}/ (sequence.json, frame_KKKK.png, sequence.webp, sequence.gif, summary_strip.png)",
           flush=True)
     if not ok:

@@ -10,6 +10,19 @@ other than these may be present and are ignored.
 "EX,EY,EZ,TX,TY,TZ,FOV" (msr_model.embree.check_camera), written with 17 significant digits so
 the renderer reads back exactly the interpolated doubles: a path at a given frame renders the
 same pixels on every run.
+
+`"space": "framed"` in a path file puts eye and target in framed units: the scene's subject on
+the ground plane y = 0 inside a bounding sphere of radius 1, its bounding-box centre above the
+origin (where the renderer places a model file; for the built-in scenes the renderer's
+`framing` of their subject, e.g. the Cornell box). `camera(k, framing)` converts them to model
+units with the scene's `Framing` (EmbreeRenderer.framing()), so one path serves every model
+and every flow hands the renderer the same model-unit string. Without "space", or with
+"model", the units are the model's.
+
+`default_orbit` is the view of a sequence without a path: the scene's own view turned about
+the vertical axis through its framed centre, ORBIT_DEGREES over ORBIT_FRAMES frames.
+`sequence_cameras` gives the camera strings of frames 0 .. N-1 for `make sim FRAMES=N` and
+`msr_model sequence` alike.
 """
 from __future__ import annotations
 
@@ -19,6 +32,32 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from . import spec
+
+SPACES = ("model", "framed")
+ORBIT_DEGREES = 360.0       # the default orbit: one full turn ...
+ORBIT_FRAMES = 96           # ... in 96 frames (3.75 degrees a frame: FRAMES=4 already moves)
+
+
+@dataclass(frozen=True)
+class Framing:
+    """Model units -> framed units: p' = R_yaw (p - pivot) * scale + offset, with
+    R_yaw (x, z) = (c x + s z, -s x + c z) (the renderer's Placement, msr_render_framing)."""
+    pivot: tuple[float, float, float]
+    scale: float
+    cos_yaw: float = 1.0
+    sin_yaw: float = 0.0
+    offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    def to_framed(self, p) -> tuple[float, float, float]:
+        x, y, z = (p[i] - self.pivot[i] for i in range(3))
+        c, s = self.cos_yaw, self.sin_yaw
+        return ((c * x + s * z) * self.scale + self.offset[0], y * self.scale + self.offset[1],
+                (-s * x + c * z) * self.scale + self.offset[2])
+
+    def to_model(self, p) -> tuple[float, float, float]:
+        x, y, z = ((p[i] - self.offset[i]) / self.scale for i in range(3))
+        c, s = self.cos_yaw, self.sin_yaw
+        return (c * x - s * z + self.pivot[0], y + self.pivot[1], s * x + c * z + self.pivot[2])
 
 
 @dataclass(frozen=True)
@@ -44,15 +83,18 @@ def _vec3(v, where: str) -> tuple[float, float, float]:
 class CameraPath:
     """The keys of a path file, checked; camera(k) interpolates frame k."""
 
-    def __init__(self, keys: list[Key], source: str = "camera path"):
+    def __init__(self, keys: list[Key], source: str = "camera path", space: str = "model"):
         if not keys:
             raise spec.SpecError(f"{source}: no keys")
-        self.keys, self.source = keys, source
+        self.keys, self.source, self.space = keys, source, space
 
     @classmethod
     def from_dict(cls, data, source: str = "camera path") -> "CameraPath":
         if not isinstance(data, dict) or not isinstance(data.get("keys"), list):
             raise spec.SpecError(f'{source}: expected {{"keys": [...]}}')
+        space = data.get("space", "model")
+        if space not in SPACES:
+            raise spec.SpecError(f'{source}: "space" must be one of {", ".join(SPACES)}, got {space!r}')
         keys = []
         for i, k in enumerate(data["keys"]):
             where = f"{source}: keys[{i}]"
@@ -73,7 +115,7 @@ class CameraPath:
             if eye == target:
                 raise spec.SpecError(f"{where}: eye and target are the same point")
             keys.append(Key(frame, eye, target, float(fov)))
-        return cls(keys, source)
+        return cls(keys, source, space)
 
     def at(self, frame: int) -> tuple[tuple, tuple, float]:
         """(eye, target, fov) of a frame number >= 0."""
@@ -92,12 +134,17 @@ class CameraPath:
         lerp = lambda p, q: tuple(x + (y - x) * t for x, y in zip(p, q))   # noqa: E731
         return lerp(a.eye, b.eye), lerp(a.target, b.target), a.fov + (b.fov - a.fov) * t
 
-    def camera(self, frame: int) -> str:
-        """Frame `frame`'s view as the renderer's camera string (exact doubles)."""
+    def camera(self, frame: int, framing: Framing | None = None) -> str:
+        """Frame `frame`'s view as the renderer's camera string (model units, exact doubles); a
+        framed path needs the scene's framing."""
         eye, target, fov = self.at(frame)
         if eye == target:
             raise spec.SpecError(f"{self.source}: at frame {frame} eye and target are the same point")
-        return ",".join(format(v, ".17g") for v in (*eye, *target, fov))
+        if self.space == "framed":
+            if framing is None:
+                raise spec.SpecError(f"{self.source}: a framed path needs the scene's framing")
+            eye, target = framing.to_model(eye), framing.to_model(target)
+        return camera_string(eye, target, fov)
 
     @property
     def last_key_frame(self) -> int:
@@ -116,3 +163,76 @@ def load_path(path) -> CameraPath:
     except json.JSONDecodeError as e:
         raise spec.SpecError(f"camera path {path}: not JSON ({e.msg}, line {e.lineno})") from None
     return CameraPath.from_dict(data, source=f"camera path {path}")
+
+
+def camera_string(eye, target, fov) -> str:
+    """The renderer's camera string, 17 significant digits: it reads back the exact doubles."""
+    return ",".join(format(float(v), ".17g") for v in (*eye, *target, fov))
+
+
+class Orbit:
+    """The default orbit: `view` (eye, target, fov in model units, the scene's own) turned about
+    the vertical axis through the framed centre by ORBIT_DEGREES / ORBIT_FRAMES a frame. Eye and
+    target turn together, so the camera keeps its heading relative to the subject."""
+
+    def __init__(self, view, framing: Framing, source: str = "default orbit"):
+        self.eye, self.target, self.fov = tuple(view[0]), tuple(view[1]), float(view[2])
+        self.axis = framing.to_model((0.0, 0.0, 0.0))      # R_yaw keeps y: the axis is vertical
+        self.source = source
+
+    def _turn(self, p, c: float, s: float):
+        dx, dz = p[0] - self.axis[0], p[2] - self.axis[2]
+        return (self.axis[0] + c * dx + s * dz, p[1], self.axis[2] - s * dx + c * dz)
+
+    def at(self, frame: int) -> tuple[tuple, tuple, float]:
+        if isinstance(frame, bool) or not isinstance(frame, int) or frame < 0:
+            raise spec.SpecError(f"{self.source}: frame must be an integer >= 0, got {frame!r}")
+        k = frame % ORBIT_FRAMES
+        if k == 0:                                        # exactly the scene's view
+            return self.eye, self.target, self.fov
+        a = math.radians(ORBIT_DEGREES * k / ORBIT_FRAMES)
+        c, s = math.cos(a), math.sin(a)
+        return self._turn(self.eye, c, s), self._turn(self.target, c, s), self.fov
+
+    def camera(self, frame: int, framing: Framing | None = None) -> str:
+        return camera_string(*self.at(frame))
+
+
+def default_orbit(renderer) -> Orbit:
+    """The default orbit of the scene an EmbreeRenderer is open on (with its own view)."""
+    return Orbit(renderer.view(), renderer.framing(),
+                 source=f"default orbit ({ORBIT_DEGREES:g} degrees in {ORBIT_FRAMES} frames)")
+
+
+@dataclass(frozen=True)
+class SceneViews:
+    """A scene's views along a path file or the default orbit: camera(k) is frame k's string."""
+    path: object                # CameraPath or Orbit
+    framing: Framing
+    source: str                 # the path file, or the default orbit's description
+
+    @property
+    def space(self) -> str:
+        return getattr(self.path, "space", "model")
+
+    def camera(self, frame: int) -> str:
+        return self.path.camera(frame, self.framing)
+
+    def cameras(self, frames: int) -> list[str]:
+        return [self.camera(k) for k in range(frames)]
+
+
+def scene_views(scene: str, width: int, height: int, path=None, quality: str = "fast") -> SceneViews:
+    """The views of `scene` along the path file `path`, else its default orbit. The scene opens
+    once with its own view, for that view and its framing (the automatic framing's fov depends
+    on the frame's aspect); SpecError with one line for a bad path or scene."""
+    from .embree import open_renderer
+    cp = load_path(path) if path is not None else None
+    r = open_renderer(scene, width, height, quality=quality)
+    try:
+        framing = r.framing()
+        if cp is None:
+            cp = default_orbit(r)
+    finally:
+        r.close()
+    return SceneViews(cp, framing, str(path) if path is not None else cp.source)

@@ -5,6 +5,8 @@
         [--overview SUMMARY.png] [--budget N|P%] [--scale-init U] [--prior-shift S] [--budget-prev STATS.json]
     python -m msr_model select --scene SCENE --width W --height H [--camera ... | --path FILE --frame K] [the same flags]
     python -m msr_model render --scene SCENE --width W --height H [--camera ... | --path FILE --frame K] --out REF.png
+    python -m msr_model sequence --scene SCENE --width W --height H --frames N [--path FILE] [the select
+        flags, --budget, --gaze] --out DIR            (msr_model.sequence)
 
 Any bad argument, unreadable or unsuitable input (over 4096 x 4096, 16-bit channels) or
 output path that cannot be written (unknown suffix, the same file twice, a folder that cannot
@@ -154,6 +156,8 @@ def build_parser():
     ren = sub.add_parser("render", help="full reference render of a scene")
     _add_scene_flags(ren, required=True)
     ren.add_argument("--out", required=True, help="output PNG")
+    from .sequence import add_parser
+    add_parser(sub, _int_in, _thr_list, _budget_arg)
     return ap
 
 
@@ -174,8 +178,15 @@ def _camera(args) -> str | None:
         return camera
     if camera is not None:
         raise UsageError("give either --camera or --path, not both")
-    from .camera_path import load_path
-    return load_path(path).camera(frame or 0)
+    from .camera_path import load_path, scene_views
+    cp = load_path(path)
+    if cp.space != "framed":
+        return cp.camera(frame or 0)
+    if args.scene is None or args.width is None or args.height is None:
+        raise UsageError("a framed --path needs --scene, --width and --height")
+    if getattr(args, "_framed_camera", None) is None:     # the scene opens once for its framing
+        args._framed_camera = scene_views(args.scene, args.width, args.height, path, args.quality).camera(frame or 0)
+    return args._framed_camera
 
 
 def _open_scene(args):
@@ -259,5 +270,6 @@ def cmd_render(args) -> int:
 def main(argv=None) -> int:
     def go():
         args = build_parser().parse_args(argv)
-        return {"select": cmd_select, "render": cmd_render}[args.cmd](args)
+        from .sequence import cmd_sequence
+        return {"select": cmd_select, "render": cmd_render, "sequence": cmd_sequence}[args.cmd](args)
     return run_main("msr_model", go)

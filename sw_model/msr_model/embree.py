@@ -82,6 +82,9 @@ def _load():
         lib.msr_render_rays.argtypes = [ctypes.c_void_p]
         lib.msr_render_view.restype = ctypes.c_int
         lib.msr_render_view.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_double)]
+        if hasattr(lib, "msr_render_framing"):
+            lib.msr_render_framing.restype = ctypes.c_int
+            lib.msr_render_framing.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_double)]
         _lib = lib
         return lib
 
@@ -281,6 +284,19 @@ class EmbreeRenderer:
             raise spec.SpecError("the renderer is closed")
         v = list(out)
         return tuple(v[0:3]), tuple(v[3:6]), v[6]
+
+    def framing(self):
+        """The scene's framing (msr_model.camera_path.Framing): model units -> the framed units
+        of a "framed" camera path (the subject on the ground plane y = 0 in the unit bounding
+        sphere, its bounding-box centre above the origin)."""
+        from .camera_path import Framing
+        if not hasattr(self._lib, "msr_render_framing"):
+            raise RendererUnavailable("the rendering library has no msr_render_framing: run `make renderer`")
+        out = (ctypes.c_double * 9)()
+        if not self._ctx or not self._lib.msr_render_framing(self._ctx, out):
+            raise spec.SpecError("the renderer is closed")
+        v = list(out)
+        return Framing(pivot=tuple(v[0:3]), scale=v[3], cos_yaw=v[4], sin_yaw=v[5], offset=tuple(v[6:9]))
 
     @property
     def rays(self) -> int:

@@ -79,6 +79,14 @@ uint64_t msr_render_rays(const msr_render_ctx *ctx);
  * in degrees. Returns 1, or 0 for a NULL context. */
 int msr_render_view(const msr_render_ctx *ctx, double view[7]);
 
+/* Extension for camera paths in framed units: the scene's framing, model units -> framed units
+ * (the subject on the ground plane y = 0 inside a bounding sphere of radius 1, its bounding-box
+ * centre above the origin; for a model file that is where the renderer places it):
+ * p' = R_yaw (p - pivot) * scale + offset, R_yaw (x, z) = (c x + s z, -s x + c z).
+ * framing = {pivot x, y, z, scale, cos yaw, sin yaw, offset x, y, z}. Returns 1, or 0 for a
+ * NULL context. */
+int msr_render_framing(const msr_render_ctx *ctx, double framing[9]);
+
 #ifdef __cplusplus
 }
 #endif

@@ -216,4 +216,13 @@ int msr_render_view(const msr_render_ctx *ctx, double view[7]) {
     return 1;
 }
 
+int msr_render_framing(const msr_render_ctx *ctx, double framing[9]) {
+    if (!ctx || !ctx->renderer || !framing) return 0;
+    const msr::Placement &f = ctx->renderer->scene().framing;
+    const double v[9] = {f.pivot.x, f.pivot.y, f.pivot.z, f.scale, f.cos_yaw, f.sin_yaw,
+                         f.offset.x, f.offset.y, f.offset.z};
+    for (int i = 0; i < 9; ++i) framing[i] = v[i];
+    return 1;
+}
+
 }  // extern "C"

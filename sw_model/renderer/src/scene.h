@@ -144,6 +144,9 @@ public:
     std::vector<std::shared_ptr<const Texture>> textures;  // Material::texture indexes these
     Camera camera;
     Placement model_placement;  // model units -> world (identity for scenes built in world units)
+    // Model units -> framed units (the subject on the ground plane y = 0, inside a bounding sphere
+    // of radius 1, its bounding-box centre above the origin): a "framed" camera path's space.
+    Placement framing;
     Vec3 sky_zenith{0.f, 0.f, 0.f}, sky_horizon{0.f, 0.f, 0.f}, sky_ground{0.f, 0.f, 0.f};
     Vec3 ambient{0.f, 0.f, 0.f};  // constant ambient radiance (times albedo; times AO in heavy mode)
     float ao_radius = 1.f;        // ambient-occlusion ray length (heavy mode)

@@ -22,6 +22,15 @@ constexpr float kTan20 = 0.36397023f;  // tan(20 deg): a 40 degree field of view
 // one plane, which would z-fight).
 const Vec3 kCornellWhite{0.73f, 0.73f, 0.73f}, kCornellRed{0.63f, 0.065f, 0.05f}, kCornellGreen{0.14f, 0.45f, 0.091f};
 
+// The framing of a subject whose bounding box (model units) is b: as framed_model places a model.
+Placement framing_of(const Bounds &b) {
+    Placement pl;
+    Vec3 c = b.center();
+    pl.pivot = {c.x, b.lo.y, c.z};
+    pl.scale = 1.f / (0.5f * length(b.size()));
+    return pl;
+}
+
 void cornell_shell(Scene &s) {
     int white = s.add_material(Material::diffuse(kCornellWhite));
     int red = s.add_material(Material::diffuse(kCornellRed));
@@ -38,6 +47,7 @@ void cornell_shell(Scene &s) {
     l.e2 = {0.f, 0.f, 105.f};
     l.radiance = {17.f, 12.f, 4.f};
     s.add_area_light(l);
+    s.framing = framing_of(Bounds{{0.f, 0.f, 0.f}, {556.f, 548.8f, 559.2f}});  // the box
     s.camera.eye = {278.f, 273.f, -800.f};
     s.camera.target = {278.f, 273.f, -799.f};
     s.camera.up = {0.f, 1.f, 0.f};
@@ -104,6 +114,10 @@ std::unique_ptr<Scene> showcase(std::string &) {
     s->add_sphere({-0.3f, 0.3f, 2.3f}, 0.3f, green);
     s->add_box({0.2f, 0.f, -2.6f}, {1.4f, 1.6f, -1.4f}, blue);
     s->add_sphere({3.4f, 2.6f, -3.5f}, 0.25f, lamp);
+    Bounds objects;  // everything but the floor
+    for (size_t i = 1; i < s->meshes.size(); ++i)
+        for (Vec3 p : s->meshes[i].pos) objects.add(p);
+    s->framing = framing_of(objects);
     AreaLight key;
     key.corner = {-3.f, 7.f, 1.f};
     key.e1 = {2.f, 0.f, 0.f};  // cross(e1, e2) = -y: shines down
@@ -153,6 +167,7 @@ std::unique_ptr<Scene> framed_model(const Model &m, float yaw_deg) {
     float radius = 0.5f * length(size);
     float scale = 1.f / radius;
     add_model(*s, m, {c.x, m.bounds.lo.y, c.z}, scale, yaw_deg, {0.f, 0.f, 0.f});
+    s->framing = s->model_placement;
     const Vec3 target{0.f, 0.5f * size.y * scale, 0.f};
 
     Material ground = Material::diffuse({0.62f, 0.62f, 0.6f});
