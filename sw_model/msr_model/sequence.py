@@ -31,6 +31,16 @@ from .metrics import capped, flicker, format_db, psnr
 REUSE_MISSING = "--reuse: reuse across frames: not available yet in the golden model"
 
 
+def reuse_model():
+    """The golden model of reuse across frames (msr_model.reuse, docs/spec/reuse.md), or None
+    while the package has none."""
+    try:
+        from . import reuse
+    except ImportError:
+        return None
+    return reuse if hasattr(reuse, "run_sequence") else None
+
+
 @dataclass(frozen=True)
 class SequenceSetup:
     """What a sequence run takes: the scene and frame size, the selection and its budget."""
@@ -112,19 +122,31 @@ def run(setup: SequenceSetup, out_dir, log=None) -> dict:
     content is returned."""
     from .camera_path import scene_views
     from .embree import open_renderer
-    if setup.reuse:
-        raise UsageError(REUSE_MISSING)
     W, H = setup.width, setup.height
     cfg = first_budget(W, H, setup.budget, setup.params)
     views = scene_views(setup.scene, W, H, setup.path, setup.quality)
     cams = views.cameras(setup.frames)
+    reused = None
+    if setup.reuse:                         # the previous frame's pixels first (msr_model.reuse)
+        model = reuse_model()
+        if model is None:
+            raise UsageError(REUSE_MISSING)
+        reused = model.run_sequence(setup.scene, W, H, cams, setup.params, setup.rule, reuse=True,
+                                    quality=setup.quality)
     entries, pictures, fl = [], [], Flicker()
     for k, cam in enumerate(cams):
         with open_renderer(setup.scene, W, H, quality=setup.quality, camera=cam) as r:
             reference = r.render_full(progress=False)
-        unit = ImageRenderer(reference)     # the renderer is deterministic: its pixels, from memory
-        result = BG.select_budget(unit, W, H, setup.params, cfg or BG.BudgetConfig(), rule=setup.rule)
-        e = frame_entry(k, result.frame, result.source, reference, cam)
+        if reused is not None:
+            result = reused[k]
+        else:
+            unit = ImageRenderer(reference)     # the renderer is deterministic: its pixels, from memory
+            result = BG.select_budget(unit, W, H, setup.params, cfg or BG.BudgetConfig(), rule=setup.rule)
+        e = frame_entry(k, result.frame, result.source, reference, cam,
+                        reused=int(result.reused) if reused is not None else 0)
+        if reused is not None:
+            e["traced"] = int(result.traced)    # rays asked of the renderer
+            e["traced_fraction"] = e["traced"] / (W * H)
         e["flicker"] = fl.add(result.frame, reference)
         if cfg is not None:
             bc = result.stats["budget_control"]
@@ -166,7 +188,8 @@ def add_parser(sub, int_in_arg, thr_arg, budget_arg) -> None:
     p.add_argument("--frames", type=int_in_arg(1, 10000, "--frames"), required=True, help="frames 0 .. N-1")
     p.add_argument("--path", default=None, metavar="FILE",
                    help="camera path file (contracts.md); default: the scene's default orbit")
-    p.add_argument("--reuse", action="store_true", help="reuse the previous frame (not available yet)")
+    p.add_argument("--reuse", action="store_true",
+                   help="reuse the previous frame's pixels (msr_model.reuse, docs/spec/reuse.md)")
     p.add_argument("--rule", choices=tuple(RULES), default=DEFAULT_RULE)
     p.add_argument("--tile", type=int, choices=spec.TILE_SIZES, default=16)
     p.add_argument("--levels", type=int, choices=spec.LEVEL_RANGE, default=2)
@@ -197,8 +220,10 @@ def _gaze(text, width: int, height: int):
 
 def setup_of(args) -> SequenceSetup:
     """The flags, checked before anything is rendered or written (UsageError otherwise)."""
-    if args.reuse:
+    if args.reuse and reuse_model() is None:
         raise UsageError(REUSE_MISSING)
+    if args.reuse and args.budget is not None:
+        raise UsageError("--reuse with --budget: a ray budget with reuse is not available yet")
     thr = args.thr if args.thr is not None else spec.default_thresholds(args.levels)
     if len(thr) != args.levels:
         raise UsageError(f"--thr has {len(thr)} values but --levels is {args.levels}: give one per level")
@@ -213,7 +238,8 @@ def setup_of(args) -> SequenceSetup:
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} is not a folder")
     setup = SequenceSetup(scene=args.scene, width=args.width, height=args.height, frames=args.frames,
-                          params=params, rule=args.rule, budget=pixels, path=args.path, quality=args.quality)
+                          params=params, rule=args.rule, budget=pixels, path=args.path, quality=args.quality,
+                          reuse=args.reuse)
     first_budget(setup.width, setup.height, setup.budget, setup.params)     # a budget below the grid: now
     return setup
 

@@ -120,7 +120,7 @@ def test_sequence_frame_equals_select(tmp_path):
 
 
 @pytest.mark.parametrize("extra,msg", [
-    (["--reuse"], "reuse"),
+    (["--reuse", "--budget", "50%"], "reuse"),
     (["--frames", "0"], "--frames"),
     (["--thr", "1,2,3"], "--thr"),
     (["--budget", "3"], "initial grid"),
@@ -133,3 +133,20 @@ def test_sequence_bad_flags(tmp_path, extra, msg):
     r = msr(*args)
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and msg in r.stderr, r.stderr
     assert not out.exists()
+
+
+@needs_models
+def test_sequence_reuse(tmp_path):
+    """--reuse: the golden model of reuse across frames where the package has it (frame 0 as
+    without reuse, later frames reuse pixels); without it, one line and exit status 2."""
+    from msr_model.sequence import reuse_model
+    args = ["sequence", "--scene", HORSE, "--width", 48, "--height", 32, "--frames", 2, "--reuse"]
+    r = msr(*args, "--out", tmp_path / "r")
+    if reuse_model() is None:
+        assert r.returncode == 2 and "reuse" in r.stderr and not (tmp_path / "r").exists()
+        return
+    assert r.returncode == 0, r.stderr
+    assert msr(*args[:-1], "--out", tmp_path / "n").returncode == 0
+    seq = json.loads((tmp_path / "r" / "sequence.json").read_text())
+    assert seq["reuse"] is True and seq["frames"][0]["reused"] == 0 and seq["frames"][1]["reused"] > 0
+    assert np.array_equal(load_rgb(tmp_path / "r" / "frame_0000.png"), load_rgb(tmp_path / "n" / "frame_0000.png"))
