@@ -150,3 +150,16 @@ def test_sequence_reuse(tmp_path):
     seq = json.loads((tmp_path / "r" / "sequence.json").read_text())
     assert seq["reuse"] is True and seq["frames"][0]["reused"] == 0 and seq["frames"][1]["reused"] > 0
     assert np.array_equal(load_rgb(tmp_path / "r" / "frame_0000.png"), load_rgb(tmp_path / "n" / "frame_0000.png"))
+
+
+def test_identical_frame_reported(tmp_path):
+    """Thresholds 0 trace every pixel: each frame equals its full render, PSNR inf (JSON
+    Infinity) and identical true; the flicker of identical frames is 0."""
+    out = tmp_path / "i"
+    r = msr("sequence", "--scene", "cornell", "--width", 24, "--height", 16, "--frames", 2, "--thr", "0,0",
+            "--out", out)
+    assert r.returncode == 0, r.stderr
+    text = (out / "sequence.json").read_text()
+    assert "Infinity" in text
+    seq = json.loads(text)
+    assert all(e["identical"] and math.isinf(e["psnr_db"]) for e in seq["frames"]) and seq["flicker"] == 0

@@ -35,6 +35,7 @@ def test_model_sequence_equals_golden_sequence(harness, tmp_path):
     assert sim["bit_exact"] and sim["reuse"] is False and gold["reuse"] is False
     assert sim["camera_path"] == gold["camera_path"] and "orbit" in sim["camera_path"]
     assert sim["flicker"] == pytest.approx(gold["flicker"]) and sim["flicker"] > 0
+    assert sim["strip_error_max"] > 0 and (tmp_path / "sim" / "summary_strip.png").is_file()   # one error scale
     for s, o in zip(sim["frames"], gold["frames"]):
         assert s["camera"] == o["camera"] and s["traced"] == o["traced"] and s["reused"] == 0
         assert s["identical"] is False and s["psnr_db"] == pytest.approx(o["psnr_db"])
@@ -43,6 +44,17 @@ def test_model_sequence_equals_golden_sequence(harness, tmp_path):
             assert np.array_equal(load_rgb(tmp_path / "sim" / name), load_rgb(tmp_path / "gold" / name)), name
     assert not np.array_equal(load_rgb(tmp_path / "sim" / "frame_0000.png"),
                               load_rgb(tmp_path / "sim" / "frame_0002.png"))          # the orbit moves
+
+
+def test_identical_frames(harness, tmp_path):
+    """THR=0,0 traces every pixel: each frame equals its full render; sequence.json says so
+    (psnr_db Infinity, identical true) and the flicker is 0."""
+    r = run_sim(harness, tmp_path, "--width", "24", "--height", "16", "--frames", "2", "--thr", "0,0")
+    assert r.returncode == 0, r.stdout + r.stderr
+    text = (tmp_path / "sequence.json").read_text()
+    seq = json.loads(text)
+    assert "Infinity" in text and all(e["identical"] and e["bit_exact"] for e in seq["frames"])
+    assert seq["flicker"] == 0 and seq["reuse"] is False
 
 
 def test_reuse_refused(tmp_path):
