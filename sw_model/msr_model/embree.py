@@ -82,6 +82,12 @@ def _load():
         lib.msr_render_rays.argtypes = [ctypes.c_void_p]
         lib.msr_render_view.restype = ctypes.c_int
         lib.msr_render_view.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_double)]
+        if hasattr(lib, "msr_render_pixels_invz"):     # reuse across frames (docs/spec/reuse.md)
+            lib.msr_render_pixels_invz.restype = None
+            lib.msr_render_pixels_invz.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p,
+                                                   ctypes.c_void_p, ctypes.c_void_p, ctypes.c_int]
+            lib.msr_render_model_scale.restype = ctypes.c_double
+            lib.msr_render_model_scale.argtypes = [ctypes.c_void_p]
         if hasattr(lib, "msr_render_framing"):
             lib.msr_render_framing.restype = ctypes.c_int
             lib.msr_render_framing.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_double)]
@@ -275,6 +281,32 @@ class EmbreeRenderer:
         h, w = self.height, self.width
         ys, xs = np.divmod(np.arange(h * w, dtype=np.int32), np.int32(w))
         return tuple(a.reshape(h, w) for a in self.gbuffer(xs, ys))
+
+    def render_invz(self, xs, ys, invz_exp: int) -> tuple[np.ndarray, np.ndarray]:
+        """Colours (render()) and the primary hit's inverse depth in model units, 16-bit fixed
+        point: min(65535, max(1, round(2^invz_exp / depth))), 0 for the sky (docs/spec/reuse.md;
+        msr_render_pixels_invz). The inverse depth comes from the G-buffer's ray: not a ray count."""
+        if not hasattr(self._lib, "msr_render_pixels_invz"):
+            raise RendererUnavailable("the rendering library has no msr_render_pixels_invz: run `make renderer`")
+        if not 0 <= int(invz_exp) <= 40:
+            raise spec.SpecError(f"invz_exp must be in 0..40, got {invz_exp}")
+        rgb = self.render(xs, ys)
+        xs = np.ascontiguousarray(np.asarray(xs).reshape(-1), dtype=np.int32)
+        ys = np.ascontiguousarray(np.asarray(ys).reshape(-1), dtype=np.int32)
+        invz = np.empty(xs.size, np.uint16)
+        for start in range(0, xs.size, _BATCH):
+            stop = min(xs.size, start + _BATCH)
+            self._lib.msr_render_pixels_invz(self._ctx, stop - start, xs[start:].ctypes.data, ys[start:].ctypes.data,
+                                             None, invz[start:].ctypes.data, int(invz_exp))
+        return rgb, invz
+
+    def model_scale(self) -> float:
+        """World (renderer depth) units per model unit: the model's placement scale, 1 for the
+        built-in scenes (msr_render_model_scale)."""
+        self._check_open()
+        if not hasattr(self._lib, "msr_render_model_scale"):
+            raise RendererUnavailable("the rendering library has no msr_render_model_scale: run `make renderer`")
+        return float(self._lib.msr_render_model_scale(self._ctx))
 
     def view(self) -> tuple[tuple, tuple, float]:
         """(eye, target, vertical field of view in degrees) of this renderer, in model units: the

@@ -30,6 +30,7 @@ def default_thresholds(levels: int) -> tuple[int, ...]:
 SRC_INITIAL = 0
 SRC_TRACED_BASE = 0        # traced at level k -> k
 SRC_INTERP_BASE = 16       # interpolated at level k -> 16 + k
+SRC_REUSED_BASE = 32       # reused from the previous frame at level k -> 32 + k (spec/reuse.md)
 SRC_UNSET = 255            # never written (only visible if the model had a bug)
 
 

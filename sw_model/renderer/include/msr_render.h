@@ -65,6 +65,18 @@ void msr_render_pixels(msr_render_ctx *ctx, int n, const int32_t *xs, const int3
 void msr_render_gbuffer(msr_render_ctx *ctx, int n, const int32_t *xs, const int32_t *ys,
                         uint32_t *prim_out, uint32_t *material_out, float *depth_out);
 
+/* Extension (reuse across frames, docs/spec/reuse.md): the colours of msr_render_pixels (rgb_out may be
+ * NULL) and, per pixel, the primary hit's inverse depth in model units as 16-bit fixed point:
+ * invz_out[i] = min(65535, max(1, floor(2^invz_exp * s / d + 0.5))) with d the G-buffer depth
+ * (world units, along the viewing axis, float) and s the model's placement scale (world units per
+ * model unit, msr_render_model_scale), computed in double; 0 for the sky. invz_exp: 0..40. */
+void msr_render_pixels_invz(msr_render_ctx *ctx, int n, const int32_t *xs, const int32_t *ys, uint8_t *rgb_out,
+                            uint16_t *invz_out, int invz_exp);
+
+/* Extension: world units per model unit of the scene's placement (1 for the built-in scenes); 0 for
+ * a NULL context. */
+double msr_render_model_scale(const msr_render_ctx *ctx);
+
 void msr_render_destroy(msr_render_ctx *ctx); /* NULL is fine */
 
 /* Comma-separated names of the built-in scenes (static string), default scene first. */

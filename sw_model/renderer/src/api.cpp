@@ -186,6 +186,32 @@ void msr_render_gbuffer(msr_render_ctx *ctx, int n, const int32_t *xs, const int
     }
 }
 
+void msr_render_pixels_invz(msr_render_ctx *ctx, int n, const int32_t *xs, const int32_t *ys, uint8_t *rgb_out,
+                            uint16_t *invz_out, int invz_exp) {
+    if (n <= 0) return;
+    if (rgb_out) msr_render_pixels(ctx, n, xs, ys, rgb_out);
+    if (!invz_out) return;
+    FpState fp;
+    const double scale = (ctx && ctx->renderer) ? double(ctx->renderer->scene().model_placement.scale) : 1.0;
+    const double k = std::ldexp(1.0, invz_exp < 0 ? 0 : (invz_exp > 40 ? 40 : invz_exp));
+    for (int i = 0; i < n; ++i) {
+        uint32_t p = 0, m = 0;
+        float d = std::numeric_limits<float>::infinity();
+        if (ctx && ctx->renderer && xs && ys) ctx->renderer->gbuffer(xs[i], ys[i], p, m, d);
+        uint16_t q = 0;  // the sky (and a NULL context): 0
+        if (std::isfinite(d) && d > 0.f) {
+            // inverse depth in model units: scale / d (d is in world units, scale world per model unit)
+            const double w = std::floor(k * scale / double(d) + 0.5);
+            q = w >= 65535.0 ? uint16_t(65535) : (w < 1.0 ? uint16_t(1) : uint16_t(w));
+        }
+        invz_out[i] = q;
+    }
+}
+
+double msr_render_model_scale(const msr_render_ctx *ctx) {
+    return (ctx && ctx->renderer) ? double(ctx->renderer->scene().model_placement.scale) : 0.0;
+}
+
 void msr_render_destroy(msr_render_ctx *ctx) { delete ctx; }
 
 const char *msr_render_scene_names(void) { return msr::builtin_scene_names(); }
