@@ -30,8 +30,9 @@ Vec3 clamp_albedo(Vec3 c) {
     return c;
 }
 
-// Material colours and factors (textures are attached by load_model).
-Material convert_material(const aiMaterial *am, bool textured) {
+// Material colours and factors (textures are attached by load_model). `map_loaded`: the
+// diffuse map was found and decoded.
+Material convert_material(const aiMaterial *am, bool textured, bool map_loaded) {
     aiColor4D c;
     Vec3 base{0.75f, 0.75f, 0.75f};
     if (aiGetMaterialColor(am, AI_MATKEY_BASE_COLOR, &c) == AI_SUCCESS ||
@@ -53,7 +54,10 @@ Material convert_material(const aiMaterial *am, bool textured) {
 
     if (aiGetMaterialColor(am, AI_MATKEY_COLOR_EMISSIVE, &c) == AI_SUCCESS) {
         Vec3 e = Vec3{c.r, c.g, c.b} * emi_scale;
-        if (finite(e) && max_component(e) > 0.1f) return Material::emissive(e);
+        // A mapped surface glowing more faintly than it reflects is a self-illumination term
+        // (Milkshape writes 0.35 grey into every material), not a lamp: it keeps its map.
+        const bool faint_glow = map_loaded && max_component(e) <= max_component(base);
+        if (finite(e) && max_component(e) > 0.1f && !faint_glow) return Material::emissive(e);
     }
     if (transmission > 0.5f || (opacity > 0.f && opacity < 0.5f)) {
         Vec3 tint = base * 0.3f + Vec3{0.7f, 0.7f, 0.7f};  // keep glass light
@@ -342,6 +346,9 @@ std::string find_texture_file(const std::string &model_dir, const std::string &w
     std::vector<std::string> tries{p};
     std::string dec = percent_decode(p);
     if (dec != p) tries.push_back(dec);
+    // "\..\maps\x.jpg": a Windows path from the current drive's root, in practice meant
+    // relative to the model (it is never a Unix absolute path).
+    if (written.size() > 1 && written[0] == '\\' && written[1] != '\\') tries.push_back(p.substr(1));
     for (const std::string &t : tries) {
         fs::path q(t);
         if (q.is_absolute() && regular(q)) return q.string();
@@ -393,7 +400,7 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
     imp.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, 60.f);
     const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
                            aiProcess_FindDegenerates | aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices |
-                           aiProcess_ValidateDataStructure;
+                           aiProcess_GenUVCoords | aiProcess_ValidateDataStructure;
     // Parsed first without post-processing, so that cameras and lights are read with their
     // nodes' transformations; then the same steps ReadFile(path, flags) would run.
     Camera file_camera;
@@ -424,6 +431,7 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
     out = Model{};
     std::map<std::string, std::shared_ptr<const Texture>> cache;
     std::vector<unsigned> uv_channel;  // per material: the diffuse map's UV set
+    std::vector<std::string> map_name; // per material: the applied map as the file names it
     for (unsigned i = 0; i < sc->mNumMaterials; ++i) {
         const aiMaterial *am = sc->mMaterials[i];
         // glTF's base colour map comes as both BASE_COLOR and DIFFUSE; the first one found wins.
@@ -436,7 +444,7 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
             tex = load_texture(sc, am, type, path, cache, out.warnings);
             aiGetMaterialInteger(am, AI_MATKEY_UVWSRC(type, 0), reinterpret_cast<int *>(&uvi));
         }
-        Material m = convert_material(am, textured);
+        Material m = convert_material(am, textured, tex != nullptr);
         const Vec3 &a = m.albedo;
         if (textured && !tex && m.type == MatType::Diffuse && minf(a.x, minf(a.y, a.z)) >= 0.9f)
             m.albedo = {0.75f, 0.75f, 0.75f};  // no map and a white (or no) colour: light grey
@@ -446,14 +454,27 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
             if (k == out.textures.size()) out.textures.push_back(tex);
             m.texture = int(k);
         }
+        aiString written;
+        if (tex) am->GetTexture(type, 0, &written);
+        if (tex && m.type != MatType::Diffuse) {
+            const char *kind = m.type == MatType::Emissive ? "emissive" : m.type == MatType::Glass ? "glass" : "a mirror";
+            out.warnings.push_back("texture '" + std::string(written.C_Str()) + "' of " + path + " is not applied: material " +
+                                   std::to_string(i) + " is " + kind + ", which takes no map");
+        }
         out.materials.push_back(m);
         uv_channel.push_back(uvi < AI_MAX_NUMBER_OF_TEXTURECOORDS ? uvi : 0);
+        map_name.push_back(m.texture >= 0 ? written.C_Str() : "");
     }
     if (out.materials.empty()) {
         out.materials.push_back(Material::diffuse({0.75f, 0.75f, 0.75f}));
         uv_channel.push_back(0);
+        map_name.push_back("");
     }
     for (const std::string &w : out.warnings) std::fprintf(stderr, "msr_render: warning: %s\n", w.c_str());
+    const size_t material_warnings = out.warnings.size();
+    // Per material: meshes whose map cannot be applied (no texture coordinates), and meshes
+    // whose coordinates all sit on one point (the map gives one flat colour).
+    std::vector<unsigned> no_uv(out.materials.size(), 0), one_point(out.materials.size(), 0);
     out.has_camera = has_camera;
     out.camera = file_camera;
     out.lights = file_lights;
@@ -472,13 +493,19 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
         const Material &mat = out.materials[size_t(m.material)];
         const unsigned ch = uv_channel[size_t(m.material)];
         const unsigned set = am->mTextureCoords[ch] ? ch : 0;
+        bool uv_missing = false, uv_flat = false;
         if (mat.texture >= 0 && am->mTextureCoords[set]) {
             m.uv.resize(2 * size_t(am->mNumVertices));
+            bool spread = false;
             for (unsigned v = 0; v < am->mNumVertices; ++v) {
                 float u = am->mTextureCoords[set][v].x, t = am->mTextureCoords[set][v].y;
                 m.uv[2 * v] = std::isfinite(u) ? u : 0.f;
                 m.uv[2 * v + 1] = std::isfinite(t) ? t : 0.f;
+                spread = spread || m.uv[2 * v] != m.uv[0] || m.uv[2 * v + 1] != m.uv[1];
             }
+            uv_flat = !spread;
+        } else if (mat.texture >= 0) {
+            uv_missing = true;
         }
         if (am->mColors[0]) {
             m.col.resize(am->mNumVertices);
@@ -494,10 +521,23 @@ bool load_model(const std::string &path, Model &out, std::string &err) {
             m.idx.insert(m.idx.end(), {face.mIndices[0], face.mIndices[1], face.mIndices[2]});
         }
         if (m.idx.empty()) continue;
+        no_uv[size_t(m.material)] += uv_missing;
+        one_point[size_t(m.material)] += uv_flat;
         for (uint32_t i : m.idx) out.bounds.add(m.pos[i]);
         out.triangles += m.idx.size() / 3;
         out.meshes.push_back(std::move(m));
     }
+    for (size_t k = 0; k < out.materials.size(); ++k) {
+        const std::string head = "texture '" + map_name[k] + "' of " + path + " ";
+        if (no_uv[k] > 0)
+            out.warnings.push_back(head + "is not applied to " + std::to_string(no_uv[k]) +
+                                   " mesh(es): they have no texture coordinates; using the material colour");
+        if (one_point[k] > 0)
+            out.warnings.push_back(head + "gives one flat colour on " + std::to_string(one_point[k]) +
+                                   " mesh(es): all their texture coordinates are the same point");
+    }
+    for (size_t k = material_warnings; k < out.warnings.size(); ++k)
+        std::fprintf(stderr, "msr_render: warning: %s\n", out.warnings[k].c_str());
     if (out.triangles == 0) { err = "model file " + path + " holds no triangles"; return false; }
     Vec3 s = out.bounds.size();
     if (!(max_component(s) > 0.f)) { err = "model file " + path + " has zero size"; return false; }

@@ -27,8 +27,9 @@ struct Model {
 };
 
 // Reads `path`. Returns false with a one-line message when the file cannot be read or holds
-// no triangles. A texture that cannot be found or decoded is a warning (on stderr), and the
-// material keeps its colour.
+// no triangles. A texture that cannot be found or decoded, or that is found but cannot be
+// applied (a material that takes no map, meshes without texture coordinates), is a warning on
+// stderr naming the file and the reason; the material then keeps its colour.
 bool load_model(const std::string &path, Model &out, std::string &err);
 
 // Adds the model to a scene through the placement p' = R_yaw (p - pivot) * scale + offset.
@@ -37,8 +38,9 @@ void add_model(Scene &scene, const Model &model, Vec3 pivot, float scale, float 
 
 // A texture path as the file wrote it, found on disk: relative to the model's folder (or
 // absolute), with backslashes as separators, "file://" and %-escapes undone, and each path
-// component matched without regard to case; finally the bare file name in the model's
-// folder. Returns "" when nothing matches.
+// component matched without regard to case; a path from the drive's root ("\\..\\x.jpg")
+// also relative to the model's folder; finally the bare file name in the model's folder.
+// Returns "" when nothing matches.
 std::string find_texture_file(const std::string &model_dir, const std::string &written);
 // A skin for a format's placeholder name: a picture named `stem` (any case, a common image
 // extension) in model_dir; "" if none.

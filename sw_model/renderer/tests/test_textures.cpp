@@ -188,6 +188,10 @@ TEST(Texture, FindsFilesDespiteCaseAndBackslashes) {
     EXPECT_EQ(find_texture_file(d, "C:\\Users\\someone\\textures\\bark.jpg"), (dir / "Bark.JPG").string());  // bare name
     EXPECT_EQ(find_texture_file(d, "file://" + want), want);
     EXPECT_EQ(find_texture_file(d, "missing.png"), "");
+    // From the drive's root on Windows ("\\..\\"): relative to the model's folder.
+    fs::create_directories(dir / "model");
+    const std::string up = find_texture_file((dir / "model").string(), "\\..\\maps\\WOOD GRAIN.png");
+    EXPECT_EQ(fs::path(up).lexically_normal(), fs::path(want));
     fs::remove_all(dir);
 }
 
