@@ -19,15 +19,22 @@ Choices the paper leaves open, or that we could not take from it (docs/dacs.md):
 - statistic `metric`: "var" (default) the population variance of each RGB channel over the
   neighbours, the largest of the three (8-bit sRGB units squared); "lumvar" the variance of
   the Rec. 709 luma; "range" the largest per-channel max - min (the patent's kind of test);
+- exact arithmetic: every statistic is a fraction num / den of integers (the luma in fixed
+  point, 10^4 times the Rec. 709 sum, which is exact), the threshold a multiple of 1/16, and
+  the test 16 num <= (16 thr) den runs in integers: no rounding decides a tie;
 - frame edges: neighbours outside the frame are left out, and a pixel is interpolated only
   if at least one opposite pair of its neighbours (left and right, up and down, or two
   opposite corners) lies inside the frame, so nothing is extrapolated: beyond the last grid
   row or column (a frame size not 1 more than a multiple of 4) pixels are traced, as the
   evaluation's grids trace their last row and column;
-- the test is `stat <= thr`, so thr = 0 interpolates only between identical neighbours and a
-  negative thr traces everything.
+- the test is `stat <= thr` (a tie interpolates), so thr = 0 interpolates only between
+  identical neighbours and a negative thr traces everything. Four 8-bit neighbours have a
+  variance in steps of 1/16 (3/16 for one neighbour 1 off): the sweep's thresholds below 1
+  come in those steps.
 """
 from __future__ import annotations
+
+from fractions import Fraction
 
 import numpy as np
 
@@ -62,6 +69,28 @@ def passes_for(block: int = 4) -> tuple:
 PASSES = passes_for(4)
 METRICS = ("var", "lumvar", "range")
 LUMA = np.array([0.2126, 0.7152, 0.0722])
+LUMA_FIXED = np.array([2126, 7152, 722], np.int64)     # LUMA x 10^4: the luma in exact integers
+LUMA_SCALE = 10_000
+THR_STEPS = 16                                          # thresholds are multiples of 1/16
+# 16 thr beyond which every statistic passes (16 x 127.5^2 < 2^20): keeps the products in int64
+_THR16_CAP = 1 << 20
+
+
+def thr_sixteenths(thr) -> int:
+    """The threshold as a whole number of sixteenths (-1 for any negative threshold: trace
+    everything). SpecError unless it is a multiple of 1/16 (floats are read exactly)."""
+    try:
+        if isinstance(thr, (str, bytes, bool)):      # Fraction reads "1"; a flag is no threshold
+            raise TypeError
+        f = Fraction(thr)
+    except (TypeError, ValueError, OverflowError):
+        raise spec.SpecError(f"DACS threshold must be a number, got {thr!r}") from None
+    if f < 0:
+        return -1
+    q = f * THR_STEPS
+    if q.denominator != 1:
+        raise spec.SpecError(f"DACS threshold must be a multiple of 1/{THR_STEPS}, got {thr!r}")
+    return int(min(q, _THR16_CAP))
 
 
 def pass_of(width: int, height: int, block: int = 4) -> np.ndarray:
@@ -76,24 +105,35 @@ def pass_of(width: int, height: int, block: int = 4) -> np.ndarray:
     return out
 
 
+def stat_parts(xs4, vs4, metric: str):
+    """xs4: the four neighbours' colours, each (..., 3) int64 and 0 where not valid; vs4: their
+    validity, each (...) bool. (num, den), int64 arrays (...) with the statistic over the valid
+    neighbours = num / den exactly (population variance: (n S2 - S1^2) / n^2)."""
+    n = np.maximum(vs4[0].astype(np.int64) + vs4[1] + vs4[2] + vs4[3], 1)
+    if metric == "range":
+        hi = np.maximum.reduce([np.where(v[..., None], x, -1) for x, v in zip(xs4, vs4)])
+        lo = np.minimum.reduce([np.where(v[..., None], x, 256) for x, v in zip(xs4, vs4)])
+        return np.maximum(hi - lo, 0).max(axis=-1), np.ones_like(n)
+    if metric == "lumvar":
+        ys = [x @ LUMA_FIXED for x in xs4]                  # 10^4 luma, 0 where not valid
+        s1, s2 = ys[0] + ys[1] + ys[2] + ys[3], ys[0] * ys[0] + ys[1] * ys[1] + ys[2] * ys[2] + ys[3] * ys[3]
+        return n * s2 - s1 * s1, n * n * (LUMA_SCALE * LUMA_SCALE)
+    s1 = xs4[0] + xs4[1] + xs4[2] + xs4[3]
+    s2 = xs4[0] * xs4[0] + xs4[1] * xs4[1] + xs4[2] * xs4[2] + xs4[3] * xs4[3]
+    return (n[..., None] * s2 - s1 * s1).max(axis=-1), n * n    # one n^2 for the three channels
+
+
+def within(num, den, thr16: int):
+    """stat <= thr, in integers: 16 num <= (16 thr) den (a tie passes)."""
+    return THR_STEPS * num <= thr16 * den
+
+
 def statistic(nb: np.ndarray, valid: np.ndarray, metric: str) -> np.ndarray:
     """nb: (..., 4, 3) neighbour colours, valid: (..., 4) bool. The per-pixel statistic (...)
-    over the valid neighbours only."""
-    x = nb.astype(np.int64)
-    v = valid[..., None]
-    if metric == "range":
-        hi = np.where(v, x, -1).max(axis=-2)
-        lo = np.where(v, x, 256).min(axis=-2)
-        return np.maximum(hi - lo, 0).max(axis=-1).astype(np.float64)
-    n = np.maximum(valid.sum(axis=-1), 1)[..., None].astype(np.float64)
-    if metric == "lumvar":
-        y = (x @ LUMA) * valid
-        s1, s2 = y.sum(axis=-1), (y * y).sum(axis=-1)
-        n = n[..., 0]
-        return (n * s2 - s1 * s1) / (n * n)
-    xv = x * v
-    s1, s2 = xv.sum(axis=-2), (xv * x).sum(axis=-2)          # exact integer sums
-    return ((n * s2 - s1 * s1) / (n * n)).max(axis=-1)
+    over the valid neighbours only, as a float (for reading; decisions use stat_parts and within)."""
+    x = nb.astype(np.int64) * valid[..., None]
+    num, den = stat_parts([x[..., k, :] for k in range(4)], [valid[..., k] for k in range(4)], metric)
+    return num / den
 
 
 def dacs(renderer, width: int, height: int, thr: float, metric: str = "var", block: int = 4) -> MethodResult:
@@ -102,7 +142,8 @@ def dacs(renderer, width: int, height: int, thr: float, metric: str = "var", blo
     spec.check_frame_size(width, height)
     if metric not in METRICS:
         raise spec.SpecError(f"DACS metric must be one of {', '.join(METRICS)}, got {metric!r}")
-    passes = passes_for(block)
+    thr16 = thr_sixteenths(thr)
+    order = passes_for(block)
     B = block
     c = CountingRenderer(renderer, width, height)
     P = B // 2                                        # padding: neighbours up to B/2 pixels off the frame
@@ -114,7 +155,7 @@ def dacs(renderer, width: int, height: int, thr: float, metric: str = "var", blo
     F[P:P + height:B, P:P + width:B] = c.render(xx.ravel(), yy.ravel()).reshape(yy.shape + (3,))
     V[P:P + height:B, P:P + width:B] = True
     source[0::B, 0::B] = SRC_TRACED
-    for pos, offs in passes:
+    for pos, offs in order:
         for dx, dy in pos:                            # each position class is a regular sub-grid
             ny, nx = len(range(dy, height, B)), len(range(dx, width, B))
             if ny == 0 or nx == 0:
@@ -125,16 +166,11 @@ def dacs(renderer, width: int, height: int, thr: float, metric: str = "var", blo
             vs4 = [V[a, b] for a, b in sl]
             nvalid = vs4[0].astype(np.int64) + vs4[1] + vs4[2] + vs4[3]
             s1 = xs4[0] + xs4[1] + xs4[2] + xs4[3]                    # (ny, nx, 3), exact
-            if metric == "var":                                        # the sweep's: no (.., 4, 3) stack
-                s2 = xs4[0] * xs4[0] + xs4[1] * xs4[1] + xs4[2] * xs4[2] + xs4[3] * xs4[3]
-                n = np.maximum(nvalid, 1)[..., None].astype(np.float64)
-                stat = ((n * s2 - s1 * s1) / (n * n)).max(axis=-1)
-            else:
-                stat = statistic(np.stack([F[a, b] for a, b in sl], axis=2), np.stack(vs4, axis=2), metric)
+            num, den = stat_parts(xs4, vs4, metric)
             # offsets come as two opposite pairs (0, 3), (1, 2) diagonal or (0, 1), (2, 3) axial
             pairs = ((0, 3), (1, 2)) if offs[0][0] and offs[0][1] else ((0, 1), (2, 3))
             between = (vs4[pairs[0][0]] & vs4[pairs[0][1]]) | (vs4[pairs[1][0]] & vs4[pairs[1][1]])
-            ok = between & (stat <= thr)
+            ok = between & within(num, den, thr16)
             cnt = np.maximum(nvalid, 1)[..., None]
             val = ((s1 + cnt // 2) // cnt).astype(np.uint8)            # rounded mean of the valid ones
             ty, tx = np.nonzero(~ok)

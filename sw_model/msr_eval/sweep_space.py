@@ -44,12 +44,19 @@ FLIP_FAMILIES_FULL = ("grid2", "checkerboard", "single_borrowed", "multi_L3_T16"
 # The peers: DACS (msr_eval.dacs) over its variance threshold, the VRS-like baseline
 # (msr_eval.vrs) over its contrast scale, per 8x8 and 16x16 tile.
 # (a variance of 16256 = 127.5^2 is the largest 8-bit neighbours can have: everything interpolated)
-DACS_THR = (0, 1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 4096, 8192, 16384)
+# Below 1 in steps of 1/16, the variance's own step for four 8-bit neighbours (from 0 to 1 the
+# traced fraction falls by some 40 points: neighbours 1 or 2 levels apart, the renderer's
+# noise); above 1 half-octave steps (1, 1.5, 2, 3, 4, 6, ..). At 240x135 no two neighbouring
+# settings of any scene are then more than 9.2 points apart, except where one value of the
+# statistic holds many pixels (docs/dacs.md "Thresholds").
+SIXTEENTHS = tuple(k / 16 for k in range(1, 16))
+HALF_OCTAVES = tuple(x for k in range(13) for x in (2 ** k, 3 * 2 ** k // 2 if k else 1.5))
+DACS_THR = (0, *SIXTEENTHS, *HALF_OCTAVES, 8192, 16384)
 # The DACS variants of the full run: the paper's 4x4 blocks and our 8x8 extension
 # (a first pass of one in 64), each with the largest per-channel variance and the luma variance.
 DACS_VARIANTS = (("dacs", 4, "var"), ("dacs_lumvar", 4, "lumvar"), ("dacs_B8", 8, "var"),
                  ("dacs_B8_lumvar", 8, "lumvar"))
-DACS_THR_QUICK = (0, 2, 8, 32, 128, 512, 2048, 8192, 16384)
+DACS_THR_QUICK = (0, 0.1875, 0.25, 0.5, 0.75, 1, 2, 4, 8, 32, 128, 512, 2048, 8192, 16384)
 VRS_THR = (1, 2, 4, 8, 16, 32, 64, 128)
 VRS_THR_QUICK = (2, 4, 8, 16, 32, 64)
 

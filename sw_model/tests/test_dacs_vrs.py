@@ -48,7 +48,7 @@ def test_dacs_ramp_by_hand():
     assert res.source[2, 0] == D.SRC_INTERP and f[2, 0] == 7
     assert res.source[2, 4] == D.SRC_INTERP and f[2, 4] == 33
     # one notch lower than (2,2)'s 400 traces it, exactly at 400 interpolates it
-    assert D.dacs(Recorder(img), 5, 5, thr=399.9).source[2, 2] == D.SRC_TRACED
+    assert D.dacs(Recorder(img), 5, 5, thr=399.9375).source[2, 2] == D.SRC_TRACED
     r400 = D.dacs(Recorder(img), 5, 5, thr=400)
     assert r400.source[2, 2] == D.SRC_INTERP and r400.frame[2, 2, 0] == 20
 
@@ -278,3 +278,63 @@ def test_vrs_tier2_extremes():
         V.vrs_tier2(Recorder(img), 45, 27, thr=1, rates="tier3")
     with pytest.raises(SpecError):
         V.vrs_tier2(Recorder(img), 45, 27, thr=1, anchor="corner")
+
+
+# --- exact statistics: integers, thresholds in sixteenths -------------------------------------
+
+def _float_stat(nb, valid, metric):
+    """The statistic as floats (what DACS computed before it went to integers)."""
+    x = nb.astype(np.int64)
+    n = np.maximum(valid.sum(axis=-1), 1).astype(np.float64)
+    if metric == "lumvar":
+        y = (x @ D.LUMA) * valid
+        s1, s2 = y.sum(axis=-1), (y * y).sum(axis=-1)
+        return (n * s2 - s1 * s1) / (n * n)
+    xv = x * valid[..., None]
+    s1, s2 = xv.sum(axis=-2), (xv * x).sum(axis=-2)
+    return ((n[..., None] * s2 - s1 * s1) / (n * n)[..., None]).max(axis=-1)
+
+
+@pytest.mark.parametrize("metric", ["var", "lumvar"])
+def test_integer_statistic_equals_the_float_one_away_from_ties(metric):
+    rng = np.random.default_rng(7)
+    base = rng.integers(0, 256, (4000, 1, 3))
+    nb = np.clip(base + rng.integers(-3, 4, (4000, 4, 3)) * rng.integers(0, 30, (4000, 1, 1)), 0, 255)
+    valid = rng.random((4000, 4)) < 0.85
+    valid[:, 0] = True
+    x = nb * valid[..., None]
+    num, den = D.stat_parts([x[:, k] for k in range(4)], [valid[:, k] for k in range(4)], metric)
+    ref = _float_stat(nb, valid, metric)
+    assert np.allclose(num / den, ref, rtol=1e-12, atol=1e-9)
+    for thr in (0, 0.1875, 0.5, 1, 3, 40.0625, 300, 3000):
+        t16 = D.thr_sixteenths(thr)
+        clear = np.abs(ref - thr) > 1e-6
+        assert (D.within(num, den, t16) == (ref <= thr))[clear].all()
+
+
+def test_exact_ties_interpolate():
+    """A tie (stat == thr) interpolates, decided in integers. (2,2)'s diagonal neighbours in a
+    5x5 frame: one of four 1 level off is a variance of 3/16 exactly."""
+    img = np.full((5, 5, 3), 100, np.uint8)
+    img[4, 4] = 101
+    assert D.dacs(Recorder(img), 5, 5, thr=0.1875).source[2, 2] == D.SRC_INTERP
+    assert D.dacs(Recorder(img), 5, 5, thr=0.125).source[2, 2] == D.SRC_TRACED
+    # Luma: greys 2 apart in pairs are a luma variance of exactly 1, which the float luma put
+    # 7e-12 above (so a threshold of 1 traced it); in integers the tie interpolates.
+    nb = np.array([[[25, 245, 47], [25, 245, 47], [27, 247, 49], [27, 247, 49]]])
+    assert _float_stat(nb, np.ones((1, 4), bool), "lumvar")[0] > 1
+    assert D.statistic(nb, np.ones((1, 4), bool), "lumvar")[0] == 1
+    img = np.zeros((5, 5, 3), np.uint8)
+    for (x, y), c in zip(((0, 0), (4, 0), (0, 4), (4, 4)), nb[0]):
+        img[y, x] = c
+    assert D.dacs(Recorder(img), 5, 5, thr=1, metric="lumvar").source[2, 2] == D.SRC_INTERP
+    assert D.dacs(Recorder(img), 5, 5, thr=0.9375, metric="lumvar").source[2, 2] == D.SRC_TRACED
+
+
+def test_thresholds_come_in_sixteenths():
+    assert D.thr_sixteenths(0) == 0 and D.thr_sixteenths(0.0625) == 1 and D.thr_sixteenths(3) == 48
+    assert D.thr_sixteenths(-1) == -1 and D.thr_sixteenths(-0.3) == -1
+    assert D.thr_sixteenths(1e30) == D.thr_sixteenths(16384 * 64)       # capped: all pass alike
+    for bad in (0.1, 399.9, float("nan"), "1"):
+        with pytest.raises(SpecError):
+            D.thr_sixteenths(bad)
