@@ -13,6 +13,9 @@ BUDGET       ?=
 # status 2 until the hardware has it.
 FRAMES       ?=
 CAMERA_PATH  ?=
+# GAZE=X,Y: the gaze point in pixels (docs/spec/contracts.md "Gaze"): the foveation (FOV_GAIN) centres
+# there; empty: the default, the centre of the tile grid. run_sim.py refuses one outside the frame.
+GAZE         ?=
 SIM_BUDGET_ON := $(strip $(BUDGET))
 SIM_BUILD    := build/sim/$(if $(SIM_WAVES_ON),waves,fast)$(if $(SIM_BUDGET_ON),_budget)
 SIM_BIN      := $(SIM_BUILD)/Vmsr_sim_top
@@ -79,7 +82,7 @@ TEST_DEPS += build/sim/fast/Vmsr_sim_top build/sim/fast_budget/Vmsr_sim_top
 sim: setup renderer $(SIM_BIN)
 	@$(ENV) python scripts/run_sim.py --harness $(SIM_BIN) --scene "$(SCENE)" --width "$(WIDTH)" \
 	    --height "$(HEIGHT)" --tile "$(TILE)" --levels "$(LEVELS)" --thr "$(THR)" --metric "$(METRIC)" \
-	    --fov-gain "$(FOV_GAIN)" --rule "$(RULE)" --budget "$(BUDGET)" --frames "$(FRAMES)" --camera-path "$(CAMERA_PATH)" --reuse "$(REUSE)" --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
+	    --fov-gain "$(FOV_GAIN)" --gaze="$(GAZE)" --rule "$(RULE)" --budget "$(BUDGET)" --frames "$(FRAMES)" --camera-path "$(CAMERA_PATH)" --reuse "$(REUSE)" --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
 	    $(if $(WAVE_TILE),--wave-tile $(WAVE_TILE)) $(if $(WAVE_CYCLES),--wave-cycles $(WAVE_CYCLES))
 
 # make waves / waves-shot: the run named by OUT=, else the last make sim WAVES=1 (its folder is

@@ -2,7 +2,7 @@
 // as a driver and a memory system would, for one frame.
 //
 //   Vmsr_sim_top --width W --height H [--tile T] [--levels L] [--thr a,b,c] [--metric max|sum]
-//       [--fov-gain G] [--rule patent|lindilate|N] [--frame OUT.ppm] [--source OUT.pgm] [--stats OUT.json]
+//       [--fov-gain G] [--gaze X,Y] [--rule patent|lindilate|N] [--frame OUT.ppm] [--source OUT.pgm] [--stats OUT.json]
 //       [--budget PIXELS] [--scale-init U] [--prior-shift P] [--seeded 0|1]   (docs/budget.md)
 //       [--frames N [--cameras FILE]]   (a sequence: N frames in this one run, the registers
 //       reprogrammed between frames as a driver would; FILE has one camera line per frame; with
@@ -11,6 +11,8 @@
 //       [--timeout CYCLES] [--mem-pause PERCENT] [--seed N] [--quiet]
 //       [--fb-base ADDR]   (override FB_BASE; memory stays where it is: error-path tests)
 //       (--rule N: CONFIG.RULE written as is, 0..3; 2 and 3 are refused by the hardware, ERROR 13)
+//       (--gaze X,Y: GAZE written with EN, X and Y cut to their fields; a point outside the frame
+//       is refused by the hardware, ERROR 16; without it GAZE is 0: the frame centre)
 //       [--waves FILE.fst --wave-tile TX,TY | --wave-cycles FROM,TO]   (waves build only)
 //       +scene=NAME|FILE +width=W +height=H [+rnd_latency=N] [+rnd_jitter=J]   (render_dpi)
 //       [+camera=EX,EY,EZ,TX,TY,TZ,FOV]   (the view, read by msr_dpi.cpp)
@@ -54,6 +56,7 @@ constexpr int kExitOk = 0, kExitFail = 1, kExitUsage = 2;
 struct Options {
   int width = 320, height = 240, tile = 16, levels = 2, metric = 0, fov_gain = 0;
   int rule = 0;  // CONFIG.RULE: 0 patent, 1 lindilate (docs/rules.md)
+  long gaze_x = -1, gaze_y = -1;  // GAZE.X, GAZE.Y with GAZE.EN; -1: not given (GAZE 0)
   // Ray budget (docs/budget.md): BUDGET.PIXELS (0 = off) and BUDGET_CTRL, written as given.
   long budget = 0, scale_init = 256, prior_shift = 6, seeded = 0;
   long frames = 1;                  // a sequence of frames in one run
@@ -142,6 +145,11 @@ Options parse(int argc, char **argv) {
         if (c == std::string::npos) break;
         pos = c + 1;
       }
+    } else if (a == "--gaze") {
+      char tail = 0;
+      if (std::sscanf(next("--gaze"), "%ld,%ld%c", &o.gaze_x, &o.gaze_y, &tail) != 2 || o.gaze_x < 0 ||
+          o.gaze_y < 0)
+        usage("--gaze needs X,Y (two integers >= 0)");
     } else if (a == "--wave-tile") {
       if (std::sscanf(next("--wave-tile"), "%d,%d", &o.wave_tx, &o.wave_ty) != 2)
         usage("--wave-tile needs TX,TY");
@@ -549,6 +557,10 @@ int main(int argc, char **argv) {
                             (uint32_t(o.thr[1]) << MSR_REGS__THRESH__THR2_bp) |
                             (uint32_t(o.thr[2]) << MSR_REGS__THRESH__THR3_bp));
     sim.write_reg(REG(FOV_GAIN), uint32_t(o.fov_gain));
+    sim.write_reg(REG(GAZE), o.gaze_x < 0 ? 0u
+                                          : MSR_REGS__GAZE__EN_bm |
+                                                ((uint32_t(o.gaze_x) << MSR_REGS__GAZE__X_bp) & MSR_REGS__GAZE__X_bm) |
+                                                ((uint32_t(o.gaze_y) << MSR_REGS__GAZE__Y_bp) & MSR_REGS__GAZE__Y_bm));
     sim.write_reg(REG(FB_BASE), o.fb_base >= 0 ? uint32_t(o.fb_base) : sim.fb_base());
     sim.write_reg(REG(FB_STRIDE), sim.fb_stride());
     sim.write_reg(REG(SRC_BASE), sim.src_base());
@@ -635,12 +647,17 @@ int main(int argc, char **argv) {
         // The facts the scripts need come from here, not from copies of them: the build's
         // parameters, the memory layout this harness programmed, the frame's register values.
         using Root = Vmsr_sim_top___024root;
+        // the gaze written to GAZE (with EN), or null: GAZE 0, the frame centre
+        const std::string gaze_json = o.gaze_x < 0 ? std::string("null")
+                                                   : "[" + std::to_string(o.gaze_x) + ", " +
+                                                         std::to_string(o.gaze_y) + "]";
         std::fprintf(f,
                      "{\"frame\": %ld, \"cycles\": %u, \"sim_cycles_total\": %llu, \"sim_seconds\": %.4f, "
                      "\"sim_cycles_per_second\": %.1f, \"status\": %u, \"error\": %u, "
                      "\"traced_initial\": %u, \"traced_level1\": %u, \"traced_level2\": %u, "
                      "\"traced_level3\": %u, \"interpolated_level1\": %u, \"interpolated_level2\": %u, "
                      "\"interpolated_level3\": %u, \"render_stall_cycles\": %u, \"memory_stall_cycles\": %u,\n"
+                     " \"gaze\": %s,\n"
                      " \"budget\": {\"pixels\": %ld, \"scale_init\": %ld, \"prior_shift\": %ld, \"seeded\": %ld, "
                      "\"scale_out\": %u, \"scale_out_valid\": %s},\n"
                      " \"build\": {\"num_engines\": %u, \"max_outstanding\": %u, \"num_ctx\": %u, "
@@ -650,7 +667,7 @@ int main(int argc, char **argv) {
                      "\"thr\": [%d, %d, %d], \"metric\": \"%s\", \"fov_gain\": %d, \"rule\": %d}}\n",
                      k, perf_cycles, (unsigned long long)cycles_run, secs, cycles_run / secs, status, err,
                      traced[0], traced[1], traced[2], traced[3], interp[0], interp[1], interp[2], rstall,
-                     mstall, o.budget, scale_init, o.prior_shift, seeded, scale_out,
+                     mstall, gaze_json.c_str(), o.budget, scale_init, o.prior_shift, seeded, scale_out,
                      scale_out_valid ? "true" : "false", unsigned(Root::msr_sim_top__DOT__NUM_ENGINES),
                      unsigned(Root::msr_sim_top__DOT__MAX_OUTSTANDING), unsigned(Root::msr_sim_top__DOT__NUM_CTX),
                      unsigned(Root::msr_sim_top__DOT__BUDGET_EN), kBeatBytes, o.fb_base >= 0 ? o.fb_base : (long long)sim.fb_base(), sim.fb_stride(),

@@ -40,9 +40,9 @@ extern "C" {
 #define MSR_REGS__STATUS__WDOG_bp 3
 #define MSR_REGS__STATUS__WDOG_bw 1
 #define MSR_REGS__STATUS__WDOG_reset 0x0
-#define MSR_REGS__STATUS__ERROR_bm 0xf0
+#define MSR_REGS__STATUS__ERROR_bm 0x1f0
 #define MSR_REGS__STATUS__ERROR_bp 4
-#define MSR_REGS__STATUS__ERROR_bw 4
+#define MSR_REGS__STATUS__ERROR_bw 5
 
 // reg - msr_regs::FRAME_SIZE
 #define MSR_REGS__FRAME_SIZE__WIDTH_bm 0x1fff
@@ -121,6 +121,20 @@ extern "C" {
 #define MSR_REGS__SRC_CTRL__ENABLE_bp 0
 #define MSR_REGS__SRC_CTRL__ENABLE_bw 1
 #define MSR_REGS__SRC_CTRL__ENABLE_reset 0x0
+
+// reg - msr_regs::GAZE
+#define MSR_REGS__GAZE__X_bm 0x1fff
+#define MSR_REGS__GAZE__X_bp 0
+#define MSR_REGS__GAZE__X_bw 13
+#define MSR_REGS__GAZE__X_reset 0x0
+#define MSR_REGS__GAZE__Y_bm 0x1fff0000
+#define MSR_REGS__GAZE__Y_bp 16
+#define MSR_REGS__GAZE__Y_bw 13
+#define MSR_REGS__GAZE__Y_reset 0x0
+#define MSR_REGS__GAZE__EN_bm 0x80000000
+#define MSR_REGS__GAZE__EN_bp 31
+#define MSR_REGS__GAZE__EN_bw 1
+#define MSR_REGS__GAZE__EN_reset 0x0
 
 // reg - msr_regs::perf_t_desc_b53721d4_name_d3240659
 #define MSR_REGS__PERF_T_DESC_B53721D4_NAME_D3240659__COUNT_bm 0xffffffff
@@ -210,7 +224,8 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t SRC_BASE;
     uint32_t SRC_STRIDE;
     uint32_t SRC_CTRL;
-    uint8_t RESERVED_2c_3f[0x14];
+    uint32_t GAZE;
+    uint8_t RESERVED_30_3f[0x10];
     uint32_t PERF_CYCLES;
     uint32_t PERF_TRACED[4];
     uint32_t PERF_INTERP[3];

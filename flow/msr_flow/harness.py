@@ -139,6 +139,8 @@ class HarnessRun:
             b = self.budget
             cmd += ["--budget", str(b.budget), "--scale-init", str(b.scale_init), "--prior-shift",
                     str(b.prior_shift), "--seeded", str(int(b.profile is not None))]
+        if p.gaze is not None:
+            cmd += ["--gaze", f"{p.gaze[0]},{p.gaze[1]}"]
         if self.cameras:
             cmd += ["--frames", str(len(self.cameras)), "--cameras", str(workdir / "cameras.txt")]
         if self.camera:

@@ -1,7 +1,7 @@
 """`make sim`: one frame through the RTL (Verilator harness + DPI Embree) and the golden model.
 
     python scripts/run_sim.py --harness build/sim/fast/Vmsr_sim_top --scene cornell \
-        --width 640 --height 480 [--tile 16 --levels 2 --thr 8,16 --metric max --fov-gain 0]
+        --width 640 --height 480 [--tile 16 --levels 2 --thr 8,16 --metric max --fov-gain 0 --gaze X,Y]
         [--rule patent] [--camera EX,EY,EZ,TX,TY,TZ,FOV] [--out DIR]
         [--waves [--wave-tile TX,TY | --wave-cycles FROM,TO]]
 
@@ -42,6 +42,8 @@ def parse(argv):
     ap.add_argument("--thr", default="")
     ap.add_argument("--metric", default="max")
     ap.add_argument("--fov-gain", default="0")
+    ap.add_argument("--gaze", default="", help="X,Y: the gaze point in pixels (GAZE= of make sim; empty: "
+                    "the default, the centre of the tile grid)")
     ap.add_argument("--rule", default="", help="decision rule (default patent; RULE= of make sim)")
     ap.add_argument("--budget", default="", help="ray budget: N traced pixels or P%% of the frame "
                     "(docs/budget.md; BUDGET= of make sim; empty or 0: off)")
@@ -70,7 +72,14 @@ def params_of(a) -> tuple[int, int, Params]:
     if len(thr) != levels:
         raise UsageError(f"THR has {len(thr)} values but LEVELS is {levels}: give one per level")
     gain = int_in(a.fov_gain, "FOV_GAIN", 0, 255)
-    return w, h, Params(tile=tile, levels=levels, thr=thr, metric=a.metric, fov_gain=gain)
+    gaze = None
+    if str(getattr(a, "gaze", "") or "").strip():
+        gaze = int_list(a.gaze, "GAZE")
+        if len(gaze) != 2:
+            raise UsageError(f"GAZE must be X,Y (two integers), got {a.gaze!r}")
+        if not (0 <= gaze[0] < w and 0 <= gaze[1] < h):
+            raise UsageError(f"GAZE {gaze[0]},{gaze[1]} outside the {w}x{h} frame (0 <= X < {w}, 0 <= Y < {h})")
+    return w, h, Params(tile=tile, levels=levels, thr=thr, metric=a.metric, fov_gain=gain, gaze=gaze)
 
 
 def rule_of(a) -> str:
@@ -168,6 +177,8 @@ def run(a) -> int:
     written = rtl.stats.get("params", {}).get("rule")
     if written is not None and written != RTL_RULES.index(rule):
         raise RunFailed(f"the harness wrote CONFIG.RULE = {written}, not {RTL_RULES.index(rule)} ({rule})")
+    if rtl.stats.get("gaze", None) != (None if params.gaze is None else list(params.gaze)):
+        raise RunFailed(f"the harness wrote GAZE {rtl.stats.get('gaze')}, not {params.gaze} (rebuild it: make sim)")
     if budget is not None and not rtl.build.get("budget_en"):
         raise RunFailed(f"BUDGET={a.budget}: the harness {harness} is a top without the budget controller "
                         f"(build it with make sim BUDGET=...)")
@@ -206,6 +217,7 @@ def run(a) -> int:
         "width": W,
         "height": H,
         "rule": rule,
+        "gaze": list(params.gaze or spec.default_gaze(W, H, params.tile)),
         "params": params.as_dict(),
         "quality": a.quality,
         "render_latency": a.rnd_latency,
@@ -232,7 +244,8 @@ def run(a) -> int:
 
     p = params
     print(f"make sim: {a.scene} {W}x{H}, tile {p.tile}, levels {p.levels}, thr {','.join(map(str, p.thr))}, "
-          f"metric {p.metric}, fov gain {p.fov_gain}, rule {rule}")
+          f"metric {p.metric}, fov gain {p.fov_gain}, gaze {','.join(map(str, p.gaze or spec.default_gaze(W, H, p.tile)))}"
+          f"{'' if p.gaze else ' (default)'}, rule {rule}")
     print(f"  bit exact vs golden model : {'yes' if report['bit_exact'] else 'NO'}"
           f" (frame {'=' if verdict['frame_equal'] else '!='}, source map {'=' if verdict['source_map_equal'] else '!='})")
     print(f"  traced                    : {traced} of {pixels} pixels ({traced / pixels:.1%})")

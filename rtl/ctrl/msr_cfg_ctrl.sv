@@ -8,7 +8,9 @@
 // overlap, compared segment by segment from the least significant one; the rule encoding
 // (CONFIG.RULE 2 or 3, or 1 in a top built without it, LINDILATE 0: code 13); with a ray budget
 // (BUDGET non-zero), the budget controller's own check, run beside these from the sampled registers
-// (codes 14 and 15; a top built without it, BUDGET_EN 0, refuses any budget with 14). The first
+// (codes 14 and 15; a top built without it, BUDGET_EN 0, refuses any budget with 14); with
+// GAZE.EN, a gaze point outside the frame (code 16), and the gaze in half tiles, cx = (2X + T/2)
+// >> log2 T (likewise cy), registered during CHECK and latched with the configuration. The first
 // failing check in the order of the error codes wins: the configuration is latched and the frame
 // starts, or the error is reported (STATUS.ERROR, STATUS.CFG_ERR and the interrupt) and the
 // accelerator stays idle (no render request, no memory write). A frame ends when the tile generator
@@ -106,6 +108,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   err_e             err_q, err_d;
   logic [NCHK-1:0]  chk_q;             // check k failed (error code order)
   logic             rule_chk_q;        // CONFIG.RULE 2, 3 or not built (code 13, after the overlap)
+  logic             gaze_chk_q;        // GAZE.EN and the point outside the frame (code 16, last)
+  half_t            gaze_cx_q, gaze_cy_q;   // the gaze in half tiles, from the sampled registers
   logic [4:0]       step_q;
   logic             frame_done_q;
   logic [TIF_W-1:0] tif_q;             // tiles handed out and not yet fully written
@@ -276,9 +280,17 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     chk_all[9]   = raw_q.fb.src_en && wraps(acc_q[1]);
   end
 
+  // The gaze in half tiles: (2p + T/2) >> log2 T = (p + T/4) >> (log2 T - 1). Only a frame
+  // with a good tile size and the point inside the frame (p < 4096) uses it: at most 1024.
+  function automatic half_t half_pos(logic [12:0] p, logic [5:0] tile);
+    logic [13:0] v;
+    v = {1'b0, p} + 14'(tile[5:2]);
+    return (tile == 6'd8) ? half_t'(v >> 2) : (tile == 6'd32) ? half_t'(v >> 4) : half_t'(v >> 3);
+  endfunction
+
   // The first failing check, in the order of the codes (code k + 1 for flag k).
   function automatic err_e first_err(logic [NCHK-1:0] chk, logic overlap, logic rule_bad,
-                                     logic [1:0] bud_bad);
+                                     logic [1:0] bud_bad, logic gaze_bad);
     for (int unsigned k = 0; k < NCHK; k++) begin
       if (chk[k]) return err_e'(k + 1);
     end
@@ -286,6 +298,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     if (rule_bad) return ERR_RULE;
     if (bud_bad[0]) return ERR_BUDGET;
     if (bud_bad[1]) return ERR_PROFILE;
+    if (gaze_bad) return ERR_GAZE;
     return ERR_NONE;
   endfunction
 
@@ -314,7 +327,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   logic [1:0] bud_bad_q;
   assign overlap = raw_q.fb.src_en && lt_q[0] && lt_q[1];
   assign accept  = (state_q == ST_CHECK) && decide_q && chk_none_q && !overlap && !rule_chk_q &&
-                   bud_bad_q == '0;
+                   bud_bad_q == '0 && !gaze_chk_q;
 
   always_comb begin
     state_d = state_q;
@@ -324,7 +337,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       ST_SAMPLE: state_d = ST_CHECK;
       ST_CHECK: begin
         if (decide_q) begin
-          err_d   = first_err(chk_q, overlap, rule_chk_q, bud_bad_q);
+          err_d   = first_err(chk_q, overlap, rule_chk_q, bud_bad_q, gaze_chk_q);
           state_d = accept ? ST_RUN : ST_IDLE;
         end
       end
@@ -370,6 +383,9 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       cfg_q          <= '0;
       chk_q          <= '0;
       rule_chk_q     <= 1'b0;
+      gaze_chk_q     <= 1'b0;
+      gaze_cx_q      <= '0;
+      gaze_cy_q      <= '0;
       step_q         <= '0;
       decide_q       <= 1'b0;
       chk_none_q     <= 1'b1;
@@ -397,6 +413,11 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       if (state_q == ST_CHECK && step_q == STEP_CMP[4:0]) begin
         chk_q      <= chk_all;
         rule_chk_q <= raw_q.rule[1] || (LINDILATE == 0 && raw_q.rule[0]);
+        gaze_chk_q <= raw_q.gaze.en && (raw_q.gaze.x >= raw_q.width || raw_q.gaze.y >= raw_q.height);
+      end
+      if (state_q == ST_CHECK) begin
+        gaze_cx_q  <= half_pos(raw_q.gaze.x, raw_q.tile);
+        gaze_cy_q  <= half_pos(raw_q.gaze.y, raw_q.tile);
       end
       if (accept) begin
         cfg_q.width      <= raw_q.width;
@@ -408,6 +429,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
         cfg_q.rule       <= rule_e'(raw_q.rule[0]);
         cfg_q.thr        <= raw_q.thr;
         cfg_q.fov_gain   <= raw_q.fov_gain;
+        cfg_q.gaze       <= '{en: raw_q.gaze.en, cx: gaze_cx_q, cy: gaze_cy_q};
         cfg_q.fb         <= raw_q.fb;
         cfg_q.bud        <= BUDGET_EN ? raw_q.bud : '0;
       end
@@ -477,6 +499,10 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   `MSR_COVER(c_refused, refused_q)
   `MSR_COVER(c_overlap_refused, refused_q && err_q == ERR_OVERLAP)
   `MSR_COVER(c_rule_refused, refused_q && err_q == ERR_RULE)
+  `MSR_COVER(c_gaze_refused, refused_q && err_q == ERR_GAZE)
+  // An accepted gaze lies in the frame: its half-tile position is at most 2 * 512 tiles.
+  `MSR_ASSERT(a_gaze_in_range, !(accept && raw_q.gaze.en) ||
+              (gaze_cx_q <= half_t'(1024) && gaze_cy_q <= half_t'(1024)))
 
   `MSR_COVER(c_drain_with_mem_err, state_q == ST_CLEAR && err_q == ERR_AXI_WRITE)
   `MSR_COVER(c_wdog_run, wd_fire && state_q == ST_RUN)

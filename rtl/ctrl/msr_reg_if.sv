@@ -35,6 +35,7 @@ module msr_reg_if
     thr:        {hwif_out.THRESH.THR3.value, hwif_out.THRESH.THR2.value,
                  hwif_out.THRESH.THR1.value},
     fov_gain:   hwif_out.FOV_GAIN.GAIN.value,
+    gaze:       '{en: hwif_out.GAZE.EN.value, x: hwif_out.GAZE.X.value, y: hwif_out.GAZE.Y.value},
     fb:         '{fb_base:    hwif_out.FB_BASE.ADDR.value,
                   fb_stride:  hwif_out.FB_STRIDE.STRIDE.value,
                   src_en:     hwif_out.SRC_CTRL.ENABLE.value,

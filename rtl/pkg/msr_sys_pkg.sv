@@ -41,6 +41,23 @@ package msr_sys_pkg;
     logic        seeded;
   } bud_cfg_t;
 
+  // A position in half tiles, 0..1024: the gaze (cx, cy) of the foveation.
+  typedef logic [COORD_W-2:0] half_t;
+
+  // GAZE: the gaze point in pixels, read only when en is set (else the frame centre).
+  typedef struct packed {
+    logic        en;
+    logic [12:0] x;
+    logic [12:0] y;
+  } gaze_raw_t;
+
+  // The checked gaze of a frame: en, and then (cx, cy) = ((2X + T/2) div T, (2Y + T/2) div T).
+  typedef struct packed {
+    logic  en;                 // 0: the default gaze, (cx, cy) = (ntx, nty)
+    half_t cx;
+    half_t cy;
+  } gaze_t;
+
   // Frame configuration as the registers hold it (sampled at START, checked, then latched).
   typedef struct packed {
     dim_t                  width;
@@ -51,6 +68,7 @@ package msr_sys_pkg;
     logic [1:0]            rule;       // decision rule as written (0 patent, 1 lindilate)
     thr_t [MAX_LEVELS-1:0] thr;
     logic [7:0]            fov_gain;
+    gaze_raw_t             gaze;
     fb_cfg_t               fb;
     bud_cfg_t              bud;
   } cfg_raw_t;
@@ -65,6 +83,7 @@ package msr_sys_pkg;
     rule_e                 rule;
     thr_t [MAX_LEVELS-1:0] thr;
     logic [7:0]            fov_gain;
+    gaze_t                 gaze;
     fb_cfg_t               fb;
     bud_cfg_t              bud;
   } cfg_t;

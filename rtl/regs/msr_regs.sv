@@ -87,6 +87,7 @@ module msr_regs (
         logic SRC_BASE;
         logic SRC_STRIDE;
         logic SRC_CTRL;
+        logic GAZE;
         logic PERF_CYCLES;
         logic PERF_TRACED[4];
         logic PERF_INTERP[3];
@@ -134,6 +135,8 @@ module msr_regs (
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h24);
         decoded_reg_strb.SRC_CTRL = cpuif_req_masked & (cpuif_addr == 7'h28);
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h28);
+        decoded_reg_strb.GAZE = cpuif_req_masked & (cpuif_addr == 7'h2c);
+        is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h2c);
         decoded_reg_strb.PERF_CYCLES = cpuif_req_masked & (cpuif_addr == 7'h40) & !cpuif_req_is_wr;
         is_valid_addr |= cpuif_req_masked & (cpuif_addr == 7'h40);
         for(int i0=0; i0<4; i0++) begin
@@ -282,6 +285,20 @@ module msr_regs (
         } SRC_CTRL;
         struct {
             struct {
+                logic [12:0] next;
+                logic load_next;
+            } X;
+            struct {
+                logic [12:0] next;
+                logic load_next;
+            } Y;
+            struct {
+                logic next;
+                logic load_next;
+            } EN;
+        } GAZE;
+        struct {
+            struct {
                 logic [31:0] next;
                 logic load_next;
             } CYCLES;
@@ -395,6 +412,17 @@ module msr_regs (
                 logic value;
             } ENABLE;
         } SRC_CTRL;
+        struct {
+            struct {
+                logic [12:0] value;
+            } X;
+            struct {
+                logic [12:0] value;
+            } Y;
+            struct {
+                logic value;
+            } EN;
+        } GAZE;
         struct {
             struct {
                 logic [31:0] value;
@@ -926,6 +954,75 @@ module msr_regs (
         end
     end
     assign hwif_out.SRC_CTRL.ENABLE.value = field_storage.SRC_CTRL.ENABLE.value;
+    // Field: msr_regs.GAZE.X
+    always_comb begin
+        automatic logic [12:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.GAZE.X.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.GAZE && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.GAZE.X.value & ~decoded_wr_biten[12:0]) | (decoded_wr_data[12:0] & decoded_wr_biten[12:0]);
+            load_next_c = '1;
+        end
+        field_combo.GAZE.X.next = next_c;
+        field_combo.GAZE.X.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.GAZE.X.value <= 13'h0;
+        end else begin
+            if(field_combo.GAZE.X.load_next) begin
+                field_storage.GAZE.X.value <= field_combo.GAZE.X.next;
+            end
+        end
+    end
+    assign hwif_out.GAZE.X.value = field_storage.GAZE.X.value;
+    // Field: msr_regs.GAZE.Y
+    always_comb begin
+        automatic logic [12:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.GAZE.Y.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.GAZE && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.GAZE.Y.value & ~decoded_wr_biten[28:16]) | (decoded_wr_data[28:16] & decoded_wr_biten[28:16]);
+            load_next_c = '1;
+        end
+        field_combo.GAZE.Y.next = next_c;
+        field_combo.GAZE.Y.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.GAZE.Y.value <= 13'h0;
+        end else begin
+            if(field_combo.GAZE.Y.load_next) begin
+                field_storage.GAZE.Y.value <= field_combo.GAZE.Y.next;
+            end
+        end
+    end
+    assign hwif_out.GAZE.Y.value = field_storage.GAZE.Y.value;
+    // Field: msr_regs.GAZE.EN
+    always_comb begin
+        automatic logic [0:0] next_c;
+        automatic logic load_next_c;
+        next_c = field_storage.GAZE.EN.value;
+        load_next_c = '0;
+        if(decoded_reg_strb.GAZE && decoded_req_is_wr) begin // SW write
+            next_c = (field_storage.GAZE.EN.value & ~decoded_wr_biten[31:31]) | (decoded_wr_data[31:31] & decoded_wr_biten[31:31]);
+            load_next_c = '1;
+        end
+        field_combo.GAZE.EN.next = next_c;
+        field_combo.GAZE.EN.load_next = load_next_c;
+    end
+    always_ff @(posedge clk or negedge arst_n) begin
+        if(~arst_n) begin
+            field_storage.GAZE.EN.value <= 1'h0;
+        end else begin
+            if(field_combo.GAZE.EN.load_next) begin
+                field_storage.GAZE.EN.value <= field_combo.GAZE.EN.next;
+            end
+        end
+    end
+    assign hwif_out.GAZE.EN.value = field_storage.GAZE.EN.value;
     // Field: msr_regs.WATCHDOG.CYCLES
     always_comb begin
         automatic logic [31:0] next_c;
@@ -1079,7 +1176,7 @@ module msr_regs (
             readback_data_var[ad_hi(7'h4)][1] = field_storage.STATUS.DONE.value;
             readback_data_var[ad_hi(7'h4)][2] = field_storage.STATUS.CFG_ERR.value;
             readback_data_var[ad_hi(7'h4)][3] = field_storage.STATUS.WDOG.value;
-            readback_data_var[ad_hi(7'h4)][7:4] = hwif_in.STATUS.ERROR.next;
+            readback_data_var[ad_hi(7'h4)][8:4] = hwif_in.STATUS.ERROR.next;
         end
         if(ad_low(rd_mux_addr) == ad_low(7'h8)) begin
             readback_data_var[ad_hi(7'h8)][12:0] = field_storage.FRAME_SIZE.WIDTH.value;
@@ -1113,6 +1210,11 @@ module msr_regs (
         end
         if(ad_low(rd_mux_addr) == ad_low(7'h28)) begin
             readback_data_var[ad_hi(7'h28)][0] = field_storage.SRC_CTRL.ENABLE.value;
+        end
+        if(ad_low(rd_mux_addr) == ad_low(7'h2c)) begin
+            readback_data_var[ad_hi(7'h2c)][12:0] = field_storage.GAZE.X.value;
+            readback_data_var[ad_hi(7'h2c)][28:16] = field_storage.GAZE.Y.value;
+            readback_data_var[ad_hi(7'h2c)][31] = field_storage.GAZE.EN.value;
         end
         if(ad_low(rd_mux_addr) == ad_low(7'h40)) begin
             readback_data_var[ad_hi(7'h40)][31:0] = hwif_in.PERF_CYCLES.COUNT.next;

@@ -27,7 +27,7 @@ package msr_regs_pkg;
     } msr_regs__STATUS__WDOG__in_t;
 
     typedef struct {
-        logic [3:0] next;
+        logic [4:0] next;
     } msr_regs__STATUS__ERROR__in_t;
 
     typedef struct {
@@ -272,6 +272,24 @@ package msr_regs_pkg;
     } msr_regs__SRC_CTRL__out_t;
 
     typedef struct {
+        logic [12:0] value;
+    } msr_regs__GAZE__X__out_t;
+
+    typedef struct {
+        logic [12:0] value;
+    } msr_regs__GAZE__Y__out_t;
+
+    typedef struct {
+        logic value;
+    } msr_regs__GAZE__EN__out_t;
+
+    typedef struct {
+        msr_regs__GAZE__X__out_t X;
+        msr_regs__GAZE__Y__out_t Y;
+        msr_regs__GAZE__EN__out_t EN;
+    } msr_regs__GAZE__out_t;
+
+    typedef struct {
         logic [31:0] value;
     } msr_regs__WATCHDOG__CYCLES__out_t;
 
@@ -317,12 +335,13 @@ package msr_regs_pkg;
         msr_regs__SRC_BASE__out_t SRC_BASE;
         msr_regs__SRC_STRIDE__out_t SRC_STRIDE;
         msr_regs__SRC_CTRL__out_t SRC_CTRL;
+        msr_regs__GAZE__out_t GAZE;
         msr_regs__WATCHDOG__out_t WATCHDOG;
         msr_regs__BUDGET__out_t BUDGET;
         msr_regs__BUDGET_CTRL__out_t BUDGET_CTRL;
     } msr_regs__out_t;
 
-    typedef enum logic [3:0] {
+    typedef enum logic [4:0] {
         msr_regs__status_error_e__NONE = 'h0,
         msr_regs__status_error_e__FRAME_SIZE = 'h1,
         msr_regs__status_error_e__TILE = 'h2,
@@ -338,6 +357,7 @@ package msr_regs_pkg;
         msr_regs__status_error_e__WATCHDOG = 'hc,
         msr_regs__status_error_e__RULE = 'hd,
         msr_regs__status_error_e__BUDGET = 'he,
-        msr_regs__status_error_e__PROFILE = 'hf
+        msr_regs__status_error_e__PROFILE = 'hf,
+        msr_regs__status_error_e__GAZE = 'h10
     } msr_regs__status_error_e_e;
 endpackage

@@ -5,7 +5,7 @@
 // Timing: a five-stage pipeline with one enable (it moves when the output register is empty;
 // the engines' ready only empties it, so it never reaches the stages' enables), no carry
 // longer than 13 bits per clock: S1 the tile origin, its extent left in the frame and its
-// distances r2x, r2y from the centre in half-tiles; S2 both foveation
+// distances r2x, r2y from the gaze in half-tiles; S2 both foveation
 // products gain * r2x and gain * r2y as carry-save pairs (ten partial products in five 3:2
 // levels; gain * max(r2x, r2y) = the larger product, so the compare runs beside them) and the
 // clamped extent; S3 / S4 the chosen product's carry-propagate add in two 9-bit halves, then
@@ -13,6 +13,11 @@
 // thr + that, saturated at 255. The walker fills the pipeline while a descriptor waits, so
 // an engine that asks is served at once, the next one two clocks later; the engines take a
 // tile per 64 or more clocks.
+//
+// Gaze (algorithm.md section 1): r2x = |2 tx + 1 - cx|, r2y = |2 ty + 1 - cy|, (cx, cy) the gaze
+// in half tiles, latched at start: the controller's (from GAZE) with gaze_en_i, else (ntx, nty),
+// the default gaze (ntx T / 2, nty T / 2), which gives the frame centre's |2t - (n - 1)|. The
+// subtract and absolute value are today's half_dist with the latched centre for the count.
 //
 // Ray budget (BUDGET_EN, docs/budget.md): a budget frame's walker takes the tile rows
 // interleaved (rows 0, S, 2S, .., then 1, 1 + S, ..; msr_budget_pkg::next_row), so the rows the
@@ -47,6 +52,9 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
   input  rule_e                  rule_i,        // decision rule
   input  thr_t [MAX_LEVELS-1:0]  thr_i,         // base thresholds, thr_i[k-1] for level k
   input  logic [7:0]             fov_gain_i,    // foveation gain, 0 = uniform
+  input  logic                   gaze_en_i,     // foveate around (cx, cy), else the centre
+  input  logic [COORD_W-2:0]     gaze_cx_i,     // the gaze in half tiles, (2X + T/2) div T
+  input  logic [COORD_W-2:0]     gaze_cy_i,     // (2Y + T/2) div T
   // Ray budget (BUDGET_EN): the controller's scale of the row the walker is in.
   input  logic                   bud_en_i,      // this frame holds a budget
   output logic [TROW_W-1:0]      row_idx_o,     // the walker's row: its position in the order
@@ -71,12 +79,13 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
 
   localparam int unsigned TIDX_W = COORD_W - 2;     // tile index, up to 4096/8 = 512 tiles
   localparam int unsigned NST    = BUDGET_EN ? 7 : 5;   // pipeline stages
-  localparam int unsigned R2_W   = TIDX_W + 1;      // |2t - (n-1)| < 1024
+  localparam int unsigned R2_W   = TIDX_W + 1;      // |2t + 1 - c| <= 1024
   localparam int unsigned PROD_W = R2_W + 8;        // gain * r2 < 2^18
 
   // ---- Frame set-up (latched at start) ----------------------------------------------------
   logic [2:0]        lg_q, lg_d;                    // log2 T
   logic [TIDX_W:0]   ntx_q, nty_q;                  // tile counts, 1..512
+  logic [TIDX_W:0]   cx_q, cy_q;                    // the gaze in half tiles, 0..1024
   // Control state: the walker (row-major over the tile grid) and the stages' flags.
   typedef struct packed {
     logic              run;                         // the walker has tiles left
@@ -105,10 +114,10 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
     return q + (TIDX_W+1)'(rem);
   endfunction
 
-  // r2 = |2t - (n-1)|: distance of tile t from the frame centre in half-tiles.
-  function automatic logic [R2_W-1:0] half_dist(logic [TIDX_W-1:0] t, logic [TIDX_W:0] n);
+  // r2 = |2t + 1 - c|: distance of tile t from the gaze c in half-tiles (c = n: the centre).
+  function automatic logic [R2_W-1:0] half_dist(logic [TIDX_W-1:0] t, logic [TIDX_W:0] c);
     logic signed [R2_W+1:0] v;
-    v = $signed({2'b0, t, 1'b0}) - $signed({2'b0, n}) + (R2_W+2)'(1);
+    v = $signed({2'b0, t, 1'b1}) - $signed({2'b0, c});
     return (v < 0) ? R2_W'(-v) : R2_W'(v);
   endfunction
 
@@ -197,16 +206,24 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
   assign smask_o   = smask_q;
   assign nty_s_o   = nty_s_q;
 
-  // The frame's tile grid, latched at START (a clear leaves it: only a START reads it).
+  // The frame's tile grid and gaze, latched at START (a clear leaves them: only a START reads
+  // them). The default gaze is the tile count itself: no second count for it.
+  logic [TIDX_W:0] ntx_d, nty_d;
+  assign ntx_d = tile_count(width_i, lg_d);
+  assign nty_d = tile_count(height_i, lg_d);
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       lg_q  <= 3'd4;
       ntx_q <= '0;
       nty_q <= '0;
+      cx_q  <= '0;
+      cy_q  <= '0;
     end else if (start_i && !clear_i) begin
       lg_q  <= lg_d;
-      ntx_q <= tile_count(width_i, lg_d);
-      nty_q <= tile_count(height_i, lg_d);
+      ntx_q <= ntx_d;
+      nty_q <= nty_d;
+      cx_q  <= gaze_en_i ? gaze_cx_i : ntx_d;
+      cy_q  <= gaze_en_i ? gaze_cy_i : nty_d;
     end
   end
 
@@ -279,8 +296,8 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
       y0_q[0]  <= coord_t'(ctl_q.ty) << lg_q;
       s1_rw_q  <= width_i - (dim_t'(ctl_q.tx) << lg_q);
       s1_rh_q  <= height_i - (dim_t'(ctl_q.ty) << lg_q);
-      s1_r2x_q <= half_dist(ctl_q.tx, ntx_q);
-      s1_r2y_q <= half_dist(ctl_q.ty, nty_q);
+      s1_r2x_q <= half_dist(ctl_q.tx, cx_q);
+      s1_r2y_q <= half_dist(ctl_q.ty, cy_q);
       // S2
       x0_q[1]  <= x0_q[0];
       y0_q[1]  <= y0_q[0];

@@ -128,6 +128,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .clk_i, .rst_ni, .clear_i (drain), .start_i (start),
     .width_i (cfg.width), .height_i (cfg.height), .tile_i (cfg.tile), .levels_i (cfg.levels),
     .metric_i (cfg.metric), .rule_i (cfg.rule), .thr_i (cfg.thr), .fov_gain_i (cfg.fov_gain),
+    .gaze_en_i (cfg.gaze.en), .gaze_cx_i (cfg.gaze.cx), .gaze_cy_i (cfg.gaze.cy),
     .bud_en_i (cfg.bud.pixels != '0),
     .row_idx_o (tg_row), .row_ok_i (tg_row_ok), .row_m_i (tg_row_m),
     .ntx_o (tg_ntx), .nty_o (tg_nty), .smask_o (tg_smask), .nty_s_o (tg_nty_s),

@@ -413,6 +413,7 @@ def select_budget(renderer, width: int, height: int, params: Params, cfg: Budget
     controller: fixed thresholds, rounded as a user's (or dithered as a budget frame's, with
     `fixed_dither`)."""
     spec.check_frame_size(width, height)
+    spec.check_gaze(params.gaze, width, height)
     if cfg.budget == 0 and fixed_scale is None:
         return select(renderer, width, height, params, rule=rule)
     rule_name, decide = get_rule(rule)

@@ -1,7 +1,7 @@
 """Command line of the golden model (docs/spec/contracts.md).
 
     python -m msr_model select IMAGE.png --tile 16 --levels 2 --thr 8,16 [--metric max|sum]
-        [--fov-gain 0] [--rule patent|lindilate|lindilate2d] --out OUT.png --source-map MAP.png --stats STATS.json
+        [--fov-gain 0] [--gaze X,Y] [--rule patent|lindilate|lindilate2d] --out OUT.png --source-map MAP.png --stats STATS.json
         [--overview SUMMARY.png] [--budget N|P%] [--scale-init U] [--prior-shift S] [--budget-prev STATS.json]
     python -m msr_model select --scene SCENE --width W --height H [--camera ... | --path FILE --frame K] [the same flags]
     python -m msr_model render --scene SCENE --width W --height H [--camera ... | --path FILE --frame K] --out REF.png
@@ -45,6 +45,17 @@ def _thr_list(text):
         raise argparse.ArgumentTypeError(str(e)) from None
 
 
+def _gaze_arg(text):
+    """--gaze X,Y: two integers >= 0 (the frame bound is checked once the size is known)."""
+    try:
+        vals = int_list(text, "--gaze", 0, None)
+    except UsageError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+    if len(vals) != 2:
+        raise argparse.ArgumentTypeError(f"--gaze must be X,Y (two integers), got {text!r}")
+    return vals
+
+
 def _add_select_flags(p):
     p.add_argument("--tile", type=int, choices=spec.TILE_SIZES, default=16, help="tile size T")
     p.add_argument("--levels", type=int, choices=spec.LEVEL_RANGE, default=2, help="levels L")
@@ -52,6 +63,9 @@ def _add_select_flags(p):
                    help="per-level thresholds, comma-separated, one per level (default 8,16,32 cut to L)")
     p.add_argument("--metric", choices=spec.METRICS, default="max")
     p.add_argument("--fov-gain", type=_int_in(0, 255, "--fov-gain"), default=0)
+    p.add_argument("--gaze", type=_gaze_arg, default=None, metavar="X,Y",
+                   help="gaze point in pixels, 0 <= X < W, 0 <= Y < H: the foveation centre "
+                        "(default: the centre of the tile grid)")
     p.add_argument("--rule", choices=tuple(RULES), default=DEFAULT_RULE,
                    help="decision rule: patent (algorithm.md, default), lindilate or lindilate2d (docs/rules.md)")
     p.add_argument("--out", required=True, help="output frame PNG")
@@ -166,7 +180,14 @@ def _params(args) -> spec.Params:
     if len(thr) != args.levels:
         raise UsageError(f"--thr has {len(thr)} values but --levels is {args.levels}: give one per level")
     return spec.Params(tile=args.tile, levels=args.levels, thr=thr, metric=args.metric,
-                       fov_gain=args.fov_gain)
+                       fov_gain=args.fov_gain, gaze=getattr(args, "gaze", None))
+
+
+def _check_gaze(params: spec.Params, width: int, height: int) -> None:
+    try:
+        spec.check_gaze(params.gaze, width, height)
+    except spec.SpecError as e:
+        raise UsageError(f"--{e}") from None
 
 
 def _camera(args) -> str | None:
@@ -216,11 +237,13 @@ def cmd_select(args) -> int:
     if args.image is not None:
         check_image(args.image)          # size and bit depth from the header, before decoding
         reference = load_rgb(args.image)
+        _check_gaze(params, reference.shape[1], reference.shape[0])
         renderer = ImageRenderer(reference)
         budget = _budget_config(args, renderer.width, renderer.height)
         result = BG.select_budget(renderer, renderer.width, renderer.height, params, budget, rule=args.rule)
     else:
         if args.width is not None and args.height is not None:
+            _check_gaze(params, args.width, args.height)
             budget = _budget_config(args, args.width, args.height)
         renderer = _open_scene(args)
         try:

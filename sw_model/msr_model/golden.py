@@ -65,7 +65,8 @@ class FrameResult:
 def threshold_maps(params: Params, ntx: int, nty: int) -> list[np.ndarray]:
     """thr_k' for every tile: list over k of (nty, ntx) int32 arrays."""
     ty, tx = np.mgrid[0:nty, 0:ntx]
-    return [np.asarray(spec.foveated_threshold(t, tx, ty, ntx, nty, params.fov_gain), dtype=np.int32)
+    cx, cy = spec.gaze_centre(params, ntx, nty)
+    return [np.asarray(spec.foveated_threshold(t, tx, ty, cx, cy, params.fov_gain), dtype=np.int32)
             for t in params.thr]
 
 
@@ -74,6 +75,7 @@ def select(renderer, width: int, height: int, params: Params, rule=DEFAULT_RULE,
     """Run the multi-level selective render of a whole frame; ask `renderer` only for traced
     pixels. `rule`: a contract rule name (rules.RULES) or a function of a PassView."""
     spec.check_frame_size(width, height)
+    spec.check_gaze(params.gaze, width, height)
     rule_name, decide = get_rule(rule)
     ntx, nty = spec.tile_counts(width, height, params.tile)
     frame, source, per_level = select_region(renderer, width, height, params, decide,
@@ -133,6 +135,7 @@ def frame_stats(source: np.ndarray, params: Params, per_level: dict, rule_name: 
         **{f"traced_level{k}": per_level.get(f"t{k}", 0) for k in range(1, L + 1)},
         **{f"interpolated_level{k}": per_level.get(f"i{k}", 0) for k in range(1, L + 1)},
         "rule": rule_name,
+        "gaze": list(params.gaze or spec.default_gaze(width, height, params.tile)),
         "params": params.as_dict(),
     }
 

@@ -48,6 +48,7 @@ class Params:
     metric: str = "max"
     fov_gain: int = 0
     extension: bool = False      # evaluation only: allows L = 4 (EXT_LEVEL_RANGE); no register has it
+    gaze: tuple[int, int] | None = None   # (X, Y) in pixels; None: the default, the frame centre
 
     def __post_init__(self) -> None:
         if self.tile not in TILE_SIZES:
@@ -66,6 +67,11 @@ class Params:
             raise SpecError(f"metric must be 'max' or 'sum', got {self.metric!r}")
         if not 0 <= int(self.fov_gain) <= 255:
             raise SpecError(f"fov_gain {self.fov_gain} outside 0..255")
+        if self.gaze is not None:
+            gaze = tuple(int(v) for v in self.gaze)
+            if len(gaze) != 2 or min(gaze) < 0:
+                raise SpecError(f"gaze must be two pixel coordinates X,Y >= 0, got {self.gaze!r}")
+            object.__setattr__(self, "gaze", gaze)
 
     @property
     def stride(self) -> int:
@@ -78,6 +84,8 @@ class Params:
     def as_dict(self) -> dict:
         out = {"tile": self.tile, "levels": self.levels, "thr": list(self.thr),
                "metric": self.metric, "fov_gain": self.fov_gain}
+        if self.gaze is not None:
+            out["gaze"] = list(self.gaze)
         return {**out, "extension": True} if self.extension else out
 
 
@@ -118,16 +126,42 @@ def frame_tiles(width: int, height: int, tile: int) -> list[Tile]:
 # --- Section 1: per-tile thresholds -------------------------------------------------------
 
 
-def foveated_threshold(thr_k, tx, ty, ntx: int, nty: int, fov_gain: int):
-    """thr_k' = min(255, thr_k + ((fov_gain * r2) >> 4)), r2 in half-tiles from the centre."""
-    r2 = np.maximum(np.abs(2 * np.asarray(tx) - (ntx - 1)), np.abs(2 * np.asarray(ty) - (nty - 1)))
+def default_gaze(width: int, height: int, tile: int) -> tuple[int, int]:
+    """The gaze when none is given: (ntx*T / 2, nty*T / 2), the centre of the tile grid."""
+    ntx, nty = tile_counts(width, height, tile)
+    return ntx * tile // 2, nty * tile // 2
+
+
+def check_gaze(gaze, width: int, height: int) -> None:
+    """A given gaze must be a pixel of the frame: 0 <= X < W, 0 <= Y < H."""
+    if gaze is None:
+        return
+    x, y = gaze
+    if not (0 <= x < width and 0 <= y < height):
+        raise SpecError(f"gaze {x},{y} outside the {width}x{height} frame (0 <= X < {width}, 0 <= Y < {height})")
+
+
+def gaze_centre(params: Params, ntx: int, nty: int) -> tuple[int, int]:
+    """(cx, cy), the gaze in half tiles: ((2X + T div 2) div T, (2Y + T div 2) div T). The
+    default gaze (ntx*T / 2, nty*T / 2) gives (ntx, nty) for either parity of the counts."""
+    if params.gaze is None:
+        return ntx, nty
+    T = params.tile
+    return (2 * params.gaze[0] + T // 2) // T, (2 * params.gaze[1] + T // 2) // T
+
+
+def foveated_threshold(thr_k, tx, ty, cx: int, cy: int, fov_gain: int):
+    """thr_k' = min(255, thr_k + ((fov_gain * r2) >> 4)), r2 = max(|2tx + 1 - cx|, |2ty + 1 - cy|)
+    in half tiles from the gaze (cx, cy) (gaze_centre; cx = ntx, cy = nty is the frame centre)."""
+    r2 = np.maximum(np.abs(2 * np.asarray(tx) + 1 - int(cx)), np.abs(2 * np.asarray(ty) + 1 - int(cy)))
     out = np.minimum(255, np.asarray(thr_k) + ((int(fov_gain) * r2) >> 4))
     return int(out) if np.ndim(out) == 0 else out
 
 
 def tile_thresholds(params: Params, tx: int, ty: int, ntx: int, nty: int) -> tuple[int, ...]:
     """The per-level thresholds of tile (tx, ty): what the tile generation unit hands out."""
-    return tuple(foveated_threshold(t, tx, ty, ntx, nty, params.fov_gain) for t in params.thr)
+    cx, cy = gaze_centre(params, ntx, nty)
+    return tuple(foveated_threshold(t, tx, ty, cx, cy, params.fov_gain) for t in params.thr)
 
 
 # --- Sections 2 and 3: the sample positions along one axis --------------------------------

@@ -170,6 +170,7 @@ def select_tiled(renderer, width: int, height: int, params: Params,
                  order: Iterable[int] | None = None, rule=DEFAULT_RULE):
     """The whole frame through run_tile, tiles in any `order` (indices into frame_tiles)."""
     spec.check_frame_size(width, height)
+    spec.check_gaze(params.gaze, width, height)
     tiles = spec.frame_tiles(width, height, params.tile)
     ntx, nty = spec.tile_counts(width, height, params.tile)
     frame = np.zeros((height, width, 3), dtype=np.uint8)

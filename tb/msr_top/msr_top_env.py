@@ -22,13 +22,16 @@ from msr_funcov import backpressure, partial, record
 MEM = 1 << 18
 FILL = 0xEE
 FB_BASE, SRC_BASE = 0x1000, 0x30000
-# STATUS.ERROR codes (rtl/regs/msr_regs.rdl).
-ERR_NONE, ERR_FRAME_SIZE, ERR_TILE, ERR_LEVELS = 0, 1, 2, 3
-ERR_FB_STRIDE, ERR_FB_BASE, ERR_SRC_STRIDE, ERR_SRC_BASE = 4, 5, 6, 7
-ERR_FB_WRAP, ERR_SRC_WRAP, ERR_OVERLAP = 9, 10, 11
-ERR_WATCHDOG = 12
-ERR_RULE = 13
-ERR_BUDGET, ERR_PROFILE = 14, 15
+# STATUS.ERROR codes, generated from rtl/regs/msr_regs.rdl (enum status_error_e).
+ERR_NONE, ERR_FRAME_SIZE, ERR_TILE, ERR_LEVELS = (R.STATUS_ERROR_NONE, R.STATUS_ERROR_FRAME_SIZE,
+                                                  R.STATUS_ERROR_TILE, R.STATUS_ERROR_LEVELS)
+ERR_FB_STRIDE, ERR_FB_BASE, ERR_SRC_STRIDE, ERR_SRC_BASE = (R.STATUS_ERROR_FB_STRIDE, R.STATUS_ERROR_FB_BASE,
+                                                            R.STATUS_ERROR_SRC_STRIDE, R.STATUS_ERROR_SRC_BASE)
+ERR_FB_WRAP, ERR_SRC_WRAP, ERR_OVERLAP = R.STATUS_ERROR_FB_WRAP, R.STATUS_ERROR_SRC_WRAP, R.STATUS_ERROR_OVERLAP
+ERR_WATCHDOG = R.STATUS_ERROR_WATCHDOG
+ERR_RULE = R.STATUS_ERROR_RULE
+ERR_BUDGET, ERR_PROFILE = R.STATUS_ERROR_BUDGET, R.STATUS_ERROR_PROFILE
+ERR_GAZE = R.STATUS_ERROR_GAZE
 RULES = ("patent", "lindilate")   # CONFIG.RULE 0, 1 (2, 3 are refused with ERR_RULE)
 # msr_top's LINDILATE of this build (the rules it carries): 0 = patent only, RULE 1 refused too
 LINDILATE = int(os.environ.get("LINDILATE", "1"))
@@ -158,7 +161,8 @@ class Env:
             ch.set_pause_generator(pause(rng, p))
 
     async def program(self, W, H, tile, levels, metric, thr, gain, fb_base=FB_BASE, fb_stride=None,
-                      src_en=1, src_base=SRC_BASE, src_stride=None, rule=0):
+                      src_en=1, src_base=SRC_BASE, src_stride=None, rule=0, gaze=None):
+        """gaze: (X, Y) written with GAZE.EN, or None: GAZE 0 (the default gaze, the centre)."""
         fb_stride = 4 * W if fb_stride is None else fb_stride
         src_stride = (W + 3) // 4 * 4 if src_stride is None else src_stride
         thr = list(thr) + [0] * (3 - len(thr))
@@ -168,6 +172,8 @@ class Env:
         await self.wr(R.THRESH, (thr[0] << R.THRESH_THR1_LSB) | (thr[1] << R.THRESH_THR2_LSB)
                       | (thr[2] << R.THRESH_THR3_LSB))
         await self.wr(R.FOV_GAIN, gain)
+        await self.wr(R.GAZE, 0 if gaze is None else (R.GAZE_EN_MASK | (gaze[0] << R.GAZE_X_LSB)
+                                                      | (gaze[1] << R.GAZE_Y_LSB)))
         await self.wr(R.FB_BASE, fb_base)
         await self.wr(R.FB_STRIDE, fb_stride)
         await self.wr(R.SRC_BASE, src_base)
@@ -183,7 +189,7 @@ class Env:
                 return st
         raise AssertionError("accelerator still busy")
 
-    async def start_frame(self, W, H, tile, levels, metric, thr, gain, src_en=1, fill=True, rule=0):
+    async def start_frame(self, W, H, tile, levels, metric, thr, gain, src_en=1, fill=True, rule=0, gaze=None):
         """Program a frame of a new random image and START it (IRQ_EN); the memory is filled
         with FILL first unless fill=False. Returns what check_frame needs."""
         img = make_image(self.rng, W, H)
@@ -193,10 +199,10 @@ class Env:
         if fill:
             self.ram.write(0, bytes([FILL]) * MEM)
         fb_stride, src_stride = await self.program(W, H, tile, levels, metric, thr, gain, src_en=src_en,
-                                                   rule=rule)
+                                                   rule=rule, gaze=gaze)
         await self.wr(R.CTRL, R.CTRL_START_MASK | R.CTRL_IRQ_EN_MASK)
         return dict(img=img, W=W, H=H, tile=tile, levels=levels, metric=metric, thr=list(thr), gain=gain,
-                    src_en=src_en, fb_stride=fb_stride, src_stride=src_stride, rule=rule)
+                    src_en=src_en, fb_stride=fb_stride, src_stride=src_stride, rule=rule, gaze=gaze)
 
     def check_memory(self, f, exact=True, budget=None):
         """The frame's pixels and source codes bit-exact with the golden model (exact=False: a
@@ -208,7 +214,7 @@ class Env:
 
         W, H, thr = f["W"], f["H"], f["thr"]
         params = Params(tile=f["tile"], levels=f["levels"], thr=tuple(thr), metric=("max", "sum")[f["metric"]],
-                        fov_gain=f["gain"])
+                        fov_gain=f["gain"], gaze=f.get("gaze"))
         if budget is None:
             gold = select(ImageRenderer(f["img"]), W, H, params, rule=RULES[f.get("rule", 0)])
         else:
@@ -233,8 +239,8 @@ class Env:
         assert not len(outside), f"{len(outside)} bytes written outside the frame planes, first {int(outside[0][0]):#x}"
         return gold
 
-    async def frame(self, W, H, tile, levels, metric, thr, gain, src_en=1, rule=0):
-        f = await self.start_frame(W, H, tile, levels, metric, thr, gain, src_en=src_en, rule=rule)
+    async def frame(self, W, H, tile, levels, metric, thr, gain, src_en=1, rule=0, gaze=None):
+        f = await self.start_frame(W, H, tile, levels, metric, thr, gain, src_en=src_en, rule=rule, gaze=gaze)
         st = await self.wait_idle()
         assert st & R.STATUS_DONE_MASK and (st & R.STATUS_ERROR_MASK) == 0, f"STATUS {st:#x}"
         assert int(self.dut.irq_o.value) == 1, "interrupt not raised at DONE"
@@ -256,8 +262,8 @@ class Env:
         assert (await self.rd(R.STATUS)) & R.STATUS_DONE_MASK == 0
         await RisingEdge(self.dut.clk_i)
         assert int(self.dut.irq_o.value) == 0
-        self.dut._log.info("frame %dx%d T%d L%d thr %s gain %d rule %s: bit-exact, %d traced, %d cycles",
-                           W, H, tile, levels, thr, gain, RULES[rule], gold.stats["traced"], cycles)
+        self.dut._log.info("frame %dx%d T%d L%d thr %s gain %d rule %s gaze %s: bit-exact, %d traced, %d cycles",
+                           W, H, tile, levels, thr, gain, RULES[rule], gaze, gold.stats["traced"], cycles)
         record("msr_top", tile=tile, levels=levels, metric=("max", "sum")[metric], fov="on" if gain else "off",
                partial=partial(W, H, tile), engines=engines, src="on" if src_en else "off",
                backpressure=backpressure(max(self.mem_pause, 1.0 - self.render.ready_p)))

@@ -4,7 +4,8 @@ Each build runs the cocotb tests of every module in COCOTB_MODULES in one simula
 test_msr_top_frames (random frames and configurations bit-exact with msr_model.golden.select,
 the decision rules), test_msr_top_regs (bad register values, addresses, writes while busy),
 test_msr_top_resets (soft and hard resets anywhere in a frame), test_msr_top_errors (watchdog,
-memory errors, rendering-unit faults), test_msr_top_budget (the ray budget), and this module's
+memory errors, rendering-unit faults), test_msr_top_budget (the ray budget), test_msr_top_gaze
+(the gaze point: refused outside the frame, frames around random gaze points), and this module's
 test_soak (make soak only). What they share is msr_top_env (the bench: Env, RenderModel, setup).
 """
 from __future__ import annotations
@@ -22,7 +23,7 @@ from msr_top_env import make_image, random_config, setup
 HERE = Path(__file__).resolve().parent
 # cocotb imports these from HERE (the runner's test_dir); make soak runs test_soak from this one
 COCOTB_MODULES = ("test_msr_top_frames", "test_msr_top_regs", "test_msr_top_resets", "test_msr_top_errors",
-                  "test_msr_top_budget", "test_msr_top")
+                  "test_msr_top_budget", "test_msr_top_gaze", "test_msr_top")
 
 
 @cocotb.test(skip=not os.environ.get("SOAK_SECONDS"))

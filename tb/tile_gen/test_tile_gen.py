@@ -1,6 +1,6 @@
 """tile_gen: every tile of random frames, in row-major order, with the golden model's extent
-and foveated thresholds (spec section 1) and the frame's decision rule, dispatched only to
-ready engines."""
+and foveated thresholds (spec section 1, around the frame centre or a gaze point) and the
+frame's decision rule, dispatched only to ready engines."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -26,19 +26,29 @@ def unpack_desc(v: int) -> dict:
             "y0": (v >> 39) & 0xFFF, "x0": (v >> 51) & 0xFFF, "rule": (v >> 63) & 1}
 
 
-def expected_tiles(W, H, T, L, metric, thr, gain, rule):
+def expected_tiles(W, H, T, L, metric, thr, gain, rule, gaze=None):
+    """The golden model's descriptors; gaze: (X, Y) in pixels, or None (the default gaze)."""
     from msr_model import spec
     from msr_model.tile_model import frame_tiles
 
     ntx, nty = spec.tile_counts(W, H, T)
+    cx, cy = spec.gaze_centre(spec.Params(tile=T, levels=L, thr=tuple(thr[:L]), gaze=gaze), ntx, nty)
     out = []
     for tx, ty, x0, y0, w, h in frame_tiles(W, H, T):
         out.append({"x0": x0, "y0": y0, "w": w, "h": h, "levels": L, "metric": metric, "rule": rule,
-                    "thr": tuple(spec.foveated_threshold(t, tx, ty, ntx, nty, gain) for t in thr)})
+                    "thr": tuple(spec.foveated_threshold(t, tx, ty, cx, cy, gain) for t in thr)})
     return out
 
 
-async def run_frame(dut, n_eng, rng, W, H, T, L, metric, thr, gain, ready_prob, rule):
+def drive_gaze(dut, T, gaze):
+    """gaze_en_i and (cx, cy) as the controller forms them: (2X + T/2) div T, (2Y + T/2) div T."""
+    dut.gaze_en_i.value = int(gaze is not None)
+    x, y = gaze if gaze is not None else (0, 0)
+    dut.gaze_cx_i.value = (2 * x + T // 2) // T
+    dut.gaze_cy_i.value = (2 * y + T // 2) // T
+
+
+async def run_frame(dut, n_eng, rng, W, H, T, L, metric, thr, gain, ready_prob, rule, gaze=None):
     dut.width_i.value = W
     dut.height_i.value = H
     dut.tile_i.value = TILE_ENC[T]
@@ -47,6 +57,7 @@ async def run_frame(dut, n_eng, rng, W, H, T, L, metric, thr, gain, ready_prob, 
     dut.thr_i.value = thr[0] | (thr[1] << 8) | (thr[2] << 16)
     dut.fov_gain_i.value = gain
     dut.rule_i.value = rule   # 0 patent, 1 lindilate (rule_e)
+    drive_gaze(dut, T, gaze)
     dut.start_i.value = 1
     await RisingEdge(dut.clk_i)
     dut.start_i.value = 0
@@ -66,10 +77,10 @@ async def run_frame(dut, n_eng, rng, W, H, T, L, metric, thr, gain, ready_prob, 
         await RisingEdge(dut.clk_i)
     else:
         raise AssertionError("frame never done")
-    want = expected_tiles(W, H, T, L, metric, thr, gain, rule)
+    want = expected_tiles(W, H, T, L, metric, thr, gain, rule, gaze)
     assert len(got) == len(want), f"{len(got)} tiles, want {len(want)}"
     for i, (g, w) in enumerate(zip(got, want)):
-        assert g == w, f"tile {i} ({W}x{H} T{T} gain {gain} rule {rule}): got {g}, want {w}"
+        assert g == w, f"tile {i} ({W}x{H} T{T} gain {gain} rule {rule} gaze {gaze}): got {g}, want {w}"
     record("msr_tile_gen", engines=n_eng, tile=T, fov="on" if gain else "off", partial=partial(W, H, T))
     await RisingEdge(dut.clk_i)
     dut.desc_ready_i.value = 0
@@ -111,8 +122,35 @@ async def test_frames(dut):
 
 async def reset(dut):
     await start_clock_and_reset(dut, {"clear_i": 0, "start_i": 0, "desc_ready_i": 0, "bud_en_i": 0,
-                                      "row_ok_i": 0, "row_m_i": 256})
+                                      "row_ok_i": 0, "row_m_i": 256, "gaze_en_i": 0, "gaze_cx_i": 0,
+                                      "gaze_cy_i": 0})
     await RisingEdge(dut.clk_i)
+
+
+@cocotb.test()
+async def test_gaze(dut):
+    """Random gaze points (corners, edges, inside) against the golden model's thresholds; the
+    default gaze given explicitly equals gaze_en_i low; frames with and without a gaze back to
+    back, so a stale gaze would show."""
+    n_eng = int(dut.NUM_ENGINES.value)
+    rng = seeded_rng(dut, 4321 + n_eng)
+    await reset(dut)
+    from msr_model import spec
+    cases = [(4096, 17, 8, 2, (4095, 0), 255), (64, 4096, 32, 1, (63, 4095), 200),
+             (4096, 40, 8, 3, (0, 39), 255), (1, 1, 16, 1, (0, 0), 255)]
+    for _ in range(14):
+        W, H, T = rng.randint(1, 300), rng.randint(1, 200), rng.choice((8, 16, 32))
+        g = rng.choice(((0, 0), (W - 1, H - 1), (W - 1, 0), (rng.randrange(W), rng.randrange(H)),
+                        (rng.randrange(W), rng.randrange(H))))
+        cases.append((W, H, T, rng.randint(1, 3), g, rng.choice((16, 50, 255, rng.randint(1, 255)))))
+    for W, H, T, L, gaze, gain in cases:
+        thr = tuple(rng.randint(0, 255) for _ in range(3))
+        await run_frame(dut, n_eng, rng, W, H, T, L, rng.randint(0, 1), thr, gain, rng.choice((0.3, 1.0)),
+                        rng.randint(0, 1), gaze)
+        gx, gy = spec.default_gaze(W, H, T)
+        if gx < W and gy < H:       # the default gaze written out equals the default
+            await run_frame(dut, n_eng, rng, W, H, T, L, 0, thr, gain, 1.0, 0, (gx, gy))
+        await run_frame(dut, n_eng, rng, W, H, T, L, 0, thr, gain, 1.0, 0, None)
 
 
 @cocotb.test()
