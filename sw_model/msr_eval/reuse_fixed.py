@@ -32,7 +32,8 @@ FLOAT_MODES = ("float", "floatt")    # the float study as published; the same re
 
 
 def task_scene(scene: str, width: int, height: int, frames: int, log=print, sweep=SWEEP,
-               reuse_scales=REUSE_SCALES, with_float: bool = True) -> dict:
+               reuse_scales=REUSE_SCALES, with_float: bool = True, refresh: int = RU.REFRESH,
+               age_max: int = RU.AGE_MAX) -> dict:
     from msr_model.embree import open_renderer
     from msr_model.metrics import capped, flicker, psnr
     from .temporal import orbit_path
@@ -70,7 +71,8 @@ def task_scene(scene: str, width: int, height: int, frames: int, log=print, swee
                 state[key] = FL.PrevFrame(res.frame, res.depth, fcam, res.age)
                 out, traced, reused = res.frame, res.traced, res.reused
             else:
-                res, state[key] = RU.select_with_reuse(plane, width, height, params, rule, cam, state[key], invz_exp)
+                res, state[key] = RU.select_with_reuse(plane, width, height, params, rule, cam, state[key], invz_exp,
+                                                       refresh=refresh, age_max=age_max)
                 out, traced, reused = res.frame, res.traced, res.reused
             err = out.astype(np.int16) - full.astype(np.int16)
             m = per[key]
@@ -146,6 +148,10 @@ def main(argv=None) -> int:
     ap.add_argument("--height", type=int, default=270)
     ap.add_argument("--out", type=Path, default=Path("build/reuse_fixed"))
     ap.add_argument("--merge", nargs="+", type=Path, default=None, help="no run: merge these reuse.json files")
+    ap.add_argument("--alone-from", type=Path, default=None,
+                    help="take the rules-alone and float runs from this reuse.json (same scenes and size)")
+    ap.add_argument("--refresh", type=int, default=RU.REFRESH, help="the refresh period (study only)")
+    ap.add_argument("--age-max", type=int, default=RU.AGE_MAX, help="the age bound (study only)")
     a = ap.parse_args(argv)
     if a.merge:
         parts = [json.loads(p.read_text()) for p in a.merge]
@@ -154,8 +160,17 @@ def main(argv=None) -> int:
         t0 = time.perf_counter()
         res = {"width": a.width, "height": a.height, "frames": a.frames, "sweep_scales": list(SWEEP),
                "reuse_scales": list(REUSE_SCALES), "scenes": {}}
+        old = json.loads(a.alone_from.read_text()) if a.alone_from else None
+        res.update(refresh=a.refresh, age_max=a.age_max)
         for scene in a.scenes:
-            res["scenes"][scene] = task_scene(scene, a.width, a.height, a.frames)
+            if old is None:
+                res["scenes"][scene] = task_scene(scene, a.width, a.height, a.frames, refresh=a.refresh,
+                                                  age_max=a.age_max)
+                continue
+            sc = task_scene(scene, a.width, a.height, a.frames, sweep=(), with_float=False, refresh=a.refresh,
+                            age_max=a.age_max)
+            sc["runs"].update({k: v for k, v in old["scenes"][scene]["runs"].items() if "|reuse|" not in k})
+            res["scenes"][scene] = sc
         res["seconds"] = round(time.perf_counter() - t0, 1)
     res = finish(res)
     a.out.mkdir(parents=True, exist_ok=True)

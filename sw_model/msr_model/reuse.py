@@ -210,7 +210,7 @@ def gather(state: "ReuseState", u, v) -> Gather:
     return Gather((acc + 128) >> 8, (accw + 128) >> 8, hi - lo, lo, hi, age, inside, sky_all, sky_none)
 
 
-def refresh_phase(x, y, tile: int) -> np.ndarray:
+def refresh_phase(x, y, tile: int, period: int = REFRESH) -> np.ndarray:
     """The staggered expiry's phase of pixel (x, y), 0..3: a hash of the position inside the
     tile plus tx + 2 ty, so that every in-tile position takes all four phases over a 2 x 2
     block of tiles (each level's positions split evenly over the phases)."""
@@ -218,7 +218,7 @@ def refresh_phase(x, y, tile: int) -> np.ndarray:
     sh = int(tile).bit_length() - 1
     xl, yl = x & (tile - 1), y & (tile - 1)
     h = (xl ^ (xl >> 2) ^ (xl >> 4)) + 2 * (yl ^ (yl >> 2) ^ (yl >> 4)) + (yl >> 1) + 3 * (xl >> 1)
-    return (h + (x >> sh) + 2 * (y >> sh)) & (REFRESH - 1)
+    return (h + (x >> sh) + 2 * (y >> sh)) % period
 
 
 def lerp_invz(wa, wb, a, b, m):
@@ -265,11 +265,13 @@ def usable(prev: ReuseState | None, width: int, height: int, invz_exp: int, came
 
 def select_with_reuse(renderer, width: int, height: int, params: Params, rule="patent",
                       camera: str | None = None, prev: ReuseState | None = None,
-                      invz_exp: int = 0, reuse: bool = True) -> tuple[ReuseFrame, ReuseState]:
+                      invz_exp: int = 0, reuse: bool = True, refresh: int = REFRESH,
+                      age_max: int = AGE_MAX) -> tuple[ReuseFrame, ReuseState]:
     """golden.select_region's passes; where the rule traces a new pixel (levels 1..L), the
     previous frame is asked first (docs/spec/reuse.md). `renderer.render_invz(xs, ys)` gives
     traced pixels' colours and inverse depths. Without a usable `prev` (or reuse=False) the
-    frame and source map are golden.select's."""
+    frame and source map are golden.select's. refresh, age_max: the contract's REFRESH and
+    AGE_MAX (other values for the study only)."""
     spec.check_frame_size(width, height)
     rule_name, decide = get_rule(rule)
     T, L = params.tile, params.levels
@@ -312,7 +314,7 @@ def select_with_reuse(renderer, width: int, height: int, params: Params, rule="p
             wm = lerp_invz(wa, wb, view.a, view.b, view.m)
             take = np.zeros(view.shape, bool)
             if cmap is not None:
-                take = _reuse_decision(view, ~interp, prev, cmap, tx, ty, wa, wb, wm, index)
+                take = _reuse_decision(view, ~interp, prev, cmap, tx, ty, wa, wb, wm, index, refresh, age_max)
                 values = np.where(take.ok[..., None], take.colour, values).astype(np.uint8)
                 age[ty[take.ok], tx[take.ok]] = take.age[take.ok]
                 take = take.ok
@@ -344,7 +346,8 @@ class _Take:
     age: np.ndarray
 
 
-def _reuse_decision(view, traces, prev: ReuseState, cmap: CameraMap, tx, ty, wa, wb, wm, index: int) -> _Take:
+def _reuse_decision(view, traces, prev: ReuseState, cmap: CameraMap, tx, ty, wa, wb, wm, index: int,
+                    refresh: int = REFRESH, age_max: int = AGE_MAX) -> _Take:
     """Where a decision the rule traces takes the previous frame's colour (docs/spec/reuse.md,
     steps 3 to 8), and that colour and the pixel's new age."""
     rp = reproject(cmap, tx, ty, wm)
@@ -356,8 +359,8 @@ def _reuse_decision(view, traces, prev: ReuseState, cmap: CameraMap, tx, ty, wa,
     R = g.colour.astype(np.int32)
     colour_ok = view.below_threshold(view.diff(R, view.A)) | view.below_threshold(view.diff(R, view.B))
     taps_ok = view.below_threshold(spec.color_diff(g.hi, g.lo, view.metric))
-    fresh = (index + refresh_phase(tx, ty, view.tile)) & (REFRESH - 1) != 0
-    ok = traces & valid & colour_ok & taps_ok & (g.age < AGE_MAX) & fresh
+    fresh = (index + refresh_phase(tx, ty, view.tile, refresh)) % refresh != 0
+    ok = traces & valid & colour_ok & taps_ok & (g.age < age_max) & fresh
     return _Take(np.asarray(ok, bool), R.astype(np.uint8), (g.age + 1).astype(np.uint8))
 
 
