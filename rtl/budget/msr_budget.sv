@@ -143,6 +143,7 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
 
   // only the frame's geometry and budget fields are read (the rest is the writer's and engines')
   logic unused;
-  assign unused = ^{row_idx, raw_i.rule, raw_i.metric, raw_i.thr, raw_i.fov_gain, raw_i.gaze, raw_i.fb};
+  assign unused = ^{row_idx, raw_i.rule, raw_i.metric, raw_i.thr, raw_i.fov_gain, raw_i.gaze,
+                    raw_i.fb};
 
 endmodule : msr_budget

@@ -413,7 +413,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       if (state_q == ST_CHECK && step_q == STEP_CMP[4:0]) begin
         chk_q      <= chk_all;
         rule_chk_q <= raw_q.rule[1] || (LINDILATE == 0 && raw_q.rule[0]);
-        gaze_chk_q <= raw_q.gaze.en && (raw_q.gaze.x >= raw_q.width || raw_q.gaze.y >= raw_q.height);
+        gaze_chk_q <= raw_q.gaze.en &&
+                      (raw_q.gaze.x >= raw_q.width || raw_q.gaze.y >= raw_q.height);
       end
       if (state_q == ST_CHECK) begin
         gaze_cx_q  <= half_pos(raw_q.gaze.x, raw_q.tile);
