@@ -7,6 +7,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 GENERATED_PAGES = {"docs/regs.md"}          # peakrdl-markdown's register map
+OUTSIDE, OUTSIDE_SPEC = "../" + "shared", "shared/" + "spec"
 TRACKER = re.compile(r"\b[Ii]ssue ?#?\d+\b|\(#\d+\)")
 
 
@@ -32,7 +33,8 @@ def test_no_tracker_numbers_and_no_links_out_of_the_repository():
         text = f.read_text(errors="replace")
         rel = f.relative_to(ROOT)
         assert not TRACKER.search(text), f"{rel}: cites a tracker number: {TRACKER.search(text).group(0)}"
-        assert "../shared" not in text and "shared/spec" not in text, f"{rel}: refers outside the repository"
+        if f.name != "test_house.py":                      # this test names what it looks for
+            assert OUTSIDE not in text and OUTSIDE_SPEC not in text, f"{rel}: refers outside the repository"
 
 
 def test_no_hand_written_python_file_over_600_lines():
