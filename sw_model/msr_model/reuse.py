@@ -37,9 +37,9 @@ W_FRAC = 16                # the product terms b_r * w: w read as w / 2^16
 UV_FRAC = 4                # previous-frame position: 4 fraction bits (bilinear weights in 1/16)
 RECIP_INDEX_BITS = 8       # reciprocal seed table: 256 entries of 16 bits
 DEPTH_TOL_SHIFT = 6        # |Wb - Wp| <= (Wp >> 6) + 1: about 1.6 %
-AGE_BITS = 2
-AGE_MAX = 3                # reuse only from taps of age < AGE_MAX (chains of at most 3 reuses)
-REFRESH = 4                # every pixel refuses reuse one frame in REFRESH, staggered by position
+AGE_BITS = 3
+AGE_MAX = 7                # reuse only from taps of age < AGE_MAX (chains of at most 7 reuses)
+REFRESH = 8                # every pixel refuses reuse one frame in REFRESH, staggered by position
 SRC_REUSED_BASE = spec.SRC_REUSED_BASE   # reused at level k -> 32 + k (algorithm.md section 4)
 
 
@@ -211,9 +211,9 @@ def gather(state: "ReuseState", u, v) -> Gather:
 
 
 def refresh_phase(x, y, tile: int, period: int = REFRESH) -> np.ndarray:
-    """The staggered expiry's phase of pixel (x, y), 0..3: a hash of the position inside the
-    tile plus tx + 2 ty, so that every in-tile position takes all four phases over a 2 x 2
-    block of tiles (each level's positions split evenly over the phases)."""
+    """The staggered expiry's phase of pixel (x, y), 0..period-1: a hash of the position inside
+    the tile plus tx + 2 ty, so that every in-tile position takes every phase over a block of
+    tiles (each level's positions split evenly over the phases)."""
     x, y = np.asarray(x, np.int64), np.asarray(y, np.int64)
     sh = int(tile).bit_length() - 1
     xl, yl = x & (tile - 1), y & (tile - 1)
@@ -239,7 +239,7 @@ class ReuseState:
     the frame's camera string, its number in the sequence and the inverse depth's exponent."""
     frame: np.ndarray          # (H, W, 3) uint8
     invz: np.ndarray           # (H, W) uint16
-    age: np.ndarray            # (H, W) uint8, 0..AGE_MAX
+    age: np.ndarray            # (H, W) uint8, 0..AGE_MAX (3 bits)
     camera: str | None
     index: int = 0
     invz_exp: int = 0
