@@ -16,6 +16,13 @@ CAMERA_PATH  ?=
 # GAZE=X,Y: the gaze point in pixels (docs/spec/contracts.md "Gaze"): the foveation (FOV_GAIN) centres
 # there; empty: the default, the centre of the tile grid. run_sim.py refuses one outside the frame.
 GAZE         ?=
+REUSE        ?=
+# Refused before the harness is built (run_sim.py --reuse refuses it too).
+ifneq ($(filter sim,$(MAKECMDGOALS)),)
+ifneq ($(filter-out 0 no false,$(strip $(REUSE))),)
+$(error make sim: error: REUSE=$(REUSE): reuse across frames is not in the hardware yet)
+endif
+endif
 SIM_BUDGET_ON := $(strip $(BUDGET))
 SIM_BUILD    := build/sim/$(if $(SIM_WAVES_ON),waves,fast)$(if $(SIM_BUDGET_ON),_budget)
 SIM_BIN      := $(SIM_BUILD)/Vmsr_sim_top

@@ -47,8 +47,6 @@ module msr_fifo_fv #(
   a_trk_inside: assert property (@(posedge clk_i) disable iff (!rst_ni) !trk_q || trk_pos_q < ref_q);
   a_trk_order:  assert property (@(posedge clk_i) disable iff (!rst_ni)
                                  !(trk_q && trk_pos_q == 0) || (valid_o && data_o == trk_data_q));
-  // The inline assertion of msr_fifo.sv (a_count_range), restated.
-  a_count_range: assert property (@(posedge clk_i) disable iff (!rst_ni) count_o <= DEPTH);
 
   // Induction strengtheners on the internal state (pointers agree with the count; the
   // tracked word sits trk_pos_q entries after the read pointer).

@@ -468,19 +468,19 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
 
   // ---- Invariants ----------------------------------------------------------------------------
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_row_when_ready, row_done_i |-> row_ready_o || start_p || check_p || clear_i)
-  `MSR_ASSERT(a_start_budget_on, start_p |-> cfg.budget != '0)
-  `MSR_ASSERT(a_row_traced_range,
-              act_q && row_done_i && state_q == ST_IDLE |-> row_traced_i >= g_sel &&
+  `MSR_ASSERT_IMP(a_row_when_ready, row_done_i, row_ready_o || start_p || check_p || clear_i)
+  `MSR_ASSERT_IMP(a_start_budget_on, start_p, cfg.budget != '0)
+  `MSR_ASSERT_IMP(a_row_traced_range,
+              act_q && row_done_i && state_q == ST_IDLE, row_traced_i >= g_sel &&
               row_traced_i <= p_sel)
-  `MSR_ASSERT(a_scale_range, act_q |-> u_q[base_q] >= (frm_q.seeded ? U_MIN : U_MIN_FIRST) &&
+  `MSR_ASSERT_IMP(a_scale_range, act_q, u_q[base_q] >= (frm_q.seeded ? U_MIN : U_MIN_FIRST) &&
                              u_q[base_q] <= U_MAX)
-  `MSR_ASSERT(a_rows_in_frame, act_q |-> rows_done_q < frm_q.nty)
-  `MSR_ASSERT(a_rows_count, act_q |-> rows_next_q == rows_done_q + ROW_W'(1) &&
+  `MSR_ASSERT_IMP(a_rows_in_frame, act_q, rows_done_q < frm_q.nty)
+  `MSR_ASSERT_IMP(a_rows_count, act_q, rows_next_q == rows_done_q + ROW_W'(1) &&
                                       rows_left_q == frm_q.nty - rows_done_q)
-  `MSR_ASSERT(a_shift_fits, state_q inside {ST_WH, ST_N0} && mul_done |->
+  `MSR_ASSERT_IMP(a_shift_fits, state_q inside {ST_WH, ST_N0} && mul_done,
               mul_prod[PROD_W-1:ACT_W] == '0)
-  `MSR_ASSERT(a_num_fits, state_q == ST_NUM && mul_done |-> mul_prod[PROD_W-1] == 1'b0)
+  `MSR_ASSERT_IMP(a_num_fits, state_q == ST_NUM && mul_done, mul_prod[PROD_W-1] == 1'b0)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_budget_ctrl

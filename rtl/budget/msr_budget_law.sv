@@ -146,7 +146,7 @@ module msr_budget_law import msr_pkg::*; import msr_budget_pkg::*; #(
 
   // The seed pass's add stays below 2^SEED_W and a row's subtract never borrows (above). No
   // reset here: state_i comes from the controller's reset state, so b_upd is low after reset.
-  `MSR_ASSERT(a_b_rest_no_borrow, b_upd |-> !b_diff[SEED_W], clk_i, 1'b0)
+  `MSR_ASSERT_IMP(a_b_rest_no_borrow, b_upd, !b_diff[SEED_W], clk_i, 1'b0)
 
   assign frm_o = frm_q;
   assign law_o = law_q;

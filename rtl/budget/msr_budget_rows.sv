@@ -233,19 +233,19 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   /* verilator lint_off SYNCASYNCNET */
   // Every pixel belongs to one of the three open rows (and none comes before they are set).
   for (genvar i = 0; i < NUM_IN; i++) begin : g_chk
-    `MSR_ASSERT(a_row_open, pix_fire_i[i] && act_q |->
+    `MSR_ASSERT_IMP(a_row_open, pix_fire_i[i] && act_q,
                 (tile_row(pix_y_i[i], lg_q) == hrow_q[0] ||
                  tile_row(pix_y_i[i], lg_q) == hrow_q[1] ||
                  tile_row(pix_y_i[i], lg_q) == hrow_q[2]),
                 clk_i, !rst_ni || clear_i)
     for (genvar k = 0; k < 2; k++) begin : g_exact
-      `MSR_ASSERT(a_slot_exact, pix_fire_i[i] && act_q && set_q == '0 |->
+      `MSR_ASSERT_IMP(a_slot_exact, pix_fire_i[i] && act_q && set_q == '0,
                   in_row(pix_y_i[i][COORD_W-1:3], hy_q[k], ign3_q, ign4_q) ==
                   (tile_row(pix_y_i[i], lg_q) == hrow_q[k]), clk_i, !rst_ni || clear_i)
     end
-    `MSR_ASSERT(a_rows_set, pix_fire_i[i] && act_q |-> set_q == '0, clk_i, !rst_ni || clear_i)
+    `MSR_ASSERT_IMP(a_rows_set, pix_fire_i[i] && act_q, set_q == '0, clk_i, !rst_ni || clear_i)
   end
-  `MSR_ASSERT(a_restart_idle, take_q |-> inc_tr[tslot_q] == '0 && inc_la[tslot_q] == '0,
+  `MSR_ASSERT_IMP(a_restart_idle, take_q, inc_tr[tslot_q] == '0 && inc_la[tslot_q] == '0,
               clk_i, !rst_ni || clear_i)
   /* verilator lint_on SYNCASYNCNET */
 

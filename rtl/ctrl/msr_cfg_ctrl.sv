@@ -494,27 +494,27 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   `MSR_CLR_REG(u_irq_q, 1, 1'b0, 1'b1, irq_en_i && irq_flags_i != '0, irq_o)
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_tif_no_underflow,
-              (state_q == ST_RUN) |-> !(tif_q == '0 && n_done != '0 && !desc_fire_q))
+  `MSR_ASSERT_IMP(a_tif_no_underflow,
+              (state_q == ST_RUN), !(tif_q == '0 && n_done != '0 && !desc_fire_q))
   `MSR_ASSERT(a_tif_no_overflow, tif_q != '1)
   `MSR_COVER(c_refused, refused_q)
   `MSR_COVER(c_overlap_refused, refused_q && err_q == ERR_OVERLAP)
   `MSR_COVER(c_rule_refused, refused_q && err_q == ERR_RULE)
   `MSR_COVER(c_gaze_refused, refused_q && err_q == ERR_GAZE)
   // An accepted gaze lies in the frame: its half-tile position is at most 2 * 512 tiles.
-  `MSR_ASSERT(a_gaze_in_range, !(accept && raw_q.gaze.en) ||
-              (gaze_cx_q <= half_t'(1024) && gaze_cy_q <= half_t'(1024)))
+  `MSR_ASSERT_IMP(a_gaze_in_range, accept && raw_q.gaze.en,
+              gaze_cx_q <= half_t'(1024) && gaze_cy_q <= half_t'(1024))
 
   `MSR_COVER(c_drain_with_mem_err, state_q == ST_CLEAR && err_q == ERR_AXI_WRITE)
   `MSR_COVER(c_wdog_run, wd_fire && state_q == ST_RUN)
   `MSR_COVER(c_wdog_drain, wd_fire && state_q == ST_DRAIN)
   if (BUDGET_EN) begin : g_bud_chk
-    `MSR_ASSERT(a_bud_check_in_time,
-                state_q == ST_CHECK && step_q == 5'(STEP_END - 1) && bud_on |-> bud_done_i)
+    `MSR_ASSERT_IMP(a_bud_check_in_time,
+                state_q == ST_CHECK && step_q == 5'(STEP_END - 1) && bud_on, bud_done_i)
   end
   // The registered decision equals the one it replaces (the step compare, the live flags).
-  `MSR_ASSERT(a_decide_at_end, state_q == ST_CHECK |-> decide_q == (step_q == STEP_END[4:0]))
-  `MSR_ASSERT(a_decide_flags, state_q == ST_CHECK && decide_q |->
+  `MSR_ASSERT_IMP(a_decide_at_end, state_q == ST_CHECK, decide_q == (step_q == STEP_END[4:0]))
+  `MSR_ASSERT_IMP(a_decide_flags, state_q == ST_CHECK && decide_q,
               chk_none_q == (chk_q == '0) && bud_bad_q == bud_bad)
   `MSR_ASSERT(a_eng_drain_is_drain, eng_drain_q == {NUM_ENGINES{drain_o}})
   /* verilator lint_on SYNCASYNCNET */

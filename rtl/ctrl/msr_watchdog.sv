@@ -59,7 +59,7 @@ module msr_watchdog #(
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_lo_ones, lo_ones_q == (cnt_q[15:0] == 16'hFFFF))
   // With the limit held, the registered compare is the compare: it fires exactly at the limit.
-  `MSR_ASSERT(a_hit_exact, on && $stable(limit) && $past($stable(limit)) && $past(on) |->
+  `MSR_ASSERT_IMP(a_hit_exact, on && $stable(limit) && $past($stable(limit)) && $past(on),
                            hit_q == (lim_on_q && cnt_q == limit && cnt_q != '0))
   /* verilator lint_on SYNCASYNCNET */
 endmodule : msr_watchdog

@@ -152,9 +152,9 @@ module msr_decision_pipe
                {valid_o, s4_valid_q, s3_valid_q, s2_valid_q, s1_valid_q, s0_valid_q})
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_out_hold, valid_o && !ready_i |=> valid_o &&
+  `MSR_ASSERT_NXT(a_out_hold, valid_o && !ready_i, valid_o &&
       $stable({interp_o, diff_o, rgb_o, user_o}), clk_i, !rst_ni || clear_i)
-  `MSR_ASSERT(a_in_range, valid_i && ready_o |-> gap_i inside {[1 : 8]} && off_i < gap_i)
+  `MSR_ASSERT_IMP(a_in_range, valid_i && ready_o, gap_i inside {[1 : 8]} && off_i < gap_i)
   `MSR_COVER(c_interp, valid_o && ready_i && interp_o)
   `MSR_COVER(c_trace, valid_o && ready_i && !interp_o)
   /* verilator lint_on SYNCASYNCNET */

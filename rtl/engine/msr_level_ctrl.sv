@@ -477,16 +477,16 @@ module msr_level_ctrl
   assign busy_o        = (ws_q != WS_IDLE) || out_valid_q;
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_start_args, start_valid_i && start_ready_o |->
+  `MSR_ASSERT_IMP(a_start_args, start_valid_i && start_ready_o,
       w_i inside {[1 : MAX_TILE]} && h_i inside {[1 : MAX_TILE]} &&
       levels_i inside {[1 : MAX_LEVELS]})
-  `MSR_ASSERT(a_step_hold, step_valid_o && !step_ready_i |=> step_valid_o &&
+  `MSR_ASSERT_NXT(a_step_hold, step_valid_o && !step_ready_i, step_valid_o &&
       $stable({step_x_q, step_y_q, step_ax_q, step_ay_q, step_bx_q, step_by_q, step_gap_q,
                step_dir_q, out_first_q}), clk_i, !rst_ni || clear_i)
-  `MSR_ASSERT(a_gap, step_valid_o && step_dir_q != DIR_INIT |->
+  `MSR_ASSERT_IMP(a_gap, step_valid_o && step_dir_q != DIR_INIT,
       step_gap_q inside {[2 : 8]} && step_off_q == (step_gap_q >> 1))
   // The flags beside the walk state equal the compares they stand for, while they are used.
-  `MSR_ASSERT(a_walk_flags, ws_q == WS_WALK |->
+  `MSR_ASSERT_IMP(a_walk_flags, ws_q == WS_WALK,
       pw_left0_q == (pw_q.left == '0) && pw_left1_q == (pw_q.left == (LCOORD_W+1)'(1)) &&
       lw_edge_q == (lw_q.cur == '0 || lw_q.left == '0))
   `MSR_COVER(c_outer_a, step_valid_o && step_dir_q != DIR_INIT && step_o2a_q)

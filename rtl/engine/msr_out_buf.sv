@@ -69,9 +69,9 @@ module msr_out_buf #(
   assign can_issue_o = (credit_q != '0);
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_room, valid_i |-> buf_ready)
+  `MSR_ASSERT_IMP(a_room, valid_i, buf_ready)
   `MSR_ASSERT(a_credits, 32'(credit_q) + 32'(buf_count) <= DEPTH)
-  `MSR_ASSERT(a_no_issue_without_credit, issue_i |-> can_issue_o)
+  `MSR_ASSERT_IMP(a_no_issue_without_credit, issue_i, can_issue_o)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_out_buf

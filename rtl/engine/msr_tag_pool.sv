@@ -103,12 +103,12 @@ module msr_tag_pool #(
   end
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_alloc_avail, alloc_i |-> avail_o)
-  `MSR_ASSERT(a_alloc_free, alloc_i |-> !inflight_q[tag_o])
-  `MSR_ASSERT(a_release_inflight, release_i |-> inflight_q[release_tag_i] && !init_q)
-  `MSR_ASSERT(a_no_overflow, (init_q || release_i) |-> fifo_ready)
-  `MSR_ASSERT(a_conserved, !init_q |-> $countones(inflight_q) == 32'(inflight_o))
-  `MSR_ASSERT(a_out_covers, !out_q |-> inflight_q == '0)
+  `MSR_ASSERT_IMP(a_alloc_avail, alloc_i, avail_o)
+  `MSR_ASSERT_IMP(a_alloc_free, alloc_i, !inflight_q[tag_o])
+  `MSR_ASSERT_IMP(a_release_inflight, release_i, inflight_q[release_tag_i] && !init_q)
+  `MSR_ASSERT_IMP(a_no_overflow, (init_q || release_i), fifo_ready)
+  `MSR_ASSERT_IMP(a_conserved, !init_q, $countones(inflight_q) == 32'(inflight_o))
+  `MSR_ASSERT_IMP(a_out_covers, !out_q, inflight_q == '0)
   `MSR_COVER(c_all_inflight, inflight_o == (TAG_W+1)'(N))
   /* verilator lint_on SYNCASYNCNET */
 

@@ -319,22 +319,22 @@ module msr_tile_ctx
 `endif
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_start_free, start_i |-> free_o)
-  `MSR_ASSERT(a_issue_head, issue_i |-> head_valid_q && state_q == CTX_COMPUTE &&
+  `MSR_ASSERT_IMP(a_start_free, start_i, free_o)
+  `MSR_ASSERT_IMP(a_issue_head, issue_i, head_valid_q && state_q == CTX_COMPUTE &&
       (!head_q.first || pend_zero_q))
   `MSR_ASSERT(a_pend_no_wrap, !(pend_q == '0 && we_i && !pend_up) &&
       !(pend_q >= PEND_W'('1 - 1) && pend_up && !we_i))
-  `MSR_ASSERT(a_retro_pending, retro_i |-> !pend_zero_q && desc_q.rule == RULE_LINDILATE)
+  `MSR_ASSERT_IMP(a_retro_pending, retro_i, !pend_zero_q && desc_q.rule == RULE_LINDILATE)
   // lindilate's dilation may trace a pixel it interpolated (the render answer overwrites it)
-  `MSR_ASSERT(a_write_once, we_i |-> state_q == CTX_COMPUTE &&
+  `MSR_ASSERT_IMP(a_write_once, we_i, state_q == CTX_COMPUTE &&
       (!written_q[waddr_i] || (desc_q.rule == RULE_LINDILATE && wsrc_i < SRC_INTERP_BASE)) &&
       32'(waddr_i[LCOORD_W-1:0]) < 32'(desc_q.w) &&
       32'(waddr_i[TADDR_W-1:LCOORD_W]) < 32'(desc_q.h))
-  `MSR_ASSERT(a_all_written, state_q == CTX_COMPUTE && state_d == CTX_FULL |->
+  `MSR_ASSERT_IMP(a_all_written, state_q == CTX_COMPUTE && state_d == CTX_FULL,
       all_written(written_q, desc_q.w, desc_q.h))
-  `MSR_ASSERT(a_stream_full, str_own_i |-> full_o)
+  `MSR_ASSERT_IMP(a_stream_full, str_own_i, full_o)
   `MSR_ASSERT(a_pend_zero, pend_zero_q == (pend_q == '0))
-  `MSR_ASSERT(a_tail_has_head, tail_valid_q |-> head_valid_q)
+  `MSR_ASSERT_IMP(a_tail_has_head, tail_valid_q, head_valid_q)
   `MSR_ASSERT(a_cand_regs, cand_tail_q == (tail_valid_q && !tail_q.first) &&
       cand_head_q == (head_valid_q && (!head_q.first || pend_zero_q)))
   `MSR_COVER(c_barrier_wait, head_valid_q && head_q.first && !pend_zero_q)

@@ -355,19 +355,19 @@ module msr_tile_engine
   // ---- Checks -------------------------------------------------------------------------------------
   /* verilator lint_off SYNCASYNCNET */
   // Handshakes (outputs): valid held until ready, data stable.
-  `MSR_ASSERT(a_req_hold, req_valid_o && !req_ready_i |=> req_valid_o &&
+  `MSR_ASSERT_NXT(a_req_hold, req_valid_o && !req_ready_i, req_valid_o &&
       $stable({req_x_o, req_y_o, req_tag_o}), clk_i, !rst_ni || clear_i)
-  `MSR_ASSERT(a_pix_hold, pix_valid_o && !pix_ready_i |=> pix_valid_o &&
+  `MSR_ASSERT_NXT(a_pix_hold, pix_valid_o && !pix_ready_i, pix_valid_o &&
       $stable(pix_word), clk_i, !rst_ni || clear_i)
   // Handshakes (inputs): the environment holds what it offers.
-  `MSR_ASSUME(m_desc_hold, desc_valid_i && !desc_ready_o |=> desc_valid_i && $stable(desc_i),
+  `MSR_ASSUME_NXT(m_desc_hold, desc_valid_i && !desc_ready_o, desc_valid_i && $stable(desc_i),
       clk_i, !rst_ni || clear_i)
-  `MSR_ASSUME(m_desc_legal, desc_valid_i |-> desc_i.w inside {[1 : MAX_TILE]} &&
+  `MSR_ASSUME_IMP(m_desc_legal, desc_valid_i, desc_i.w inside {[1 : MAX_TILE]} &&
       desc_i.h inside {[1 : MAX_TILE]} && desc_i.levels inside {[1 : MAX_LEVELS]})
   // Internal invariants.
   `MSR_ASSERT(a_issue_onehot, $onehot0(gr_gnt))
   // the line before is 1..8 away (rows of G_y(k-1), columns of G_x(k))
-  `MSR_ASSERT(a_retro_delta, pv_valid && pv_side.lin && !pv_side.fline |->
+  `MSR_ASSERT_IMP(a_retro_delta, pv_valid && pv_side.lin && !pv_side.fline,
       pv_side.o.ldelta inside {[1 : 8]})
   `MSR_COVER(c_retro, retro_phase && alloc_tag)
   `MSR_COVER(c_all_ctx_busy, ctx_free == '0)

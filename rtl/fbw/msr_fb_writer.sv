@@ -260,7 +260,7 @@ module msr_fb_writer import msr_pkg::*; import msr_fbw_pkg::*; #(
   assign idle_o = (sl_valid == '0) && idle_rb && idle_addr && idle_aw && idle_w;
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_frame_settled, pix_valid_i != '0 |-> fb_q == fb && tile_q == tile_i &&
+  `MSR_ASSERT_IMP(a_frame_settled, pix_valid_i != '0, fb_q == fb && tile_q == tile_i &&
                                last_x_q == width_i - 1'b1)
   /* verilator lint_on SYNCASYNCNET */
 

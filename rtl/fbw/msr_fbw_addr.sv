@@ -313,7 +313,7 @@ module msr_fbw_addr import msr_pkg::*; import msr_fbw_pkg::*; #(
   assign unused = ^{s5_count, fb_i.src_en};   // both planes are addressed; the AW side drops one
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_s5_room, s4_v_q |-> s5_room)
+  `MSR_ASSERT_IMP(a_s5_room, s4_v_q, s5_room)
   `MSR_ASSERT(a_s5_credit, s5_credit_q <= ($clog2(S5_D) + 1)'(S5_D))
   /* verilator lint_on SYNCASYNCNET */
 

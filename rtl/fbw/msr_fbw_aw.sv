@@ -207,11 +207,11 @@ module msr_fbw_aw import msr_fbw_pkg::*; #(
   assign unused = ^{m_axi_bid, m_axi_bresp[0], aq_valid, aq_ready, aq_count};
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_aw_stable, m_axi_awvalid && !m_axi_awready |=>
+  `MSR_ASSERT_NXT(a_aw_stable, m_axi_awvalid && !m_axi_awready,
               m_axi_awvalid && $stable({m_axi_awaddr, m_axi_awlen}), clk_i, !rst_ni || clear_i)
-  `MSR_ASSERT(a_no_4k_cross, m_axi_awvalid |-> (32'(m_axi_awaddr[11:0]) +
+  `MSR_ASSERT_IMP(a_no_4k_cross, m_axi_awvalid, (32'(m_axi_awaddr[11:0]) +
               (32'(m_axi_awlen) + 1) * STRB_W) <= 32'h1000)
-  `MSR_ASSERT(a_addr_fifo_room, aw_hs |-> aq_ready)
+  `MSR_ASSERT_IMP(a_addr_fifo_room, aw_hs, aq_ready)
   `MSR_ASSERT(a_onbus_in_budget, onbus_q <= budget_q)
   `MSR_ASSERT(a_budget_flags, out_ok_q == (budget_q != OUT_W'(MAX_OUT)) &&
               onbus_nz_q == (onbus_q != '0))

@@ -150,10 +150,10 @@ module msr_fbw_w import msr_fbw_pkg::*; #(
   assign unused = ^wq_count;
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_w_stable, m_axi_wvalid && !m_axi_wready |=>
+  `MSR_ASSERT_NXT(a_w_stable, m_axi_wvalid && !m_axi_wready,
               m_axi_wvalid && $stable({m_axi_wdata, m_axi_wstrb, m_axi_wlast}), clk_i,
               !rst_ni || clear_i)
-  `MSR_ASSERT(a_wb_room, wb_push_i |-> wb_room_o)
+  `MSR_ASSERT_IMP(a_wb_room, wb_push_i, wb_room_o)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_fbw_w

@@ -118,7 +118,7 @@ module msr_fifo #(
     assign data_o = head_q;
 
     /* verilator lint_off SYNCASYNCNET */
-    `MSR_ASSERT(a_head, nonempty_q |-> head_q == mem_q[rptr_q])
+    `MSR_ASSERT_IMP(a_head, nonempty_q, head_q == mem_q[rptr_q])
     `MSR_ASSERT(a_many, many_q == (count_q > (PTR_W+1)'(1)) && rnext_q == rptr_q + 1'b1)
     /* verilator lint_on SYNCASYNCNET */
   end else begin : g_out_mux

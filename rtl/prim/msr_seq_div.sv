@@ -86,10 +86,10 @@ module msr_seq_div #(
   assign unused_den = ^den_i[R_W-1:D_W];
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_steps_after_init, step_i |-> cnt_q != '0)
-  `MSR_ASSERT(a_den_nonzero, step_i && first |-> den_q != '0)
-  `MSR_ASSERT(a_den_fits, load_den_i |-> den_i[R_W-1:D_W] == '0)
-  `MSR_ASSERT(a_below_den, step_i && !first && !sat_q |-> rem_q < den_q)
+  `MSR_ASSERT_IMP(a_steps_after_init, step_i, cnt_q != '0)
+  `MSR_ASSERT_IMP(a_den_nonzero, step_i && first, den_q != '0)
+  `MSR_ASSERT_IMP(a_den_fits, load_den_i, den_i[R_W-1:D_W] == '0)
+  `MSR_ASSERT_IMP(a_below_den, step_i && !first && !sat_q, rem_q < den_q)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_seq_div

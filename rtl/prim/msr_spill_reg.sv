@@ -54,7 +54,7 @@ module msr_spill_reg #(
   end
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_out_hold, valid_o && !ready_i |=> valid_o && $stable(data_o), clk_i,
+  `MSR_ASSERT_NXT(a_out_hold, valid_o && !ready_i, valid_o && $stable(data_o), clk_i,
               !rst_ni || clear_i)
   /* verilator lint_on SYNCASYNCNET */
 

@@ -135,7 +135,7 @@ module msr_render_mux import msr_pkg::*; #(
   assign busy_o = (fq_valid != '0) || (rq_valid != '0) || rnd_req_valid_o || rsp_valid;
 
   /* verilator lint_off SYNCASYNCNET */
-  `MSR_ASSERT(a_req_stable, rnd_req_valid_o && !rnd_req_ready_i |=>
+  `MSR_ASSERT_NXT(a_req_stable, rnd_req_valid_o && !rnd_req_ready_i,
               rnd_req_valid_o && $stable(rnd_req_tag_o), clk_i, !rst_ni || clear_i)
   /* verilator lint_on SYNCASYNCNET */
 
