@@ -39,12 +39,13 @@ def generate(src: str, out: str) -> int:
     return 0
 
 
+PARSER = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+PARSER.add_argument("src", help="the SystemRDL source")
+PARSER.add_argument("out", help="the Python module to write")
+
+
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("src", help="the SystemRDL source")
-    ap.add_argument("out", help="the Python module to write")
-    args = ap.parse_args(argv)
-    return generate(args.src, args.out)
+    return generate(**vars(PARSER.parse_args(argv)))
 
 
 if __name__ == "__main__":

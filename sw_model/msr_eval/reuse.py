@@ -73,6 +73,7 @@ import numpy as np
 
 from msr_model import Params, spec
 from msr_model.golden import decided_passes, frame_axis, threshold_maps
+from msr_model.reuse import pass_neighbours
 from msr_model.renderer import render_checked
 
 from .rules import rule_function
@@ -296,10 +297,7 @@ def select_reuse(renderer, width: int, height: int, params: Params, rule: str = 
         for horizontal, v, interp, values in decided_passes(frame, source, params, k, ax, ay, thr_maps[k - 1],
                                                             decide):
             ty, tx = v.ys, v.xs
-            if horizontal:
-                zA, zB = zbuf[ty, np.broadcast_to(v.a, v.shape)], zbuf[ty, np.broadcast_to(v.b, v.shape)]
-            else:
-                zA, zB = zbuf[np.broadcast_to(v.a, v.shape), tx], zbuf[np.broadcast_to(v.b, v.shape), tx]
+            zA, zB = pass_neighbours(zbuf, v, horizontal)
             zv = _lerp_depth(zA, zB, v.a, v.b, v.m)
             if prev is not None:
                 one_sky = np.isinf(zA) != np.isinf(zB)            # a silhouette against the sky

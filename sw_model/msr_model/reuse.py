@@ -221,6 +221,15 @@ def refresh_phase(x, y, tile: int, period: int = REFRESH) -> np.ndarray:
     return (h + (x >> sh) + 2 * (y >> sh)) % period
 
 
+def pass_neighbours(plane: np.ndarray, view, horizontal: bool) -> tuple[np.ndarray, np.ndarray]:
+    """A pass's neighbours A and B in a per-pixel plane (colour, depth): along the row in a
+    horizontal pass, along the column in a vertical one (view: the pass's positions)."""
+    a, b = np.broadcast_to(view.a, view.shape), np.broadcast_to(view.b, view.shape)
+    if horizontal:
+        return plane[view.ys, a], plane[view.ys, b]
+    return plane[a, view.xs], plane[b, view.xs]
+
+
 def lerp_invz(wa, wb, a, b, m):
     """A new pixel's inverse depth from its neighbours': the spec's interpolation on a 16-bit
     channel; where exactly one is sky (0), the other (the nearer surface)."""
@@ -307,10 +316,7 @@ def select_with_reuse(renderer, width: int, height: int, params: Params, rule="p
         for horizontal, view, interp, values in decided_passes(frame, source, params, k, ax, ay,
                                                                 thr_maps[k - 1], decide):
             ty, tx = view.ys, view.xs
-            if horizontal:
-                wa, wb = invz[ty, np.broadcast_to(view.a, view.shape)], invz[ty, np.broadcast_to(view.b, view.shape)]
-            else:
-                wa, wb = invz[np.broadcast_to(view.a, view.shape), tx], invz[np.broadcast_to(view.b, view.shape), tx]
+            wa, wb = pass_neighbours(invz, view, horizontal)
             wm = lerp_invz(wa, wb, view.a, view.b, view.m)
             take = np.zeros(view.shape, bool)
             if cmap is not None:
