@@ -25,7 +25,7 @@ from pathlib import Path
 
 from msr_model import Params, RULES, metrics, save_png, spec
 from msr_model.scenes import scene_id
-from msr_model.clitools import Parser, RunFailed, UsageError, int_in, int_list, run_main
+from msr_model.clitools import Parser, RunFailed, UsageError, int_in, int_list, run_main, gaze_of
 from .harness import RTL_RULES, GoldenFrames, HarnessRun, compare
 
 from .filelist import ROOT
@@ -72,13 +72,7 @@ def params_of(a) -> tuple[int, int, Params]:
     if len(thr) != levels:
         raise UsageError(f"THR has {len(thr)} values but LEVELS is {levels}: give one per level")
     gain = int_in(a.fov_gain, "FOV_GAIN", 0, 255)
-    gaze = None
-    if str(getattr(a, "gaze", "") or "").strip():
-        gaze = int_list(a.gaze, "GAZE")
-        if len(gaze) != 2:
-            raise UsageError(f"GAZE must be X,Y (two integers), got {a.gaze!r}")
-        if not (0 <= gaze[0] < w and 0 <= gaze[1] < h):
-            raise UsageError(f"GAZE {gaze[0]},{gaze[1]} outside the {w}x{h} frame (0 <= X < {w}, 0 <= Y < {h})")
+    gaze = gaze_of(getattr(a, "gaze", None), "GAZE", w, h)
     return w, h, Params(tile=tile, levels=levels, thr=thr, metric=a.metric, fov_gain=gain, gaze=gaze)
 
 

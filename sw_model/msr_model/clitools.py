@@ -90,6 +90,20 @@ def int_list(text, what: str, lo: int | None = None, hi: int | None = None) -> t
     return vals
 
 
+
+def gaze_of(text, what: str, width: int, height: int) -> tuple[int, int] | None:
+    """A gaze point X,Y in pixels inside a width x height frame; None for an empty argument."""
+    if text is None or not str(text).strip():
+        return None
+    vals = int_list(text, what)
+    if len(vals) != 2:
+        raise UsageError(f"{what} must be X,Y (two integers), got {text!r}")
+    x, y = vals
+    if not (0 <= x < width and 0 <= y < height):
+        raise UsageError(f"{what} {x},{y} outside the {width}x{height} frame "
+                         f"(0 <= X < {width}, 0 <= Y < {height})")
+    return x, y
+
 # --- outputs --------------------------------------------------------------------------------
 
 def _probe_writable(folder: Path, path) -> None:

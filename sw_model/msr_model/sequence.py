@@ -24,7 +24,7 @@ import numpy as np
 
 from . import budget as BG
 from . import spec
-from .clitools import OutputSet, UsageError
+from .clitools import OutputSet, UsageError, gaze_of
 from .image_renderer import ImageRenderer, save_png
 from .metrics import capped, flicker, format_db, psnr
 
@@ -172,12 +172,6 @@ def run(setup: SequenceSetup, out_dir, log=None) -> dict:
 
 # --- command line (python -m msr_model sequence; the parser is msr_model.cli's) ---------------
 
-def gaze_supported() -> bool:
-    """Whether the golden model's Params carry a gaze point."""
-    import dataclasses
-    return "gaze" in {f.name for f in dataclasses.fields(spec.Params)}
-
-
 def add_parser(sub, int_in_arg, thr_arg, budget_arg) -> None:
     """The `sequence` subcommand (the converters are cli's argparse types)."""
     from .rules import DEFAULT_RULE, RULES
@@ -203,21 +197,6 @@ def add_parser(sub, int_in_arg, thr_arg, budget_arg) -> None:
     p.add_argument("--out", required=True, help="output folder")
 
 
-def _gaze(text, width: int, height: int):
-    if text is None:
-        return None
-    if not gaze_supported():
-        raise UsageError("--gaze: a gaze point is not available yet in the golden model")
-    parts = str(text).split(",")
-    try:
-        x, y = (int(v.strip(), 0) for v in parts)
-    except ValueError:
-        raise UsageError(f"--gaze must be X,Y (two integers), got {text!r}") from None
-    if not (0 <= x < width and 0 <= y < height):
-        raise UsageError(f"--gaze {x},{y} outside the {width}x{height} frame (0 <= X < {width}, 0 <= Y < {height})")
-    return x, y
-
-
 def setup_of(args) -> SequenceSetup:
     """The flags, checked before anything is rendered or written (UsageError otherwise)."""
     if args.reuse and reuse_model() is None:
@@ -227,10 +206,10 @@ def setup_of(args) -> SequenceSetup:
     thr = args.thr if args.thr is not None else spec.default_thresholds(args.levels)
     if len(thr) != args.levels:
         raise UsageError(f"--thr has {len(thr)} values but --levels is {args.levels}: give one per level")
-    gaze = _gaze(args.gaze, args.width, args.height)
+    gaze = gaze_of(args.gaze, "--gaze", args.width, args.height)
     try:
         params = spec.Params(tile=args.tile, levels=args.levels, thr=thr, metric=args.metric,
-                             fov_gain=args.fov_gain, **({"gaze": gaze} if gaze is not None else {}))
+                             fov_gain=args.fov_gain, gaze=gaze)
         pixels = BG.budget_pixels(args.budget if args.budget is not None else ("px", 0), args.width, args.height)
     except (ValueError, spec.SpecError) as e:
         raise UsageError(f"--{e}" if isinstance(e, ValueError) else str(e)) from None
