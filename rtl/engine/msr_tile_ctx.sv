@@ -223,14 +223,16 @@ module msr_tile_ctx
   assign desc_o = desc_q;
 
   // ---- Tile buffer ----------------------------------------------------------------------------
-  // Port 0: B of the queue's head, or the streamer once the tile is full; port 1: A. While
-  // computing, both ports read the head's neighbours every clock, whether or not the head is
-  // issued: the read enable is a register, not the arbiter's grant (that path set the clock),
-  // and the data of an issued position is there the clock after. A re-read is harmless: the
-  // pass barrier keeps a position from being a candidate, hence from being issued, until its
-  // neighbours are written, and a write is visible to the read of the next clock.
-  logic computing;
+  // Port 0: B of the queue's head, or the streamer once the tile is full; port 1: A. The ports
+  // read the head's neighbours only in the clock the head leaves (issue_i, the registered
+  // grant: a flip-flop, so the read enable adds no logic to the arbiter's path), and the data
+  // of the issued position is there the clock after. A buffer is read once per decision of its
+  // context, not every clock its context computes: most of the buffers' energy was reads whose
+  // data nobody used. The pass barrier keeps a position from being issued until its neighbours
+  // are written, and a write is visible to the read of the next clock.
+  logic computing, rd_issue;
   assign computing = (state_q == CTX_COMPUTE);
+  assign rd_issue  = computing && issue_i;
 
   logic [WORD_W-1:0] rdata0, rdata0_q;
   // A decision needs the colour of A, not its source code.
@@ -243,14 +245,14 @@ module msr_tile_ctx
     .DATA_W (WORD_W)
   ) u_tile_sram (
     .clk_i,
-    .re0_i (str_own_i ? str_re_i : computing),
+    .re0_i (str_own_i ? str_re_i : rd_issue),
     .raddr0_i (str_own_i ? str_raddr_i : {head_q.by, head_q.bx}), .rdata0_o (rdata0),
-    .re1_i (computing), .raddr1_i ({head_q.ay, head_q.ax}), .rdata1_o (rdata1),
+    .re1_i (rd_issue), .raddr1_i ({head_q.ay, head_q.ax}), .rdata1_o (rdata1),
     .we_i, .waddr_i, .wdata_i ({wsrc_i, wrgb_i})
   );
 
   // Port 2 (lindilate): a colour-only copy written with the buffer, reading the head's
-  // third-port address (B', or A' where o2a) every clock like ports 0 and 1. Elsewhere A' is
+  // third-port address (B', or A' where o2a) on the issue like ports 0 and 1. Elsewhere A' is
   // the A of the line's previous position, this context's previous issue: the engine keeps
   // it, so one more port gives all four samples of a position every clock.
   rgb_t rdata2, rdata2_q;
@@ -264,7 +266,7 @@ module msr_tile_ctx
     .DATA_W ($bits(rgb_t))
   ) u_tile_sram_outer (
     .clk_i,
-    .re0_i (computing && LINDILATE != 0),
+    .re0_i (rd_issue && LINDILATE != 0),
     .raddr0_i ((head_q.dir == DIR_V) ? {head_q.o2, head_q.x} : {head_q.y, head_q.o2}),
     .rdata0_o (rdata2),
     .re1_i (1'b0), .raddr1_i ('0), .rdata1_o (rdata2_unused),
