@@ -39,9 +39,12 @@ rtl/pkg/msr_sys_pkg.sv
 rtl/ctrl/msr_axil_cpuif.sv
 rtl/ctrl/msr_reg_if.sv
 rtl/ctrl/msr_watchdog.sv
+rtl/ctrl/msr_cfg_ranges.sv
+rtl/ctrl/msr_cfg_gaze.sv
 rtl/ctrl/msr_cfg_ctrl.sv
 rtl/budget/msr_budget_pkg.sv
 rtl/tilegen/msr_tile_gen.sv
+rtl/budget/msr_budget_stage.sv
 rtl/budget/msr_budget_rows.sv
 rtl/budget/msr_budget_grid.sv
 rtl/budget/msr_budget_mem.sv

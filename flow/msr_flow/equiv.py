@@ -67,12 +67,20 @@ def wires(rtlil: str, module: str) -> dict[str, int]:
     return out
 
 
-def renames(gold: dict[str, int], gate: dict[str, int]) -> list[tuple[str, str]]:
+def renames(gold: dict[str, int], gate: dict[str, int],
+            moved: list[tuple[str, str]] = ()) -> list[tuple[str, str]]:
     """Gate nets inside submodule instances that name a gold net once the instance prefixes
-    are dropped (same width, the gold name not taken in the gate, one gate net per name)."""
+    are dropped (same width, the gold name not taken in the gate, one gate net per name);
+    first, gate nets under a moved unit's instance (moved: gold prefix, gate prefix) that name
+    a gold net under the prefix they came from."""
     claim: dict[str, list[str]] = {}
     for g, width in gate.items():
         if "$" in g:
+            continue
+        cands = [f"{a}.{g[len(b) + 1:]}" for a, b in moved if g.startswith(b + ".")]
+        hit = next((c for c in cands if c in gold and c not in gate and gold[c] == width), None)
+        if hit:
+            claim.setdefault(hit, []).append(g)
             continue
         parts = g.split(".")
         for i in range(len(parts)):
@@ -94,6 +102,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--with-old", dest="with_old", action="append", default=[],
                     help="submodule whose interface the refactor changed: the gold instantiates "
                          "its REV version too (renamed <module>_gold)")
+    ap.add_argument("--moved", action="append", default=[], metavar="GOLD=GATE",
+                    help="instance prefixes of logic the refactor moved to another unit: a gate "
+                         "net GATE.n pairs with the gold net GOLD.n (u_tile_gen.g_order=g_budget.u_stage)")
     ap.add_argument("--blackbox", action="append", default=None, help="module kept as a black box")
     ap.add_argument("--seq", type=int, default=1, help="equiv_simple -seq depth")
     ap.add_argument("--induct", type=int, default=2, help="equiv_induct -seq depth (2: assume at one step, prove the next)")
@@ -141,7 +152,7 @@ def main(argv: list[str] | None = None) -> int:
           f"write_rtlil {flat.relative_to(ROOT)}\n", work, "flatten", limit)
     rtlil = flat.read_text()
     gold_w, gate_w = wires(rtlil, gold_name), wires(rtlil, args.unit)
-    ren = renames(gold_w, gate_w)
+    ren = renames(gold_w, gate_w, [tuple(m.split("=", 1)) for m in args.moved])
     (work / "renames.txt").write_text("".join(f"{a} -> {b}\n" for a, b in ren))
     # 2. pair up, prove
     script = f"read_rtlil {flat.relative_to(ROOT)}\n"

@@ -15,6 +15,8 @@ package msr_budget_pkg;
   localparam int unsigned FLOOR_SHIFT = 7;
   localparam logic [10:0] U_MAX = 11'd1448;
   localparam logic [10:0] Q_SAT = 11'd1449;      // U_MAX + 1: "no budget left" / saturated
+  // msr_budget_stage's stages after the tile generator's descriptor register (S6, S7).
+  localparam int unsigned BUD_TAIL = 2;
   /* verilator lint_on UNUSEDPARAM */
 
   // The controller's quantities (docs/budget.md section 6c gives the bounds).

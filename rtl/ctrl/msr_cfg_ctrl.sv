@@ -1,16 +1,13 @@
 // Configuration check and frame control of the accelerator.
 //
 // START in idle samples the registers (SAMPLE) and checks them from registers (CHECK, 27
-// clocks): every field check into a flag of its own; the byte range of each plane, end =
-// base + (H-1)*stride + row bytes, as a shift-and-add over 12 clocks into a 48-bit
-// accumulator in 8-bit segments (a carry goes one segment per clock; 6 more clocks settle
-// it), so a plane that wraps past 4 GiB is seen; then whether the two ranges [base, end)
-// overlap, compared segment by segment from the least significant one; the rule encoding
+// clocks): every field check into a flag of its own; the byte range of each plane, whether it
+// wraps past 4 GiB and whether the two overlap (msr_cfg_ranges); the rule encoding
 // (CONFIG.RULE 2 or 3, or 1 in a top built without it, LINDILATE 0: code 13); with a ray budget
 // (BUDGET non-zero), the budget controller's own check, run beside these from the sampled registers
 // (codes 14 and 15; a top built without it, BUDGET_EN 0, refuses any budget with 14); with
 // GAZE.EN, a gaze point outside the frame (code 16), and the gaze in half tiles, cx = (2X + T/2)
-// >> log2 T (likewise cy), registered during CHECK and latched with the configuration. The first
+// >> log2 T (likewise cy), latched with the configuration (msr_cfg_gaze). The first
 // failing check in the order of the error codes wins: the configuration is latched and the frame
 // starts, or the error is reported (STATUS.ERROR, STATUS.CFG_ERR and the interrupt) and the
 // accelerator stays idle (no render request, no memory write). A frame ends when the tile generator
@@ -95,12 +92,9 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
 
   localparam int unsigned NCHK  = 10;
   localparam int unsigned TIF_W = 8;                  // tiles in flight: engines x (contexts + 1)
-  localparam int unsigned ACC_W = 48;                 // (H-1)*stride + base + row < 2^45
-  localparam int unsigned NSEG  = ACC_W / 8;
-  // CHECK steps: 0..11 shift-and-add, 12 base, 13 row bytes, 14..19 carries settle,
-  // 20..25 range compares (one segment per step), 26 decide.
-  localparam int unsigned STEP_H = 12, STEP_BASE = 12, STEP_ROW = 13, STEP_CMP = 20;
-  localparam int unsigned STEP_END = 26;
+  // CHECK steps: 0..19 the plane ranges' ends (msr_cfg_ranges), 20..25 their compares, 26
+  // decide.
+  localparam int unsigned STEP_CMP = 20, STEP_END = 26;
 
   state_e           state_q, state_d;
   cfg_raw_t         raw_q;
@@ -108,8 +102,8 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   err_e             err_q, err_d;
   logic [NCHK-1:0]  chk_q;             // check k failed (error code order)
   logic             rule_chk_q;        // CONFIG.RULE 2, 3 or not built (code 13, after the overlap)
-  logic             gaze_chk_q;        // GAZE.EN and the point outside the frame (code 16, last)
-  half_t            gaze_cx_q, gaze_cy_q;   // the gaze in half tiles, from the sampled registers
+  logic             gaze_err;          // GAZE.EN and the point outside the frame (code 16, last)
+  half_t            gaze_cx, gaze_cy;  // the gaze in half tiles, from the sampled registers
   logic [4:0]       step_q;
   logic             frame_done_q;
   logic [TIF_W-1:0] tif_q;             // tiles handed out and not yet fully written
@@ -196,105 +190,38 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     fchk[6] = raw_q.fb.src_en && raw_q.fb.src_base[1:0] != '0;
   end
 
-  // ---- Plane ranges: end = base + (H-1)*stride + row bytes, per plane (0 fb, 1 src) ----------
-  logic [1:0][ACC_W-1:0]  sh_q;        // stride << step
-  logic [11:0]            hm1_q;       // H-1, shifted right each step
-  logic [1:0][ACC_W-1:0]  acc_q;       // accumulated value (segments)
-  logic [1:0][NSEG-1:0]   cy_q;        // carry pending into segment k
-  logic [1:0]             lt_q;        // fb_base < src_end, src_base < fb_end (so far)
-  logic [1:0][ACC_W-1:0]  addend;
-  logic [1:0][ACC_W-1:0]  acc_d;
-  logic [1:0][NSEG-1:0]   cy_d;
-  logic [1:0]             lt_d;
-  logic [4:0]             cmp_seg;     // segment compared this step
-  assign cmp_seg = step_q - STEP_CMP[4:0];
-
-  always_comb begin
-    for (int unsigned p = 0; p < 2; p++) begin
-      addend[p] = '0;
-      if (step_q < STEP_H[4:0]) begin
-        addend[p] = hm1_q[0] ? sh_q[p] : '0;
-      end else if (step_q == STEP_BASE[4:0]) begin
-        addend[p] = ACC_W'((p != 0) ? raw_q.fb.src_base : raw_q.fb.fb_base);
-      end else if (step_q == STEP_ROW[4:0]) begin
-        addend[p] = (p != 0) ? ACC_W'(raw_q.width) : ACC_W'({raw_q.width, 2'b0});
-      end
-    end
-  end
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      sh_q  <= '0;
-      hm1_q <= '0;
-      acc_q <= '0;
-      cy_q  <= '0;
-      lt_q  <= '0;
-    end else if (state_q == ST_SAMPLE) begin
-      sh_q  <= {ACC_W'(raw_q.fb.src_stride), ACC_W'(raw_q.fb.fb_stride)};
-      hm1_q <= 12'(raw_q.height - 1'b1);
-      acc_q <= '0;
-      cy_q  <= '0;
-      lt_q  <= '0;
-    end else if (state_q == ST_CHECK) begin
-      sh_q  <= {sh_q[1] << 1, sh_q[0] << 1};
-      hm1_q <= hm1_q >> 1;
-      acc_q <= acc_d;
-      cy_q  <= cy_d;
-      // ranges overlap iff fb_base < src_end and src_base < fb_end: compared from segment 0 up
-      if (step_q >= STEP_CMP[4:0] && step_q < STEP_END[4:0]) lt_q <= lt_d;
-    end
-  end
-
-  // The accumulators: segment 0 takes no carry, the top segment's carry out is dropped.
-  for (genvar p = 0; p < 2; p++) begin : g_acc
-    logic [NSEG-1:0] co;
-    msr_seg_add #(.WIDTH(ACC_W), .SEG_W(8)) u_add (
-      .a_i (acc_q[p]),
-      .b_i (addend[p]),
-      .c_i (cy_q[p] & ~NSEG'(1)),
-      .s_o (acc_d[p]),
-      .c_o (co)
-    );
-    assign cy_d[p] = NSEG'({co, 1'b0});
-  end
-
-  always_comb begin
-    for (int unsigned p = 0; p < 2; p++) begin
-      logic [7:0] a, b;
-      a       = 8'(ACC_W'((p != 0) ? raw_q.fb.src_base : raw_q.fb.fb_base) >> (8 * cmp_seg));
-      b       = 8'(acc_q[1-p] >> (8 * cmp_seg));
-      lt_d[p] = (a < b) || (a == b && lt_q[p]);
-    end
-  end
-
-  // Wraps past 4 GiB: end > 2^32 (the end is exclusive).
-  function automatic logic wraps(logic [ACC_W-1:0] e);
-    return e[ACC_W-1:32] != '0 && !(e[ACC_W-1:32] == (ACC_W-32)'(1) && e[31:0] == '0);
-  endfunction
+  // ---- Plane ranges: whether a plane wraps past 4 GiB, whether the two overlap --------------
+  logic [1:0] wraps;                   // the frame buffer's, the source plane's end > 2^32
+  logic       overlap;
+  msr_cfg_ranges #(.STEP_CMP(STEP_CMP), .STEP_END(STEP_END)) u_ranges (
+    .clk_i, .rst_ni,
+    .fb_i (raw_q.fb), .width_i (raw_q.width), .height_i (raw_q.height),
+    .sample_i (state_q == ST_SAMPLE), .check_i (state_q == ST_CHECK), .step_i (step_q),
+    .wraps_o (wraps), .overlap_o (overlap)
+  );
 
   logic [NCHK-1:0] chk_all;
   always_comb begin
     chk_all      = {3'b0, fchk};
     chk_all[7]   = 1'b0;                                // code 8 is the memory error
-    chk_all[8]   = wraps(acc_q[0]);
-    chk_all[9]   = raw_q.fb.src_en && wraps(acc_q[1]);
+    chk_all[8]   = wraps[0];
+    chk_all[9]   = wraps[1];
   end
 
-  // The gaze in half tiles: (2p + T/2) >> log2 T = (p + T/4) >> (log2 T - 1). Only a frame
-  // with a good tile size and the point inside the frame (p < 4096) uses it: at most 1024.
-  function automatic half_t half_pos(logic [12:0] p, logic [5:0] tile);
-    logic [13:0] v;
-    v = {1'b0, p} + 14'(tile[5:2]);
-    return (tile == 6'd8) ? half_t'(v >> 2) : (tile == 6'd32) ? half_t'(v >> 4) : half_t'(v >> 3);
-  endfunction
+  msr_cfg_gaze u_gaze (
+    .clk_i, .rst_ni,
+    .gaze_i (raw_q.gaze), .width_i (raw_q.width), .height_i (raw_q.height), .tile_i (raw_q.tile),
+    .check_i (state_q == ST_CHECK), .decide_i (state_q == ST_CHECK && step_q == STEP_CMP[4:0]),
+    .err_o (gaze_err), .cx_o (gaze_cx), .cy_o (gaze_cy)
+  );
 
   // The first failing check, in the order of the codes (code k + 1 for flag k).
-  function automatic err_e first_err(logic [NCHK-1:0] chk, logic overlap, logic rule_bad,
+  function automatic err_e first_err(logic [NCHK-1:0] chk, logic ovl, logic rule_bad,
                                      logic [1:0] bud_bad, logic gaze_bad);
     for (int unsigned k = 0; k < NCHK; k++) begin
       if (chk[k]) return err_e'(k + 1);
     end
-    if (overlap) return ERR_OVERLAP;
+    if (ovl) return ERR_OVERLAP;
     if (rule_bad) return ERR_RULE;
     if (bud_bad[0]) return ERR_BUDGET;
     if (bud_bad[1]) return ERR_PROFILE;
@@ -302,15 +229,26 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     return ERR_NONE;
   endfunction
 
-  // The budget's check, read when CHECK decides: off (0) always passes; a top without the
-  // controller refuses any budget; an unfinished check (the controller takes at most 21 of
-  // CHECK's 27 clocks: asserted below) would refuse rather than start unchecked.
+  // ---- Ray budget: the controller's check, or every budget refused ---------------------------
+  // Read when CHECK decides: off (0) always passes; a top without the controller refuses any
+  // budget; an unfinished check (the controller takes at most 21 of CHECK's 27 clocks:
+  // asserted) would refuse rather than start unchecked.
   logic       bud_on;
   logic [1:0] bud_bad;
-  assign bud_on  = raw_q.bud.pixels != '0;
-  assign bud_bad = !bud_on ? 2'b00 :
-                   (!BUDGET_EN || !bud_done_i || bud_err_budget_i) ? 2'b01 :
-                   {bud_err_profile_i, 1'b0};
+  bud_cfg_t   bud_cfg;                 // the frame's budget registers, latched at the accept
+  assign bud_on = raw_q.bud.pixels != '0;
+  if (BUDGET_EN) begin : g_budget
+    assign bud_bad = !bud_on ? 2'b00 : (!bud_done_i || bud_err_budget_i) ? 2'b01 :
+                     {bud_err_profile_i, 1'b0};
+    assign bud_cfg = raw_q.bud;
+    `MSR_ASSERT_IMP(a_bud_check_in_time,
+                state_q == ST_CHECK && step_q == 5'(STEP_END - 1) && bud_on, bud_done_i)
+  end else begin : g_no_budget
+    assign bud_bad = {1'b0, bud_on};
+    assign bud_cfg = '0;
+    logic unused_budget;
+    assign unused_budget = ^{bud_done_i, bud_err_budget_i, bud_err_profile_i};
+  end
 
   always_comb begin
     n_done = '0;
@@ -323,11 +261,10 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   // checks at STEP_CMP, the budget check within 21 clocks, asserted below). Decided from the
   // step compare and bud_bad in the same clock, accept was six LUTs deep into the memory
   // error registers' enable: the BUDGET_EN = 1 top's worst path on some placement seeds.
-  logic       overlap, decide_q, chk_none_q;
+  logic       decide_q, chk_none_q;
   logic [1:0] bud_bad_q;
-  assign overlap = raw_q.fb.src_en && lt_q[0] && lt_q[1];
   assign accept  = (state_q == ST_CHECK) && decide_q && chk_none_q && !overlap && !rule_chk_q &&
-                   bud_bad_q == '0 && !gaze_chk_q;
+                   bud_bad_q == '0 && !gaze_err;
 
   always_comb begin
     state_d = state_q;
@@ -337,7 +274,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       ST_SAMPLE: state_d = ST_CHECK;
       ST_CHECK: begin
         if (decide_q) begin
-          err_d   = first_err(chk_q, overlap, rule_chk_q, bud_bad_q, gaze_chk_q);
+          err_d   = first_err(chk_q, overlap, rule_chk_q, bud_bad_q, gaze_err);
           state_d = accept ? ST_RUN : ST_IDLE;
         end
       end
@@ -383,9 +320,6 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       cfg_q          <= '0;
       chk_q          <= '0;
       rule_chk_q     <= 1'b0;
-      gaze_chk_q     <= 1'b0;
-      gaze_cx_q      <= '0;
-      gaze_cy_q      <= '0;
       step_q         <= '0;
       decide_q       <= 1'b0;
       chk_none_q     <= 1'b1;
@@ -413,12 +347,6 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
       if (state_q == ST_CHECK && step_q == STEP_CMP[4:0]) begin
         chk_q      <= chk_all;
         rule_chk_q <= raw_q.rule[1] || (LINDILATE == 0 && raw_q.rule[0]);
-        gaze_chk_q <= raw_q.gaze.en &&
-                      (raw_q.gaze.x >= raw_q.width || raw_q.gaze.y >= raw_q.height);
-      end
-      if (state_q == ST_CHECK) begin
-        gaze_cx_q  <= half_pos(raw_q.gaze.x, raw_q.tile);
-        gaze_cy_q  <= half_pos(raw_q.gaze.y, raw_q.tile);
       end
       if (accept) begin
         cfg_q.width      <= raw_q.width;
@@ -430,9 +358,9 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
         cfg_q.rule       <= rule_e'(raw_q.rule[0]);
         cfg_q.thr        <= raw_q.thr;
         cfg_q.fov_gain   <= raw_q.fov_gain;
-        cfg_q.gaze       <= '{en: raw_q.gaze.en, cx: gaze_cx_q, cy: gaze_cy_q};
+        cfg_q.gaze       <= '{en: raw_q.gaze.en, cx: gaze_cx, cy: gaze_cy};
         cfg_q.fb         <= raw_q.fb;
-        cfg_q.bud        <= BUDGET_EN ? raw_q.bud : '0;
+        cfg_q.bud        <= bud_cfg;
       end
       // Counted in RUN and DRAIN only: the units clear a clock after ST_CLEAR (clear_q), and a
       // tile finishing in that clock is not in flight.
@@ -503,15 +431,11 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   `MSR_COVER(c_gaze_refused, refused_q && err_q == ERR_GAZE)
   // An accepted gaze lies in the frame: its half-tile position is at most 2 * 512 tiles.
   `MSR_ASSERT_IMP(a_gaze_in_range, accept && raw_q.gaze.en,
-              gaze_cx_q <= half_t'(1024) && gaze_cy_q <= half_t'(1024))
+              gaze_cx <= half_t'(1024) && gaze_cy <= half_t'(1024))
 
   `MSR_COVER(c_drain_with_mem_err, state_q == ST_CLEAR && err_q == ERR_AXI_WRITE)
   `MSR_COVER(c_wdog_run, wd_fire && state_q == ST_RUN)
   `MSR_COVER(c_wdog_drain, wd_fire && state_q == ST_DRAIN)
-  if (BUDGET_EN) begin : g_bud_chk
-    `MSR_ASSERT_IMP(a_bud_check_in_time,
-                state_q == ST_CHECK && step_q == 5'(STEP_END - 1) && bud_on, bud_done_i)
-  end
   // The registered decision equals the one it replaces (the step compare, the live flags).
   `MSR_ASSERT_IMP(a_decide_at_end, state_q == ST_CHECK, decide_q == (step_q == STEP_END[4:0]))
   `MSR_ASSERT_IMP(a_decide_flags, state_q == ST_CHECK && decide_q,

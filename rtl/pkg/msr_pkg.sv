@@ -56,6 +56,20 @@ package msr_pkg;
     endcase
   endfunction
 
+  // ceil(n / T) for n = 1..4096, T = 2^lg: at most 512 tiles per axis; (n >> lg) + (any bit
+  // below lg), a 10-bit increment instead of a 14-bit add.
+  function automatic logic [COORD_W-2:0] tile_count(dim_t n, logic [2:0] lg);
+    logic [COORD_W-2:0] q;
+    logic               rem;
+    q   = (COORD_W-1)'(n >> lg);
+    rem = (n & ((dim_t'(1) << lg) - 1'b1)) != '0;
+    return q + (COORD_W-1)'(rem);
+  endfunction
+
+  // The tile generator's stages from its walker to its descriptor register (S1..S5): a unit
+  // that carries a tile's own data beside them (msr_budget_stage) shifts it as deep.
+  localparam int unsigned TILE_GEN_DEPTH = 5;
+
   typedef enum logic {
     METRIC_MAX = 1'b0,   // max(|dR|, |dG|, |dB|)
     METRIC_SUM = 1'b1    // |dR| + |dG| + |dB|

@@ -1,6 +1,6 @@
 // Tile generation unit (spec section 1, claims 1, 3 and 12): walks the tiles of a frame
-// row-major from the top-left, computes each tile's extent and foveated per-level
-// thresholds, and hands the descriptor to the lowest-numbered engine that can take it.
+// row by row from the top-left, computes each tile's extent and foveated per-level thresholds,
+// and hands the descriptor to the lowest-numbered engine that can take it.
 //
 // Timing: a five-stage pipeline with one enable (it moves when the output register is empty;
 // the engines' ready only empties it, so it never reaches the stages' enables), no carry
@@ -19,24 +19,18 @@
 // the default gaze (ntx T / 2, nty T / 2), which gives the frame centre's |2t - (n - 1)|. The
 // subtract and absolute value are today's half_dist with the latched centre for the count.
 //
-// Ray budget (BUDGET_EN, docs/budget.md): a budget frame's walker takes the tile rows
-// interleaved (rows 0, S, 2S, .., then 1, 1 + S, ..; msr_budget_pkg::next_row), so the rows the
-// controller has seen are spread over the frame; it starts a row only when the controller knows
-// its scale (row_ok_i for row_idx_o, the row's position in that order), every tile carries its
-// row's threshold multiplier m down the pipeline, and S6 / S7 scale the thresholds,
-// thr'' = min(255, (thr' * m + d) >> 8), d the tile's dither (bit-reversed (tx + ty) mod 256,
-// whose mean is the rounding's 128: a row's mean threshold then moves smoothly with m instead
-// of in integer steps): S6 the products (multiplier blocks on an FPGA), registered straight out
-// of them, and d, S7 the add and the saturation (in one clock, the block and its wires in and
-// out made the top's worst path). With bud_en_i low the frame is walked row-major and
-// m = 256 (every thr'' = thr' whatever d), so its descriptors are those of a top without it; a
-// top built without it (BUDGET_EN = 0) has neither stage nor the wait nor the order.
+// A unit between the generator and the engines (the ray budget's msr_budget_stage) may take
+// the walk's row order (EXT_ORDER: row_next_i, row_last_i; else row-major), pace it by rows
+// (row_go_i; tie it high for a free walk) and add TAIL_STAGES stages after the descriptor
+// register: they move with this pipeline (adv_o), take its descriptor (pipe_desc_o) and hand
+// back the one dispatched (tail_desc_i); the valid flags of every stage stay here.
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
-module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #(
+module msr_tile_gen import msr_pkg::*; #(
   parameter int unsigned NUM_ENGINES = 4,
-  parameter bit          BUDGET_EN   = 1'b0,                 // the ray-budget stage and row wait
+  parameter bit          EXT_ORDER   = 1'b0,      // the row order from row_next_i, row_last_i
+  parameter int unsigned TAIL_STAGES = 0,         // stages after the descriptor register
   localparam int unsigned TROW_W     = COORD_W - 2          // tile row index (as the walker's)
 ) (
   input  logic                   clk_i,         // clock
@@ -55,17 +49,20 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
   input  logic                   gaze_en_i,     // foveate around (cx, cy), else the centre
   input  logic [COORD_W-2:0]     gaze_cx_i,     // the gaze in half tiles, (2X + T/2) div T
   input  logic [COORD_W-2:0]     gaze_cy_i,     // (2Y + T/2) div T
-  // Ray budget (BUDGET_EN): the controller's scale of the row the walker is in.
-  input  logic                   bud_en_i,      // this frame holds a budget
-  output logic [TROW_W-1:0]      row_idx_o,     // the walker's row: its position in the order
-  input  logic                   row_ok_i,      // its scale is known (this clock)
-  input  logic [12:0]            row_m_i,       // its threshold multiplier m (1.0 = 256)
-  // The frame's tile grid and row order (registers; from the second clock after start_i):
-  // the budget's row counters follow the same order (msr_budget_rows).
+  // The frame's tile grid (registers; from the clock after start_i).
   output logic [TROW_W:0]        ntx_o,         // tiles per row
   output logic [TROW_W:0]        nty_o,         // tile rows
-  output logic [TROW_W-1:0]      smask_o,       // the order's stride S, less one
-  output logic [TROW_W:0]        nty_s_o,       // nty - S
+  // The walker: its next tile, its rows' order and pace.
+  output logic [TROW_W-1:0]      tx_o,          // the walker's next tile
+  output logic [TROW_W-1:0]      ty_o,
+  output logic                   row_step_o,    // it hands out its row's last tile this clock
+  input  logic [TROW_W-1:0]      row_next_i,    // EXT_ORDER: the row after ty_o
+  input  logic                   row_last_i,    // EXT_ORDER: ty_o is the frame's last row
+  input  logic                   row_go_i,      // it may hand out a tile of ty_o this clock
+  // The tail (TAIL_STAGES): it moves with the pipeline.
+  output logic                   adv_o,         // every stage moves this clock
+  output tile_desc_t             pipe_desc_o,   // the descriptor register (S5)
+  input  tile_desc_t             tail_desc_i,   // the tail's last stage
   // Descriptor to the engines: valid goes to exactly one engine that is ready.
   output logic [NUM_ENGINES-1:0] desc_valid_o,  // offer to engine i
   input  logic [NUM_ENGINES-1:0] desc_ready_i,  // engine i can take a tile
@@ -78,7 +75,7 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
   end
 
   localparam int unsigned TIDX_W = COORD_W - 2;     // tile index, up to 4096/8 = 512 tiles
-  localparam int unsigned NST    = BUDGET_EN ? 7 : 5;   // pipeline stages
+  localparam int unsigned NST    = TILE_GEN_DEPTH + TAIL_STAGES;   // pipeline stages
   localparam int unsigned R2_W   = TIDX_W + 1;      // |2t + 1 - c| <= 1024
   localparam int unsigned PROD_W = R2_W + 8;        // gain * r2 < 2^18
 
@@ -86,7 +83,7 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
   logic [2:0]        lg_q, lg_d;                    // log2 T
   logic [TIDX_W:0]   ntx_q, nty_q;                  // tile counts, 1..512
   logic [TIDX_W:0]   cx_q, cy_q;                    // the gaze in half tiles, 0..1024
-  // Control state: the walker (row-major over the tile grid) and the stages' flags.
+  // Control state: the walker (row by row over the tile grid) and the stages' flags.
   typedef struct packed {
     logic              run;                         // the walker has tiles left
     logic              done;                        // every tile handed out
@@ -103,16 +100,6 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
       default: lg_d = 3'd4;
     endcase
   end
-
-  // ceil(n / T) for n = 1..4096: at most 512 tiles per axis; (n >> lg) + (any bit below lg),
-  // a 10-bit increment instead of a 14-bit add.
-  function automatic logic [TIDX_W:0] tile_count(dim_t n, logic [2:0] lg);
-    logic [TIDX_W:0] q;
-    logic            rem;
-    q   = (TIDX_W+1)'(n >> lg);
-    rem = (n & ((dim_t'(1) << lg) - 1'b1)) != '0;
-    return q + (TIDX_W+1)'(rem);
-  endfunction
 
   // r2 = |2t + 1 - c|: distance of tile t from the gaze c in half-tiles (c = n: the centre).
   function automatic logic [R2_W-1:0] half_dist(logic [TIDX_W-1:0] t, logic [TIDX_W:0] c);
@@ -181,30 +168,20 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
   // from across the die) clears that register's flag alone and never reaches the stages'
   // enables. A tile leaves at most every second clock, far above what four engines take.
   assign en        = !ctl_q.v[NST-1];
-  logic              order_set;                     // the order's stride is set (below)
-  assign walk_go   = ctl_q.run && (!BUDGET_EN || !bud_en_i || (row_ok_i && order_set));
+  assign walk_go   = ctl_q.run && row_go_i;
 
-  // The row order: S = smask_q + 1, rows r, r + S, .. of phase r mod S, then the next phase. A
-  // frame without a budget (or a top without the budget) has S = 1: row-major. The last
-  // row in that order is the last of phase S - 1.
-  logic [TIDX_W-1:0] smask_q;                       // S - 1
-  logic [TIDX_W:0]   nty_s_q;                       // nty - S: ty < nty_s_q is ty + S < nty
-  logic [TIDX_W-1:0] pos_q;                         // the walker's row position in the order
+  // The row order: row-major, or the instantiating unit's (EXT_ORDER).
   logic [TIDX_W-1:0] ty_next;
   logic              row_end;                       // the walker's tile is its row's last
   assign row_end   = {1'b0, ctl_q.tx} + 1'b1 == ntx_q;
-  // (a top without the budget keeps the row-major walker's own logic, gate for gate)
-  assign ty_next   = !BUDGET_EN                      ? ctl_q.ty + 1'b1 :
-                     ({1'b0, ctl_q.ty} < nty_s_q)    ? ctl_q.ty + (smask_q + 1'b1)
-                                                     : (ctl_q.ty & smask_q) + 1'b1;
-  assign walk_last = row_end && (!BUDGET_EN ? {1'b0, ctl_q.ty} + 1'b1 == nty_q
-                                            : (ctl_q.ty & smask_q) == smask_q &&
-                                              !({1'b0, ctl_q.ty} < nty_s_q));
-  assign row_idx_o = BUDGET_EN ? pos_q : ctl_q.ty;
-  assign ntx_o     = ntx_q;
-  assign nty_o     = nty_q;
-  assign smask_o   = smask_q;
-  assign nty_s_o   = nty_s_q;
+  assign ty_next   = EXT_ORDER ? row_next_i : ctl_q.ty + 1'b1;
+  assign walk_last = row_end && (EXT_ORDER ? row_last_i : {1'b0, ctl_q.ty} + 1'b1 == nty_q);
+  assign ntx_o      = ntx_q;
+  assign nty_o      = nty_q;
+  assign tx_o       = ctl_q.tx;
+  assign ty_o       = ctl_q.ty;
+  assign row_step_o = en && walk_go && row_end;
+  assign adv_o      = en;
 
   // The frame's tile grid and gaze, latched at START (a clear leaves them: only a START reads
   // them). The default gaze is the tile count itself: no second count for it.
@@ -225,36 +202,6 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
       cx_q  <= gaze_en_i ? gaze_cx_i : ntx_d;
       cy_q  <= gaze_en_i ? gaze_cy_i : nty_d;
     end
-  end
-
-  // The order's stride, the clock after the start (from nty_q): row-major until then, and a
-  // budget frame's walker waits for it (in the top it waits far longer, for the first scale).
-  if (BUDGET_EN) begin : g_order
-    logic       set_q;
-    logic [2:0] lgs_d;                              // log2 S
-    assign lgs_d = (set_q && bud_en_i) ? row_stride_log2(TIDX_W'(nty_q)) : 3'd0;
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        set_q   <= 1'b0;
-        smask_q <= '0;
-        nty_s_q <= '0;
-        pos_q   <= '0;
-      end else begin
-        set_q <= start_i && !clear_i;
-        if ((start_i && !clear_i) || set_q) begin
-          smask_q <= TIDX_W'((TIDX_W+1)'(1) << lgs_d) - 1'b1;
-          nty_s_q <= (start_i ? tile_count(height_i, lg_d) : nty_q) - ((TIDX_W+1)'(1) << lgs_d);
-        end
-        if (start_i) pos_q <= '0;
-        else if (en && walk_go && row_end) pos_q <= pos_q + 1'b1;
-      end
-    end
-    assign order_set = !set_q;
-  end else begin : g_raster
-    assign order_set = 1'b1;
-    assign smask_q = '0;
-    assign nty_s_q = nty_q - 1'b1;
-    assign pos_q   = '0;
   end
 
   always_comb begin
@@ -349,43 +296,18 @@ module msr_tile_gen import msr_pkg::*; import msr_budget_pkg::row_stride_log2; #
     end
   end
 
-  // ---- S6, S7 (BUDGET_EN): the row's threshold multiplier -----------------------------------
-  if (BUDGET_EN) begin : g_budget
-    localparam int unsigned P_W = THR_W + 13;       // thr' * m
-    logic [4:0][12:0]                m_q;           // m of the tile in S1..S5
-    logic [4:0][7:0]                 dith_q;        // its dither d in S1..S5
-    logic [MAX_LEVELS-1:0][P_W-1:0] prod6_q;       // S6: thr' * m per level
-    logic [7:0]                      dith6_q;       // S6: the tile's dither d
-    tile_desc_t                      desc6_q, desc7_q, desc7_d;
-    // d = bit-reversed (tx + ty) mod 256: neighbouring tiles far apart in [0, 255]. Formed from
-    // the walker's tile indices as the tile enters S1 and carried with it, not from the
-    // descriptor's origin (x0 >> lg, y0 >> lg: two shifts by the tile size in front of the add).
-    logic [7:0] txy, txy_rev;
-    assign txy     = 8'(ctl_q.tx) + 8'(ctl_q.ty);
-    assign txy_rev = {<<{txy}};
-    always_comb begin
-      desc7_d = desc6_q;
-      for (int k = 0; k < MAX_LEVELS; k++) begin
-        logic [P_W-1:0] p;
-        p = prod6_q[k] + P_W'(dith6_q);
-        desc7_d.thr[k] = (p[P_W-1:THR_W+8] != '0) ? thr_t'(255) : thr_t'(p[THR_W+8-1:8]);
-      end
-    end
-    always_ff @(posedge clk_i) begin
-      if (en) begin
-        m_q     <= {m_q[3:0], bud_en_i ? row_m_i : 13'd256};
-        dith_q  <= {dith_q[3:0], txy_rev};
-        desc6_q <= desc_q;
-        dith6_q <= dith_q[4];
-        for (int k = 0; k < MAX_LEVELS; k++) prod6_q[k] <= P_W'(desc_q.thr[k]) * P_W'(m_q[4]);
-        desc7_q <= desc7_d;
-      end
-    end
-    assign desc_o = desc7_q;
-  end else begin : g_no_budget
-    logic unused_budget;
-    assign unused_budget = ^{bud_en_i, row_ok_i, row_m_i, pos_q};
-    assign desc_o        = desc_q;
+  // ---- The tail (TAIL_STAGES): its last stage is dispatched ---------------------------------
+  assign pipe_desc_o = desc_q;
+  if (TAIL_STAGES != 0) begin : g_tail
+    assign desc_o = tail_desc_i;
+  end else begin : g_no_tail
+    logic unused_tail;
+    assign unused_tail = ^tail_desc_i;
+    assign desc_o      = desc_q;
+  end
+  if (!EXT_ORDER) begin : g_raster
+    logic unused_order;
+    assign unused_order = ^{row_next_i, row_last_i};
   end
 
   // ---- Dispatch: the lowest-numbered ready engine takes the offered tile --------------------

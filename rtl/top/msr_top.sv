@@ -118,20 +118,26 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   tile_desc_t desc;
   logic [NUM_ENGINES-1:0] desc_sp_ready;
 
-  logic [COORD_W-3:0] tg_row;
-  logic               tg_row_ok;
-  logic [12:0]        tg_row_m;
-  logic [COORD_W-2:0] tg_ntx, tg_nty, tg_nty_s;   // the walker's grid and row order
-  logic [COORD_W-3:0] tg_smask;
+  logic [COORD_W-2:0] tg_ntx, tg_nty;             // the walker's grid
+  logic [COORD_W-3:0] tg_tx, tg_ty, tg_row_next;  // its next tile, its row after ty
+  logic               tg_row_step, tg_row_last, tg_row_go, tg_adv;
+  tile_desc_t         tg_pipe_desc, tg_tail_desc; // the generator's S5, the stage's last
 
-  msr_tile_gen #(.NUM_ENGINES(NUM_ENGINES), .BUDGET_EN(BUDGET_EN)) u_tile_gen (
+  // The ray budget's stage sits between the generator and the engines (g_budget below): it
+  // orders and paces the walk and adds its stages after the descriptor register.
+  msr_tile_gen #(
+    .NUM_ENGINES (NUM_ENGINES),
+    .EXT_ORDER   (BUDGET_EN),
+    .TAIL_STAGES (BUDGET_EN ? msr_budget_pkg::BUD_TAIL : 0)
+  ) u_tile_gen (
     .clk_i, .rst_ni, .clear_i (drain), .start_i (start),
     .width_i (cfg.width), .height_i (cfg.height), .tile_i (cfg.tile), .levels_i (cfg.levels),
     .metric_i (cfg.metric), .rule_i (cfg.rule), .thr_i (cfg.thr), .fov_gain_i (cfg.fov_gain),
     .gaze_en_i (cfg.gaze.en), .gaze_cx_i (cfg.gaze.cx), .gaze_cy_i (cfg.gaze.cy),
-    .bud_en_i (cfg.bud.pixels != '0),
-    .row_idx_o (tg_row), .row_ok_i (tg_row_ok), .row_m_i (tg_row_m),
-    .ntx_o (tg_ntx), .nty_o (tg_nty), .smask_o (tg_smask), .nty_s_o (tg_nty_s),
+    .ntx_o (tg_ntx), .nty_o (tg_nty), .tx_o (tg_tx), .ty_o (tg_ty),
+    .row_step_o (tg_row_step), .row_next_i (tg_row_next), .row_last_i (tg_row_last),
+    .row_go_i (tg_row_go), .adv_o (tg_adv), .pipe_desc_o (tg_pipe_desc),
+    .tail_desc_i (tg_tail_desc),
     .desc_valid_o (eng_desc_valid), .desc_ready_i (desc_sp_ready & {NUM_ENGINES{run}}),
     .desc_o (desc),
     .busy_o (tg_busy), .done_o (tg_done)
@@ -273,30 +279,49 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   );
   // verilog_lint: waive-stop module-port
 
-  // ---- Ray budget ----------------------------------------------------------------------------------
+  // ---- Ray budget: built in here or not at all ------------------------------------------------
   if (BUDGET_EN) begin : g_budget
+    logic [COORD_W-3:0] bud_row, bud_smask;       // the walker's row position, the order's S - 1
+    logic [COORD_W-2:0] bud_nty_s;                // nty - S
+    logic               bud_row_ok;
+    logic [12:0]        bud_row_m;
+    msr_budget_stage u_stage (
+      .clk_i, .rst_ni, .clear_i (drain), .start_i (start),
+      .height_i (cfg.height), .tile_i (cfg.tile), .bud_en_i (cfg.bud.pixels != '0),
+      .row_idx_o (bud_row), .row_ok_i (bud_row_ok), .row_m_i (bud_row_m),
+      .smask_o (bud_smask), .nty_s_o (bud_nty_s),
+      .nty_i (tg_nty), .tx_i (tg_tx[7:0]), .ty_i (tg_ty), .row_step_i (tg_row_step),
+      .row_next_o (tg_row_next), .row_last_o (tg_row_last), .row_go_o (tg_row_go),
+      .adv_i (tg_adv), .desc_i (tg_pipe_desc), .desc_o (tg_tail_desc)
+    );
+    logic unused_tx;                              // the dither reads the column mod 256
+    assign unused_tx = ^tg_tx[COORD_W-3:8];
     msr_budget #(.NUM_IN(NUM_ENGINES)) u_budget (
       .clk_i, .rst_ni, .clear_i (clear),
       .raw_i (raw_q), .check_i (bud_check), .check_done_o (bud_done),
       .err_budget_o (bud_err_budget), .err_profile_o (bud_err_profile),
       .start_i (start), .busy_o (bud_busy),
-      .row_idx_i (tg_row), .row_ok_o (tg_row_ok), .row_m_o (tg_row_m),
-      .ntx_i (tg_ntx), .nty_i (tg_nty), .smask_i (tg_smask), .nty_s_i (tg_nty_s),
+      .row_idx_i (bud_row), .row_ok_o (bud_row_ok), .row_m_o (bud_row_m),
+      .ntx_i (tg_ntx), .nty_i (tg_nty), .smask_i (bud_smask), .nty_s_i (bud_nty_s),
       .pix_fire_i (wr_pix_valid & wr_pix_ready),
       .pix_y_i (wr_pix_y), .pix_src_i (wr_pix_src), .pix_last_i (wr_pix_last),
       .scale_out_o (scale_out), .scale_out_valid_o (scale_out_valid)
     );
   end else begin : g_no_budget
+    // row-major and free: the generator's own walk, its descriptor straight to the engines
+    assign tg_row_next     = '0;
+    assign tg_row_last     = 1'b0;
+    assign tg_row_go       = 1'b1;
+    assign tg_tail_desc    = '0;
     assign bud_done        = 1'b0;
     assign bud_err_budget  = 1'b0;
     assign bud_err_profile = 1'b0;
     assign bud_busy        = 1'b0;
-    assign tg_row_ok       = 1'b0;
-    assign tg_row_m        = 13'd256;
     assign scale_out       = '0;
     assign scale_out_valid = 1'b0;
     logic unused_budget;
-    assign unused_budget = ^{bud_check, raw_q, tg_row, tg_ntx, tg_nty, tg_smask, tg_nty_s};
+    assign unused_budget = ^{bud_check, raw_q, cfg.bud, tg_ntx, tg_nty, tg_tx, tg_ty, tg_row_step,
+                             tg_adv, tg_pipe_desc};
   end
 
   // ---- Watchdog progress -------------------------------------------------------------------------

@@ -230,7 +230,9 @@ async def test_budget_rows(dut):
 def test_tile_gen(engines, budget):
     from msr_flow.filelist import RTL
     from msr_flow.runner import run_cocotb
-    run_cocotb("msr_tile_gen", "test_tile_gen", HERE, {"NUM_ENGINES": engines, "BUDGET_EN": budget},
+    # the generator as the top uses it: with the budget's stage when BUDGET_EN (msr_tile_gen_tb.sv)
+    run_cocotb("msr_tile_gen_tb", "test_tile_gen", HERE, {"NUM_ENGINES": engines, "BUDGET_EN": budget},
                f"e{engines}" + ("_budget" if budget else ""),
                sources=[RTL / "pkg/msr_pkg.sv", RTL / "prim/msr_clr_reg.sv",
-                        RTL / "budget/msr_budget_pkg.sv", RTL / "tilegen/msr_tile_gen.sv"])
+                        RTL / "budget/msr_budget_pkg.sv", RTL / "tilegen/msr_tile_gen.sv",
+                        RTL / "budget/msr_budget_stage.sv", HERE / "msr_tile_gen_tb.sv"])
