@@ -4,8 +4,9 @@
 //   Vmsr_sim_top --width W --height H [--tile T] [--levels L] [--thr a,b,c] [--metric max|sum]
 //       [--fov-gain G] [--gaze X,Y] [--rule patent|lindilate|N] [--frame OUT.ppm] [--source OUT.pgm] [--stats OUT.json]
 //       [--budget PIXELS] [--scale-init U] [--prior-shift P] [--seeded 0|1]   (docs/budget.md)
-//       [--frames N [--cameras FILE]]   (a sequence: N frames in this one run, the registers
-//       reprogrammed between frames as a driver would; FILE has one camera line per frame; with
+//       [--frames N [--cameras FILE] [--gazes FILE]]   (a sequence: N frames in this one run,
+//       the registers reprogrammed between frames as a driver would; FILE has one camera line per
+//       frame, resp. one gaze line per frame, X,Y or - for --gaze's (a path's gaze points); with
 //       a budget each frame after the first is seeded with the last SCALE_OUT; --frame and
 //       --source are then printf patterns of the frame number, --stats gets one line per frame)
 //       [--timeout CYCLES] [--mem-pause PERCENT] [--seed N] [--quiet]
@@ -29,6 +30,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -61,6 +63,7 @@ struct Options {
   long budget = 0, scale_init = 256, prior_shift = 6, seeded = 0;
   long frames = 1;                  // a sequence of frames in one run
   std::vector<std::string> cameras; // --cameras: the view of each frame
+  std::vector<std::pair<long, long>> gazes;  // --gazes: each frame's gaze, {-1, -1}: --gaze's
   int thr[3] = {8, 16, 32};
   std::string frame_out, source_out, stats_out, waves;
   uint64_t timeout = 0;  // 0: derived from the frame size
@@ -134,6 +137,18 @@ Options parse(int argc, char **argv) {
       if (!in) usage(std::string("cannot read --cameras ") + f);
       for (std::string line; std::getline(in, line);)
         if (!line.empty()) o.cameras.push_back(line);
+    } else if (a == "--gazes") {
+      const char *f = next("--gazes");
+      std::ifstream in(f);
+      if (!in) usage(std::string("cannot read --gazes ") + f);
+      for (std::string line; std::getline(in, line);) {
+        if (line.empty()) continue;
+        long x = -1, y = -1;
+        char tail = 0;
+        if (line != "-" && (std::sscanf(line.c_str(), "%ld,%ld%c", &x, &y, &tail) != 2 || x < 0 || y < 0))
+          usage("--gazes: line " + std::to_string(o.gazes.size() + 1) + " is not X,Y (integers >= 0) or -");
+        o.gazes.emplace_back(x, y);
+      }
     } else if (a == "--thr") {
       std::string s = next("--thr");
       int k = 0;
@@ -163,6 +178,9 @@ Options parse(int argc, char **argv) {
       usage("unknown option " + a);
     }
   }
+  if (!o.gazes.empty() && static_cast<long>(o.gazes.size()) != o.frames)
+    usage("--gazes has " + std::to_string(o.gazes.size()) + " lines for " + std::to_string(o.frames) +
+          " frames");
   if (!o.cameras.empty() && static_cast<long>(o.cameras.size()) != o.frames)
     usage("--cameras has " + std::to_string(o.cameras.size()) + " lines for " + std::to_string(o.frames) +
           " frames");
@@ -557,10 +575,14 @@ int main(int argc, char **argv) {
                             (uint32_t(o.thr[1]) << MSR_REGS__THRESH__THR2_bp) |
                             (uint32_t(o.thr[2]) << MSR_REGS__THRESH__THR3_bp));
     sim.write_reg(REG(FOV_GAIN), uint32_t(o.fov_gain));
-    sim.write_reg(REG(GAZE), o.gaze_x < 0 ? 0u
-                                          : MSR_REGS__GAZE__EN_bm |
-                                                ((uint32_t(o.gaze_x) << MSR_REGS__GAZE__X_bp) & MSR_REGS__GAZE__X_bm) |
-                                                ((uint32_t(o.gaze_y) << MSR_REGS__GAZE__Y_bp) & MSR_REGS__GAZE__Y_bm));
+    // this frame's gaze: its --gazes line, else --gaze
+    const bool own_gaze = !o.gazes.empty() && o.gazes[k].first >= 0;
+    const long gaze_x = own_gaze ? o.gazes[k].first : o.gaze_x;
+    const long gaze_y = own_gaze ? o.gazes[k].second : o.gaze_y;
+    sim.write_reg(REG(GAZE), gaze_x < 0 ? 0u
+                                        : MSR_REGS__GAZE__EN_bm |
+                                              ((uint32_t(gaze_x) << MSR_REGS__GAZE__X_bp) & MSR_REGS__GAZE__X_bm) |
+                                              ((uint32_t(gaze_y) << MSR_REGS__GAZE__Y_bp) & MSR_REGS__GAZE__Y_bm));
     sim.write_reg(REG(FB_BASE), o.fb_base >= 0 ? uint32_t(o.fb_base) : sim.fb_base());
     sim.write_reg(REG(FB_STRIDE), sim.fb_stride());
     sim.write_reg(REG(SRC_BASE), sim.src_base());
@@ -648,9 +670,9 @@ int main(int argc, char **argv) {
         // parameters, the memory layout this harness programmed, the frame's register values.
         using Root = Vmsr_sim_top___024root;
         // the gaze written to GAZE (with EN), or null: GAZE 0, the frame centre
-        const std::string gaze_json = o.gaze_x < 0 ? std::string("null")
-                                                   : "[" + std::to_string(o.gaze_x) + ", " +
-                                                         std::to_string(o.gaze_y) + "]";
+        const std::string gaze_json = gaze_x < 0 ? std::string("null")
+                                                 : "[" + std::to_string(gaze_x) + ", " +
+                                                       std::to_string(gaze_y) + "]";
         std::fprintf(f,
                      "{\"frame\": %ld, \"cycles\": %u, \"sim_cycles_total\": %llu, \"sim_seconds\": %.4f, "
                      "\"sim_cycles_per_second\": %.1f, \"status\": %u, \"error\": %u, "

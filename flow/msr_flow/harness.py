@@ -116,6 +116,7 @@ class HarnessRun:
     quiet: bool = False
     budget: object = None                               # msr_model.budget.BudgetConfig, or None: off
     cameras: list[str] | None = None                    # a sequence: one view per frame (one run)
+    gazes: list | None = None                           # ... and each frame's gaze (x, y) or None
     extra: list[str] = field(default_factory=list)     # e.g. --waves FILE --wave-tile TX,TY
     _proc: subprocess.Popen | None = None
     _dir: tempfile.TemporaryDirectory | None = None
@@ -143,6 +144,8 @@ class HarnessRun:
             cmd += ["--gaze", f"{p.gaze[0]},{p.gaze[1]}"]
         if self.cameras:
             cmd += ["--frames", str(len(self.cameras)), "--cameras", str(workdir / "cameras.txt")]
+        if self.gazes:
+            cmd += ["--gazes", str(workdir / "gazes.txt")]
         if self.camera:
             cmd.append(f"+camera={self.camera}")  # read by sim/msr_dpi.cpp, passed to the library unchanged
         if self.quiet:
@@ -157,6 +160,9 @@ class HarnessRun:
         self._dir = tempfile.TemporaryDirectory(prefix="msr_harness_")
         if self.cameras:
             Path(self._dir.name, "cameras.txt").write_text("".join(c + "\n" for c in self.cameras))
+        if self.gazes:                                  # a frame without one: "-", the run's gaze
+            Path(self._dir.name, "gazes.txt").write_text(
+                "".join(("-" if g is None else f"{g[0]},{g[1]}") + "\n" for g in self.gazes))
         self._t0 = time.perf_counter()
         self._proc = subprocess.Popen(self.command(Path(self._dir.name)), stderr=subprocess.PIPE if self.quiet
                                       else None, text=True)

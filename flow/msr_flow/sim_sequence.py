@@ -31,17 +31,20 @@ from .harness import GoldenFrames, HarnessRun, compare
 STRIP_ROWS, STRIP_W = 8, 240
 
 
-def cameras_of(a, W: int, H: int, n: int) -> tuple[list[str], str]:
-    """The view of each of n frames and where they come from (the path file or the orbit)."""
+def views_of(a, W: int, H: int, n: int, params) -> tuple[list[str], list, str]:
+    """The view and the parameters (a path key's gaze point) of each of n frames, and where the
+    views come from (the path file or the orbit)."""
     from msr_model.camera_path import scene_views
+    from msr_model.sequence import params_per_frame
     if a.camera:
         raise UsageError("give CAMERA or CAMERA_PATH for a sequence, not both")
     path = Path(a.camera_path) if str(a.camera_path).strip() else None
     try:
         views = scene_views(a.scene, W, H, path, a.quality)
-        return views.cameras(n), views.source
+        cams = views.cameras(n)
     except spec.SpecError as e:
         raise UsageError(str(e)) from None
+    return cams, params_per_frame(params, views, n, W, H), views.source
 
 
 def _thumb(img: np.ndarray) -> np.ndarray:
@@ -95,16 +98,17 @@ def run_sequence(a, W: int, H: int, params, rule: str, budget, harness: Path, ou
     from msr_model.sequence import Flicker, frame_entry, next_budget, summary
     n = int_in(a.frames or "1", "FRAMES", 1, 10000)
     t0 = time.perf_counter()
-    cams, path_file = cameras_of(a, W, H, n)       # opens the scene: a bad model is exit 2 here
+    cams, fparams, path_file = views_of(a, W, H, n, params)   # opens the scene: a bad model is exit 2 here
+    gazes = [p.gaze for p in fparams] if fparams[0] is not params else None
     out.mkdir(parents=True, exist_ok=True)
     sim = HarnessRun(harness, a.scene, W, H, params, rule=rule, quality=a.quality, latency=a.rnd_latency,
-                     jitter=a.rnd_jitter, budget=budget, cameras=cams).start()
+                     jitter=a.rnd_jitter, budget=budget, cameras=cams, gazes=gazes).start()
     goldens, refs = [], []
     try:
         cfg = budget
-        for cam in cams:
+        for cam, fp in zip(cams, fparams):
             gf = GoldenFrames(a.scene, W, H, quality=a.quality, camera=cam)
-            g = gf.frame(params, rule, cfg)
+            g = gf.frame(fp, rule, cfg)
             goldens.append(g)
             refs.append(gf.reference)
             cfg = next_budget(cfg, g.stats)     # the driver's sequence: seeded with the last frame's scale
@@ -114,10 +118,14 @@ def run_sequence(a, W: int, H: int, params, rule: str, budget, harness: Path, ou
         raise RunFailed(f"BUDGET={a.budget}: the harness {harness} is a top without the budget controller")
     entries, frames, fl = [], [], Flicker()
     for k, (r, g, ref) in enumerate(zip(rtl, goldens, refs)):
+        if r.stats.get("gaze") != (None if fparams[k].gaze is None else list(fparams[k].gaze)):
+            raise RunFailed(f"frame {k}: the harness wrote GAZE {r.stats.get('gaze')}, not {fparams[k].gaze} "
+                            "(rebuild it: make sim)")
         v = compare(r, g)
         e = {**frame_entry(k, r.frame, r.source, ref, cams[k]), "bit_exact": v["bit_exact"],
              "ssim": ssim(ref, r.frame), "cycles": r.stats["cycles"],
-             "mismatched_pixels": v["mismatched_pixels"], "mismatched_codes": v["mismatched_codes"]}
+             "mismatched_pixels": v["mismatched_pixels"], "mismatched_codes": v["mismatched_codes"],
+             "gaze": list(fparams[k].gaze or spec.default_gaze(W, H, fparams[k].tile))}
         e["flicker"] = fl.add(r.frame, ref)
         if budget is not None:
             bc = g.stats["budget_control"]

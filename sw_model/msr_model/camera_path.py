@@ -3,7 +3,9 @@
 A path file is JSON, {"keys": [{"frame": 0, "eye": [x, y, z], "target": [x, y, z], "fov": 40},
 ...]}: frame numbers ascending, eye and target in model units, the vertical field of view in
 degrees; between two keys each value is interpolated linearly in the frame number, before the
-first key the first key holds, after the last the last. Up is +Y (as for --camera). Fields
+first key the first key holds, after the last the last. Up is +Y (as for --camera). A key may
+also carry `"gaze": [x, y]` (pixels): the gaze point is interpolated the same way between the
+keys that carry one and rounded half up (`gaze(k)`; None when no key carries one). Fields
 other than these may be present and are ignored.
 
 `CameraPath.camera(k)` is frame k's view as the renderer's camera string
@@ -66,6 +68,14 @@ class Key:
     eye: tuple[float, float, float]
     target: tuple[float, float, float]
     fov: float
+    gaze: tuple[float, float] | None = None
+
+
+def _gaze(v, where: str) -> tuple[float, float]:
+    if (not isinstance(v, (list, tuple)) or len(v) != 2 or any(isinstance(x, bool) for x in v)
+            or not all(isinstance(x, (int, float)) and math.isfinite(x) and x >= 0 for x in v)):
+        raise spec.SpecError(f"{where}: must be [x, y], two numbers >= 0 (pixels), got {v!r}")
+    return float(v[0]), float(v[1])
 
 
 def _vec3(v, where: str) -> tuple[float, float, float]:
@@ -114,7 +124,8 @@ class CameraPath:
             eye, target = _vec3(k["eye"], f"{where}.eye"), _vec3(k["target"], f"{where}.target")
             if eye == target:
                 raise spec.SpecError(f"{where}: eye and target are the same point")
-            keys.append(Key(frame, eye, target, float(fov)))
+            gaze = _gaze(k["gaze"], f"{where}.gaze") if "gaze" in k else None
+            keys.append(Key(frame, eye, target, float(fov), gaze))
         return cls(keys, source, space)
 
     def at(self, frame: int) -> tuple[tuple, tuple, float]:
@@ -145,6 +156,25 @@ class CameraPath:
                 raise spec.SpecError(f"{self.source}: a framed path needs the scene's framing")
             eye, target = framing.to_model(eye), framing.to_model(target)
         return camera_string(eye, target, fov)
+
+    def gaze(self, frame: int) -> tuple[int, int] | None:
+        """Frame `frame`'s gaze point in pixels, interpolated between the keys that carry one and
+        rounded half up; None when no key does (the frame's gaze is then the run's)."""
+        gs = [k for k in self.keys if k.gaze is not None]
+        if not gs:
+            return None
+        if frame <= gs[0].frame or frame >= gs[-1].frame:
+            g = gs[0].gaze if frame <= gs[0].frame else gs[-1].gaze
+        else:
+            j = next(i for i in range(1, len(gs)) if gs[i].frame >= frame)
+            a, b = gs[j - 1], gs[j]
+            t = (frame - a.frame) / (b.frame - a.frame)
+            g = tuple(p + (q - p) * t for p, q in zip(a.gaze, b.gaze))
+        return int(math.floor(g[0] + 0.5)), int(math.floor(g[1] + 0.5))
+
+    @property
+    def has_gaze(self) -> bool:
+        return any(k.gaze is not None for k in self.keys)
 
     @property
     def last_key_frame(self) -> int:
@@ -197,6 +227,11 @@ class Orbit:
     def camera(self, frame: int, framing: Framing | None = None) -> str:
         return camera_string(*self.at(frame))
 
+    def gaze(self, frame: int) -> None:
+        return None                                       # the orbit carries no gaze point
+
+    has_gaze = False
+
 
 def default_orbit(renderer) -> Orbit:
     """The default orbit of the scene an EmbreeRenderer is open on (with its own view)."""
@@ -220,6 +255,24 @@ class SceneViews:
 
     def cameras(self, frames: int) -> list[str]:
         return [self.camera(k) for k in range(frames)]
+
+    @property
+    def has_gaze(self) -> bool:
+        return self.path.has_gaze
+
+    def gazes(self, frames: int, width: int, height: int) -> list[tuple[int, int] | None]:
+        """The path's gaze point of frames 0 .. N-1 (None throughout without one), each checked
+        inside the width x height frame (SpecError with the frame number otherwise)."""
+        out = []
+        for k in range(frames):
+            g = self.path.gaze(k)
+            if g is not None:
+                try:
+                    spec.check_gaze(g, width, height)
+                except spec.SpecError as e:
+                    raise spec.SpecError(f"{self.source}: frame {k}: {e}") from None
+            out.append(g)
+        return out
 
 
 def scene_views(scene: str, width: int, height: int, path=None, quality: str = "fast") -> SceneViews:

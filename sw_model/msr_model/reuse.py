@@ -416,13 +416,16 @@ def choose_invz_exp(embree, probe: int = 16) -> int:
     return int(np.clip(math.floor(math.log2(float(z.min()))) + 15, 0, 40))
 
 
-def run_sequence(scene: str, width: int, height: int, cameras, params: Params, rule="patent",
+def run_sequence(scene: str, width: int, height: int, cameras, params, rule="patent",
                  reuse: bool = True, quality: str = "fast", invz_exp: int | None = None, log=None):
     """Frames 0 .. len(cameras)-1 of `scene` seen from `cameras` (camera strings): a list of
-    ReuseFrame. reuse=False: each frame is golden.select's (the same pixels and source codes)."""
+    ReuseFrame. reuse=False: each frame is golden.select's (the same pixels and source codes).
+    `params` is one Params for every frame or a list of one per frame (a path's gaze points)."""
     from .embree import open_renderer
     out, state = [], None
+    per_frame = params if isinstance(params, (list, tuple)) else [params] * len(cameras)
     for k, cam in enumerate(cameras):
+        params = per_frame[k]
         with open_renderer(scene, width, height, quality=quality, camera=cam) as r:
             if invz_exp is None:
                 invz_exp = choose_invz_exp(r)

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -111,6 +111,19 @@ class Flicker:
         return {"flicker": float(np.mean(v)) if v else 0.0, "flicker_worst": float(max(v)) if v else 0.0}
 
 
+def params_per_frame(params: spec.Params, views, frames: int, width: int, height: int) -> list[spec.Params]:
+    """Each frame's parameters: `params`, with the gaze point of the path's keys where they carry
+    one (camera_path: interpolated, rounded half up). A gaze given for the run as well as in the
+    path is refused (UsageError): which one holds would be a guess."""
+    try:
+        gazes = views.gazes(frames, width, height)
+    except spec.SpecError as e:
+        raise UsageError(str(e)) from None
+    if views.has_gaze and params.gaze is not None:
+        raise UsageError(f"a gaze point for the run and gaze points in {views.source}: give one of them")
+    return [params if g is None else replace(params, gaze=g) for g in gazes]
+
+
 def summary(entries: list[dict]) -> dict:
     ps = [e["psnr_db"] for e in entries]
     return {"psnr_db_mean": float(np.mean([capped(p) for p in ps])),    # finite: identical counts as the cap
@@ -126,24 +139,27 @@ def run(setup: SequenceSetup, out_dir, log=None) -> dict:
     cfg = first_budget(W, H, setup.budget, setup.params)
     views = scene_views(setup.scene, W, H, setup.path, setup.quality)
     cams = views.cameras(setup.frames)
+    frame_params = params_per_frame(setup.params, views, setup.frames, W, H)
     reused = None
     if setup.reuse:                         # the previous frame's pixels first (msr_model.reuse)
         model = reuse_model()
         if model is None:
             raise UsageError(REUSE_MISSING)
-        reused = model.run_sequence(setup.scene, W, H, cams, setup.params, setup.rule, reuse=True,
+        reused = model.run_sequence(setup.scene, W, H, cams, frame_params, setup.rule, reuse=True,
                                     quality=setup.quality)
     entries, pictures, fl = [], [], Flicker()
     for k, cam in enumerate(cams):
+        params = frame_params[k]
         with open_renderer(setup.scene, W, H, quality=setup.quality, camera=cam) as r:
             reference = r.render_full(progress=False)
         if reused is not None:
             result = reused[k]
         else:
             unit = ImageRenderer(reference)     # the renderer is deterministic: its pixels, from memory
-            result = BG.select_budget(unit, W, H, setup.params, cfg or BG.BudgetConfig(), rule=setup.rule)
+            result = BG.select_budget(unit, W, H, params, cfg or BG.BudgetConfig(), rule=setup.rule)
         e = frame_entry(k, result.frame, result.source, reference, cam,
                         reused=int(result.reused) if reused is not None else 0)
+        e["gaze"] = list(params.gaze or spec.default_gaze(W, H, params.tile))
         if reused is not None:
             e["traced"] = int(result.traced)    # rays asked of the renderer
             e["traced_fraction"] = e["traced"] / (W * H)

@@ -55,6 +55,25 @@ def test_malformed_paths_refused(data, why):
         CameraPath.from_dict(data)
 
 
+def test_gaze_keys_interpolated_and_rounded_half_up():
+    """A key's "gaze" is interpolated between the keys that carry one (a key without one is
+    skipped), held before the first and after the last, rounded half up; none: None."""
+    k = [dict(KEYS["keys"][0], gaze=[0, 10]), KEYS["keys"][1], dict(KEYS["keys"][2], gaze=[3, 13])]
+    p = CameraPath.from_dict({"keys": k})
+    assert p.has_gaze and p.gaze(0) == (0, 10) and p.gaze(12) == (3, 13) and p.gaze(99) == (3, 13)
+    assert p.gaze(2) == (1, 11)          # 0.5, 10.5 rounded half up
+    assert p.gaze(4) == (1, 11)          # 1.0, 11.0
+    assert p.gaze(6) == (2, 12)          # 1.5, 11.5
+    assert [p.gaze(f) for f in range(13)] == [(int(3 * f / 12 + 0.5), int(10 + 3 * f / 12 + 0.5)) for f in range(13)]
+    assert CameraPath.from_dict(KEYS).gaze(5) is None and not CameraPath.from_dict(KEYS).has_gaze
+
+
+@pytest.mark.parametrize("gaze", [[1], [1, 2, 3], [-1, 0], ["a", 0], [True, 1], [float("inf"), 0], 7])
+def test_bad_gaze_keys_refused(gaze):
+    with pytest.raises(spec.SpecError, match="gaze"):
+        CameraPath.from_dict({"keys": [dict(KEYS["keys"][0], gaze=gaze)]})
+
+
 def test_interpolated_eye_on_target_refused():
     p = CameraPath.from_dict({"keys": [{"frame": 0, "eye": [0, 0, 1], "target": [0, 0, 0], "fov": 40},
                                        {"frame": 2, "eye": [0, 0, -1], "target": [0, 0, 0], "fov": 40}]})

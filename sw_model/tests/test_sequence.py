@@ -163,3 +163,35 @@ def test_identical_frame_reported(tmp_path):
     assert "Infinity" in text
     seq = json.loads(text)
     assert all(e["identical"] and math.isinf(e["psnr_db"]) for e in seq["frames"]) and seq["flicker"] == 0
+
+
+def test_sequence_gaze_from_the_path(tmp_path):
+    """A path's gaze keys move the foveation centre frame by frame (the camera held still):
+    frame K equals select --gaze with the interpolated point, sequence.json records it; a run
+    gaze beside path gaze points, or a path point outside the frame, is refused (exit 2)."""
+    with open_renderer("cornell", 72, 40) as r:         # the scene's own view, held still
+        eye, target, fov = r.view()
+    still = {"eye": list(eye), "target": list(target), "fov": fov}
+    gaze_path = {"keys": [{"frame": 0, **still, "gaze": [2, 2]}, {"frame": 2, **still, "gaze": [69, 37]}]}
+    path = tmp_path / "gaze.json"
+    path.write_text(json.dumps(gaze_path))
+    common = ["--scene", "cornell", "--width", 72, "--height", 40, "--tile", 8, "--thr", "10,20", "--fov-gain", 200]
+    r = msr("sequence", *common, "--frames", 3, "--path", path, "--out", tmp_path / "s")
+    assert r.returncode == 0, r.stderr
+    seq = json.loads((tmp_path / "s" / "sequence.json").read_text())
+    assert [e["gaze"] for e in seq["frames"]] == [[2, 2], [36, 20], [69, 37]]     # 35.5, 19.5 rounded up
+    maps = [load_rgb(tmp_path / "s" / f"source_map_{k:04d}.png") for k in range(3)]
+    assert not np.array_equal(maps[0], maps[2]), "the gaze moved nothing"
+    for k, g in ((1, "36,20"), (2, "69,37")):
+        cam = seq["frames"][k]["camera"]
+        r = msr("select", *common, "--camera", cam, "--gaze", g, "--out", tmp_path / "f.png",
+                "--source-map", tmp_path / "m.png", "--stats", tmp_path / "st.json")
+        assert r.returncode == 0, r.stderr
+        assert np.array_equal(load_rgb(tmp_path / "m.png"), maps[k]), k
+    r = msr("sequence", *common, "--frames", 2, "--path", path, "--gaze", "1,1", "--out", tmp_path / "b")
+    assert r.returncode == 2 and "gaze" in r.stderr and not (tmp_path / "b").exists(), r.stderr
+    far = {"keys": [dict(gaze_path["keys"][0], gaze=[72, 0])]}
+    path.write_text(json.dumps(far))
+    r = msr("sequence", *common, "--frames", 2, "--path", path, "--out", tmp_path / "c")
+    assert r.returncode == 2 and "outside" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert not (tmp_path / "c").exists()

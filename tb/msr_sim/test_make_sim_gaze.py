@@ -2,18 +2,22 @@
 bit-exact with the golden model run with the same gaze and differs from the default frame when
 FOV_GAIN > 0; without GAZE the frame is the default one (the golden model's frame-centre
 foveation); a gaze outside the frame is refused by the script (exit 2, one line, nothing run)
-and, written as is by the harness, by the hardware (STATUS.ERROR 16)."""
+and, written as is by the harness, by the hardware (STATUS.ERROR 16). A camera path's gaze keys
+set GAZE frame by frame, bit-exact with the golden `sequence` command on the same path."""
 from __future__ import annotations
 
 import json
 import subprocess
+import sys
 
 import numpy as np
 import pytest
 from PIL import Image
 
 from msr_flow import regs as R
-from msr_sim_run import build_harness, run_sim
+from msr_model import load_rgb
+from msr_model.embree import open_renderer
+from msr_sim_run import ROOT, build_harness, run_sim
 
 FRAME = ("--width", "72", "--height", "40", "--tile", "8", "--levels", "2", "--thr", "10,20", "--fov-gain", "200")
 
@@ -58,3 +62,31 @@ def test_harness_gaze_refused_by_the_hardware(harness):
     assert r.returncode == 1 and f"STATUS.ERROR = {R.STATUS_ERROR_GAZE}" in r.stderr, r.stderr
     r = subprocess.run(base + ["--gaze", "bad"], capture_output=True, text=True)
     assert r.returncode == 2 and "--gaze" in r.stderr, r.stderr
+
+
+def test_gaze_keys_of_a_path(harness, tmp_path):
+    """The camera held still, the gaze moving from corner to corner along the path's keys: each
+    frame bit exact, the harness's GAZE the interpolated point, the same frames as the golden
+    sequence command's, and the source maps of the first and last frame differ."""
+    with open_renderer("cornell", 72, 40) as r:
+        eye, target, fov = r.view()
+    still = {"eye": list(eye), "target": list(target), "fov": fov}
+    path = tmp_path / "gaze.json"
+    path.write_text(json.dumps({"keys": [{"frame": 0, **still, "gaze": [2, 2]},
+                                         {"frame": 2, **still, "gaze": [69, 37]}]}))
+    r = run_sim(harness, tmp_path / "sim", *FRAME, "--frames", "3", "--camera-path", str(path))
+    assert r.returncode == 0, r.stdout + r.stderr
+    seq = json.loads((tmp_path / "sim" / "sequence.json").read_text())
+    assert seq["bit_exact"] and [e["gaze"] for e in seq["frames"]] == [[2, 2], [36, 20], [69, 37]]
+    g = subprocess.run([sys.executable, "-m", "msr_model", "sequence", "--scene", "cornell", *FRAME,
+                        "--frames", "3", "--path", str(path), "--out", str(tmp_path / "gold")],
+                       capture_output=True, text=True, cwd=ROOT)
+    assert g.returncode == 0, g.stderr
+    for k in range(3):
+        for name in (f"frame_{k:04d}.png", f"source_map_{k:04d}.png"):
+            assert np.array_equal(load_rgb(tmp_path / "sim" / name), load_rgb(tmp_path / "gold" / name)), name
+    assert not np.array_equal(load_rgb(tmp_path / "sim" / "source_map_0000.png"),
+                              load_rgb(tmp_path / "sim" / "source_map_0002.png")), "the gaze moved nothing"
+    # a gaze for the run beside the path's: refused before the harness runs
+    r = run_sim(harness, tmp_path / "both", *FRAME, "--frames", "2", "--camera-path", str(path), "--gaze", "1,1")
+    assert r.returncode == 2 and "gaze" in r.stderr and not (tmp_path / "both").exists(), r.stderr
