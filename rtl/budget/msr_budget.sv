@@ -12,6 +12,8 @@
 // read-back is registered) and only while it answers the same row, and not in the first
 // clocks of a frame, when the controller is still setting rows 0 and 1 to the seed: so a row
 // never starts on another row's or another frame's scale.
+`include "msr_flops.svh"
+
 module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_IN = 4,                       // pixel streams (engines)
   localparam int unsigned TROW_W = COORD_W - 2
@@ -120,23 +122,24 @@ module msr_budget import msr_pkg::*; import msr_sys_pkg::*; #(
 
   // ---- The tile generator's answer ---------------------------------------------------------------
   logic [TROW_W-1:0] asked_q;
-  logic [2:0]        settle_q;            // clocks since the frame started, saturating at 4
+  logic [2:0]        settle_q, settle_d;  // clocks since the frame started, saturating at 4
+  logic              on_d;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      asked_q  <= '0;
-      settle_q <= '0;
-      on_q     <= 1'b0;
-    end else if (clear_i) begin
-      settle_q <= '0;
-      on_q     <= 1'b0;
-    end else begin
-      asked_q  <= row_idx_i;
-      if (bud_start)              settle_q <= '0;
-      else if (settle_q != 3'd4)  settle_q <= settle_q + 1'b1;
-      if (bud_start)              on_q <= 1'b1;
-      else if (ctl_frame_done)    on_q <= 1'b0;
+      asked_q <= '0;
+    end else if (!clear_i) begin
+      asked_q <= row_idx_i;
     end
   end
+  always_comb begin
+    settle_d = settle_q;
+    on_d     = on_q;
+    if (bud_start)              settle_d = '0;
+    else if (settle_q != 3'd4)  settle_d = settle_q + 1'b1;
+    if (bud_start)              on_d = 1'b1;
+    else if (ctl_frame_done)    on_d = 1'b0;
+  end
+  `MSR_CLR_REG(u_on_q, 4, clear_i, 1'b1, {settle_d, on_d}, {settle_q, on_q})
   assign row_ok_o = ctl_row_ok && asked_q == row_idx_i && settle_q == 3'd4 && on_q;
   assign row_m_o  = ctl_row_m;
   assign busy_o   = on_q || rows_busy;

@@ -253,7 +253,9 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   // after the G product (at least one clock); from the pulse's registers through grid_axis
   // into the multiplier's load it was the unit's worst path.
   logic [5:0]      n0_last_q;
-  always_ff @(posedge clk_i) n0_last_q <= grid_axis(frm_q.h_last, cfg.levels);
+  always_ff @(posedge clk_i) begin
+    n0_last_q <= grid_axis(frm_q.h_last, cfg.levels);
+  end
 
   // The operands of the product that loads this clock, by the state that loads it.
   msr_budget_mul_ops u_mul_ops (

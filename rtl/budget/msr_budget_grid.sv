@@ -7,6 +7,8 @@
 // the constants from it registered again, and the pulses come out six clocks late with them
 // (check_o, start_o): the configuration must hold from the input pulse on. A clear drops a
 // pulse in flight.
+`include "msr_flops.svh"
+
 module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
   localparam int unsigned ROW_W = BUD_ROW_W             // tile row index (as the walker's)
 ) (
@@ -110,18 +112,8 @@ module msr_budget_grid import msr_pkg::*; import msr_budget_pkg::*; #(
 
   localparam int unsigned DLY = 6;                   // the stages above
   logic [DLY-1:0] check_q, start_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      check_q <= '0;
-      start_q <= '0;
-    end else if (clear_i) begin
-      check_q <= '0;
-      start_q <= '0;
-    end else begin
-      check_q <= {check_q[DLY-2:0], check_i};
-      start_q <= {start_q[DLY-2:0], start_i};
-    end
-  end
+  `MSR_CLR_REG(u_dly_q, 2 * DLY, clear_i, 1'b1,
+               {check_q[DLY-2:0], check_i, start_q[DLY-2:0], start_i}, {check_q, start_q})
   assign check_o = check_q[DLY-1];
   assign start_o = start_q[DLY-1];
 

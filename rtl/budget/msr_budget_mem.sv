@@ -25,6 +25,8 @@ module msr_budget_mem #(
   always_ff @(posedge clk_i) begin
     if (re_i) rdata_q <= mem_q[addr_i];
   end
-  always_ff @(posedge clk_i) word_o <= rdata_q;
+  always_ff @(posedge clk_i) begin
+    word_o <= rdata_q;
+  end
 
 endmodule : msr_budget_mem

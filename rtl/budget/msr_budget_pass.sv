@@ -77,7 +77,9 @@ module msr_budget_pass import msr_budget_pkg::*; #(
   logic [10:0] pass_u;
   logic [10:0] pass_w_q;
   assign {pass_u, pass_a_o} = mem_word_o;
-  always_ff @(posedge clk_i) pass_w_q <= (pass_u > u0_i) ? u0_i : pass_u;
+  always_ff @(posedge clk_i) begin
+    pass_w_q <= (pass_u > u0_i) ? u0_i : pass_u;
+  end
   assign pass_w_o = pass_w_q;
 
   // (rows beyond the memory's depth: the configuration check refuses such a frame)

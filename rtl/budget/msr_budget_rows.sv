@@ -129,11 +129,15 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
   end
 
   // The counters are data registers (act_q gates them): a start, a clear or the slot's restart
-  // is the flip-flops' synchronous reset, not a multiplexer in front of each adder (the slot
-  // has no pixel in the clock it restarts, a_restart_idle).
+  // loads zero, which synthesis makes the flip-flops' synchronous reset, not a multiplexer in
+  // front of each adder (the slot has no pixel in the clock it restarts, a_restart_idle).
+  logic [2:0] restart;
+  for (genvar s = 0; s < 3; s++) begin : g_restart
+    assign restart[s] = clear_i || start_i || (take_q && slot_t'(s) == tslot_q);
+  end
   always_ff @(posedge clk_i) begin
     for (int unsigned s = 0; s < 3; s++) begin
-      if (clear_i || start_i || (take_q && slot_t'(s) == tslot_q)) begin
+      if (restart[s]) begin
         traced_q[s] <= '0;
         tiles_q[s]  <= '0;
       end else begin
@@ -143,26 +147,31 @@ module msr_budget_rows import msr_pkg::*; import msr_budget_pkg::*; #(
     end
   end
 
+  logic                act_d;
+  logic [NUM_IN-1:0]   s1_v_d;
+  always_comb begin
+    act_d  = act_q;
+    s1_v_d = '0;
+    if (!start_i) begin
+      s1_v_d = pix_fire_i & {NUM_IN{act_q}};
+      if (take && {1'b0, head_q} + 1'b1 == nty_i) act_d = 1'b0;
+    end else begin
+      act_d  = 1'b1;
+    end
+  end
+  `MSR_CLR_REG(u_act_q, 1 + NUM_IN, clear_i, 1'b1, {act_d, s1_v_d}, {act_q, s1_v_q})
+  // (a clear leaves the head: only a start reads it)
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      act_q    <= 1'b0;
-      s1_v_q   <= '0;
       head_q   <= '0;
       hslot_q  <= '0;
-    end else if (clear_i) begin
-      act_q    <= 1'b0;
-      s1_v_q   <= '0;
-    end else if (start_i) begin
-      act_q    <= 1'b1;
-      s1_v_q   <= '0;
-      head_q   <= '0;
-      hslot_q  <= '0;
-    end else begin
-      s1_v_q   <= pix_fire_i & {NUM_IN{act_q}};
-      if (take) begin
+    end else if (!clear_i) begin
+      if (start_i) begin
+        head_q  <= '0;
+        hslot_q <= '0;
+      end else if (take) begin
         head_q  <= head_q + 1'b1;
         hslot_q <= slot_add(hslot_q, 2'd1);
-        if ({1'b0, head_q} + 1'b1 == nty_i) act_q <= 1'b0;
       end
     end
   end

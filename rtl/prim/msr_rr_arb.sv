@@ -10,6 +10,7 @@
 // grant is a handful of LUT levels for any N. With MASKS the grant comes instead from
 // registered per-requester masks (below); the chain then only gives the next pointer.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_rr_arb #(
   parameter int unsigned N     = 4,                      // requesters, >= 1
@@ -89,15 +90,9 @@ module msr_rr_arb #(
     for (genvar i = 0; i < N; i++) begin : g_gnt
       assign gnt[i] = req_i[i] && (req_i & outrank_q[i]) == '0;
     end
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        outrank_q <= outrank_of('0);
-      end else if (clear_i) begin
-        outrank_q <= outrank_of('0);
-      end else if (valid_o && ready_i) begin
-        outrank_q <= outrank_of(above_d);
-      end
-    end
+    localparam outrank_t OUTRANK_0 = outrank_of('0);
+    `MSR_CLR_REG_RST(u_outrank_q, $bits(outrank_t), OUTRANK_0, clear_i, valid_o && ready_i,
+                     outrank_of(above_d), outrank_q)
     /* verilator lint_off SYNCASYNCNET */
     `MSR_ASSERT(a_masks_of_pointer, outrank_q == outrank_of(above_q))
     `MSR_ASSERT(a_masks_match_chain, gnt == gnt_chain)
@@ -114,18 +109,7 @@ module msr_rr_arb #(
     assign gnt_o   = hold ? locked_q : gnt;
     // after a held winner w: every requester above w (thermometer ~(w | (w - 1)))
     assign above_d = hold ? ~(locked_q | (locked_q - 1'b1)) : above_pick;
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        lock_q   <= 1'b0;
-        locked_q <= '0;
-      end else if (clear_i) begin
-        lock_q   <= 1'b0;
-        locked_q <= '0;
-      end else begin
-        lock_q   <= valid_o && !ready_i;
-        locked_q <= gnt_o;
-      end
-    end
+    `MSR_CLR_REG(u_lock_q, 1 + N, clear_i, 1'b1, {valid_o && !ready_i, gnt_o}, {lock_q, locked_q})
   end else begin : g_no_lock
     assign gnt_o   = gnt;
     assign above_d = above_pick;
@@ -135,15 +119,7 @@ module msr_rr_arb #(
 
   msr_onehot_to_bin #(.N(N), .IDX_W(IDX_W)) u_idx (.onehot_i (gnt_o), .bin_o (idx_o));
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      above_q <= '0;
-    end else if (clear_i) begin
-      above_q <= '0;
-    end else if (valid_o && ready_i) begin
-      above_q <= above_d;
-    end
-  end
+  `MSR_CLR_REG(u_above_q, N, clear_i, valid_o && ready_i, above_d, above_q)
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_gnt_onehot, $onehot0(gnt_o))

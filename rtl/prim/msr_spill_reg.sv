@@ -3,6 +3,7 @@
 // registered), at full throughput. Entry A is the output register; entry B catches the word
 // that arrives in the cycle the consumer stops.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_spill_reg #(
   parameter int unsigned WIDTH = 8     // bits per word
@@ -32,20 +33,10 @@ module msr_spill_reg #(
   assign valid_o = a_full_q;
   assign data_o  = a_data_q;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      a_full_q <= 1'b0;
-      b_full_q <= 1'b0;
-    end else if (clear_i) begin
-      a_full_q <= 1'b0;
-      b_full_q <= 1'b0;
-    end else begin
-      if (a_fill)       a_full_q <= 1'b1;
-      else if (a_drain) a_full_q <= 1'b0;
-      if (b_fill)       b_full_q <= 1'b1;
-      else if (b_drain) b_full_q <= 1'b0;
-    end
-  end
+  logic a_full_d, b_full_d;
+  assign a_full_d = a_fill || (a_full_q && !a_drain);
+  assign b_full_d = b_fill || (b_full_q && !b_drain);
+  `MSR_CLR_REG(u_full_q, 2, clear_i, 1'b1, {a_full_d, b_full_d}, {a_full_q, b_full_q})
 
   // Data registers carry no reset: the full flags gate them.
   always_ff @(posedge clk_i) begin
