@@ -29,6 +29,7 @@
 // memory's address and data selection and the weight.
 //
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   localparam int unsigned ROW_W = BUD_ROW_W             // tile row index (as the walker's)
@@ -349,11 +350,40 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
   end
 
   // ---- Registers ---------------------------------------------------------------------------
+  // The ones the clear resets. The read-back of the row the walker asks about: known rows are
+  // rows_done and the next (rows_done < nty while act_q; row rows_done + 1 is in the frame
+  // unless rows_done is the last: equalities, not three magnitude compares). The input pulses
+  // drop the old answers at once (the sequence starts six clocks later).
+  budget_state_e state_n;
+  logic          act_n, check_done_n, err_budget_n, err_profile_n, frame_done_n, row_ok_n;
+  always_comb begin
+    state_n       = (start_p || check_p) ? ST_G : state_d;
+    act_n         = act_q && !start_i;
+    check_done_n  = check_done_q && !check_i;
+    {err_budget_n, err_profile_n} = {err_budget_q, err_profile_q};
+    frame_done_n  = 1'b0;
+    row_ok_n      = act_q && (row_idx_i == rows_done_q || (row_idx_i == rows_next_q && !row_last_q))
+                    && !start_i && !start_p && !check_p;
+    if (start_p || check_p) begin
+      act_n = 1'b0;
+      if (check_p && !start_p) check_done_n = 1'b0;
+    end else if (state_q == ST_G && mul_done && checking_q) begin
+      check_done_n  = 1'b1;
+      err_budget_n  = cfg.budget != '0 && WH_W'(cfg.budget) < WH_W'(mul_prod);
+      err_profile_n = cfg.seeded && !(mem_valid_q && mem_rows_q == frm_q.nty);
+    end else if (state_q == ST_M0 && mul_done) begin
+      act_n = 1'b1;
+    end else if (state_q == ST_FIN) begin
+      {act_n, frame_done_n} = 2'b01;
+    end
+  end
+  `MSR_CLR_REG(u_ctl_q, $bits(budget_state_e) + 6, clear_i, 1'b1,
+               {state_n, act_n, check_done_n, err_budget_n, err_profile_n, frame_done_n, row_ok_n},
+               {state_q, act_q, check_done_q, err_budget_q, err_profile_q, frame_done_q, row_ok_q})
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      state_q           <= ST_IDLE;
       checking_q        <= 1'b0;
-      act_q             <= 1'b0;
       rows_done_q       <= '0;
       rows_next_q       <= ROW_W'(1);
       rows_left_q       <= '0;
@@ -364,44 +394,14 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
       base_q            <= '0;
       mem_valid_q       <= 1'b0;
       mem_rows_q        <= '0;
-      check_done_q      <= 1'b0;
-      err_budget_q      <= 1'b0;
-      err_profile_q     <= 1'b0;
       scale_out_q       <= '0;
       scale_out_valid_q <= 1'b0;
-      frame_done_q      <= 1'b0;
-      row_ok_q          <= 1'b0;
       row_m_q           <= '0;
-    end else if (clear_i) begin
-      state_q      <= ST_IDLE;
-      act_q        <= 1'b0;
-      check_done_q <= 1'b0;
-      err_budget_q <= 1'b0;
-      err_profile_q <= 1'b0;
-      frame_done_q <= 1'b0;
-      row_ok_q     <= 1'b0;
-    end else begin
-      frame_done_q <= 1'b0;
-      // Read-back of the row the walker asks about: known rows are rows_done and the next.
-      // (rows_done < nty while act_q; row rows_done + 1 is in the frame unless rows_done is
-      // the last: equalities, not three magnitude compares)
-      row_ok_q <= act_q && (row_idx_i == rows_done_q ||
-                            (row_idx_i == rows_next_q && !row_last_q));
+    end else if (!clear_i) begin                    // (a clear leaves them)
       row_m_q  <= m_q[(row_idx_i == rows_done_q) ? base_q : slot1];
-
-      // The input pulses drop the old answers at once (the sequence starts six clocks later).
-      if (check_i) check_done_q <= 1'b0;
-      if (start_i) begin
-        act_q    <= 1'b0;
-        row_ok_q <= 1'b0;
-      end
       if (start_p || check_p) begin
         // Both begin with the grid constants and G (the multiplier is loaded below).
-        state_q     <= ST_G;
         checking_q  <= !start_p;
-        act_q       <= 1'b0;
-        row_ok_q    <= 1'b0;
-        if (check_p && !start_p) check_done_q <= 1'b0;
         if (start_p) begin
           rows_done_q       <= '0;
           rows_next_q       <= ROW_W'(1);
@@ -412,19 +412,10 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
           u_q[1]            <= cfg.u0;
         end
       end else begin
-        state_q <= state_d;
         unique case (state_q)
-          ST_G: if (mul_done) begin
-            if (checking_q) begin
-              check_done_q  <= 1'b1;
-              err_budget_q  <= cfg.budget != '0 && WH_W'(cfg.budget) < WH_W'(mul_prod);
-              err_profile_q <= cfg.seeded && !(mem_valid_q && mem_rows_q == frm_q.nty);
-            end
-          end
           ST_M0: if (mul_done) begin
             m_q[0] <= 13'((mul_prod + PROD_W'(128)) >> 8);
             m_q[1] <= 13'((mul_prod + PROD_W'(128)) >> 8);
-            act_q      <= 1'b1;
             rows_left_q <= frm_q.nty;
             row_last_q <= frm_q.nty == ROW_W'(1);
             row_new_q  <= frm_q.nty[ROW_W-1:2] != '0 || frm_q.nty[1:0] == 2'd3;   // nty > 2
@@ -446,9 +437,7 @@ module msr_budget_ctrl import msr_pkg::*; import msr_budget_pkg::*; #(
             rows_done_q       <= rows_next_q;
             rows_next_q       <= rows_next_q + ROW_W'(1);
             base_q            <= slot1;
-            act_q             <= 1'b0;
             scale_out_valid_q <= 1'b1;
-            frame_done_q      <= 1'b1;
             mem_valid_q       <= 1'b1;
             mem_rows_q        <= frm_q.nty;
           end

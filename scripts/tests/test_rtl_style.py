@@ -13,9 +13,9 @@ PLAIN = "@(posedge clk_i)"
 # is the clear register the macros name, the one place its reset-then-clear form is written.
 EXEMPT = {"rtl/prim/msr_assert.svh", "rtl/prim/msr_clr_reg.sv"}
 # Still to be brought to the idiom: a synchronous clear by hand (the engine's owner has a change
-# of these files in flight; the budget controller's clear spans its whole state machine).
+# of these files in flight).
 PENDING = {"rtl/engine/msr_level_ctrl.sv", "rtl/engine/msr_tag_pool.sv", "rtl/engine/msr_tile_ctx.sv",
-           "rtl/engine/msr_tile_stream.sv", "rtl/budget/msr_budget_ctrl.sv"}
+           "rtl/engine/msr_tile_stream.sv"}
 
 
 def hand_written():
