@@ -33,3 +33,28 @@ bench-hw: setup renderer $(BENCH_HW_BINS) bench-engine
 BENCH_DEPS += bench-hw
 # scripts/tests/test_bench_hw.py runs a tiny sweep on the one-engine harness.
 TEST_DEPS += build/bench/hw_e1_mo16/Vmsr_sim_top
+
+# Tile-buffer bits against throughput (`make bench-bits`, not part of make test):
+# scripts/bench_bits.py sweeps NUM_CTX, and LINDILATE 0 against 1 for the patent rule, on 4
+# engines at render latencies 64, 256 and 1024 in both rules; it builds the harnesses it needs
+# one at a time (this file's rules) -> build/bench/tile_bits.json, committed as data/bench/tile_bits.json.
+# e<N>_mo<M>_c<C>_l0: the same harness with msr_top's LINDILATE 0 (no third tile-buffer port,
+# the patent rule only). msr_sim_top has no LINDILATE parameter, so the build compiles a copy
+# of it with LINDILATE (0) given to msr_top; sim/ is left as it is. The shorter stem makes make
+# pick this rule over the one above for these names.
+build/bench/hw_%_l0/Vmsr_sim_top: $(BENCH_HW_RTL) $(BENCH_HW_CPP) sim/msr_dpi.h sim/msr_regs.h rtl/msr.f \
+        mk/sim.mk build/renderer/libmsr_render.so
+	@mkdir -p $(@D)
+	@echo "make bench: building the Verilator harness $*_l0 (LINDILATE 0) into $(@D) (log: $(@D)/build.log)"
+	@sed 's/^\(\s*\.NUM_CTX\s*(NUM_CTX),\)/\1 .LINDILATE (0),/' sim/msr_sim_top.sv > $(@D)/msr_sim_top.sv
+	@grep -q '\.LINDILATE (0)' $(@D)/msr_sim_top.sv || { echo "no .NUM_CTX (NUM_CTX), line in sim/msr_sim_top.sv"; exit 1; }
+	@$(ENV) verilator $(SIM_VFLAGS) -GNUM_ENGINES=$(word 1,$(subst _mo, ,$(patsubst e%,%,$*))) \
+	    -GMAX_OUTSTANDING=$(word 1,$(subst _c, ,$(word 2,$(subst _mo, ,$*)))) \
+	    $(if $(findstring _c,$*),-GNUM_CTX=$(lastword $(subst _c, ,$*))) -Mdir $(@D) -o Vmsr_sim_top \
+	    $(MSR_RTL_OPTS) $(filter-out sim/msr_sim_top.sv,$(BENCH_HW_RTL)) $(@D)/msr_sim_top.sv \
+	    $(BENCH_HW_CPP) > $(@D)/build.log 2>&1 || { tail -40 $(@D)/build.log; exit 1; }
+
+BENCH_BITS_ARGS ?=
+.PHONY: bench-bits
+bench-bits: setup renderer
+	$(ENV) python scripts/bench_bits.py $(BENCH_BITS_ARGS)

@@ -1,0 +1,84 @@
+"""make bench-bits (msr_flow.bench.bits): the bits and area model, the choice, and the shape of
+the committed record data/bench/tile_bits.json. No simulation."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from msr_flow.bench import bits
+from msr_model.clitools import UsageError
+
+ROOT = Path(__file__).resolve().parents[2]
+RECORD = ROOT / "data" / "bench" / "tile_bits.json"
+
+
+def test_default_top_matches_make_asic():
+    """The default top (NUM_CTX 7, LINDILATE 1) costs what make asic reported (docs/asic.json)."""
+    ref = bits.reference()
+    c = bits.cost(*bits.DEFAULT_POINT)
+    assert ref is not None
+    assert c["bits"] == ref["bits"]
+    assert c["macros_1r1w"] == ref["macros_1r1w"]
+    assert c["macro_area_mm2"] == pytest.approx(ref["macro_area_mm2"], abs=0.01)
+
+
+def test_bits_scale():
+    word = bits.pkg_constant("SRC_W") + bits.RGB_BITS
+    depth = bits.pkg_constant("MAX_TILE") ** 2
+    assert bits.cost(3, 0)["bits"] == 4 * 3 * depth * word
+    assert bits.cost(3, 1)["bits"] == 4 * 3 * depth * (word + bits.RGB_BITS)
+    assert bits.cost(3, 1)["stored_bits"] == 4 * 3 * depth * (2 * word + bits.RGB_BITS)
+    assert bits.cost(4, 1)["macro_area_mm2"] < bits.cost(5, 1)["macro_area_mm2"] < bits.cost(7, 1)["macro_area_mm2"]
+
+
+def test_points_and_names(tmp_path):
+    assert bits.parse_points("7:1 4:0") == [(7, 1), (4, 0)]
+    for bad in ("7", "4:2", "1:1", "x:1", ""):
+        with pytest.raises(UsageError):
+            bits.parse_points(bad)
+    assert bits.config_name(5, 1) == "e4_mo64_c5"
+    assert bits.config_name(5, 0) == "e4_mo64_c5_l0"
+    assert bits.harness_of(tmp_path, 5, 0) == tmp_path / "hw_e4_mo64_c5_l0" / "Vmsr_sim_top"
+    assert bits.rules_for(0, ["patent", "lindilate"]) == ["patent"]
+
+
+def _dp(ctx, lin, ppc256):
+    pts = [{"rule": r, "render_latency": 256, "pixels_per_clock": v} for r, v in ppc256.items()]
+    return {"num_ctx": ctx, "lindilate": lin, "config": bits.config_name(ctx, lin), **bits.cost(ctx, lin),
+            "points": pts}
+
+
+def test_choice_fewest_bits_meeting_goal_in_every_rule():
+    dps = [_dp(7, 1, {"patent": 3.71, "lindilate": 3.70}), _dp(4, 1, {"patent": 3.65, "lindilate": 3.61}),
+           _dp(3, 1, {"patent": 3.62, "lindilate": 3.50}), _dp(3, 0, {"patent": 3.62})]
+    default = bits.cost(*bits.DEFAULT_POINT)["macro_area_mm2"]
+    c = bits.choose(dps, ["patent", "lindilate"], default)
+    assert (c["num_ctx"], c["lindilate"]) == (4, 1)
+    assert c["area_reduction"] == pytest.approx(1 - bits.cost(4, 1)["macro_area_mm2"] / default, abs=1e-4)
+    assert (bits.choose(dps, ["patent"], default)["num_ctx"], bits.choose(dps, ["patent"], default)["lindilate"]) == (3, 0)
+    assert bits.choose(dps[2:3], ["lindilate"], default) is None
+
+
+def test_committed_record_shape():
+    if not RECORD.is_file():
+        pytest.skip(f"{RECORD.relative_to(ROOT)} not committed yet (make bench-bits, then copy it)")
+    r = json.loads(RECORD.read_text())
+    for k in ("setup", "bits_model", "design_points", "bit_exact", "choice", "choice_patent_only"):
+        assert k in r
+    assert r["bits_model"]["matches_reference"] is True
+    lats = r["setup"]["latencies"]
+    assert 256 in lats
+    for d in r["design_points"]:
+        c = bits.cost(d["num_ctx"], d["lindilate"])
+        assert (d["bits"], d["macro_area_mm2"]) == (c["bits"], c["macro_area_mm2"])
+        rules = {p["rule"] for p in d["points"]}
+        assert rules <= {"patent", "lindilate"} and (d["lindilate"] or rules == {"patent"})
+        for p in d["points"]:
+            assert p["render_latency"] in lats and 0 < p["pixels_per_clock"] < 8
+            assert p["bit_exact"] is True
+    ch = r["choice"]
+    if ch is not None:
+        best = next(d for d in r["design_points"] if (d["num_ctx"], d["lindilate"]) == (ch["num_ctx"], ch["lindilate"]))
+        assert all(bits.ppc(best, rule, 256) >= 3.6 for rule in ch["rules"])
