@@ -2,6 +2,8 @@
 templates/asic.md.j2: the template holds the prose, this module the number formats."""
 from __future__ import annotations
 
+import math
+
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -55,6 +57,22 @@ def gate_level_text(gl: dict | None) -> str:
     return f"{gl['result']} (`make test-gate`, {gl['from']})"
 
 
+def macro_cycle(sram: dict, period_ns: float, depth: int = 1024) -> dict:
+    """What the cited macro asks of a DEPTH-word tile buffer at the clock: its clock-to-data and
+    minimum clock period, each the 512-word point plus the per-doubling step between the two
+    published points (sram_macro.json's access rule, applied to the period alike), in ns and in
+    whole clocks."""
+    a, b = sram["source"]["points"]
+    doublings = math.log2(depth / 512)
+    dbl = math.log2((b["bits"] // 8) / (a["bits"] // 8))
+
+    def at(key: str) -> float:
+        return b[key] + (b[key] - a[key]) / dbl * doublings
+    access, cycle = at("clk_to_q_ns"), at("min_period_ns")
+    return {"depth": depth, "access_ns": round(access, 3), "cycle_ns": round(cycle, 3),
+            "access_clocks": math.ceil(access / period_ns), "cycle_clocks": math.ceil(cycle / period_ns)}
+
+
 def environment() -> jinja2.Environment:
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(TEMPLATES), trim_blocks=True, lstrip_blocks=True,
                              keep_trailing_newline=True, undefined=jinja2.Undefined, autoescape=False)
@@ -75,7 +93,8 @@ def render(report: dict) -> str:
         scaling=SCALING, cell_models=str(CELL_MODELS), gate_level=gate_level_text(report.get("gate_level")),
         top_share=top.get("sequential_share", 0) if top_ok else 0,
         dffsr=types.get("DFFSR", 0), dff=types.get("DFFPOSX1", 0),
-        top_area=max(1.0, top.get("area_um2", 1.0) if top_ok else 1.0))
+        top_area=max(1.0, top.get("area_um2", 1.0) if top_ok else 1.0),
+        mc=macro_cycle(report["sram_model"], report["clock"]["period_ns"]))
 
 
 def write_doc(report: dict, doc: Path = DOC) -> None:
