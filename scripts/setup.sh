@@ -17,6 +17,10 @@ DEB_PKGS+=(qflow-tech-osu018 opensta)
 # waves screenshots for docs/ (scripts/waves_shot.py: GTKWave under a virtual X server)
 DEB_PKGS+=(xvfb xauth scrot)
 
+# compiler cache of the cocotb benches' Verilator builds (msr_flow.runner): the run-time
+# library, the same in each of make test's some 25 builds, is compiled once
+DEB_PKGS+=(ccache)
+
 missing=()
 for p in "${DEB_PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
@@ -37,10 +41,9 @@ if [ ! -x .venv/bin/python ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; th
   [ -x .venv/bin/python ] || "$PY" -m venv .venv
   .venv/bin/python -m pip install -q --upgrade pip
   .venv/bin/python -m pip install -q -r requirements.txt
-  .venv/bin/python -m pip install -q --no-deps --no-build-isolation -e sw_model
-  # the build and run library (flow/: file list, runners, harness, register constants, flows)
-  .venv/bin/python -m pip install -q --no-deps --no-build-isolation -e flow
-  # the benches' own helpers (tb/common: cocotb helpers, functional coverage)
-  .venv/bin/python -m pip install -q --no-deps --no-build-isolation -e tb
+  # the golden model (sw_model), the build and run library (flow/: file list, runners, harness,
+  # register constants, flows) and the benches' own helpers (tb/common: cocotb helpers,
+  # functional coverage), in one pip run
+  .venv/bin/python -m pip install -q --no-deps --no-build-isolation -e sw_model -e flow -e tb
   echo "$want" > "$stamp"
 fi

