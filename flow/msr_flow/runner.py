@@ -23,7 +23,15 @@ import shutil
 import time
 from pathlib import Path
 
-from .filelist import ROOT, rtl_incdirs, rtl_sources
+from .filelist import ROOT, rtl_entries, rtl_incdirs, rtl_sources
+
+
+def checked_sources() -> list[Path]:
+    """rtl/msr.f with the AXI protocol checkers of rtl/checkers bound in (checkers.f, then
+    msr_checker_binds.sv): msr_top's benches and make soak build from it, into one folder per
+    parameter set (tag ..._chk), so make test's soak finds the bench's build done."""
+    checkers = ROOT / "rtl" / "checkers"
+    return rtl_sources() + [ROOT / e for e in rtl_entries(checkers / "checkers.f")] + [checkers / "msr_checker_binds.sv"]
 
 
 def run_cocotb(toplevel: str, test_module: str, test_dir: Path, parameters: dict | None = None,

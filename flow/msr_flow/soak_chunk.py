@@ -19,14 +19,15 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--frames-log", type=Path, required=True)
     ap.add_argument("--result", type=Path, required=True)
     args = ap.parse_args(argv)
-    from .runner import run_cocotb
+    from .runner import checked_sources, run_cocotb
 
     e, o, c, w = BUILDS[args.build]
     result, err = "pass", ""
     try:
+        # the protocol checkers bound in, and tb/msr_top's build of the same parameters (_chk)
         run_cocotb("msr_top", "test_msr_top", ROOT / "tb" / "msr_top",
                    {"NUM_ENGINES": e, "MAX_OUTSTANDING": o, "NUM_CTX": c, "AXI_DATA_W": w},
-                   f"e{e}_o{o}_c{c}_w{w}", testcase="test_soak",
+                   f"e{e}_o{o}_c{c}_w{w}_chk", sources=checked_sources(), testcase="test_soak",
                    extra_env={"NUM_ENGINES": e, "SOAK_SECONDS": args.seconds, "MSR_SOAK_LOG": args.frames_log})
     except Exception as ex:          # a failing test, or the simulator stopped by an SVA
         result, err = "fail", str(ex)

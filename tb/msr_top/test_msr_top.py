@@ -66,16 +66,13 @@ async def test_soak(dut):
 
 @pytest.mark.parametrize("engines,outstanding,ctx,width", [(4, 16, 8, 256), (3, 4, 3, 64)])
 def test_msr_top(engines, outstanding, ctx, width):
-    from msr_flow.filelist import ROOT, rtl_entries, rtl_sources
-    from msr_flow.runner import run_cocotb
-    # The AXI protocol checkers bound to the writer and the register block (rtl/checkers). Their
-    # own build folder (_chk): scripts/soak.py builds this bench from rtl/msr.f alone, and two
-    # source lists in one folder would rebuild each other (or race under pytest -n 2).
-    checkers = [ROOT / e for e in rtl_entries(ROOT / "rtl" / "checkers" / "checkers.f")]
+    from msr_flow.runner import checked_sources, run_cocotb
+    # The AXI protocol checkers bound to the writer and the register block (rtl/checkers), in
+    # the build folder (_chk) that scripts/soak.py uses too: make test's short soak reuses it.
     run_cocotb("msr_top", ",".join(COCOTB_MODULES), HERE,
                {"NUM_ENGINES": engines, "MAX_OUTSTANDING": outstanding, "NUM_CTX": ctx, "AXI_DATA_W": width},
                f"e{engines}_o{outstanding}_c{ctx}_w{width}_chk", extra_env={"NUM_ENGINES": str(engines)},
-               sources=rtl_sources() + checkers + [ROOT / "rtl" / "checkers" / "msr_checker_binds.sv"])
+               sources=checked_sources())
 
 
 def test_msr_top_patent_only():
