@@ -66,6 +66,20 @@ module msr_rr_arb #(
   assign gnt_chain  = lowest[N-1:0] | lowest[2*N-1:N];
   assign above_pick = below_incl[N] ? ~below_incl[2*N-1:N] : ~below_incl[N-1:0];
 
+  // The masks' register of MASKS (below), at module level: its reset value is a constant call.
+  typedef logic [N-1:0][N-1:0] outrank_t;
+  function automatic outrank_t outrank_of(logic [N-1:0] above);
+    outrank_t m;
+    for (int unsigned i = 0; i < N; i++) begin
+      for (int unsigned j = 0; j < N; j++) begin
+        if (j < i)      m[i][j] = !above[i] || above[j];
+        else if (j > i) m[i][j] = !above[i] && above[j];
+        else            m[i][j] = 1'b0;
+      end
+    end
+    return m;
+  endfunction
+
   if (MASKS) begin : g_masks
     // Each grant from a registered mask: outrank_q[i] holds the requesters that outrank i this
     // round (below i: all of them unless i is above the last winner, then those above it too;
@@ -74,18 +88,6 @@ module msr_rr_arb #(
     // beside requester i. For the render mux: its queue heads' pops went through the prefix
     // chain at the port and back, a path mostly of wire in the BUDGET_EN = 1 top. The
     // pointer's next value (above_d) still comes from the chain, off that path.
-    typedef logic [N-1:0][N-1:0] outrank_t;
-    function automatic outrank_t outrank_of(logic [N-1:0] above);
-      outrank_t m;
-      for (int unsigned i = 0; i < N; i++) begin
-        for (int unsigned j = 0; j < N; j++) begin
-          if (j < i)      m[i][j] = !above[i] || above[j];
-          else if (j > i) m[i][j] = !above[i] && above[j];
-          else            m[i][j] = 1'b0;
-        end
-      end
-      return m;
-    endfunction
     outrank_t outrank_q;
     for (genvar i = 0; i < N; i++) begin : g_gnt
       assign gnt[i] = req_i[i] && (req_i & outrank_q[i]) == '0;
