@@ -19,9 +19,8 @@ FOV_GAIN ?= 0
 OUT      ?=
 WAVES    ?= 0
 PYTEST_ARGS ?=
-ifeq ($(CI),true)
-PYTEST_JOBS ?= -n 2
-endif
+# pytest-xdist: one worker per CPU (the benches are single-threaded simulations)
+PYTEST_JOBS ?= -n auto
 
 .PHONY: help setup sim test lint synth bench eval waves clean
 
@@ -58,8 +57,14 @@ include mk/*.mk
 
 bench: setup $(BENCH_DEPS)
 
-test: setup $(TEST_DEPS)
+# The builds and proofs the tests need run two at a time (the formal jobs on one core beside
+# the harness builds), then pytest.
+test: setup
+	@$(MAKE) --no-print-directory -j 2 test-deps
 	$(ENV) python -m pytest $(PYTEST_JOBS) $(PYTEST_ARGS)
+
+.PHONY: test-deps
+test-deps: $(TEST_DEPS)
 
 clean:
 	rm -rf build out sim_build
