@@ -224,6 +224,11 @@ def record(a, dps: list[dict], seconds: float) -> dict:
     }
 
 
+def grouped(n: int) -> str:
+    """1605632 -> '1 605 632', as the documents write numbers."""
+    return f"{n:,}".replace(",", " ")
+
+
 def print_table(r: dict) -> None:
     lats = r["setup"]["latencies"]
     rules = sorted({p["rule"] for d in r["design_points"] for p in d["points"]}, key=RTL_RULES.index)
@@ -237,12 +242,12 @@ def print_table(r: dict) -> None:
             v = [ppc(d, rule, x) for x in lats]
             cells.append("n/a" if all(x is None for x in v) else
                          " / ".join("-" if x is None else f"{x:.3f}" for x in v))
-        print(f"| {d['num_ctx']} | {d['lindilate']} | {d['bits']:,} | {d['macro_area_mm2']:.1f} | "
+        print(f"| {d['num_ctx']} | {d['lindilate']} | {grouped(d['bits'])} | {d['macro_area_mm2']:.1f} | "
               + " | ".join(cells) + f" | {all(p.get('bit_exact') for p in d['points'])} |")
     for key in ("choice", "choice_patent_only"):
         c = r.get(key)
         if c:
-            print(f"{key}: NUM_CTX {c['num_ctx']} LINDILATE {c['lindilate']}: {c['bits']:,} bits, "
+            print(f"{key}: NUM_CTX {c['num_ctx']} LINDILATE {c['lindilate']}: {grouped(c['bits'])} bits, "
                   f"{c['macro_area_mm2']:.1f} mm^2 against {c['default_macro_area_mm2']:.1f} "
                   f"({c['area_reduction']:.1%} less; target {c['target_reduction']:.0%}: "
                   f"{'met' if c['target_met'] else 'NOT met'})")
