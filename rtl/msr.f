@@ -1,5 +1,6 @@
 // The one source-of-truth file list: packages, primitives, engine, tile generator, budget,
-// frame-buffer writer, control, top. Every flow reads it; msr.core is generated from it.
+// frame-buffer writer, control, top, and the reuse units (rtl/reuse, not yet in the top).
+// Every flow reads it; msr.core is generated from it.
 +incdir+rtl/prim+rtl/regs+rtl/fbw+rtl/top+rtl/checkers
 rtl/pkg/msr_pkg.sv
 rtl/prim/msr_lzc.sv
@@ -62,3 +63,5 @@ rtl/fbw/msr_fbw_w.sv
 rtl/fbw/msr_fb_writer.sv
 rtl/ctrl/msr_perf_counters.sv
 rtl/top/msr_top.sv
+rtl/reuse/msr_reproject.sv
+rtl/reuse/msr_reuse_gather.sv

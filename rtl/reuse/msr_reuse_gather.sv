@@ -1,0 +1,288 @@
+// Bilinear read of the previous frame (docs/spec/reuse.md section 5) and the tests that need
+// only the reprojection and the taps (section 6, tests 1 and 2), bit for bit with
+// msr_model.reuse.gather: from (U, V) in 1/16 pixel, taps (x0, y0), (x0+1, y0), (x0, y0+1),
+// (x0+1, y0+1) with weights (16-fx)(16-fy), fx (16-fy), (16-fx) fy, fx fy, and
+//   R.c = (sum wt C.c + 128) >> 8,  Wb = (sum wt W + 128) >> 8,
+// the per-channel minimum and maximum and the oldest age over the used taps (weight > 0).
+// geo_ok_o: the reprojection's ok, every used tap inside the frame, and for a sky pixel
+// (w_m = 0) every used tap sky, otherwise every used tap 0 < W < 65535, w_m < 65535 and
+// |Wb - Wp| <= (Wp >> 6) + 1. The colour tests (4, 5), the silhouette, the age bound and the
+// refresh slot are the caller's: they need the pass's neighbours and thresholds.
+//
+// The window memory is outside: tap k's address (tap_x_o[k], tap_y_o[k]) is read when
+// tap_rd_o[k] is set (a used tap of a pixel whose used taps are all inside, on the clock G0
+// moves on), and its word is on tap_i[k] from the next clock until the next read of tap k
+// (a synchronous memory whose output holds between reads). Unread taps' words are ignored.
+//
+// Five register stages, one pixel a clock, global stall (as msr_reproject):
+//   G0  inputs registered; tap addresses, weights, used and inside flags; the reads
+//   G1  the pixel while its tap words arrive; min, max, age and sky flags of the used taps
+//   G2  the tap words weighted (an unused tap's weight is 0)
+//   G3  the weighted sums
+//   G4  rounded; the depth test; geo_ok (output register)
+`include "msr_assert.svh"
+`include "msr_flops.svh"
+
+module msr_reuse_gather #(
+  parameter int unsigned XY_W   = 12,   // frame coordinate bits
+  parameter int unsigned W_W    = 16,   // inverse depth bits
+  parameter int unsigned UV_W   = 18,   // U, V (msr_reproject's)
+  parameter int unsigned WP_W   = 17,   // Wp (msr_reproject's)
+  parameter int unsigned AGE_W  = 3,    // age plane bits
+  parameter int unsigned USER_W = 1     // sideband carried alongside each pixel
+) (
+  input  logic                              clk_i,
+  input  logic                              rst_ni,
+  input  logic                              clear_i,     // synchronous flush
+  input  logic [XY_W:0]                     width_i,     // previous frame's extent, static
+  input  logic [XY_W:0]                     height_i,
+  // one reprojected pixel in (msr_reproject's outputs) with its predicted inverse depth
+  input  logic                              valid_i,
+  output logic                              ready_o,
+  input  logic                              ok_i,
+  input  logic signed [UV_W-1:0]            u_i,
+  input  logic signed [UV_W-1:0]            v_i,
+  input  logic [WP_W-1:0]                   wp_i,
+  input  logic [W_W-1:0]                    wm_i,
+  input  logic [USER_W-1:0]                 user_i,
+  // window memory: tap k = dy * 2 + dx
+  output logic [3:0]                        tap_rd_o,
+  output logic [3:0][XY_W-1:0]              tap_x_o,
+  output logic [3:0][XY_W-1:0]              tap_y_o,
+  input  logic [3:0][23:0]                  tap_rgb_i,   // {r, g, b}
+  input  logic [3:0][W_W-1:0]               tap_w_i,
+  input  logic [3:0][AGE_W-1:0]             tap_age_i,
+  // result
+  output logic                              valid_o,
+  input  logic                              ready_i,
+  output logic                              geo_ok_o,    // tests 1 and 2 and ok_i
+  output logic                              inside_o,    // every used tap inside the frame
+  output logic [23:0]                       rgb_o,       // R (defined where inside_o)
+  output logic [W_W-1:0]                    wb_o,        // Wb
+  output logic [23:0]                       lo_o,        // per-channel minimum of the used taps
+  output logic [23:0]                       hi_o,        // per-channel maximum
+  output logic [AGE_W-1:0]                  age_o,       // the oldest used tap's age
+  output logic [USER_W-1:0]                 user_o
+);
+
+  localparam int unsigned FR_W    = 4;                  // U, V fraction bits
+  localparam int unsigned TC_W    = UV_W - FR_W + 1;    // tap coordinate, signed, x0 + 1
+  localparam int unsigned WT_W    = 2 * FR_W + 1;       // weight 0..256
+  localparam int unsigned CACC_W  = WT_W + 8;           // sum wt C <= 256 * 255
+  localparam int unsigned WACC_W  = WT_W + W_W;         // sum wt W <= 256 * 65535
+  localparam int unsigned DTOL_SH = 6;                  // depth tolerance (Wp >> 6) + 1
+  localparam logic [W_W-1:0] W_SAT = '1;                // 65535: too near, never reused
+
+  logic advance;
+  assign advance = !valid_o || ready_i;
+  assign ready_o = advance;
+
+  logic g0_valid_q, g1_valid_q, g2_valid_q, g3_valid_q;
+
+  // ---- G0: inputs; taps ----------------------------------------------------------------------
+  logic                     g0_ok_q;
+  logic signed [UV_W-1:0]   g0_u_q, g0_v_q;
+  logic [WP_W-1:0]          g0_wp_q;
+  logic [W_W-1:0]           g0_wm_q;
+  logic [USER_W-1:0]        g0_user_q;
+
+  always_ff @(posedge clk_i) begin
+    if (advance && valid_i) begin
+      g0_ok_q   <= ok_i;
+      g0_u_q    <= u_i;
+      g0_v_q    <= v_i;
+      g0_wp_q   <= wp_i;
+      g0_wm_q   <= wm_i;
+      g0_user_q <= user_i;
+    end
+  end
+
+  logic [FR_W-1:0]              fx, fy;
+  logic signed [1:0][TC_W-1:0]  tx, ty;        // x0, x0 + 1; y0, y0 + 1
+  logic [1:0]                   in_x, in_y;
+  logic [3:0]                   used, tap_in;
+  logic [1:0][FR_W:0]           wx, wy;        // 16 - fx, fx; 16 - fy, fy
+  logic [3:0][WT_W-1:0]         wt;
+  logic                         all_inside;
+
+  assign fx = g0_u_q[FR_W-1:0];
+  assign fy = g0_v_q[FR_W-1:0];
+
+  always_comb begin
+    tx[0] = TC_W'($signed(g0_u_q[UV_W-1:FR_W]));
+    ty[0] = TC_W'($signed(g0_v_q[UV_W-1:FR_W]));
+    tx[1] = tx[0] + TC_W'(1);
+    ty[1] = ty[0] + TC_W'(1);
+    wx[0] = (FR_W + 1)'(16) - (FR_W + 1)'(fx);
+    wx[1] = (FR_W + 1)'(fx);
+    wy[0] = (FR_W + 1)'(16) - (FR_W + 1)'(fy);
+    wy[1] = (FR_W + 1)'(fy);
+    for (int i = 0; i < 2; i++) begin
+      in_x[i] = !tx[i][TC_W-1] && (TC_W'(width_i) > tx[i]);
+      in_y[i] = !ty[i][TC_W-1] && (TC_W'(height_i) > ty[i]);
+    end
+    for (int k = 0; k < 4; k++) begin
+      // tap 0 always has weight > 0; the right taps need fx > 0, the lower ones fy > 0
+      used[k]   = (k[0] == 1'b0 || fx != '0) && (k[1] == 1'b0 || fy != '0);
+      tap_in[k] = in_x[k[0]] && in_y[k[1]];
+      wt[k]     = WT_W'(wx[k[0]]) * WT_W'(wy[k[1]]);
+      tap_x_o[k] = XY_W'(tx[k[0]]);
+      tap_y_o[k] = XY_W'(ty[k[1]]);
+    end
+    all_inside = &(tap_in | ~used);
+  end
+
+  assign tap_rd_o = {4{advance && g0_valid_q && all_inside}} & used;
+
+  // ---- G1: the pixel while its tap words arrive --------------------------------------------
+  logic                  g1_ok_q, g1_inside_q;
+  logic [3:0]            g1_used_q;
+  logic [3:0][WT_W-1:0]  g1_wt_q;
+  logic [WP_W-1:0]       g1_wp_q;
+  logic [W_W-1:0]        g1_wm_q;
+  logic [USER_W-1:0]     g1_user_q;
+
+  always_ff @(posedge clk_i) begin
+    if (advance && g0_valid_q) begin
+      g1_ok_q     <= g0_ok_q;
+      g1_inside_q <= all_inside;
+      g1_used_q   <= used;
+      g1_wt_q     <= wt;
+      g1_wp_q     <= g0_wp_q;
+      g1_wm_q     <= g0_wm_q;
+      g1_user_q   <= g0_user_q;
+    end
+  end
+
+  logic [23:0]      lo_c, hi_c;
+  logic [AGE_W-1:0] age_c;
+  logic             sky_all_c, sky_none_c;
+
+  always_comb begin
+    lo_c       = '1;
+    hi_c       = '0;
+    age_c      = '0;
+    sky_all_c  = 1'b1;
+    sky_none_c = 1'b1;
+    for (int k = 0; k < 4; k++) begin
+      if (g1_used_q[k]) begin
+        for (int c = 0; c < 3; c++) begin
+          if (tap_rgb_i[k][8*c +: 8] < lo_c[8*c +: 8]) lo_c[8*c +: 8] = tap_rgb_i[k][8*c +: 8];
+          if (tap_rgb_i[k][8*c +: 8] > hi_c[8*c +: 8]) hi_c[8*c +: 8] = tap_rgb_i[k][8*c +: 8];
+        end
+        if (tap_age_i[k] > age_c) age_c = tap_age_i[k];
+        sky_all_c  = sky_all_c && tap_w_i[k] == '0;
+        sky_none_c = sky_none_c && tap_w_i[k] != '0 && tap_w_i[k] != W_SAT;
+      end
+    end
+  end
+
+  // ---- G2: the tap words weighted (an unused tap weighs 0), min, max, age, sky flags ------
+  logic [3:0][2:0][CACC_W-1:0] g2_cw_q;
+  logic [3:0][WACC_W-1:0]      g2_ww_q;
+  logic [23:0]                 g2_lo_q, g2_hi_q;
+  logic [AGE_W-1:0]            g2_age_q;
+  logic                        g2_sky_all_q, g2_sky_none_q, g2_inside_q, g2_ok_q;
+  logic [WP_W-1:0]             g2_wp_q;
+  logic [W_W-1:0]              g2_wm_q;
+  logic [USER_W-1:0]           g2_user_q;
+
+  always_ff @(posedge clk_i) begin
+    if (advance && g1_valid_q) begin
+      for (int k = 0; k < 4; k++) begin
+        for (int c = 0; c < 3; c++) begin
+          g2_cw_q[k][c] <= CACC_W'(g1_wt_q[k]) * CACC_W'(tap_rgb_i[k][8*c +: 8]);
+        end
+        g2_ww_q[k] <= WACC_W'(g1_wt_q[k]) * WACC_W'(tap_w_i[k]);
+      end
+      g2_lo_q       <= lo_c;
+      g2_hi_q       <= hi_c;
+      g2_age_q      <= age_c;
+      g2_sky_all_q  <= sky_all_c;
+      g2_sky_none_q <= sky_none_c;
+      g2_inside_q   <= g1_inside_q;
+      g2_ok_q       <= g1_ok_q;
+      g2_wp_q       <= g1_wp_q;
+      g2_wm_q       <= g1_wm_q;
+      g2_user_q     <= g1_user_q;
+    end
+  end
+
+  // ---- G3: the weighted sums -------------------------------------------------------------------
+  logic [2:0][CACC_W-1:0]  g3_cacc_q;
+  logic [WACC_W-1:0]       g3_wacc_q;
+  logic [23:0]             g3_lo_q, g3_hi_q;
+  logic [AGE_W-1:0]        g3_age_q;
+  logic                    g3_sky_all_q, g3_sky_none_q, g3_inside_q, g3_ok_q;
+  logic [WP_W-1:0]         g3_wp_q;
+  logic [W_W-1:0]          g3_wm_q;
+  logic [USER_W-1:0]       g3_user_q;
+
+  always_ff @(posedge clk_i) begin
+    if (advance && g2_valid_q) begin
+      for (int c = 0; c < 3; c++) begin
+        g3_cacc_q[c] <= (g2_cw_q[0][c] + g2_cw_q[1][c]) + (g2_cw_q[2][c] + g2_cw_q[3][c]);
+      end
+      g3_wacc_q     <= (g2_ww_q[0] + g2_ww_q[1]) + (g2_ww_q[2] + g2_ww_q[3]);
+      g3_lo_q       <= g2_lo_q;
+      g3_hi_q       <= g2_hi_q;
+      g3_age_q      <= g2_age_q;
+      g3_sky_all_q  <= g2_sky_all_q;
+      g3_sky_none_q <= g2_sky_none_q;
+      g3_inside_q   <= g2_inside_q;
+      g3_ok_q       <= g2_ok_q;
+      g3_wp_q       <= g2_wp_q;
+      g3_wm_q       <= g2_wm_q;
+      g3_user_q     <= g2_user_q;
+    end
+  end
+
+  // ---- G4 (output register): rounded; the depth test --------------------------------------
+  logic [W_W-1:0]   wb;
+  logic [WP_W:0]    wdiff;
+  logic             depth_ok;
+
+  always_comb begin
+    wb       = W_W'((g3_wacc_q + WACC_W'(128)) >> 8);
+    wdiff    = (WP_W + 1)'(g3_wp_q) - (WP_W + 1)'(wb);
+    if (wdiff[WP_W]) wdiff = -wdiff;
+    depth_ok = wdiff <= (WP_W + 1)'(g3_wp_q >> DTOL_SH) + (WP_W + 1)'(1);
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (advance && g3_valid_q) begin
+      for (int c = 0; c < 3; c++) begin
+        rgb_o[8*c +: 8] <= 8'((g3_cacc_q[c] + CACC_W'(128)) >> 8);
+      end
+      wb_o     <= wb;
+      lo_o     <= g3_lo_q;
+      hi_o     <= g3_hi_q;
+      age_o    <= g3_age_q;
+      inside_o <= g3_inside_q;
+      geo_ok_o <= g3_ok_q && g3_inside_q
+                  && ((g3_wm_q == '0) ? g3_sky_all_q
+                                      : (g3_sky_none_q && g3_wm_q != W_SAT && depth_ok));
+      user_o   <= g3_user_q;
+    end
+  end
+
+  // ---- Valid bits -------------------------------------------------------------------------------
+  `MSR_CLR_REG(u_valid, 5, clear_i, advance,
+               {g3_valid_q, g2_valid_q, g1_valid_q, g0_valid_q, valid_i},
+               {valid_o, g3_valid_q, g2_valid_q, g1_valid_q, g0_valid_q})
+
+  /* verilator lint_off SYNCASYNCNET */
+  `MSR_ASSERT_NXT(a_out_hold, valid_o && !ready_i,
+      valid_o && $stable({geo_ok_o, inside_o, rgb_o, wb_o, lo_o, hi_o, age_o, user_o}), clk_i,
+      !rst_ni || clear_i)
+  `MSR_ASSERT_NXT(a_extent_static, g0_valid_q, $stable({width_i, height_i}), clk_i,
+      !rst_ni || clear_i)
+  // the rounded sums stay in their channels (sum of the weights 256)
+  `MSR_ASSERT_IMP(a_weights, g0_valid_q, (WT_W + 2)'(wt[0]) + (WT_W + 2)'(wt[1])
+      + (WT_W + 2)'(wt[2]) + (WT_W + 2)'(wt[3]) == (WT_W + 2)'(256))
+  `MSR_COVER(c_pass, valid_o && ready_i && geo_ok_o)
+  `MSR_COVER(c_outside, valid_o && ready_i && !inside_o)
+  `MSR_COVER(c_stall, valid_o && !ready_i)
+  /* verilator lint_on SYNCASYNCNET */
+
+endmodule : msr_reuse_gather
