@@ -14,8 +14,8 @@
 //   S1  the nine products m_r0 x, m_r1 y, b_r w
 //   S2  P0, P1, P2
 //   S3  leading-zero count of P2; the validity tests; p0s, p1s
-//   S4  d = P2 normalised to 24 bits (top bit set); shift amount n - 23
-//   S5  seed t = T[d bits 22..15]
+//   S4  d = P2 normalised to 24 bits (top bit set); shift amount n - 23; the seed T[d bits 22..15]
+//   S5  the seed again, in flip-flops: a table mapped to a block RAM has a slow output
 //   S6  d t
 //   S7  r = (t (2^40 - d t)) >> 31
 //   S8  p0s r, p1s r, w r
@@ -191,7 +191,15 @@ module msr_reproject #(
     end
   end
 
-  // ---- S4: d, and the shift amount n - 23 = (MAG_W - lz) - 23 ----------------------------------
+  // ---- the seed table: T[i] = floor(2^24 / (256.5 + i) + 0.5) = (2^26 + 513 + 2i) div (1026 + 4i)
+  logic [2**IDX_W-1:0][T_W-1:0] seed_rom;
+
+  for (genvar i = 0; i < 2 ** IDX_W; i++) begin : g_seed
+    localparam int unsigned SEED = ((1 << 26) + 513 + 2 * i) / (1026 + 4 * i);
+    assign seed_rom[i] = T_W'(SEED);
+  end
+
+  // ---- S4: d, the seed, and the shift amount n - 23 = (MAG_W - lz) - 23 -----------------------
   /* verilator lint_off UNUSEDSIGNAL */
   logic [MAG_W-1:0] p2_norm;    // its top D_W bits are d
   /* verilator lint_on UNUSEDSIGNAL */
@@ -199,6 +207,7 @@ module msr_reproject #(
 
   logic                    s4_ok_q;
   logic [D_W-1:0]          s4_d_q;
+  logic [T_W-1:0]          s4_t_q;
   logic [SA_W-1:0]         s4_sa_q;
   logic signed [PS_W-1:0]  s4_p0s_q, s4_p1s_q;
   logic [W_W-1:0]          s4_w_q;
@@ -208,6 +217,7 @@ module msr_reproject #(
     if (advance && s3_valid_q) begin
       s4_ok_q   <= s3_ok_q;
       s4_d_q    <= p2_norm[MAG_W-1:MAG_W-D_W];
+      s4_t_q    <= seed_rom[p2_norm[MAG_W-2:MAG_W-1-IDX_W]];
       s4_sa_q   <= SA_W'(MAG_W - N_MIN) - s3_lz_q;
       s4_p0s_q  <= s3_p0s_q;
       s4_p1s_q  <= s3_p1s_q;
@@ -216,14 +226,7 @@ module msr_reproject #(
     end
   end
 
-  // ---- S5: seed T[i] = floor(2^24 / (256.5 + i) + 0.5) = (2^26 + 513 + 2i) div (1026 + 4i) ----
-  logic [2**IDX_W-1:0][T_W-1:0] seed_rom;
-
-  for (genvar i = 0; i < 2 ** IDX_W; i++) begin : g_seed
-    localparam int unsigned SEED = ((1 << 26) + 513 + 2 * i) / (1026 + 4 * i);
-    assign seed_rom[i] = T_W'(SEED);
-  end
-
+  // ---- S5: the seed in flip-flops --------------------------------------------------------------
   logic                    s5_ok_q;
   logic [D_W-1:0]          s5_d_q;
   logic [T_W-1:0]          s5_t_q;
@@ -236,7 +239,7 @@ module msr_reproject #(
     if (advance && s4_valid_q) begin
       s5_ok_q   <= s4_ok_q;
       s5_d_q    <= s4_d_q;
-      s5_t_q    <= seed_rom[s4_d_q[D_W-2:D_W-1-IDX_W]];
+      s5_t_q    <= s4_t_q;
       s5_sa_q   <= s4_sa_q;
       s5_p0s_q  <= s4_p0s_q;
       s5_p1s_q  <= s4_p1s_q;
