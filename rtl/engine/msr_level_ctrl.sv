@@ -19,6 +19,7 @@
 // list parameters, the lists, the walks' start states); an invalid corner, an empty row of the initial grid and an empty pass cost one
 // idle cycle each. Inside a pass a position is offered every clock.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_level_ctrl
   import msr_pkg::*;
@@ -389,38 +390,47 @@ module msr_level_ctrl
 
   logic       out_first_q;
 
+  // The clear stops the walk: its state, the position walk's "ok" and the offered position
+  // go back to their reset values; the rest of the walk state holds through a clear (it is
+  // set up again before it is used).
+  logic [$bits(wstate_e)-1:0] ws_raw;
+  logic  pw_ok_q, out_valid_d, out_first_d;
+  // its ok bit is pw_ok_q's
+  /* verilator lint_off UNUSEDSIGNAL */
+  walk_t pw_rest_q;
+  /* verilator lint_on UNUSEDSIGNAL */
+  assign out_valid_d = advance ? cand_valid : out_valid_q;
+  assign out_first_d = advance ? cand_valid && first_q : out_first_q;
+
+  `MSR_CLR_REG_RST(u_walk_q, $bits(wstate_e) + 3, {WS_IDLE, 3'b000}, clear_i, 1'b1,
+                   {ws_d, pw_d.ok, out_valid_d, out_first_d},
+                   {ws_raw, pw_ok_q, out_valid_q, out_first_q})
+  assign ws_q = wstate_e'(ws_raw);
+
+  always_comb begin
+    pw_q    = pw_rest_q;
+    pw_q.ok = pw_ok_q;
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      ws_q        <= WS_IDLE;
-      dir_q       <= DIR_INIT;
-      k_q         <= '0;
-      corner_q    <= '0;
-      first_q     <= 1'b0;
-      skip_q      <= 1'b0;
-      pw_q        <= '0;
-      pw_left0_q  <= 1'b1;
-      pw_left1_q  <= 1'b0;
-      out_valid_q <= 1'b0;
-      out_first_q <= 1'b0;
-    end else if (clear_i) begin
-      ws_q        <= WS_IDLE;
-      pw_q.ok     <= 1'b0;
-      out_valid_q <= 1'b0;
-      out_first_q <= 1'b0;
-    end else begin
-      ws_q     <= ws_d;
-      dir_q    <= dir_d;
-      k_q      <= k_d;
-      corner_q <= corner_d;
-      first_q  <= first_d;
-      skip_q   <= skip_d;
-      pw_q     <= pw_d;
+      dir_q      <= DIR_INIT;
+      k_q        <= '0;
+      corner_q   <= '0;
+      first_q    <= 1'b0;
+      skip_q     <= 1'b0;
+      pw_rest_q  <= '0;
+      pw_left0_q <= 1'b1;
+      pw_left1_q <= 1'b0;
+    end else if (!clear_i) begin
+      dir_q      <= dir_d;
+      k_q        <= k_d;
+      corner_q   <= corner_d;
+      first_q    <= first_d;
+      skip_q     <= skip_d;
+      pw_rest_q  <= pw_d;
       pw_left0_q <= pw_left0_d;
       pw_left1_q <= pw_left1_d;
-      if (advance) begin
-        out_valid_q <= cand_valid;
-        out_first_q <= cand_valid && first_q;
-      end
     end
   end
 

@@ -8,6 +8,7 @@
 // whose tag is not in flight (stale, duplicate or made up): such an answer is dropped, never
 // frees a tag twice and never writes a pixel.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_tag_pool #(
   parameter int unsigned N       = 16,                 // tags (power of two, 2..64)
@@ -76,27 +77,26 @@ module msr_tag_pool #(
   // leaves the list by alloc_i; a_out_covers checks it).
   assign out_q_o          = out_q;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      init_q         <= 1'b1;
-      init_cnt_q     <= '0;
-      inflight_q     <= '0;
-      out_q          <= 1'b0;
-    end else if (clear_i) begin
-      init_q         <= 1'b1;
-      init_cnt_q     <= '0;
-      inflight_q     <= '0;
-      out_q          <= 1'b0;
-    end else begin
-      out_q          <= (inflight_q != '0) || alloc_i;
-      if (init_q) begin
-        init_cnt_q <= init_cnt_q + 1'b1;
-        if (32'(init_cnt_q) == N - 1) init_q <= 1'b0;
-      end
-      if (alloc_i)   inflight_q[tag_o]       <= 1'b1;
-      if (release_i) inflight_q[release_tag_i] <= 1'b0;
+  // Next state of the control registers; the reset and the clear both restart the
+  // initialisation with every tag free.
+  logic           init_d, out_d;
+  logic [TAG_W:0] init_cnt_d;
+  logic [N-1:0]   inflight_d;
+  always_comb begin
+    init_d     = init_q;
+    init_cnt_d = init_cnt_q;
+    inflight_d = inflight_q;
+    out_d      = (inflight_q != '0) || alloc_i;
+    if (init_q) begin
+      init_cnt_d = init_cnt_q + 1'b1;
+      if (32'(init_cnt_q) == N - 1) init_d = 1'b0;
     end
+    if (alloc_i)   inflight_d[tag_o]         = 1'b1;
+    if (release_i) inflight_d[release_tag_i] = 1'b0;
   end
+
+  `MSR_CLR_REG_RST(u_ctl_q, 2 + TAG_W + 1 + N, {1'b1, (TAG_W+1)'(0), N'(0), 1'b0}, clear_i, 1'b1,
+                   {init_d, init_cnt_d, inflight_d, out_d}, {init_q, init_cnt_q, inflight_q, out_q})
 
   always_ff @(posedge clk_i) begin
     if (alloc_i) table_q[tag_o] <= entry_i;

@@ -204,15 +204,9 @@ module msr_tile_ctx
   `MSR_CLR_REG_RST(u_pend_q, PEND_W + 1, {PEND_W'(0), 1'b1}, clear_i, 1'b1,
                    {pend_d, pend_zero_d}, {pend_q, pend_zero_q})
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      state_q <= CTX_FREE;
-    end else if (clear_i) begin
-      state_q <= CTX_FREE;
-    end else begin
-      state_q <= state_d;
-    end
-  end
+  logic [1:0] state_raw;
+  `MSR_CLR_REG_RST(u_state_q, 2, CTX_FREE, clear_i, 1'b1, state_d, state_raw)
+  assign state_q = ctx_state_e'(state_raw);
 
   always_ff @(posedge clk_i) begin
     if (start_i) desc_q <= desc_i;

@@ -4,6 +4,8 @@
 // and the register behind it). Reads are issued only when the skid FIFO has room for every
 // read in flight, so a stalled consumer never loses data and a ready consumer gets one pixel
 // per clock.
+`include "msr_flops.svh"
+
 module msr_tile_stream
   import msr_pkg::*;
 #(
@@ -68,11 +70,25 @@ module msr_tile_stream
   assign pix_o       = pop_word;
   assign done_o      = pop && pop_word.last;
 
+  // The read state: the clear stops a stream (active, all reads issued, reads in flight); the
+  // tile's origin, size and read position hold through it and are loaded at the next start.
+  logic       active_d, rd_done_d;
+  always_comb begin
+    active_d  = active_q;
+    rd_done_d = rd_done_q;
+    if (start_valid_i && start_ready_o) begin
+      active_d  = 1'b1;
+      rd_done_d = 1'b0;
+    end
+    if (issue && last_rd) rd_done_d = 1'b1;
+    if (done_o) active_d = 1'b0;
+  end
+
+  `MSR_CLR_REG(u_ctl_q, 4, clear_i, 1'b1, {active_d, rd_done_d, rd_pend_q[0], issue},
+               {active_q, rd_done_q, rd_pend_q})
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      active_q    <= 1'b0;
-      rd_done_q   <= 1'b0;
-      rd_pend_q   <= '0;
       x0_q        <= '0;
       y0_q        <= '0;
       wm1_q       <= '0;
@@ -82,14 +98,8 @@ module msr_tile_stream
       pend_x_q    <= '0;
       pend_y_q    <= '0;
       pend_last_q <= '0;
-    end else if (clear_i) begin
-      active_q  <= 1'b0;
-      rd_done_q <= 1'b0;
-      rd_pend_q <= '0;
-    end else begin
+    end else if (!clear_i) begin           // held through a clear, loaded again at the start
       if (start_valid_i && start_ready_o) begin
-        active_q  <= 1'b1;
-        rd_done_q <= 1'b0;
         x0_q      <= x0_i;
         y0_q      <= y0_i;
         wm1_q     <= lcoord_t'(w_i - 1'b1);
@@ -97,21 +107,17 @@ module msr_tile_stream
         rx_q      <= '0;
         ry_q      <= '0;
       end
-      rd_pend_q   <= {rd_pend_q[0], issue};
       pend_x_q    <= {pend_x_q[0], rx_q};
       pend_y_q    <= {pend_y_q[0], ry_q};
       pend_last_q <= {pend_last_q[0], last_rd && issue};
-      if (issue) begin
-        if (last_rd) begin
-          rd_done_q <= 1'b1;
-        end else if (rx_q == wm1_q) begin
+      if (issue && !last_rd) begin
+        if (rx_q == wm1_q) begin
           rx_q <= '0;
           ry_q <= ry_q + 1'b1;
         end else begin
           rx_q <= rx_q + 1'b1;
         end
       end
-      if (done_o) active_q <= 1'b0;
     end
   end
 
