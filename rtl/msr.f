@@ -14,6 +14,9 @@ rtl/prim/msr_fifo.sv
 rtl/prim/msr_spill_reg.sv
 rtl/prim/msr_shift_add_mul.sv
 rtl/prim/msr_seq_div.sv
+rtl/prim/msr_en_pipe.sv
+rtl/prim/msr_pipe_mul.sv
+rtl/prim/msr_stall_ctrl.sv
 rtl/prim/msr_tile_sram.sv
 rtl/engine/msr_base_decision.sv
 rtl/engine/msr_interp.sv

@@ -9,22 +9,26 @@
 // a saturated position lies outside every frame and a saturated Wp fails the depth test, as
 // the exact values do. U, V and Wp are defined only where ok_o is set.
 //
-// Eleven register stages, one pixel a clock:
+// Fifteen register stages, one pixel a clock (each wide product takes two: the products of its
+// 17-bit pieces in one, their sum in the next; in one clock they held the ECP5 to 64 MHz):
 //   S0  inputs registered
-//   S1  the nine products m_r0 x, m_r1 y, b_r w
-//   S2  P0, P1, P2
-//   S3  leading-zero count of P2; the validity tests; p0s, p1s
-//   S4  d = P2 normalised to 24 bits (top bit set); shift amount n - 23; the seed T[d bits 22..15]
-//   S5  the seed again, in flip-flops: a table mapped to a block RAM has a slow output
-//   S6  d t
-//   S7  r = (t (2^40 - d t)) >> 31
-//   S8  p0s r, p1s r, w r
-//   S9  the same shifted right by n - 15 (U, V) and n - 23 (Wp): the rounding shift less one bit
-//   S10 rounded (+1, >> 1) and saturated (output register)
+//   S1  the pieces of the nine products m_r0 x, m_r1 y, b_r w
+//   S2  the nine products
+//   S3  P0, P1, P2
+//   S4  leading-zero count of P2; the validity tests; p0s, p1s; the shift amount n - 23
+//   S5  d = P2 normalised to 24 bits (top bit set); the seed T[d bits 22..15]
+//   S6  the seed again, in flip-flops: a table mapped to a block RAM has a slow output
+//   S7  the pieces of d t
+//   S8  e = 2^40 - d t
+//   S9  the pieces of t e
+//   S10 r = (t e) >> 31
+//   S11 the pieces of p0s r, p1s r, w r
+//   S12 p0s r, p1s r, w r
+//   S13 the same shifted right by n - 15 (U, V) and n - 23 (Wp): the rounding shift less one bit
+//   S14 rounded (+1, >> 1) and saturated (output register)
 // Global-stall pipeline: every stage advances when the output register is empty or taken.
-// The camera map is static while a pixel is in S0 or S1 (the stages that read it).
+// The camera map is static while a pixel is in S0 to S2 (the stages that read it).
 `include "msr_assert.svh"
-`include "msr_flops.svh"
 
 module msr_reproject #(
   parameter int unsigned XY_W   = 12,   // pixel coordinate bits (frames up to 2^XY_W wide)
@@ -85,49 +89,47 @@ module msr_reproject #(
     $fatal(1, "msr_reproject: P_r needs %0d bits, the golden model computes in 64", P_W);
   end
 
-  logic advance;
-  assign advance = !valid_o || ready_i;
-  assign ready_o = advance;
+  localparam int unsigned NS      = 15;                 // register stages
 
-  logic s0_valid_q, s1_valid_q, s2_valid_q, s3_valid_q, s4_valid_q;
-  logic s5_valid_q, s6_valid_q, s7_valid_q, s8_valid_q, s9_valid_q;
+  // en[k]: stage k loads; vld[k]: stage k holds a pixel (the assertions read a few)
+  logic [NS-1:0] en;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [NS-1:0] vld;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  msr_stall_ctrl #(.STAGES(NS)) u_ctrl (.clk_i, .rst_ni, .clear_i, .valid_i, .ready_o, .valid_o,
+    .ready_i, .vld_o(vld), .en_o(en));
 
   // ---- S0: inputs registered: the S1 products start at flip-flops ----------------------------
-  logic [XY_W-1:0]   s0_x_q, s0_y_q;
-  logic [W_W-1:0]    s0_w_q;
-  logic [USER_W-1:0] s0_user_q;
+  logic [XY_W-1:0]   s0_x, s0_y;
+  logic [W_W-1:0]    s0_w;
+  logic [USER_W-1:0] s0_user;
 
-  always_ff @(posedge clk_i) begin
-    if (advance && valid_i) begin
-      s0_x_q    <= x_i;
-      s0_y_q    <= y_i;
-      s0_w_q    <= w_i;
-      s0_user_q <= user_i;
-    end
+  msr_en_pipe #(.WIDTH(2 * XY_W + W_W + USER_W)) u_s0 (.clk_i, .en_i(en[0]),
+    .d_i({x_i, y_i, w_i, user_i}), .q_o({s0_x, s0_y, s0_w, s0_user}));
+
+  // ---- S1, S2: the nine products, pieces in S1, products in S2 ------------------------------
+  logic signed [2:0][MX_W-1:0] s2_mx, s2_my;
+  logic signed [2:0][BW_W-1:0] s2_bw;
+
+  for (genvar r = 0; r < 3; r++) begin : g_row
+    msr_pipe_mul #(.A_W(REG_W), .B_W(XY_W), .A_SIGNED(1'b1), .P_W(MX_W)) u_mx (.clk_i,
+      .en_i(en[2:1]), .a_i(m_i[r][0]), .b_i(s0_x), .p_o(s2_mx[r]));
+    msr_pipe_mul #(.A_W(REG_W), .B_W(XY_W), .A_SIGNED(1'b1), .P_W(MX_W)) u_my (.clk_i,
+      .en_i(en[2:1]), .a_i(m_i[r][1]), .b_i(s0_y), .p_o(s2_my[r]));
+    msr_pipe_mul #(.A_W(REG_W), .B_W(W_W), .A_SIGNED(1'b1), .P_W(BW_W)) u_bw (.clk_i,
+      .en_i(en[2:1]), .a_i(b_i[r]), .b_i(s0_w), .p_o(s2_bw[r]));
   end
 
-  // ---- S1: products ---------------------------------------------------------------------------
-  logic signed [2:0][MX_W-1:0] s1_mx_q, s1_my_q;
-  logic signed [2:0][BW_W-1:0] s1_bw_q;
-  logic [W_W-1:0]              s1_w_q;
-  logic [USER_W-1:0]           s1_user_q;
+  // w and the sideband alongside, to S3
+  logic [W_W-1:0]    s3_w;
+  logic [USER_W-1:0] s3_user;
 
-  always_ff @(posedge clk_i) begin
-    if (advance && s0_valid_q) begin
-      for (int r = 0; r < 3; r++) begin
-        s1_mx_q[r] <= MX_W'($signed(m_i[r][0]) * $signed({1'b0, s0_x_q}));
-        s1_my_q[r] <= MX_W'($signed(m_i[r][1]) * $signed({1'b0, s0_y_q}));
-        s1_bw_q[r] <= BW_W'($signed(b_i[r]) * $signed({1'b0, s0_w_q}));
-      end
-      s1_w_q    <= s0_w_q;
-      s1_user_q <= s0_user_q;
-    end
-  end
+  msr_en_pipe #(.WIDTH(W_W + USER_W), .DEPTH(3)) u_carry_p (.clk_i, .en_i(en[3:1]),
+    .d_i({s0_w, s0_user}), .q_o({s3_w, s3_user}));
 
-  // ---- S2: P_r ----------------------------------------------------------------------------------
-  logic signed [2:0][P_W-1:0] s2_p_q;
-  logic [W_W-1:0]             s2_w_q;
-  logic [USER_W-1:0]          s2_user_q;
+  // ---- S3: P_r ----------------------------------------------------------------------------------
+  logic signed [2:0][P_W-1:0] s3_p_q;
 
   function automatic logic signed [P_W-1:0] row_p(logic signed [MX_W-1:0] mx,
       logic signed [MX_W-1:0] my, logic signed [REG_W-1:0] m2, logic signed [BW_W-1:0] bw);
@@ -137,16 +139,14 @@ module msr_reproject #(
   endfunction
 
   always_ff @(posedge clk_i) begin
-    if (advance && s1_valid_q) begin
+    if (en[3]) begin
       for (int r = 0; r < 3; r++) begin
-        s2_p_q[r] <= row_p(s1_mx_q[r], s1_my_q[r], m_i[r][2], s1_bw_q[r]);
+        s3_p_q[r] <= row_p(s2_mx[r], s2_my[r], m_i[r][2], s2_bw[r]);
       end
-      s2_w_q    <= s1_w_q;
-      s2_user_q <= s1_user_q;
     end
   end
 
-  // ---- S3: leading zeros of P2, validity, p0s and p1s ---------------------------------------
+  // ---- S4: leading zeros of P2, validity, p0s and p1s, the shift amount n - 23 --------------
   // msr_lzc finds the lowest set bit: it reads P2's magnitude bit-reversed.
   logic [MAG_W-1:0] p2_rev;
   logic [CNT_W-1:0] p2_lz;
@@ -155,7 +155,7 @@ module msr_reproject #(
   /* verilator lint_on UNUSEDSIGNAL */
 
   for (genvar i = 0; i < MAG_W; i++) begin : g_rev
-    assign p2_rev[i] = s2_p_q[2][MAG_W-1-i];
+    assign p2_rev[i] = s3_p_q[2][MAG_W-1-i];
   end
 
   msr_lzc #(.WIDTH(MAG_W)) u_lzc (
@@ -170,26 +170,38 @@ module msr_reproject #(
         && !(ps[PS_W-1] && ps[PS_W-2:0] == '0);
   endfunction
 
-  logic                    s3_ok_q;
-  logic [CNT_W-1:0]        s3_lz_q;
-  logic [MAG_W-1:0]        s3_p2_q;
-  logic signed [PS_W-1:0]  s3_p0s_q, s3_p1s_q;
-  logic [W_W-1:0]          s3_w_q;
-  logic [USER_W-1:0]       s3_user_q;
+  // what S4 hands on unchanged to S10, r's stage: ok, the shift amount, p0s and p1s
+  // (one a position axis), w and the sideband
+  typedef struct packed {
+    logic                         ok;
+    logic [SA_W-1:0]              sa;
+    logic [1:0][PS_W-1:0]         ps;
+    logic [W_W-1:0]               w;
+    logic [USER_W-1:0]            user;
+  } carry_t;
+
+  carry_t           s4_c_q, s10_c;
+  logic [CNT_W-1:0] s4_lz_q;
+  logic [MAG_W-1:0] s4_p2_q;
 
   always_ff @(posedge clk_i) begin
-    if (advance && s2_valid_q) begin
+    if (en[4]) begin
       // P2 > 0 and n >= 23 is P2 >= 2^22
-      s3_ok_q   <= !s2_p_q[2][P_W-1] && (|s2_p_q[2][MAG_W-1:N_MIN-1])
-                   && ps_in_range(s2_p_q[0][P_W-1:PS_SH]) && ps_in_range(s2_p_q[1][P_W-1:PS_SH]);
-      s3_lz_q   <= p2_lz;
-      s3_p2_q   <= s2_p_q[2][MAG_W-1:0];
-      s3_p0s_q  <= s2_p_q[0][PS_SH+PS_W-1:PS_SH];
-      s3_p1s_q  <= s2_p_q[1][PS_SH+PS_W-1:PS_SH];
-      s3_w_q    <= s2_w_q;
-      s3_user_q <= s2_user_q;
+      s4_c_q.ok   <= !s3_p_q[2][P_W-1] && (|s3_p_q[2][MAG_W-1:N_MIN-1])
+                     && ps_in_range(s3_p_q[0][P_W-1:PS_SH]) && ps_in_range(s3_p_q[1][P_W-1:PS_SH]);
+      s4_c_q.sa   <= SA_W'(MAG_W - N_MIN) - p2_lz;
+      for (int a = 0; a < 2; a++) begin
+        s4_c_q.ps[a] <= s3_p_q[a][PS_SH+PS_W-1:PS_SH];
+      end
+      s4_c_q.w    <= s3_w;
+      s4_c_q.user <= s3_user;
+      s4_lz_q     <= p2_lz;
+      s4_p2_q     <= s3_p_q[2][MAG_W-1:0];
     end
   end
+
+  msr_en_pipe #(.WIDTH($bits(carry_t)), .DEPTH(6)) u_carry (.clk_i, .en_i(en[10:5]),
+    .d_i(s4_c_q), .q_o(s10_c));
 
   // ---- the seed table: T[i] = floor(2^24 / (256.5 + i) + 0.5) = (2^26 + 513 + 2i) div (1026 + 4i)
   logic [2**IDX_W-1:0][T_W-1:0] seed_rom;
@@ -199,144 +211,88 @@ module msr_reproject #(
     assign seed_rom[i] = T_W'(SEED);
   end
 
-  // ---- S4: d, the seed, and the shift amount n - 23 = (MAG_W - lz) - 23 -----------------------
+  // ---- S5: d = P2 normalised, and the seed; S6: the seed in flip-flops --------------------
+  // (a table mapped to a block RAM has a slow output)
   /* verilator lint_off UNUSEDSIGNAL */
   logic [MAG_W-1:0] p2_norm;    // its top D_W bits are d
   /* verilator lint_on UNUSEDSIGNAL */
-  assign p2_norm = s3_p2_q << s3_lz_q;
+  assign p2_norm = s4_p2_q << s4_lz_q;
 
-  logic                    s4_ok_q;
-  logic [D_W-1:0]          s4_d_q;
-  logic [T_W-1:0]          s4_t_q;
-  logic [SA_W-1:0]         s4_sa_q;
-  logic signed [PS_W-1:0]  s4_p0s_q, s4_p1s_q;
-  logic [W_W-1:0]          s4_w_q;
-  logic [USER_W-1:0]       s4_user_q;
+  logic [D_W-1:0] s5_d_q, s6_d_q;
+  logic [T_W-1:0] s5_t_q, s6_t_q;
 
   always_ff @(posedge clk_i) begin
-    if (advance && s3_valid_q) begin
-      s4_ok_q   <= s3_ok_q;
-      s4_d_q    <= p2_norm[MAG_W-1:MAG_W-D_W];
-      s4_t_q    <= seed_rom[p2_norm[MAG_W-2:MAG_W-1-IDX_W]];
-      s4_sa_q   <= SA_W'(MAG_W - N_MIN) - s3_lz_q;
-      s4_p0s_q  <= s3_p0s_q;
-      s4_p1s_q  <= s3_p1s_q;
-      s4_w_q    <= s3_w_q;
-      s4_user_q <= s3_user_q;
+    if (en[5]) begin
+      s5_d_q <= p2_norm[MAG_W-1:MAG_W-D_W];
+      s5_t_q <= seed_rom[p2_norm[MAG_W-2:MAG_W-1-IDX_W]];
+    end
+    if (en[6]) begin
+      s6_d_q <= s5_d_q;
+      s6_t_q <= s5_t_q;
     end
   end
 
-  // ---- S5: the seed in flip-flops --------------------------------------------------------------
-  logic                    s5_ok_q;
-  logic [D_W-1:0]          s5_d_q;
-  logic [T_W-1:0]          s5_t_q;
-  logic [SA_W-1:0]         s5_sa_q;
-  logic signed [PS_W-1:0]  s5_p0s_q, s5_p1s_q;
-  logic [W_W-1:0]          s5_w_q;
-  logic [USER_W-1:0]       s5_user_q;
+  // ---- S7, S8: e = 2^40 - d t, pieces in S7 -----------------------------------------------------
+  // d t < 2^40 (d < 2^24, t < 2^16), so e is d t's 40-bit two's complement
+  logic [DT_W-1:0] s8_e;
+  logic [T_W-1:0]  s8_t;
 
-  always_ff @(posedge clk_i) begin
-    if (advance && s4_valid_q) begin
-      s5_ok_q   <= s4_ok_q;
-      s5_d_q    <= s4_d_q;
-      s5_t_q    <= s4_t_q;
-      s5_sa_q   <= s4_sa_q;
-      s5_p0s_q  <= s4_p0s_q;
-      s5_p1s_q  <= s4_p1s_q;
-      s5_w_q    <= s4_w_q;
-      s5_user_q <= s4_user_q;
-    end
-  end
+  msr_pipe_mul #(.A_W(D_W), .B_W(T_W), .NEGATE(1'b1), .P_W(DT_W)) u_dt (.clk_i, .en_i(en[8:7]),
+    .a_i(s6_d_q), .b_i(s6_t_q), .p_o(s8_e));
+  msr_en_pipe #(.WIDTH(T_W), .DEPTH(2)) u_carry_t (.clk_i, .en_i(en[8:7]), .d_i(s6_t_q),
+    .q_o(s8_t));
 
-  // ---- S6: d t ----------------------------------------------------------------------------------
-  logic                    s6_ok_q;
-  logic [DT_W-1:0]         s6_dt_q;
-  logic [T_W-1:0]          s6_t_q;
-  logic [SA_W-1:0]         s6_sa_q;
-  logic signed [PS_W-1:0]  s6_p0s_q, s6_p1s_q;
-  logic [W_W-1:0]          s6_w_q;
-  logic [USER_W-1:0]       s6_user_q;
-
-  always_ff @(posedge clk_i) begin
-    if (advance && s5_valid_q) begin
-      s6_ok_q   <= s5_ok_q;
-      s6_dt_q   <= DT_W'(s5_d_q) * DT_W'(s5_t_q);
-      s6_t_q    <= s5_t_q;
-      s6_sa_q   <= s5_sa_q;
-      s6_p0s_q  <= s5_p0s_q;
-      s6_p1s_q  <= s5_p1s_q;
-      s6_w_q    <= s5_w_q;
-      s6_user_q <= s5_user_q;
-    end
-  end
-
-  // ---- S7: r = (t (2^40 - d t)) >> 31 ----------------------------------------------------------
-  // d t < 2^40 (d < 2^24, t < 2^16), so 2^40 - d t is its 40-bit two's complement
-  logic [DT_W-1:0]      newton_e;
+  // ---- S9, S10: r = (t e) >> 31, pieces in S9 ---------------------------------------------------
   /* verilator lint_off UNUSEDSIGNAL */
-  logic [DT_W+T_W-1:0]  newton_p;   // r is its bits 31 and up
+  logic [DT_W+T_W-1:0] s10_newton;   // r is its bits 31 and up
   /* verilator lint_on UNUSEDSIGNAL */
-  assign newton_e = -s6_dt_q;
-  assign newton_p = (DT_W + T_W)'(newton_e) * (DT_W + T_W)'(s6_t_q);
+  logic [R_W-1:0]      s10_r;
 
-  logic                    s7_ok_q;
-  logic [R_W-1:0]          s7_r_q;
-  logic [SA_W-1:0]         s7_sa_q;
-  logic signed [PS_W-1:0]  s7_p0s_q, s7_p1s_q;
-  logic [W_W-1:0]          s7_w_q;
-  logic [USER_W-1:0]       s7_user_q;
+  msr_pipe_mul #(.A_W(DT_W), .B_W(T_W)) u_newton (.clk_i, .en_i(en[10:9]), .a_i(s8_e),
+    .b_i(s8_t), .p_o(s10_newton));
+  assign s10_r = s10_newton[NEWTON+R_W-1:NEWTON];
 
-  always_ff @(posedge clk_i) begin
-    if (advance && s6_valid_q) begin
-      s7_ok_q   <= s6_ok_q;
-      s7_r_q    <= newton_p[NEWTON+R_W-1:NEWTON];
-      s7_sa_q   <= s6_sa_q;
-      s7_p0s_q  <= s6_p0s_q;
-      s7_p1s_q  <= s6_p1s_q;
-      s7_w_q    <= s6_w_q;
-      s7_user_q <= s6_user_q;
-    end
-  end
-
-  // ---- S8: p0s r, p1s r, w r ------------------------------------------------------------------
-  logic                    s8_ok_q;
+  // ---- S11, S12: p0s r, p1s r, w r, pieces in S11 ---------------------------------------------
   /* verilator lint_off UNUSEDSIGNAL */
-  logic signed [PR_W-1:0]  s8_x0_q, s8_x1_q;   // bits 0..7 fall off every shift
+  logic [1:0][PR_W-1:0] s12_x;   // bits 0..7 fall off every shift
   /* verilator lint_on UNUSEDSIGNAL */
-  logic [WR_W-1:0]         s8_xw_q;
-  logic [SA_W-1:0]         s8_sa_q;
-  logic [USER_W-1:0]       s8_user_q;
+  logic [WR_W-1:0]      s12_xw;
+
+  for (genvar a = 0; a < 2; a++) begin : g_axis
+    msr_pipe_mul #(.A_W(PS_W), .B_W(R_W), .A_SIGNED(1'b1), .P_W(PR_W)) u_mul (.clk_i,
+      .en_i(en[12:11]), .a_i(s10_c.ps[a]), .b_i(s10_r), .p_o(s12_x[a]));
+  end
+  msr_pipe_mul #(.A_W(W_W), .B_W(R_W)) u_mul_w (.clk_i, .en_i(en[12:11]), .a_i(s10_c.w),
+    .b_i(s10_r), .p_o(s12_xw));
+
+  // ok, the shift amount and the sideband alongside the products
+  logic              s12_ok;
+  logic [SA_W-1:0]   s12_sa;
+  logic [USER_W-1:0] s12_user;
+
+  msr_en_pipe #(.WIDTH(1 + SA_W + USER_W), .DEPTH(2)) u_carry_mul (.clk_i, .en_i(en[12:11]),
+    .d_i({s10_c.ok, s10_c.sa, s10_c.user}), .q_o({s12_ok, s12_sa, s12_user}));
+
+  // ---- S13: the rounding shifts less their last bit --------------------------------------------
+  // (X + 2^(s-1)) >> s = ((X >> (s-1)) + 1) >> 1 for the floor shift: S13 shifts by s - 1,
+  // S14 adds the one and drops the bit.
+  logic signed [1:0][Q_W-1:0] s13_q_q;
+  logic [WR_W-1:0]            s13_qw_q;
+  logic                       s13_ok_q;
+  logic [USER_W-1:0]          s13_user_q;
 
   always_ff @(posedge clk_i) begin
-    if (advance && s7_valid_q) begin
-      s8_ok_q   <= s7_ok_q;
-      s8_x0_q   <= PR_W'(s7_p0s_q) * PR_W'($signed({1'b0, s7_r_q}));
-      s8_x1_q   <= PR_W'(s7_p1s_q) * PR_W'($signed({1'b0, s7_r_q}));
-      s8_xw_q   <= WR_W'(s7_w_q) * WR_W'(s7_r_q);
-      s8_sa_q   <= s7_sa_q;
-      s8_user_q <= s7_user_q;
+    if (en[13]) begin
+      for (int a = 0; a < 2; a++) begin
+        s13_q_q[a] <= $signed(s12_x[a][PR_W-1:UV_SH0]) >>> s12_sa;
+      end
+      s13_qw_q   <= s12_xw >> s12_sa;
+      s13_ok_q   <= s12_ok;
+      s13_user_q <= s12_user;
     end
   end
 
-  // ---- S9: the rounding shifts less their last bit ---------------------------------------------
-  // (X + 2^(s-1)) >> s = ((X >> (s-1)) + 1) >> 1 for the floor shift: S9 shifts by s - 1,
-  // S10 adds the one and drops the bit.
-  logic signed [Q_W-1:0] s9_q0_q, s9_q1_q;
-  logic [WR_W-1:0]       s9_qw_q;
-  logic                  s9_ok_q;
-  logic [USER_W-1:0]     s9_user_q;
-
-  always_ff @(posedge clk_i) begin
-    if (advance && s8_valid_q) begin
-      s9_ok_q   <= s8_ok_q;
-      s9_q0_q   <= $signed(s8_x0_q[PR_W-1:UV_SH0]) >>> s8_sa_q;
-      s9_q1_q   <= $signed(s8_x1_q[PR_W-1:UV_SH0]) >>> s8_sa_q;
-      s9_qw_q   <= s8_xw_q >> s8_sa_q;
-      s9_user_q <= s8_user_q;
-    end
-  end
-
-  // ---- S10: rounded and saturated ---------------------------------------------------------------
+  // ---- S14: rounded and saturated ---------------------------------------------------------------
   // Clamping q to [-2^UV_W, 2^UV_W - 2] before (q + 1) >> 1 gives the saturated result, and the
   // sum then fits UV_W + 1 bits (likewise Wp with q <= 2^(WP_W+1) - 2).
   function automatic logic signed [UV_W-1:0] round_uv(logic signed [Q_W-1:0] q);
@@ -362,30 +318,23 @@ module msr_reproject #(
   endfunction
 
   always_ff @(posedge clk_i) begin
-    if (advance && s9_valid_q) begin
-      ok_o   <= s9_ok_q;
-      u_o    <= round_uv(s9_q0_q);
-      v_o    <= round_uv(s9_q1_q);
-      wp_o   <= round_wp(s9_qw_q);
-      user_o <= s9_user_q;
+    if (en[14]) begin
+      ok_o   <= s13_ok_q;
+      u_o    <= round_uv(s13_q_q[0]);
+      v_o    <= round_uv(s13_q_q[1]);
+      wp_o   <= round_wp(s13_qw_q);
+      user_o <= s13_user_q;
     end
   end
-
-  // ---- Valid bits: one shift register that moves when the pipeline advances ------------------
-  `MSR_CLR_REG(u_valid, 11, clear_i, advance,
-               {s9_valid_q, s8_valid_q, s7_valid_q, s6_valid_q, s5_valid_q,
-                s4_valid_q, s3_valid_q, s2_valid_q, s1_valid_q, s0_valid_q, valid_i},
-               {valid_o, s9_valid_q, s8_valid_q, s7_valid_q, s6_valid_q,
-                s5_valid_q, s4_valid_q, s3_valid_q, s2_valid_q, s1_valid_q, s0_valid_q})
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT_NXT(a_out_hold, valid_o && !ready_i,
       valid_o && $stable({ok_o, u_o, v_o, wp_o, user_o}), clk_i, !rst_ni || clear_i)
-  `MSR_ASSERT_NXT(a_cam_static, s0_valid_q || s1_valid_q, $stable({m_i, b_i}), clk_i,
+  `MSR_ASSERT_NXT(a_cam_static, |vld[2:0], $stable({m_i, b_i}), clk_i,
       !rst_ni || clear_i)
   // the Newton step's result over every d in [2^23, 2^24): 2^23 - 8 <= r <= 2^24 (R_W bits)
-  `MSR_ASSERT_IMP(a_recip_range, s7_valid_q && s7_ok_q,
-      s7_r_q >= R_W'((1 << 23) - 8) && s7_r_q <= R_W'(1 << 24))
+  `MSR_ASSERT_IMP(a_recip_range, vld[10] && s10_c.ok,
+      s10_r >= R_W'((1 << 23) - 8) && s10_r <= R_W'(1 << 24))
   `MSR_COVER(c_ok, valid_o && ready_i && ok_o)
   `MSR_COVER(c_not_ok, valid_o && ready_i && !ok_o)
   `MSR_COVER(c_stall, valid_o && !ready_i)

@@ -14,14 +14,15 @@
 // moves on), and its word is on tap_i[k] from the next clock until the next read of tap k
 // (a synchronous memory whose output holds between reads). Unread taps' words are ignored.
 //
-// Five register stages, one pixel a clock, global stall (as msr_reproject):
+// Six register stages, one pixel a clock, global stall (as msr_reproject):
 //   G0  inputs registered; tap addresses, weights, used and inside flags; the reads
 //   G1  the pixel while its tap words arrive; min, max, age and sky flags of the used taps
 //   G2  the tap words weighted (an unused tap's weight is 0)
 //   G3  the weighted sums
-//   G4  rounded; the depth test; geo_ok (output register)
+//   G4  rounded
+//   G5  the depth test; geo_ok (output register): on the ECP5 the rounding and the test in one
+//       clock held the unit to 85 MHz
 `include "msr_assert.svh"
-`include "msr_flops.svh"
 
 module msr_reuse_gather #(
   parameter int unsigned XY_W   = 12,   // frame coordinate bits
@@ -73,29 +74,26 @@ module msr_reuse_gather #(
   localparam int unsigned DTOL_SH = 6;                  // depth tolerance (Wp >> 6) + 1
   localparam logic [W_W-1:0] W_SAT = '1;                // 65535: too near, never reused
 
-  logic advance;
-  assign advance = !valid_o || ready_i;
-  assign ready_o = advance;
+  localparam int unsigned NS      = 6;                  // register stages
 
-  logic g0_valid_q, g1_valid_q, g2_valid_q, g3_valid_q;
+  // en[k]: stage k loads; vld[k]: stage k holds a pixel (the assertions read a few)
+  logic [NS-1:0] en;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [NS-1:0] vld;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  msr_stall_ctrl #(.STAGES(NS)) u_ctrl (.clk_i, .rst_ni, .clear_i, .valid_i, .ready_o, .valid_o,
+    .ready_i, .vld_o(vld), .en_o(en));
 
   // ---- G0: inputs; taps ----------------------------------------------------------------------
-  logic                     g0_ok_q;
-  logic signed [UV_W-1:0]   g0_u_q, g0_v_q;
-  logic [WP_W-1:0]          g0_wp_q;
-  logic [W_W-1:0]           g0_wm_q;
-  logic [USER_W-1:0]        g0_user_q;
+  logic                     g0_ok;
+  logic signed [UV_W-1:0]   g0_u, g0_v;
+  logic [WP_W-1:0]          g0_wp;
+  logic [W_W-1:0]           g0_wm;
+  logic [USER_W-1:0]        g0_user;
 
-  always_ff @(posedge clk_i) begin
-    if (advance && valid_i) begin
-      g0_ok_q   <= ok_i;
-      g0_u_q    <= u_i;
-      g0_v_q    <= v_i;
-      g0_wp_q   <= wp_i;
-      g0_wm_q   <= wm_i;
-      g0_user_q <= user_i;
-    end
-  end
+  msr_en_pipe #(.WIDTH(1 + 2 * UV_W + WP_W + W_W + USER_W)) u_g0 (.clk_i, .en_i(en[0]),
+    .d_i({ok_i, u_i, v_i, wp_i, wm_i, user_i}), .q_o({g0_ok, g0_u, g0_v, g0_wp, g0_wm, g0_user}));
 
   logic [FR_W-1:0]              fx, fy;
   logic signed [1:0][TC_W-1:0]  tx, ty;        // x0, x0 + 1; y0, y0 + 1
@@ -105,12 +103,12 @@ module msr_reuse_gather #(
   logic [3:0][WT_W-1:0]         wt;
   logic                         all_inside;
 
-  assign fx = g0_u_q[FR_W-1:0];
-  assign fy = g0_v_q[FR_W-1:0];
+  assign fx = g0_u[FR_W-1:0];
+  assign fy = g0_v[FR_W-1:0];
 
   always_comb begin
-    tx[0] = TC_W'($signed(g0_u_q[UV_W-1:FR_W]));
-    ty[0] = TC_W'($signed(g0_v_q[UV_W-1:FR_W]));
+    tx[0] = TC_W'($signed(g0_u[UV_W-1:FR_W]));
+    ty[0] = TC_W'($signed(g0_v[UV_W-1:FR_W]));
     tx[1] = tx[0] + TC_W'(1);
     ty[1] = ty[0] + TC_W'(1);
     wx[0] = (FR_W + 1)'(16) - (FR_W + 1)'(fx);
@@ -132,7 +130,7 @@ module msr_reuse_gather #(
     all_inside = &(tap_in | ~used);
   end
 
-  assign tap_rd_o = {4{advance && g0_valid_q && all_inside}} & used;
+  assign tap_rd_o = {4{en[1] && all_inside}} & used;
 
   // ---- G1: the pixel while its tap words arrive --------------------------------------------
   logic                  g1_ok_q, g1_inside_q;
@@ -143,14 +141,14 @@ module msr_reuse_gather #(
   logic [USER_W-1:0]     g1_user_q;
 
   always_ff @(posedge clk_i) begin
-    if (advance && g0_valid_q) begin
-      g1_ok_q     <= g0_ok_q;
+    if (en[1]) begin
+      g1_ok_q     <= g0_ok;
       g1_inside_q <= all_inside;
       g1_used_q   <= used;
       g1_wt_q     <= wt;
-      g1_wp_q     <= g0_wp_q;
-      g1_wm_q     <= g0_wm_q;
-      g1_user_q   <= g0_user_q;
+      g1_wp_q     <= g0_wp;
+      g1_wm_q     <= g0_wm;
+      g1_user_q   <= g0_user;
     end
   end
 
@@ -177,108 +175,97 @@ module msr_reuse_gather #(
     end
   end
 
-  // ---- G2: the tap words weighted (an unused tap weighs 0), min, max, age, sky flags ------
+  // ---- G2: the tap words weighted (an unused tap weighs 0) -----------------------------------
   logic [3:0][2:0][CACC_W-1:0] g2_cw_q;
   logic [3:0][WACC_W-1:0]      g2_ww_q;
-  logic [23:0]                 g2_lo_q, g2_hi_q;
-  logic [AGE_W-1:0]            g2_age_q;
-  logic                        g2_sky_all_q, g2_sky_none_q, g2_inside_q, g2_ok_q;
-  logic [WP_W-1:0]             g2_wp_q;
-  logic [W_W-1:0]              g2_wm_q;
-  logic [USER_W-1:0]           g2_user_q;
 
   always_ff @(posedge clk_i) begin
-    if (advance && g1_valid_q) begin
+    if (en[2]) begin
       for (int k = 0; k < 4; k++) begin
         for (int c = 0; c < 3; c++) begin
           g2_cw_q[k][c] <= CACC_W'(g1_wt_q[k]) * CACC_W'(tap_rgb_i[k][8*c +: 8]);
         end
         g2_ww_q[k] <= WACC_W'(g1_wt_q[k]) * WACC_W'(tap_w_i[k]);
       end
-      g2_lo_q       <= lo_c;
-      g2_hi_q       <= hi_c;
-      g2_age_q      <= age_c;
-      g2_sky_all_q  <= sky_all_c;
-      g2_sky_none_q <= sky_none_c;
-      g2_inside_q   <= g1_inside_q;
-      g2_ok_q       <= g1_ok_q;
-      g2_wp_q       <= g1_wp_q;
-      g2_wm_q       <= g1_wm_q;
-      g2_user_q     <= g1_user_q;
     end
   end
+
+  // What G1 hands on to the output unchanged (min, max, age, inside, the sideband), and to the
+  // depth test: ok and inside, w_m = 0 (a sky pixel), its test (every used tap sky), the other
+  // tests but the depth (no used tap sky or too near, w_m not too near), and Wp.
+  logic [23:0]       g5_lo, g5_hi;
+  logic [AGE_W-1:0]  g5_age;
+  logic              g5_inside;
+  logic [USER_W-1:0] g5_user;
+  logic              g4_base_ok, g4_sky, g4_sky_ok, g4_near_ok;
+  logic [WP_W-1:0]   g4_wp;
+
+  msr_en_pipe #(.WIDTH(48 + AGE_W + 1 + USER_W), .DEPTH(4)) u_out (.clk_i, .en_i(en[5:2]),
+    .d_i({lo_c, hi_c, age_c, g1_inside_q, g1_user_q}),
+    .q_o({g5_lo, g5_hi, g5_age, g5_inside, g5_user}));
+  msr_en_pipe #(.WIDTH(4 + WP_W), .DEPTH(3)) u_test (.clk_i, .en_i(en[4:2]),
+    .d_i({g1_ok_q && g1_inside_q, g1_wm_q == '0, sky_all_c, sky_none_c && g1_wm_q != W_SAT,
+          g1_wp_q}),
+    .q_o({g4_base_ok, g4_sky, g4_sky_ok, g4_near_ok, g4_wp}));
+
+  assign lo_o     = g5_lo;
+  assign hi_o     = g5_hi;
+  assign age_o    = g5_age;
+  assign inside_o = g5_inside;
+  assign user_o   = g5_user;
 
   // ---- G3: the weighted sums -------------------------------------------------------------------
   logic [2:0][CACC_W-1:0]  g3_cacc_q;
   logic [WACC_W-1:0]       g3_wacc_q;
-  logic [23:0]             g3_lo_q, g3_hi_q;
-  logic [AGE_W-1:0]        g3_age_q;
-  logic                    g3_sky_all_q, g3_sky_none_q, g3_inside_q, g3_ok_q;
-  logic [WP_W-1:0]         g3_wp_q;
-  logic [W_W-1:0]          g3_wm_q;
-  logic [USER_W-1:0]       g3_user_q;
 
   always_ff @(posedge clk_i) begin
-    if (advance && g2_valid_q) begin
+    if (en[3]) begin
       for (int c = 0; c < 3; c++) begin
         g3_cacc_q[c] <= (g2_cw_q[0][c] + g2_cw_q[1][c]) + (g2_cw_q[2][c] + g2_cw_q[3][c]);
       end
-      g3_wacc_q     <= (g2_ww_q[0] + g2_ww_q[1]) + (g2_ww_q[2] + g2_ww_q[3]);
-      g3_lo_q       <= g2_lo_q;
-      g3_hi_q       <= g2_hi_q;
-      g3_age_q      <= g2_age_q;
-      g3_sky_all_q  <= g2_sky_all_q;
-      g3_sky_none_q <= g2_sky_none_q;
-      g3_inside_q   <= g2_inside_q;
-      g3_ok_q       <= g2_ok_q;
-      g3_wp_q       <= g2_wp_q;
-      g3_wm_q       <= g2_wm_q;
-      g3_user_q     <= g2_user_q;
+      g3_wacc_q <= (g2_ww_q[0] + g2_ww_q[1]) + (g2_ww_q[2] + g2_ww_q[3]);
     end
   end
 
-  // ---- G4 (output register): rounded; the depth test --------------------------------------
-  logic [W_W-1:0]   wb;
-  logic [WP_W:0]    wdiff;
-  logic             depth_ok;
+  // ---- G4: rounded ---------------------------------------------------------------------------
+  logic [23:0]    g4_rgb_q;
+  logic [W_W-1:0] g4_wb_q;
+
+  always_ff @(posedge clk_i) begin
+    if (en[4]) begin
+      for (int c = 0; c < 3; c++) begin
+        g4_rgb_q[8*c +: 8] <= 8'((g3_cacc_q[c] + CACC_W'(128)) >> 8);
+      end
+      g4_wb_q <= W_W'((g3_wacc_q + WACC_W'(128)) >> 8);
+    end
+  end
+
+  // ---- G5 (output register): the depth test |Wb - Wp| <= (Wp >> 6) + 1 and geo_ok -------------
+  logic [WP_W:0] wdiff;
+  logic          depth_ok;
 
   always_comb begin
-    wb       = W_W'((g3_wacc_q + WACC_W'(128)) >> 8);
-    wdiff    = (WP_W + 1)'(g3_wp_q) - (WP_W + 1)'(wb);
+    wdiff    = (WP_W + 1)'(g4_wp) - (WP_W + 1)'(g4_wb_q);
     if (wdiff[WP_W]) wdiff = -wdiff;
-    depth_ok = wdiff <= (WP_W + 1)'(g3_wp_q >> DTOL_SH) + (WP_W + 1)'(1);
+    depth_ok = wdiff <= (WP_W + 1)'(g4_wp >> DTOL_SH) + (WP_W + 1)'(1);
   end
 
   always_ff @(posedge clk_i) begin
-    if (advance && g3_valid_q) begin
-      for (int c = 0; c < 3; c++) begin
-        rgb_o[8*c +: 8] <= 8'((g3_cacc_q[c] + CACC_W'(128)) >> 8);
-      end
-      wb_o     <= wb;
-      lo_o     <= g3_lo_q;
-      hi_o     <= g3_hi_q;
-      age_o    <= g3_age_q;
-      inside_o <= g3_inside_q;
-      geo_ok_o <= g3_ok_q && g3_inside_q
-                  && ((g3_wm_q == '0) ? g3_sky_all_q
-                                      : (g3_sky_none_q && g3_wm_q != W_SAT && depth_ok));
-      user_o   <= g3_user_q;
+    if (en[5]) begin
+      rgb_o    <= g4_rgb_q;
+      wb_o     <= g4_wb_q;
+      geo_ok_o <= g4_base_ok && (g4_sky ? g4_sky_ok : (g4_near_ok && depth_ok));
     end
   end
-
-  // ---- Valid bits -------------------------------------------------------------------------------
-  `MSR_CLR_REG(u_valid, 5, clear_i, advance,
-               {g3_valid_q, g2_valid_q, g1_valid_q, g0_valid_q, valid_i},
-               {valid_o, g3_valid_q, g2_valid_q, g1_valid_q, g0_valid_q})
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT_NXT(a_out_hold, valid_o && !ready_i,
       valid_o && $stable({geo_ok_o, inside_o, rgb_o, wb_o, lo_o, hi_o, age_o, user_o}), clk_i,
       !rst_ni || clear_i)
-  `MSR_ASSERT_NXT(a_extent_static, g0_valid_q, $stable({width_i, height_i}), clk_i,
+  `MSR_ASSERT_NXT(a_extent_static, vld[0], $stable({width_i, height_i}), clk_i,
       !rst_ni || clear_i)
   // the rounded sums stay in their channels (sum of the weights 256)
-  `MSR_ASSERT_IMP(a_weights, g0_valid_q, (WT_W + 2)'(wt[0]) + (WT_W + 2)'(wt[1])
+  `MSR_ASSERT_IMP(a_weights, vld[0], (WT_W + 2)'(wt[0]) + (WT_W + 2)'(wt[1])
       + (WT_W + 2)'(wt[2]) + (WT_W + 2)'(wt[3]) == (WT_W + 2)'(256))
   `MSR_COVER(c_pass, valid_o && ready_i && geo_ok_o)
   `MSR_COVER(c_outside, valid_o && ready_i && !inside_o)

@@ -255,4 +255,5 @@ async def reproject_vs_golden(dut):
 
 def test_reproject():
     run_cocotb("msr_reproject", "test_reproject", Path(__file__).parent, {"USER_W": 8},
-               sources=[RTL / "prim/msr_lzc.sv", RTL / "prim/msr_clr_reg.sv", SRC])
+               sources=[*(RTL / "prim" / f for f in ("msr_lzc.sv", "msr_clr_reg.sv", "msr_stall_ctrl.sv",
+                                                   "msr_en_pipe.sv", "msr_pipe_mul.sv")), SRC])

@@ -155,4 +155,5 @@ async def gather_vs_golden(dut):
 
 def test_reuse_gather():
     run_cocotb("msr_reuse_gather", "test_reuse_gather", Path(__file__).parent, {"USER_W": 8},
-               sources=[RTL / "prim/msr_clr_reg.sv", RTL / "reuse/msr_reuse_gather.sv"])
+               sources=[*(RTL / "prim" / f for f in ("msr_clr_reg.sv", "msr_stall_ctrl.sv", "msr_en_pipe.sv")),
+                        RTL / "reuse/msr_reuse_gather.sv"])
