@@ -40,7 +40,9 @@ module msr_pipe_mul #(
     assign pb[j] = {1'b0, b_ext[j*PC_W +: PC_W]};
   end
 
-  logic [NA-1:0][NB-1:0][PP_W-1:0] pp_q;
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [NA-1:0][NB-1:0][PP_W-1:0] pp_q;   // an unsigned piece's product fits LO_W bits
+  /* verilator lint_on UNUSEDSIGNAL */
 
   always_ff @(posedge clk_i) begin
     if (en_i[0]) begin
@@ -52,18 +54,30 @@ module msr_pipe_mul #(
     end
   end
 
-  logic [P_W-1:0] sum;
+  // The sum without a long chain of adders: the products of B's piece j and A's pieces i, i + 2,
+  // i + 4 .. sit 34 bits apart and each but a signed top piece's is below 2^34, so they share one
+  // row, side by side (their OR is wiring); the 2 NB rows are then summed in pairs.
+  localparam int unsigned LO_W = 2 * PC_W;
+
+  logic [NB-1:0][1:0][P_W-1:0] row;
+  logic [NB-1:0][P_W-1:0]      pair;
+  logic [P_W-1:0]              sum;
 
   always_comb begin
-    sum = '0;
+    row = '0;
     for (int i = 0; i < NA; i++) begin
       for (int j = 0; j < NB; j++) begin
-        if (NEGATE) begin
-          sum = sum - (P_W'($signed(pp_q[i][j])) << (PC_W * (i + j)));
+        if (A_SIGNED && i == NA - 1) begin
+          row[j][i%2] = row[j][i%2] | (P_W'($signed(pp_q[i][j])) << (PC_W * (i + j)));
         end else begin
-          sum = sum + (P_W'($signed(pp_q[i][j])) << (PC_W * (i + j)));
+          row[j][i%2] = row[j][i%2] | (P_W'(pp_q[i][j][LO_W-1:0]) << (PC_W * (i + j)));
         end
       end
+    end
+    sum = '0;
+    for (int j = 0; j < NB; j++) begin
+      pair[j] = NEGATE ? -row[j][0] - row[j][1] : row[j][0] + row[j][1];
+      sum     = sum + pair[j];
     end
   end
 

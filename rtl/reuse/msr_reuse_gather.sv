@@ -19,7 +19,7 @@
 //   G1  the pixel while its tap words arrive; min, max, age and sky flags of the used taps
 //   G2  the tap words weighted (an unused tap's weight is 0)
 //   G3  the weighted sums
-//   G4  rounded
+//   G4  rounded; the depth window Wp - tol, Wp + tol
 //   G5  the depth test; geo_ok (output register): on the ECP5 the rounding and the test in one
 //       clock held the unit to 85 MHz
 `include "msr_assert.svh"
@@ -72,6 +72,7 @@ module msr_reuse_gather #(
   localparam int unsigned CACC_W  = WT_W + 8;           // sum wt C <= 256 * 255
   localparam int unsigned WACC_W  = WT_W + W_W;         // sum wt W <= 256 * 65535
   localparam int unsigned DTOL_SH = 6;                  // depth tolerance (Wp >> 6) + 1
+  localparam int unsigned DTOL_W  = WP_W - DTOL_SH + 1; // its bits
   localparam logic [W_W-1:0] W_SAT = '1;                // 65535: too near, never reused
 
   localparam int unsigned NS      = 6;                  // register stages
@@ -197,16 +198,16 @@ module msr_reuse_gather #(
   logic [AGE_W-1:0]  g5_age;
   logic              g5_inside;
   logic [USER_W-1:0] g5_user;
-  logic              g4_base_ok, g4_sky, g4_sky_ok, g4_near_ok;
-  logic [WP_W-1:0]   g4_wp;
+  logic              g3_base_ok, g3_sky, g3_sky_ok, g3_near_ok;
+  logic [WP_W-1:0]   g3_wp;
 
   msr_en_pipe #(.WIDTH(48 + AGE_W + 1 + USER_W), .DEPTH(4)) u_out (.clk_i, .en_i(en[5:2]),
     .d_i({lo_c, hi_c, age_c, g1_inside_q, g1_user_q}),
     .q_o({g5_lo, g5_hi, g5_age, g5_inside, g5_user}));
-  msr_en_pipe #(.WIDTH(4 + WP_W), .DEPTH(3)) u_test (.clk_i, .en_i(en[4:2]),
+  msr_en_pipe #(.WIDTH(4 + WP_W), .DEPTH(2)) u_test (.clk_i, .en_i(en[3:2]),
     .d_i({g1_ok_q && g1_inside_q, g1_wm_q == '0, sky_all_c, sky_none_c && g1_wm_q != W_SAT,
           g1_wp_q}),
-    .q_o({g4_base_ok, g4_sky, g4_sky_ok, g4_near_ok, g4_wp}));
+    .q_o({g3_base_ok, g3_sky, g3_sky_ok, g3_near_ok, g3_wp}));
 
   assign lo_o     = g5_lo;
   assign hi_o     = g5_hi;
@@ -227,34 +228,43 @@ module msr_reuse_gather #(
     end
   end
 
-  // ---- G4: rounded ---------------------------------------------------------------------------
-  logic [23:0]    g4_rgb_q;
-  logic [W_W-1:0] g4_wb_q;
+  // ---- G4: rounded; the depth window --------------------------------------------------------
+  // |Wb - Wp| <= tol, tol = (Wp >> 6) + 1, is Wp - tol <= Wb <= Wp + tol: G5 then compares Wb
+  // with two bounds side by side (the lower one clamped at 0: Wp - tol >= -1, and Wb >= 0)
+  logic [DTOL_W-1:0] tol;
+  logic [23:0]       g4_rgb_q;
+  logic [W_W-1:0]    g4_wb_q;
+  logic [WP_W-1:0]   g4_wlo_q;
+  logic [WP_W:0]     g4_whi_q;
+  logic              g4_base_ok_q, g4_sky_q, g4_sky_ok_q, g4_near_ok_q;
+
+  assign tol = DTOL_W'(g3_wp >> DTOL_SH) + DTOL_W'(1);
 
   always_ff @(posedge clk_i) begin
     if (en[4]) begin
       for (int c = 0; c < 3; c++) begin
         g4_rgb_q[8*c +: 8] <= 8'((g3_cacc_q[c] + CACC_W'(128)) >> 8);
       end
-      g4_wb_q <= W_W'((g3_wacc_q + WACC_W'(128)) >> 8);
+      g4_wb_q      <= W_W'((g3_wacc_q + WACC_W'(128)) >> 8);
+      g4_wlo_q     <= (g3_wp >= WP_W'(tol)) ? g3_wp - WP_W'(tol) : '0;
+      g4_whi_q     <= (WP_W + 1)'(g3_wp) + (WP_W + 1)'(tol);
+      g4_base_ok_q <= g3_base_ok;
+      g4_sky_q     <= g3_sky;
+      g4_sky_ok_q  <= g3_sky_ok;
+      g4_near_ok_q <= g3_near_ok;
     end
   end
 
-  // ---- G5 (output register): the depth test |Wb - Wp| <= (Wp >> 6) + 1 and geo_ok -------------
-  logic [WP_W:0] wdiff;
-  logic          depth_ok;
+  // ---- G5 (output register): the depth test and geo_ok ----------------------------------------
+  logic depth_ok;
 
-  always_comb begin
-    wdiff    = (WP_W + 1)'(g4_wp) - (WP_W + 1)'(g4_wb_q);
-    if (wdiff[WP_W]) wdiff = -wdiff;
-    depth_ok = wdiff <= (WP_W + 1)'(g4_wp >> DTOL_SH) + (WP_W + 1)'(1);
-  end
+  assign depth_ok = WP_W'(g4_wb_q) >= g4_wlo_q && (WP_W + 1)'(g4_wb_q) <= g4_whi_q;
 
   always_ff @(posedge clk_i) begin
     if (en[5]) begin
       rgb_o    <= g4_rgb_q;
       wb_o     <= g4_wb_q;
-      geo_ok_o <= g4_base_ok && (g4_sky ? g4_sky_ok : (g4_near_ok && depth_ok));
+      geo_ok_o <= g4_base_ok_q && (g4_sky_q ? g4_sky_ok_q : (g4_near_ok_q && depth_ok));
     end
   end
 
