@@ -293,28 +293,25 @@ module msr_reproject #(
   end
 
   // ---- S14: rounded and saturated ---------------------------------------------------------------
-  // Clamping q to [-2^UV_W, 2^UV_W - 2] before (q + 1) >> 1 gives the saturated result, and the
-  // sum then fits UV_W + 1 bits (likewise Wp with q <= 2^(WP_W+1) - 2).
+  // Clamping q to [-2^UV_W, 2^UV_W - 2] before (q + 1) >> 1 gives the saturated result: 2^17 - 1
+  // above, -2^17 below, and in range the sum fits UV_W + 1 bits (likewise Wp: 2^WP_W - 1 once
+  // q >= 2^(WP_W+1) - 1). The range tests read q's bits (no wide comparison: this is the
+  // output stage).
   function automatic logic signed [UV_W-1:0] round_uv(logic signed [Q_W-1:0] q);
-    logic signed [UV_W:0] c;
+    logic                 hi, lo;
     logic signed [UV_W:0] s;
-    if (q > Q_W'((1 << UV_W) - 2)) begin
-      c = (UV_W + 1)'((1 << UV_W) - 2);
-    end else if (q < -Q_W'(1 << UV_W)) begin
-      c = -(UV_W + 1)'(1 << UV_W);
-    end else begin
-      c = (UV_W + 1)'(q);
-    end
-    s = c + (UV_W + 1)'(1);
-    return UV_W'(s >>> 1);
+    hi = !q[Q_W-1] && ((|q[Q_W-2:UV_W]) || (&q[UV_W-1:0]));   // q >= 2^UV_W - 1
+    lo = q[Q_W-1] && !(&q[Q_W-2:UV_W]);                        // q < -2^UV_W
+    s  = (UV_W + 1)'(q) + (UV_W + 1)'(1);
+    return hi ? UV_W'((1 << (UV_W - 1)) - 1) : lo ? UV_W'(1 << (UV_W - 1)) : UV_W'(s >>> 1);
   endfunction
 
   function automatic logic [WP_W-1:0] round_wp(logic [WR_W-1:0] q);
-    logic [WP_W:0] c;
+    logic          hi;
     logic [WP_W:0] s;
-    c = (q > WR_W'((1 << (WP_W + 1)) - 2)) ? (WP_W + 1)'((1 << (WP_W + 1)) - 2) : (WP_W + 1)'(q);
-    s = c + (WP_W + 1)'(1);
-    return WP_W'(s >> 1);
+    hi = (|q[WR_W-1:WP_W+1]) || (&q[WP_W:0]);                 // q >= 2^(WP_W+1) - 1
+    s  = (WP_W + 1)'(q) + (WP_W + 1)'(1);
+    return hi ? '1 : WP_W'(s >> 1);
   endfunction
 
   always_ff @(posedge clk_i) begin

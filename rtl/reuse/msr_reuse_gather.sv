@@ -153,27 +153,45 @@ module msr_reuse_gather #(
     end
   end
 
-  logic [23:0]      lo_c, hi_c;
-  logic [AGE_W-1:0] age_c;
-  logic             sky_all_c, sky_none_c;
+  // min, max and age as trees over the taps (an unused tap reads as the neutral value), not a
+  // chain of four compare-and-selects
+  function automatic logic [7:0] min8(logic [7:0] a, logic [7:0] b);
+    return (a < b) ? a : b;
+  endfunction
+
+  function automatic logic [7:0] max8(logic [7:0] a, logic [7:0] b);
+    return (a > b) ? a : b;
+  endfunction
+
+  function automatic logic [AGE_W-1:0] max_age(logic [AGE_W-1:0] a, logic [AGE_W-1:0] b);
+    return (a > b) ? a : b;
+  endfunction
+
+  logic [3:0][23:0]      t_lo, t_hi;
+  logic [3:0][AGE_W-1:0] t_age;
+  logic [23:0]           lo_c, hi_c;
+  logic [AGE_W-1:0]      age_c;
+  logic                  sky_all_c, sky_none_c;
 
   always_comb begin
-    lo_c       = '1;
-    hi_c       = '0;
-    age_c      = '0;
     sky_all_c  = 1'b1;
     sky_none_c = 1'b1;
     for (int k = 0; k < 4; k++) begin
+      t_lo[k]  = g1_used_q[k] ? tap_rgb_i[k] : '1;
+      t_hi[k]  = g1_used_q[k] ? tap_rgb_i[k] : '0;
+      t_age[k] = g1_used_q[k] ? tap_age_i[k] : '0;
       if (g1_used_q[k]) begin
-        for (int c = 0; c < 3; c++) begin
-          if (tap_rgb_i[k][8*c +: 8] < lo_c[8*c +: 8]) lo_c[8*c +: 8] = tap_rgb_i[k][8*c +: 8];
-          if (tap_rgb_i[k][8*c +: 8] > hi_c[8*c +: 8]) hi_c[8*c +: 8] = tap_rgb_i[k][8*c +: 8];
-        end
-        if (tap_age_i[k] > age_c) age_c = tap_age_i[k];
         sky_all_c  = sky_all_c && tap_w_i[k] == '0;
         sky_none_c = sky_none_c && tap_w_i[k] != '0 && tap_w_i[k] != W_SAT;
       end
     end
+    for (int c = 0; c < 3; c++) begin
+      lo_c[8*c +: 8] = min8(min8(t_lo[0][8*c +: 8], t_lo[1][8*c +: 8]),
+                            min8(t_lo[2][8*c +: 8], t_lo[3][8*c +: 8]));
+      hi_c[8*c +: 8] = max8(max8(t_hi[0][8*c +: 8], t_hi[1][8*c +: 8]),
+                            max8(t_hi[2][8*c +: 8], t_hi[3][8*c +: 8]));
+    end
+    age_c = max_age(max_age(t_age[0], t_age[1]), max_age(t_age[2], t_age[3]));
   end
 
   // ---- G2: the tap words weighted (an unused tap weighs 0) -----------------------------------
