@@ -100,7 +100,8 @@ module msr_reuse_gather #(
   logic signed [1:0][TC_W-1:0]  tx, ty;        // x0, x0 + 1; y0, y0 + 1
   logic [1:0]                   in_x, in_y;
   logic [3:0]                   used, tap_in;
-  logic [1:0][FR_W:0]           wx, wy;        // 16 - fx, fx; 16 - fy, fy
+  logic [FR_W-1:0][2*FR_W-1:0]  fx_b;          // fx 2^b where bit b of fy is set
+  logic [2*FR_W-1:0]            fxy;           // fx fy
   logic [3:0][WT_W-1:0]         wt;
   logic                         all_inside;
 
@@ -112,10 +113,17 @@ module msr_reuse_gather #(
     ty[0] = TC_W'($signed(g0_v[UV_W-1:FR_W]));
     tx[1] = tx[0] + TC_W'(1);
     ty[1] = ty[0] + TC_W'(1);
-    wx[0] = (FR_W + 1)'(16) - (FR_W + 1)'(fx);
-    wx[1] = (FR_W + 1)'(fx);
-    wy[0] = (FR_W + 1)'(16) - (FR_W + 1)'(fy);
-    wy[1] = (FR_W + 1)'(fy);
+    // the weights (16 - fx)(16 - fy), fx (16 - fy), (16 - fx) fy, fx fy from the one product
+    // fx fy, by shift and add: as a *, synthesis gives a 4 x 4 product a DSP block and its
+    // delay (ECP5: the unit's critical path)
+    for (int b = 0; b < FR_W; b++) begin
+      fx_b[b] = fy[b] ? (2 * FR_W)'(fx) << b : '0;
+    end
+    fxy   = (fx_b[0] + fx_b[1]) + (fx_b[2] + fx_b[3]);
+    wt[3] = WT_W'(fxy);
+    wt[1] = (WT_W'(fx) << FR_W) - WT_W'(fxy);
+    wt[2] = (WT_W'(fy) << FR_W) - WT_W'(fxy);
+    wt[0] = WT_W'(256) - ((WT_W'(fx) + WT_W'(fy)) << FR_W) + WT_W'(fxy);
     for (int i = 0; i < 2; i++) begin
       in_x[i] = !tx[i][TC_W-1] && (TC_W'(width_i) > tx[i]);
       in_y[i] = !ty[i][TC_W-1] && (TC_W'(height_i) > ty[i]);
@@ -124,7 +132,6 @@ module msr_reuse_gather #(
       // tap 0 always has weight > 0; the right taps need fx > 0, the lower ones fy > 0
       used[k]   = (k[0] == 1'b0 || fx != '0) && (k[1] == 1'b0 || fy != '0);
       tap_in[k] = in_x[k[0]] && in_y[k[1]];
-      wt[k]     = WT_W'(wx[k[0]]) * WT_W'(wy[k[1]]);
       tap_x_o[k] = XY_W'(tx[k[0]]);
       tap_y_o[k] = XY_W'(ty[k[1]]);
     end
