@@ -68,7 +68,9 @@ module msr_pipe_mul #(
     for (int i = 0; i < NA; i++) begin
       for (int j = 0; j < NB; j++) begin
         if (A_SIGNED && i == NA - 1) begin
-          row[j][i%2] = row[j][i%2] | (P_W'($signed(pp_q[i][j])) << (PC_W * (i + j)));
+          // sign-extended
+          row[j][i%2] = row[j][i%2]
+                        | (P_W'({{P_W{pp_q[i][j][PP_W-1]}}, pp_q[i][j]}) << (PC_W * (i + j)));
         end else begin
           row[j][i%2] = row[j][i%2] | (P_W'(pp_q[i][j][LO_W-1:0]) << (PC_W * (i + j)));
         end
