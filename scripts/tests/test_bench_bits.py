@@ -62,8 +62,7 @@ def test_choice_fewest_bits_meeting_goal_in_every_rule():
 
 
 def test_committed_record_shape():
-    if not RECORD.is_file():
-        pytest.skip(f"{RECORD.relative_to(ROOT)} not committed yet (make bench-bits, then copy it)")
+    assert RECORD.is_file(), f"{RECORD.relative_to(ROOT)} missing (make bench-bits, then copy it)"
     r = json.loads(RECORD.read_text())
     for k in ("setup", "bits_model", "design_points", "bit_exact", "choice", "choice_patent_only"):
         assert k in r
