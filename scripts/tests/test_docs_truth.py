@@ -31,7 +31,9 @@ def engine_units() -> str:
 
 
 def param_default(text: str, name: str) -> int:
-    m = re.search(rf"\b(?:parameter|localparam)\s+int\s+unsigned\s+{name}\s*=\s*(\d+)", text)
+    # A declaration may list several names: `localparam int unsigned A = 1, B = 2;`.
+    m = re.search(rf"\b(?:parameter|localparam)\s+int\s+unsigned\s+(?:\w+\s*=\s*\d+\s*,\s*)*"
+                  rf"{name}\s*=\s*(\d+)", text)
     assert m, f"no parameter {name}"
     return int(m.group(1))
 
