@@ -22,6 +22,7 @@ rtl/engine/msr_base_decision.sv
 rtl/engine/msr_interp.sv
 rtl/engine/msr_decision_pipe.sv
 rtl/engine/msr_border_pkg.sv
+rtl/engine/msr_walk_pkg.sv
 rtl/engine/msr_level_ctrl.sv
 rtl/engine/msr_tile_stream.sv
 rtl/engine/msr_tag_pool.sv
