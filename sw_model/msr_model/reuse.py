@@ -123,7 +123,8 @@ def bit_length(v: np.ndarray) -> np.ndarray:
 
 
 def recip(p2: np.ndarray):
-    """1 / p2 for positive integers: (r, n), 1 / p2 ~= r * 2^-(n + 23), r in (2^23, 2^24].
+    """1 / p2 for positive integers: (r, n), 1 / p2 ~= r * 2^-(n + 23), r in [2^23 - 8, 2^24 - 64]
+    (over every 24-bit d: the one Newton step lands up to 8 below 2^23 where d is just under 2^24).
     p2 normalised to 24 bits d (truncated), seed T[8 bits after the leading one], one Newton
     step r = (T (2^40 - d T)) >> 31."""
     p2 = np.asarray(p2, np.int64)
