@@ -21,6 +21,7 @@ import numpy as np
 from . import spec
 from .golden import decide_pass, frame_axis, interpolated_values, pass_view
 from .renderer import render_checked
+from .reuse import lerp_invz, pass_neighbours
 from .rules import DEFAULT_RULE, get_rule
 from .spec import Params
 
@@ -96,6 +97,7 @@ class TileResult:
     requests: list[tuple[int, int]] = field(default_factory=list)      # global (x, y), in order
     decisions: list[Decision] = field(default_factory=list)
     writes: list[tuple[int, int, tuple[int, int, int], int]] = field(default_factory=list)
+    invz: np.ndarray | None = None          # (h, w) uint16 inverse depth (run_tile's render_invz), else None
 
     def output_stream(self) -> list[tuple[int, int, tuple[int, int, int], int]]:
         """The finished tile as the engine emits it: row-major global (x, y, rgb, code)."""
@@ -105,14 +107,21 @@ class TileResult:
 
 
 RenderFn = Callable[[int, int], Sequence[int]]
+InvzFn = Callable[[int, int], int]
 
 
 def run_tile(render: RenderFn, x0: int, y0: int, w: int, h: int, params: Params,
-             thr_tile: Sequence[int], rule=DEFAULT_RULE) -> TileResult:
+             thr_tile: Sequence[int], rule=DEFAULT_RULE, *, render_invz: InvzFn | None = None) -> TileResult:
     """Process one tile one step at a time. `render(x, y)` takes global coordinates.
 
     The tile is its own w x h frame here: the rule (a contract name or a function of a
-    PassView) sees nothing of any other tile, so this form also checks tile independence."""
+    PassView) sees nothing of any other tile, so this form also checks tile independence.
+
+    render_invz(x, y) (global coordinates, 0..65535), when given, is the traced pixel's
+    inverse depth: the result's `invz` plane holds it for traced pixels and, for
+    interpolated ones, reuse.lerp_invz of the two neighbours the colour was interpolated
+    from, read from the plane as it was when the pass began (the depth channel of the
+    engine's DEPTH_EN build). Without it `invz` is None."""
     if len(thr_tile) != params.levels:
         raise spec.SpecError("one threshold per level")
     if not (1 <= w <= params.tile and 1 <= h <= params.tile):
@@ -121,6 +130,8 @@ def run_tile(render: RenderFn, x0: int, y0: int, w: int, h: int, params: Params,
     pix = np.zeros((h, w, 3), dtype=np.uint8)
     codes = np.full((h, w), spec.SRC_UNSET, dtype=np.uint8)
     res = TileResult(x0, y0, pix, codes)
+    if render_invz is not None:
+        res.invz = np.zeros((h, w), dtype=np.uint16)
     ax, ay = frame_axis(w, params.tile, params.levels), frame_axis(h, params.tile, params.levels)
 
     def trace(x, y, code):
@@ -129,6 +140,8 @@ def run_tile(render: RenderFn, x0: int, y0: int, w: int, h: int, params: Params,
         pix[y, x] = rgb
         codes[y, x] = code
         res.writes.append((x, y, rgb, code))
+        if res.invz is not None:
+            res.invz[y, x] = int(render_invz(x0 + x, y0 + y))
 
     for p in tile_schedule(w, h, params.levels):
         if p.level == 0:
@@ -144,6 +157,8 @@ def run_tile(render: RenderFn, x0: int, y0: int, w: int, h: int, params: Params,
         ok = decide_pass(decide, view)
         diff = view.diff()
         values = interpolated_values(decide, view)
+        if res.invz is not None:   # every position's lerp, taken where the pass interpolates
+            wm = lerp_invz(*pass_neighbours(res.invz, view, p.direction == "H"), view.a, view.b, view.m)
         at = {(int(y), int(x)): (i, j) for (i, j), y, x in zip(np.ndindex(*view.shape), view.ys.ravel(),
                                                                view.xs.ravel())}
         for s in p.steps:
@@ -152,6 +167,8 @@ def run_tile(render: RenderFn, x0: int, y0: int, w: int, h: int, params: Params,
                 val = tuple(int(c) for c in values[i, j])
                 pix[s.y, s.x] = val
                 codes[s.y, s.x] = spec.source_code_interp(p.level)
+                if res.invz is not None:
+                    res.invz[s.y, s.x] = wm[i, j]
                 res.writes.append((s.x, s.y, val, int(codes[s.y, s.x])))
             else:
                 trace(s.x, s.y, spec.source_code_traced(p.level))
