@@ -20,6 +20,7 @@ rtl/prim/msr_stall_ctrl.sv
 rtl/prim/msr_tile_sram.sv
 rtl/engine/msr_base_decision.sv
 rtl/engine/msr_interp.sv
+rtl/engine/msr_depth_interp.sv
 rtl/engine/msr_decision_pipe.sv
 rtl/engine/msr_border_pkg.sv
 rtl/engine/msr_walk_pkg.sv

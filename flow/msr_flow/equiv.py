@@ -55,6 +55,14 @@ def yosys(script: str, work: Path, tag: str, timeout: float | None = None) -> st
     return text
 
 
+def module_text(rtlil: str, module: str) -> str:
+    """The RTLIL text of one module."""
+    m = re.search(rf"^module \\{re.escape(module)}\n(.*?)^end\n", rtlil, re.S | re.M)
+    if not m:
+        raise SystemExit(f"equiv: no module {module} in the flattened design")
+    return m.group(1)
+
+
 def wires(rtlil: str, module: str) -> dict[str, int]:
     """Public wire names of one module of an RTLIL dump, with their widths."""
     body = re.search(rf"^module \\{re.escape(module)}\n(.*?)^end\n", rtlil, re.S | re.M)
@@ -105,6 +113,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--moved", action="append", default=[], metavar="GOLD=GATE",
                     help="instance prefixes of logic the refactor moved to another unit: a gate "
                          "net GATE.n pairs with the gold net GOLD.n (u_tile_gen.g_order=g_budget.u_stage)")
+    ap.add_argument("--new-port", dest="new_ports", action="append", default=[], metavar="PORT",
+                    help="a port the refactor added (behind a parameter at its off value): in the "
+                         "gate an input is tied to 0, an output left out of the comparison")
     ap.add_argument("--blackbox", action="append", default=None, help="module kept as a black box")
     ap.add_argument("--seq", type=int, default=1, help="equiv_simple -seq depth")
     ap.add_argument("--induct", type=int, default=2, help="equiv_induct -seq depth (2: assume at one step, prove the next)")
@@ -156,7 +167,16 @@ def main(argv: list[str] | None = None) -> int:
     (work / "renames.txt").write_text("".join(f"{a} -> {b}\n" for a, b in ren))
     # 2. pair up, prove
     script = f"read_rtlil {flat.relative_to(ROOT)}\n"
-    script += f"cd {args.unit}\n" + "".join(f"rename {a} {b}\n" for a, b in ren) + "cd ..\n"
+    script += f"cd {args.unit}\n" + "".join(f"rename {a} {b}\n" for a, b in ren)
+    for port in args.new_ports:
+        m = re.search(rf"^\s*wire (?:width (\d+) )?(input|output) \d+ \\{re.escape(port)}$", module_text(rtlil, args.unit), re.M)
+        if not m:
+            raise SystemExit(f"equiv: {args.unit} has no port {port}")
+        script += f"delete -port w:{port}\n"
+        if m.group(2) == "input":
+            width = int(m.group(1) or 1)
+            script += f"connect -set {port} {width}'d0\n"
+    script += "cd ..\n"
     # equiv_make pairs the black boxes of both sides (their inputs get $equiv cells); expose
     # then cuts them into free inputs and outputs of the miter, as the SAT passes need
     evert = "".join(f"expose -evert t:{b}\n" for b in blackbox)

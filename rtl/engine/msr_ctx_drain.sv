@@ -3,7 +3,8 @@
 // tile buffer's port 0 row-major; the context is freed when its last pixel has left.
 `include "msr_flops.svh"
 module msr_ctx_drain import msr_pkg::*; #(
-  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
+  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX),
+  parameter int unsigned DEPTH_EN = 0   // 1: each pixel's inverse depth beside it (else 0)
 ) (
   input  logic                       clk_i, rst_ni, clear_i,  // clear: synchronous soft reset
   // the contexts
@@ -14,11 +15,13 @@ module msr_ctx_drain import msr_pkg::*; #(
   output logic       [TADDR_W-1:0]   raddr_o,
   input  rgb_t       [NUM_CTX-1:0]   rgb_i,      // two cycles after re_o
   input  src_t       [NUM_CTX-1:0]   src_i,
+  input  logic       [NUM_CTX-1:0][15:0] invz_i,  // DEPTH_EN: with rgb_i
   output logic       [NUM_CTX-1:0]   done_o,     // pulse: the whole tile has left
   // the pixel stream, row-major, global coordinates
   output logic                       pix_valid_o,
   input  logic                       pix_ready_i,
-  output pix_word_t                  pix_o       // the pixel (msr_pkg::pix_word_t)
+  output pix_word_t                  pix_o,      // the pixel (msr_pkg::pix_word_t)
+  output logic       [15:0]          pix_invz_o  // DEPTH_EN: its inverse depth
 );
 
   logic             arb_valid, streaming_q, start_q, start_ready;
@@ -47,12 +50,13 @@ module msr_ctx_drain import msr_pkg::*; #(
 
   assign cur_desc = desc_i[cur_q];
 
-  msr_tile_stream u_stream (
+  msr_tile_stream #(.DEPTH_EN(DEPTH_EN)) u_stream (
     .clk_i, .rst_ni, .clear_i,
     .start_valid_i (start_q), .start_ready_o (start_ready),
     .x0_i (cur_desc.x0), .y0_i (cur_desc.y0), .w_i (cur_desc.w), .h_i (cur_desc.h),
     .re_o, .raddr_o, .rdata_rgb_i (rgb_i[cur_q]), .rdata_src_i (src_i[cur_q]),
-    .pix_valid_o, .pix_ready_i, .pix_o, .done_o (done)
+    .rdata_invz_i (invz_i[cur_q]),
+    .pix_valid_o, .pix_ready_i, .pix_o, .pix_invz_o, .done_o (done)
   );
 
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_own

@@ -12,7 +12,9 @@
 `include "msr_flops.svh"
 
 module msr_ctx_write import msr_pkg::*; #(
-  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
+  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX),
+  // a pixel's data: the colour, or with the engine's depth channel {inverse depth, colour}
+  parameter int unsigned DATA_W = $bits(rgb_t)
 ) (
   input  logic                              clk_i, rst_ni, clear_i,  // clear: soft reset
   // the output: an interpolated pixel, or a retro request of its context
@@ -22,25 +24,25 @@ module msr_ctx_write import msr_pkg::*; #(
   input  lcoord_t                           out_x_i,
   input  lcoord_t                           out_y_i,
   input  level_t                            out_level_i,
-  input  rgb_t                              out_rgb_i,
+  input  logic     [DATA_W-1:0]             out_rgb_i,
   // the response check: a traced pixel
   input  logic                              rsp_write_i,
   input  logic     [CTX_W-1:0]              rsp_ctx_i,
   input  logic     [TADDR_W-1:0]            rsp_addr_i,
   input  level_t                            rsp_level_i,
-  input  rgb_t                              rsp_rgb_i,
+  input  logic     [DATA_W-1:0]             rsp_rgb_i,
   // each context's port, registered
   output logic     [NUM_CTX-1:0]              we_o,
   output logic     [NUM_CTX-1:0]              retro_o,
   output logic     [NUM_CTX-1:0][TADDR_W-1:0] waddr_o,
   output src_t     [NUM_CTX-1:0]              wsrc_o,
-  output rgb_t     [NUM_CTX-1:0]              wrgb_o
+  output logic     [NUM_CTX-1:0][DATA_W-1:0] wrgb_o
 );
 
   logic [NUM_CTX-1:0]              we_d, retro_d;
   logic [NUM_CTX-1:0][TADDR_W-1:0] waddr_q;
   src_t [NUM_CTX-1:0]              wsrc_q;
-  rgb_t [NUM_CTX-1:0]              wrgb_q;
+  logic [NUM_CTX-1:0][DATA_W-1:0] wrgb_q;
 
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_write
     logic pipe_we, rsp_we;

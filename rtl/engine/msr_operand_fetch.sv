@@ -32,6 +32,10 @@ module msr_operand_fetch
   input  rgb_t       [NUM_CTX-1:0]      rd_a_i,      // port 1: A
   input  rgb_t       [NUM_CTX-1:0]      rd_b_i,      // port 0: B
   input  rgb_t       [NUM_CTX-1:0]      rd_o2_i,     // port 2: B' (or A' where o2a)
+  // RD: a position is there, and the context whose read data are valid now (a unit beside
+  // this one registers its own read data into AB with them: the depth channel's)
+  output logic                          rd_valid_o,
+  output logic       [CTX_W-1:0]        rd_ctx_o,
   // AB: the operands
   output logic                          valid_o,
   output logic       [CTX_W-1:0]        ctx_o,
@@ -154,6 +158,9 @@ module msr_operand_fetch
                 ob: rd_o2, okb: rd_okb};   // B': port 2
     end
   end
+
+  assign rd_valid_o = rd_valid_q;
+  assign rd_ctx_o   = rd_ctx_q;
 
   assign ctx_o    = ab_q.ctx;
   assign pos_o    = ab_q.pos;

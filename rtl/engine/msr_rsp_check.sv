@@ -17,7 +17,9 @@ module msr_rsp_check
 #(
   parameter int unsigned MAX_OUTSTANDING = 16,                      // tags (power of two, 2..64)
   parameter int unsigned TAG_W           = $clog2(MAX_OUTSTANDING),
-  parameter int unsigned CTX_W           = 3                        // context index bits
+  parameter int unsigned CTX_W           = 3,                       // context index bits
+  // a response's data: the colour, or with the engine's depth channel {inverse depth, colour}
+  parameter int unsigned DATA_W          = $bits(rgb_t)
 ) (
   input  logic                       clk_i,          // clock
   input  logic                       rst_ni,         // asynchronous reset, active low
@@ -26,7 +28,7 @@ module msr_rsp_check
   input  logic                       rsp_valid_i,
   output logic                       rsp_ready_o,
   input  logic [TAG_W-1:0]           rsp_tag_i,
-  input  rgb_t                       rsp_rgb_i,
+  input  logic [DATA_W-1:0]          rsp_rgb_i,      // colour (and inverse depth)
   // tag allocation for a render request: where its answer goes
   output logic                       tag_avail_o,    // a tag is free ...
   output logic [TAG_W-1:0]           free_tag_o,     // ... this one
@@ -42,7 +44,7 @@ module msr_rsp_check
   output logic [CTX_W-1:0]           wctx_o,
   output logic [TADDR_W-1:0]         waddr_o,
   output level_t                     wlevel_o,
-  output rgb_t                       wrgb_o,
+  output logic [DATA_W-1:0]          wrgb_o,
   // status
   output logic                       drop_o,         // pulse: a response not in flight was dropped
   output logic [TAG_W:0]             inflight_o,     // tags handed out and not yet answered
@@ -58,7 +60,7 @@ module msr_rsp_check
 
   typedef struct packed {
     logic [TAG_W-1:0] tag;
-    rgb_t             rgb;
+    logic [DATA_W-1:0] rgb;
   } rsp_t;
 
   logic       rs_valid, rs_ready;

@@ -21,7 +21,9 @@ module msr_tile_ctx
   import msr_pkg::*;
 #(
   parameter int unsigned PEND_W    = 8,  // width of the pending-position count
-  parameter int unsigned LINDILATE = 1   // 0: no third port (patent-only engine; rd_o2_o is 0)
+  parameter int unsigned LINDILATE = 1,  // 0: no third port (patent-only engine; rd_o2_o is 0)
+  parameter int unsigned DEPTH_EN  = 0   // 1: a depth buffer beside the tile buffer (else the
+                                         //    inverse-depth outputs are 0)
 ) (
   input  logic               clk_i,
   input  logic               rst_ni,
@@ -43,6 +45,8 @@ module msr_tile_ctx
   output rgb_t               rd_a_o,
   output rgb_t               rd_b_o,
   output rgb_t               rd_o2_o,       // the third port: B' (or A' where o2a)
+  output logic [15:0]        rd_wa_o,       // DEPTH_EN: A's and B's inverse depth (with rd_a_o,
+  output logic [15:0]        rd_wb_o,       // rd_b_o)
   // a render request for a pixel of this context that was already written (lindilate's
   // dilation traces an interpolated pixel of the line before): one more pending write
   input  logic               retro_i,
@@ -51,6 +55,7 @@ module msr_tile_ctx
   input  logic [TADDR_W-1:0] waddr_i,
   input  src_t               wsrc_i,
   input  rgb_t               wrgb_i,
+  input  logic [15:0]        winvz_i,       // DEPTH_EN: the written pixel's inverse depth
   // hand-over to the streamer
   output logic               full_o,        // the tile is finished, waiting for / in the streamer
   input  logic               str_own_i,     // the streamer reads port 0 now
@@ -58,6 +63,7 @@ module msr_tile_ctx
   input  logic [TADDR_W-1:0] str_raddr_i,
   output rgb_t               str_rgb_o,     // two cycles after str_re_i
   output src_t               str_src_o,
+  output logic [15:0]        str_invz_o,    // DEPTH_EN: with str_rgb_o
   input  logic               str_done_i     // the streamer has emitted the whole tile
 );
 
@@ -284,6 +290,39 @@ module msr_tile_ctx
   end
 
   // After an initial-grid position the read data is stale: the engine forces a trace there.
+  // The depth buffer: the tile buffer's addresses, enables and timing, 16 bits a pixel.
+  if (DEPTH_EN != 0) begin : g_depth
+    logic [15:0] wb_rd, wa_rd, wb_q, wa_q;
+
+    msr_tile_sram #(
+      .DEPTH  (MAX_TILE * MAX_TILE),
+      .DATA_W (16)
+    ) u_depth_sram (
+      .clk_i,
+      .re0_i (str_own_i ? str_re_i : rd_issue),
+      .raddr0_i (str_own_i ? str_raddr_i : {head_q.by, head_q.bx}), .rdata0_o (wb_rd),
+      .re1_i (rd_issue), .raddr1_i ({head_q.ay, head_q.ax}), .rdata1_o (wa_rd),
+      .we_i, .waddr_i, .wdata_i (winvz_i)
+    );
+
+    always_ff @(posedge clk_i) begin
+      wb_q <= wb_rd;
+      wa_q <= wa_rd;
+    end
+
+    assign rd_wa_o    = wa_q;
+    assign rd_wb_o    = wb_q;
+    assign str_invz_o = wb_q;
+  end else begin : g_no_depth
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [15:0] winvz_unused;
+    /* verilator lint_on UNUSEDSIGNAL */
+    assign winvz_unused = winvz_i;
+    assign rd_wa_o    = '0;
+    assign rd_wb_o    = '0;
+    assign str_invz_o = '0;
+  end
+
   assign rd_a_o    = rgb_t'(rdata1_q[$bits(rgb_t)-1:0]);
   assign rd_b_o    = rgb_t'(rdata0_q[$bits(rgb_t)-1:0]);
   assign str_rgb_o = rgb_t'(rdata0_q[$bits(rgb_t)-1:0]);

@@ -46,6 +46,11 @@ module msr_tile_engine
   // the base decision, the dilation); 0: patent only, every descriptor decided by the patent
   // rule (the top refuses CONFIG.RULE 1 then) and synthesis drops the rule's logic.
   parameter int unsigned LINDILATE       = 1,
+  // 1: the depth channel (docs/spec/reuse.md): every traced pixel's inverse depth comes with its
+  // colour (rsp_invz_i), an interpolated one's is interpolated from the same neighbours
+  // (msr_depth_interp), a depth buffer beside each tile buffer, pix_invz_o with each pixel;
+  // 0: none of it is built and pix_invz_o is 0.
+  parameter int unsigned DEPTH_EN        = 0,
   parameter int unsigned TAG_W = $clog2(MAX_OUTSTANDING)
 ) (
   // The port list is the interface agreed with the system top, comments included.
@@ -65,12 +70,14 @@ module msr_tile_engine
   output logic             rsp_ready_o,
   input  logic [TAG_W-1:0] rsp_tag_i,
   input  rgb_t             rsp_rgb_i,
+  input  logic [15:0]      rsp_invz_i,     // DEPTH_EN: the traced pixel's inverse depth (0: sky)
   output logic             pix_valid_o,    // finished pixels of the tile, row-major, global coords
   input  logic             pix_ready_i,
   output coord_t           pix_x_o,
   output coord_t           pix_y_o,
   output rgb_t             pix_rgb_o,
   output src_t             pix_src_o,
+  output logic [15:0]      pix_invz_o,     // DEPTH_EN: the pixel's inverse depth (else 0)
   output logic             pix_last_o,     // last pixel of the tile
   output logic             busy_o,         // tile accepted and not yet fully emitted, or tags being reset
   output logic             rsp_drop_o,     // pulse: a response whose tag was not in flight was dropped
@@ -82,6 +89,8 @@ module msr_tile_engine
   localparam int unsigned CTX_W  = (NUM_CTX > 1) ? $clog2(NUM_CTX) : 1;
   // Positions of one context issued and not yet written: at most the pipeline plus its tags.
   localparam int unsigned PEND_W = $clog2(MAX_OUTSTANDING + 16) + 1;
+  // A pixel's data on its way into a context: the colour, with DEPTH_EN {inverse depth, colour}.
+  localparam int unsigned PIX_W  = $bits(rgb_t) + ((DEPTH_EN != 0) ? 16 : 0);
 
   typedef logic [CTX_W-1:0] ctx_t;
 
@@ -101,6 +110,9 @@ module msr_tile_engine
   if (LINDILATE > 1) begin : g_check_lindilate
     $fatal(1, "msr_tile_engine: LINDILATE %0d must be 0 or 1", LINDILATE);
   end
+  if (DEPTH_EN > 1) begin : g_check_depth
+    $fatal(1, "msr_tile_engine: DEPTH_EN %0d must be 0 or 1", DEPTH_EN);
+  end
 
   // ---- Contexts ---------------------------------------------------------------------------------
   logic       [NUM_CTX-1:0] ctx_free, ctx_full, ctx_cand_tail, ctx_cand_head, ctx_start;
@@ -116,7 +128,8 @@ module msr_tile_engine
   logic       [NUM_CTX-1:0] ctx_we, ctx_retro;
   logic       [NUM_CTX-1:0][TADDR_W-1:0] ctx_waddr;
   src_t       [NUM_CTX-1:0] ctx_wsrc;
-  rgb_t       [NUM_CTX-1:0] ctx_wrgb;
+  logic       [NUM_CTX-1:0][PIX_W-1:0] ctx_wpix;
+  logic       [NUM_CTX-1:0][15:0] ctx_rd_wa, ctx_rd_wb, ctx_str_invz, ctx_winvz;
 
   // ---- Tile start (msr_ctx_alloc) and issue (msr_ctx_issue) ---------------------------------
   logic               tags_init, issue, can_issue, gr_valid;
@@ -140,8 +153,8 @@ module msr_tile_engine
   );
 
   // ---- Operands: GR -> IS -> RD -> AB (msr_operand_fetch) -----------------------------------
-  logic                ab_valid, ab_lin, ab_fline, ab_oka, ab_okb;
-  ctx_t                ab_ctx;
+  logic                ab_valid, ab_lin, ab_fline, ab_oka, ab_okb, rd_valid;
+  ctx_t                ab_ctx, rd_ctx;
   /* verilator lint_off UNUSEDSIGNAL */
   eng_pos_t            ab_pos;      // o2a and first are used before AB
   /* verilator lint_on UNUSEDSIGNAL */
@@ -156,6 +169,7 @@ module msr_tile_engine
     .clk_i, .rst_ni, .clear_i,
     .gr_valid_i (gr_valid), .gr_gnt_i (gr_gnt), .gr_ctx_i (gr_ctx), .gr_pos_i (iss_pos),
     .desc_i (ctx_desc), .rd_a_i (ctx_rd_a), .rd_b_i (ctx_rd_b), .rd_o2_i (ctx_rd_o2),
+    .rd_valid_o (rd_valid), .rd_ctx_o (rd_ctx),
     .valid_o (ab_valid), .ctx_o (ab_ctx), .pos_o (ab_pos), .gx_o (ab_gx), .gy_o (ab_gy),
     .metric_o (ab_metric), .thr_o (ab_thr), .a_o (ab_a), .b_o (ab_b),
     .lin_o (ab_lin), .mh_o (ab_mh), .fline_o (ab_fline), .ldelta_o (ab_ldelta),
@@ -256,6 +270,66 @@ module msr_tile_engine
   assign out_rgb  = out_result.rgb;
   assign out_side = out_result.side;
 
+  // ---- Depth channel (DEPTH_EN): A's and B's inverse depth registered into AB beside the
+  // colours, interpolated beside the decision pipeline (the same advance and stages), and
+  // carried to the output in a FIFO of its own, pushed and popped with the output buffer.
+  logic [PIX_W-1:0] out_pix, rsp_pix;
+
+  if (DEPTH_EN != 0) begin : g_depth
+    logic [15:0] ab_wa_q, ab_wb_q, pv_invz, out_invz;
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic        pv_invz_valid, invz_ready, invz_valid;
+    logic [$clog2(OUT_DEPTH+1)-1:0] invz_cnt;
+    /* verilator lint_on UNUSEDSIGNAL */
+
+    always_ff @(posedge clk_i) begin
+      if (rd_valid) begin
+        ab_wa_q <= ctx_rd_wa[rd_ctx];
+        ab_wb_q <= ctx_rd_wb[rd_ctx];
+      end
+    end
+
+    msr_depth_interp u_depth_interp (
+      .clk_i, .rst_ni, .clear_i,
+      .advance_i (pv_ready), .valid_i (ab_valid),
+      .wa_i (ab_wa_q), .wb_i (ab_wb_q),
+      .gap_i (ab_pos.init ? gap_t'(2) : ab_pos.gap),
+      .off_i (ab_pos.init ? gap_t'(1) : ab_pos.off),
+      .valid_o (pv_invz_valid), .invz_o (pv_invz)
+    );
+
+    msr_fifo #(.WIDTH(16), .DEPTH(OUT_DEPTH)) u_invz_fifo (
+      .clk_i, .rst_ni, .flush_i (clear_i),
+      .valid_i (pv_valid), .ready_o (invz_ready), .data_i (pv_invz),
+      .valid_o (invz_valid), .ready_i (out_valid && out_ready), .data_o (out_invz),
+      .count_o (invz_cnt)
+    );
+
+    assign out_pix = {out_invz, out_rgb};
+    assign rsp_pix = {rsp_invz_i, rsp_rgb_i};
+    for (genvar c = 0; c < NUM_CTX; c++) begin : g_winvz
+      assign ctx_winvz[c] = ctx_wpix[c][PIX_W-1 -: 16];
+    end
+
+    // the depth moves in step with the decision and the output buffer
+    /* verilator lint_off SYNCASYNCNET */
+    `MSR_ASSERT(a_depth_in_step, pv_invz_valid == pv_valid)
+    `MSR_ASSERT(a_depth_fifo_with_out, invz_valid == out_valid)
+    /* verilator lint_on SYNCASYNCNET */
+  end else begin : g_no_depth
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic             rd_unused;
+    logic [15:0]      rsp_invz_unused;
+    logic [NUM_CTX-1:0][15:0] ctx_rd_w_unused;
+    /* verilator lint_on UNUSEDSIGNAL */
+    assign rd_unused       = rd_valid ^ (^rd_ctx);
+    assign rsp_invz_unused = rsp_invz_i;
+    assign ctx_rd_w_unused = ctx_rd_wa ^ ctx_rd_wb;
+    assign out_pix         = out_rgb;
+    assign rsp_pix         = rsp_rgb_i;
+    assign ctx_winvz       = '0;
+  end
+
   // ---- Output: interpolate -> write, trace -> tag and render request -----------------------------
   logic               out_write, retro_phase, alloc_tag, tag_avail;
   logic [TAG_W-1:0]   free_tag;
@@ -288,33 +362,34 @@ module msr_tile_engine
   ctx_t               rsp_wctx;
   logic [TADDR_W-1:0] rsp_waddr;
   level_t             rsp_wlevel;
-  rgb_t               rsp_wrgb;
+  logic [PIX_W-1:0]   rsp_wpix;
 
   msr_rsp_check #(
     .MAX_OUTSTANDING (MAX_OUTSTANDING),
     .TAG_W           (TAG_W),
-    .CTX_W           (CTX_W)
+    .CTX_W           (CTX_W),
+    .DATA_W          (PIX_W)
   ) u_rsp_check (
     .clk_i, .rst_ni, .clear_i,
-    .rsp_valid_i, .rsp_ready_o, .rsp_tag_i, .rsp_rgb_i,
+    .rsp_valid_i, .rsp_ready_o, .rsp_tag_i, .rsp_rgb_i (rsp_pix),
     .tag_avail_o (tag_avail), .free_tag_o (free_tag),
     .alloc_i (alloc_tag), .alloc_ctx_i (out_side.ctx), .alloc_addr_i (req_addr),
     .alloc_level_i (out_side.level), .pipe_we_i (out_write), .pipe_ctx_i (out_side.ctx),
     .we_o (r2_write), .wctx_o (rsp_wctx), .waddr_o (rsp_waddr), .wlevel_o (rsp_wlevel),
-    .wrgb_o (rsp_wrgb),
+    .wrgb_o (rsp_wpix),
     .drop_o (rsp_drop_o), .inflight_o, .tags_out_o, .init_o (tags_init)
   );
 
   // ---- Writes: each context's one port, registered (msr_ctx_write) ---------------------------
-  msr_ctx_write #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W)) u_ctx_write (
+  msr_ctx_write #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .DATA_W(PIX_W)) u_ctx_write (
     .clk_i, .rst_ni, .clear_i,
     .out_write_i (out_write), .out_retro_i (retro_phase && alloc_tag), .out_ctx_i (out_side.ctx),
     .out_x_i (out_side.x), .out_y_i (out_side.y), .out_level_i (out_side.level),
-    .out_rgb_i (out_rgb),
+    .out_rgb_i (out_pix),
     .rsp_write_i (r2_write), .rsp_ctx_i (rsp_wctx), .rsp_addr_i (rsp_waddr),
-    .rsp_level_i (rsp_wlevel), .rsp_rgb_i (rsp_wrgb),
+    .rsp_level_i (rsp_wlevel), .rsp_rgb_i (rsp_wpix),
     .we_o (ctx_we), .retro_o (ctx_retro), .waddr_o (ctx_waddr), .wsrc_o (ctx_wsrc),
-    .wrgb_o (ctx_wrgb)
+    .wrgb_o (ctx_wpix)
   );
 
   // ---- Finished tiles out (msr_ctx_drain) -----------------------------------------------------
@@ -323,29 +398,34 @@ module msr_tile_engine
   pix_word_t          pix_word;            // the engine's ports stay flat for the benches
   assign {pix_x_o, pix_y_o, pix_rgb_o, pix_src_o, pix_last_o} = pix_word;
 
-  msr_ctx_drain #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W)) u_ctx_drain (
+  msr_ctx_drain #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .DEPTH_EN(DEPTH_EN)) u_ctx_drain (
     .clk_i, .rst_ni, .clear_i,
     .full_i (ctx_full), .desc_i (ctx_desc), .own_o (ctx_str_own),
     .re_o (str_re), .raddr_o (str_raddr), .rgb_i (ctx_str_rgb), .src_i (ctx_str_src),
+    .invz_i (ctx_str_invz),
     .done_o (ctx_str_done),
-    .pix_valid_o, .pix_ready_i, .pix_o (pix_word)
+    .pix_valid_o, .pix_ready_i, .pix_o (pix_word), .pix_invz_o
   );
 
   // ---- The contexts themselves ----------------------------------------------------------------
   for (genvar c = 0; c < NUM_CTX; c++) begin : g_ctx
     msr_tile_ctx #(
       .PEND_W    (PEND_W),
-      .LINDILATE (LINDILATE)
+      .LINDILATE (LINDILATE),
+      .DEPTH_EN  (DEPTH_EN)
     ) u_ctx (
       .clk_i, .rst_ni, .clear_i,
       .start_i (ctx_start[c]), .desc_i (alloc_desc), .free_o (ctx_free[c]),
       .desc_o (ctx_desc[c]), .cand_tail_o (ctx_cand_tail[c]), .cand_head_o (ctx_cand_head[c]),
       .step_o (ctx_pos[c]), .issue_i (gr_gnt[c]),
       .rd_a_o (ctx_rd_a[c]), .rd_b_o (ctx_rd_b[c]), .rd_o2_o (ctx_rd_o2[c]),
+      .rd_wa_o (ctx_rd_wa[c]), .rd_wb_o (ctx_rd_wb[c]),
       .retro_i (ctx_retro[c]), .we_i (ctx_we[c]), .waddr_i (ctx_waddr[c]),
-      .wsrc_i (ctx_wsrc[c]), .wrgb_i (ctx_wrgb[c]), .full_o (ctx_full[c]),
+      .wsrc_i (ctx_wsrc[c]), .wrgb_i (rgb_t'(ctx_wpix[c][$bits(rgb_t)-1:0])),
+      .winvz_i (ctx_winvz[c]), .full_o (ctx_full[c]),
       .str_own_i (ctx_str_own[c]), .str_re_i (str_re), .str_raddr_i (str_raddr),
-      .str_rgb_o (ctx_str_rgb[c]), .str_src_o (ctx_str_src[c]), .str_done_i (ctx_str_done[c])
+      .str_rgb_o (ctx_str_rgb[c]), .str_src_o (ctx_str_src[c]), .str_invz_o (ctx_str_invz[c]),
+      .str_done_i (ctx_str_done[c])
     );
     assign ctx_first[c] = ctx_pos[c].first;
   end

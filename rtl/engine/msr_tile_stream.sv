@@ -9,7 +9,8 @@
 module msr_tile_stream
   import msr_pkg::*;
 #(
-  parameter int unsigned FIFO_DEPTH = 4
+  parameter int unsigned FIFO_DEPTH = 4,
+  parameter int unsigned DEPTH_EN   = 0   // 1: each pixel's inverse depth beside it (else 0)
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -24,9 +25,11 @@ module msr_tile_stream
   output logic [TADDR_W-1:0]   raddr_o,
   input  rgb_t                 rdata_rgb_i,  // two cycles after re_o
   input  src_t                 rdata_src_i,
+  input  logic [15:0]          rdata_invz_i, // DEPTH_EN: with rdata_rgb_i
   output logic                 pix_valid_o,  // pixel stream
   input  logic                 pix_ready_i,
   output pix_word_t            pix_o,        // global x, y, colour, source code, last of tile
+  output logic [15:0]          pix_invz_o,   // DEPTH_EN: the pixel's inverse depth
   output logic                 done_o        // pulse: last pixel taken
 );
 
@@ -136,6 +139,32 @@ module msr_tile_stream
     .data_o  (pop_word),
     .count_o (cnt)
   );
+
+  // The inverse depth in a FIFO of its own, pushed and popped with the pixel's.
+  if (DEPTH_EN != 0) begin : g_depth
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic             invz_ready, invz_valid;
+    logic [CNT_W-1:0] invz_cnt;
+    /* verilator lint_on UNUSEDSIGNAL */
+    msr_fifo #(.WIDTH(16), .DEPTH(FIFO_DEPTH)) u_invz_fifo (
+      .clk_i,
+      .rst_ni,
+      .flush_i (clear_i),
+      .valid_i (push),
+      .ready_o (invz_ready),
+      .data_i  (rdata_invz_i),
+      .valid_o (invz_valid),
+      .ready_i (pix_ready_i),
+      .data_o  (pix_invz_o),
+      .count_o (invz_cnt)
+    );
+  end else begin : g_no_depth
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [15:0] invz_unused;
+    /* verilator lint_on UNUSEDSIGNAL */
+    assign invz_unused = rdata_invz_i;
+    assign pix_invz_o  = '0;
+  end
 
 `ifndef SYNTHESIS
   // Lint: disable iff (!rst_ni) looks like a synchronous use of the asynchronous reset.

@@ -179,6 +179,11 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .valid_o (sp_desc_valid), .ready_i (eng_desc_ready[i]), .data_o (sp_desc)
     );
 
+    // The engines' depth channel is off here (DEPTH_EN 0): pix_invz_o is 0.
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [15:0] eng_pix_invz;
+    /* verilator lint_on UNUSEDSIGNAL */
+
     msr_tile_engine #(
       .NUM_CTX         (NUM_CTX),
       .MAX_OUTSTANDING (MAX_OUTSTANDING),
@@ -189,10 +194,10 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .req_valid_o (eng_req_valid[i]), .req_ready_i (eng_req_ready[i]),
       .req_x_o (eng_req_x[i]), .req_y_o (eng_req_y[i]), .req_tag_o (eng_req_tag[i]),
       .rsp_valid_i (eng_rsp_valid[i]), .rsp_ready_o (eng_rsp_ready[i]),
-      .rsp_tag_i (eng_rsp_tag), .rsp_rgb_i (eng_rsp_rgb),
+      .rsp_tag_i (eng_rsp_tag), .rsp_rgb_i (eng_rsp_rgb), .rsp_invz_i ('0),
       .pix_valid_o (eng_pix_valid[i]), .pix_ready_i (eng_pix_ready[i]),
       .pix_x_o (eng_pix_x[i]), .pix_y_o (eng_pix_y[i]), .pix_rgb_o (eng_pix_rgb[i]),
-      .pix_src_o (eng_pix_src[i]), .pix_last_o (eng_pix_last[i]),
+      .pix_src_o (eng_pix_src[i]), .pix_last_o (eng_pix_last[i]), .pix_invz_o (eng_pix_invz),
       .busy_o (eng_busy[i]), .rsp_drop_o (eng_rsp_drop[i]),
       .inflight_o (eng_inflight[i]), .tags_out_o (eng_tags_out[i])
     );
