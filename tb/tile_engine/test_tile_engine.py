@@ -9,7 +9,10 @@ the same time interleave; with the lindilate rule the set of requests, each exac
 dilation that traces a pixel of the line before asks for it after the line it was decided
 on, docs/architecture.md) and every output pixel (tiles leave whole, in any tile order; within
 a tile: order, coordinates, colour, source code, last flag). The spec's worked example and
-docs/rules.md's (lindilate) are separate tests with values computed by hand. The RTL's own SVA (handshakes, tags, write-once) run all the time."""
+docs/rules.md's (lindilate) are separate tests with values computed by hand. The RTL's own SVA (handshakes, tags, write-once) run all the time.
+In the DEPTH_EN=1 build (test_tile_engine_depth) every tile also has an inverse-depth plane
+(ramps, noise, flat, sky zeros beside surfaces, saturated 65535) that the rendering model
+answers rsp_invz_i from, and every pixel's pix_invz_o is checked against run_tile's invz."""
 from __future__ import annotations
 
 import os
@@ -33,6 +36,7 @@ COORD_W, LDIM_W = 12, 6
 
 
 RULES = ("patent", "lindilate")     # rule_e encodings
+DEPTH = os.environ.get("DEPTH_EN") == "1"   # the build has the inverse-depth channel
 
 
 def pack_desc(x0, y0, w, h, levels, metric, thr, rule="patent") -> int:
@@ -65,6 +69,28 @@ def make_image(rng: random.Random, w: int, h: int) -> np.ndarray:
     return np.clip(out, 0, 255).astype(np.uint8)
 
 
+def make_invz(rng: random.Random, w: int, h: int) -> np.ndarray:
+    """A tile's inverse-depth plane (uint16): a smooth ramp, noise or a flat value, often with
+    sky (0) beside the surface (a silhouette or patches) and some saturated (65535) pixels."""
+    kind = rng.choice(["ramp", "ramp", "noise", "flat"])
+    nrng = np.random.default_rng(rng.randrange(1 << 30))
+    yy, xx = np.mgrid[0:h, 0:w]
+    if kind == "noise":
+        p = nrng.integers(0, 65536, (h, w))
+    elif kind == "flat":
+        p = np.full((h, w), rng.choice([1, 65535, rng.randrange(65536)]))
+    else:
+        p = rng.randrange(65536) + rng.randint(-3000, 3000) * xx + rng.randint(-3000, 3000) * yy
+    if rng.random() < 0.4:                               # sky on one side of a straight edge
+        p = np.where(rng.uniform(-1, 1) * (xx - rng.uniform(0, w)) + rng.uniform(-1, 1) * (yy - rng.uniform(0, h)) > 0,
+                     0, p)
+    for val in (0, 65535):                               # a few rectangles of sky and of saturation
+        for _ in range(rng.choice([0, 0, 1, 2, 3])):
+            y, x = rng.randrange(h), rng.randrange(w)
+            p[y:y + rng.randint(1, 6), x:x + rng.randint(1, 6)] = val
+    return np.clip(p, 0, 65535).astype(np.uint16)
+
+
 _SLOTS = itertools.count()
 
 
@@ -94,8 +120,15 @@ def random_tile(rng: random.Random):
 def golden(tile):
     img, x0, y0 = tile["img"], tile["x0"], tile["y0"]
     params = Params(tile=32, levels=tile["levels"], thr=tuple(tile["thr"]), metric=tile["metric"])
+    invz = tile.get("invz")
     return run_tile(lambda x, y: img[y - y0, x - x0], x0, y0, tile["w"], tile["h"], params,
-                    tuple(tile["thr"]), rule=tile.get("rule", "patent"))
+                    tuple(tile["thr"]), rule=tile.get("rule", "patent"),
+                    render_invz=None if invz is None else (lambda x, y: invz[y - y0, x - x0]))
+
+
+def describe(t) -> str:
+    """A tile's descriptor, for failure messages."""
+    return ", ".join(f"{k}={t[k]}" for k in ("x0", "y0", "w", "h", "levels", "metric", "rule", "thr") if k in t)
 
 
 class Profile:
@@ -127,18 +160,24 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
                     dup_prob: float = 0.0):
     """Drive all tiles through the engine; check requests and pixels as they appear. With
     dup_prob, a response just taken is sent again at once now and then (a duplicate): the
-    engine must drop it (rsp_drop_o), write nothing and free no tag twice."""
+    engine must drop it (rsp_drop_o), write nothing and free no tag twice. In the DEPTH_EN=1
+    build a tile without an inverse-depth plane is given one (make_invz), and each pixel's
+    pix_invz_o is checked as a sixth field."""
     drv = Driver(dut)
     exp_req, exp_pix = [], []                           # per tile: its requests in order
     for t in tiles:
+        if DEPTH and "invz" not in t:
+            t["invz"] = make_invz(rng, t["w"], t["h"])
         r = golden(t)
         exp_req.append(list(r.requests))
         stream = r.output_stream()
         exp_pix.append([(x, y, rgb, code, i == len(stream) - 1) for i, (x, y, rgb, code) in enumerate(stream)])
+        if DEPTH:
+            exp_pix[-1] = [e + (int(r.invz[e[1] - t["y0"], e[0] - t["x0"]]),) for e in exp_pix[-1]]
     n_pix = sum(len(s) for s in exp_pix)
     pix_next = [0] * len(tiles)                         # per tile: pixels seen so far
     cur = None                                          # tile being streamed out
-    pending = {}                                        # tag -> (due cycle, rgb)
+    pending = {}                                        # tag -> (due cycle, rgb[, invz])
     rsp_cur = None
     dup_sent = dup_seen = 0
     desc_hold = False
@@ -156,7 +195,8 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
         raise AssertionError(f"render request ({x},{y}) outside every tile")
 
     def render(x, y):
-        """A render request: in its tile's golden order, answered from the tile's image."""
+        """A render request: in its tile's golden order, answered from the tile's image (and,
+        DEPTH_EN=1, its inverse-depth plane: (rgb, invz))."""
         i = tile_of(x, y)
         assert i < di, f"request ({x},{y}) for tile {i}, not accepted yet"
         k = req_next[i]
@@ -169,7 +209,8 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
         assert (x, y) == exp_req[i][k], f"tile {i} request {k}: got ({x},{y}), want {exp_req[i][k]}"
         req_next[i] += 1
         t = tiles[i]
-        return tuple(int(c) for c in t["img"][y - t["y0"], x - t["x0"]])
+        rgb = tuple(int(c) for c in t["img"][y - t["y0"], x - t["x0"]])
+        return (rgb, int(t["invz"][y - t["y0"], x - t["x0"]])) if DEPTH else rgb
 
     while pi < n_pix:
         # ---- drive (after the falling edge) ----
@@ -192,7 +233,11 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
         if rsp_cur is not None:
             drv['rsp_valid_i'] = 1
             drv['rsp_tag_i'] = rsp_cur[0]
-            drv['rsp_rgb_i'] = pack_rgb(rsp_cur[1])
+            if DEPTH:
+                drv['rsp_rgb_i'] = pack_rgb(rsp_cur[1][0])
+                drv['rsp_invz_i'] = rsp_cur[1][1]
+            else:
+                drv['rsp_rgb_i'] = pack_rgb(rsp_cur[1])
         else:
             drv['rsp_valid_i'] = 0
         pix_ready = int(rng.random() < prof.pix_ready)
@@ -221,13 +266,16 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
         if pix_ready and dut.pix_valid_o.value:
             got = (int(dut.pix_x_o.value), int(dut.pix_y_o.value), unpack_rgb(dut.pix_rgb_o.value),
                    int(dut.pix_src_o.value), bool(dut.pix_last_o.value))
+            if DEPTH:
+                got += (int(dut.pix_invz_o.value),)
             # Tiles leave whole and row-major, in any order (a tile that waits long for its
             # renders does not hold up the others).
             i = tile_of(got[0], got[1]) if cur is None else cur
             assert i < di, f"pixel {got[:2]} of tile {i}, not accepted yet"
             k = pix_next[i]
             assert k < len(exp_pix[i]) and got == exp_pix[i][k], \
-                f"tile {i} pixel {k}: got {got}, want {exp_pix[i][k] if k < len(exp_pix[i]) else None}"
+                f"tile {i} pixel {k}: got {got}, want {exp_pix[i][k] if k < len(exp_pix[i]) else None} " \
+                f"({describe(tiles[i])})"
             pix_next[i] += 1
             cur = None if got[4] else i
             pi += 1
@@ -259,6 +307,8 @@ async def stale_responses(dut, rng: random.Random, max_out: int, n: int = 6):
         dut.rsp_valid_i.value = 1
         dut.rsp_tag_i.value = rng.randrange(max_out)
         dut.rsp_rgb_i.value = rng.randrange(1 << 24)
+        if DEPTH:
+            dut.rsp_invz_i.value = rng.randrange(1 << 16)
         await settle()
         sent += int(dut.rsp_ready_o.value)
         seen += int(dut.rsp_drop_o.value)
@@ -275,7 +325,7 @@ async def stale_responses(dut, rng: random.Random, max_out: int, n: int = 6):
 
 
 IDLE = {"clear_i": 0, "desc_valid_i": 0, "desc_i": 0, "req_ready_i": 0, "rsp_valid_i": 0,
-        "rsp_tag_i": 0, "rsp_rgb_i": 0, "pix_ready_i": 0}
+        "rsp_tag_i": 0, "rsp_rgb_i": 0, "rsp_invz_i": 0, "pix_ready_i": 0}
 
 
 @cocotb.test()
@@ -300,7 +350,8 @@ async def random_tiles(dut):
                    h=size_class(t["h"]), profile=name, max_out=max_out, rule=t["rule"])
         total += n
         await stale_responses(dut, rng, max_out)
-        dut._log.info("profile %s: %d tiles in %d cycles", name, n, cycles)
+        dut._log.info("profile %s: %d tiles (%d pixels) in %d cycles", name, n, sum(t["w"] * t["h"] for t in tiles),
+                      cycles)
         # soft reset between profiles (nothing in flight): the engine must come back clean
         dut.clear_i.value = 1
         await settle()
@@ -378,6 +429,13 @@ def test_tile_engine(max_out, ctx, counts, seed):
     run_cocotb("msr_tile_engine", "test_tile_engine", Path(__file__).parent,
                {"MAX_OUTSTANDING": max_out, "NUM_CTX": ctx},
                extra_env={"TILE_COUNTS": QUICK or counts, "SEED": seed, "MAX_OUTSTANDING": max_out})
+
+
+def test_tile_engine_depth():
+    """The DEPTH_EN=1 build: every pixel's inverse depth checked as well (16 tags, 4 contexts)."""
+    run_cocotb("msr_tile_engine", "test_tile_engine", Path(__file__).parent,
+               {"MAX_OUTSTANDING": 16, "NUM_CTX": 4, "DEPTH_EN": 1},
+               extra_env={"TILE_COUNTS": QUICK or "300,80,10", "SEED": 14, "MAX_OUTSTANDING": 16, "DEPTH_EN": "1"})
 
 
 @pytest.mark.parametrize("params", [{"MAX_OUTSTANDING": 12}, {"MAX_OUTSTANDING": 1},
