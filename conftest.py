@@ -23,6 +23,8 @@ LONG = {
     "tb/level_ctrl/": 130,
     "tb/budget_ctrl/": 80,
     "tb/msr_top/test_msr_top.py::test_msr_top_patent_only": 60,
+    "tb/tile_engine/test_tile_engine.py::test_tile_engine_depth": 70,
+    "tb/depth_interp/": 60,
 }
 
 

@@ -260,27 +260,29 @@ module msr_tile_engine
                        retro: pv_retro, rgb: pv_rgb,
                        side: pv_side.o};
 
-  msr_out_buf #(.WIDTH($bits(result_t)), .DEPTH(OUT_DEPTH)) u_out_buf (
+  // With DEPTH_EN the output buffer's word carries the interpolated inverse depth above the result.
+  localparam int unsigned OUT_W = $bits(result_t) + ((DEPTH_EN != 0) ? 16 : 0);
+  logic [OUT_W-1:0] pv_word, out_word;
+
+  msr_out_buf #(.WIDTH(OUT_W), .DEPTH(OUT_DEPTH)) u_out_buf (
     .clk_i, .rst_ni, .clear_i,
     .issue_i (issue), .can_issue_o (can_issue),
-    .valid_i (pv_valid), .data_i (pv_result),
-    .valid_o (out_valid), .ready_i (out_ready), .data_o (out_result)
+    .valid_i (pv_valid), .data_i (pv_word),
+    .valid_o (out_valid), .ready_i (out_ready), .data_o (out_word)
   );
 
-  assign out_rgb  = out_result.rgb;
-  assign out_side = out_result.side;
+  assign out_result = result_t'(out_word[$bits(result_t)-1:0]);
+  assign out_rgb    = out_result.rgb;
+  assign out_side   = out_result.side;
 
   // ---- Depth channel (DEPTH_EN): A's and B's inverse depth registered into AB beside the
   // colours, interpolated beside the decision pipeline (the same advance and stages), and
-  // carried to the output in a FIFO of its own, pushed and popped with the output buffer.
+  // carried to the output in the output buffer's word, above the result.
   logic [PIX_W-1:0] out_pix, rsp_pix;
 
   if (DEPTH_EN != 0) begin : g_depth
     logic [15:0] ab_wa_q, ab_wb_q, pv_invz, out_invz;
-    /* verilator lint_off UNUSEDSIGNAL */
-    logic        pv_invz_valid, invz_ready, invz_valid;
-    logic [$clog2(OUT_DEPTH+1)-1:0] invz_cnt;
-    /* verilator lint_on UNUSEDSIGNAL */
+    logic        pv_invz_valid;
 
     always_ff @(posedge clk_i) begin
       if (rd_valid) begin
@@ -298,23 +300,17 @@ module msr_tile_engine
       .valid_o (pv_invz_valid), .invz_o (pv_invz)
     );
 
-    msr_fifo #(.WIDTH(16), .DEPTH(OUT_DEPTH)) u_invz_fifo (
-      .clk_i, .rst_ni, .flush_i (clear_i),
-      .valid_i (pv_valid), .ready_o (invz_ready), .data_i (pv_invz),
-      .valid_o (invz_valid), .ready_i (out_valid && out_ready), .data_o (out_invz),
-      .count_o (invz_cnt)
-    );
-
-    assign out_pix = {out_invz, out_rgb};
-    assign rsp_pix = {rsp_invz_i, rsp_rgb_i};
+    assign pv_word  = {pv_invz, pv_result};
+    assign out_invz = out_word[OUT_W-1 -: 16];
+    assign out_pix  = {out_invz, out_rgb};
+    assign rsp_pix  = {rsp_invz_i, rsp_rgb_i};
     for (genvar c = 0; c < NUM_CTX; c++) begin : g_winvz
       assign ctx_winvz[c] = ctx_wpix[c][PIX_W-1 -: 16];
     end
 
-    // the depth moves in step with the decision and the output buffer
+    // the depth moves in step with the decision
     /* verilator lint_off SYNCASYNCNET */
     `MSR_ASSERT(a_depth_in_step, pv_invz_valid == pv_valid)
-    `MSR_ASSERT(a_depth_fifo_with_out, invz_valid == out_valid)
     /* verilator lint_on SYNCASYNCNET */
   end else begin : g_no_depth
     /* verilator lint_off UNUSEDSIGNAL */
@@ -325,6 +321,7 @@ module msr_tile_engine
     assign rd_unused       = rd_valid ^ (^rd_ctx);
     assign rsp_invz_unused = rsp_invz_i;
     assign ctx_rd_w_unused = ctx_rd_wa ^ ctx_rd_wb;
+    assign pv_word         = pv_result;
     assign out_pix         = out_rgb;
     assign rsp_pix         = rsp_rgb_i;
     assign ctx_winvz       = '0;

@@ -268,6 +268,8 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
                    int(dut.pix_src_o.value), bool(dut.pix_last_o.value))
             if DEPTH:
                 got += (int(dut.pix_invz_o.value),)
+            else:
+                assert int(dut.pix_invz_o.value) == 0, "pix_invz_o is not 0 in a build without depth"
             # Tiles leave whole and row-major, in any order (a tile that waits long for its
             # renders does not hold up the others).
             i = tile_of(got[0], got[1]) if cur is None else cur
