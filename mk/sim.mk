@@ -23,8 +23,13 @@ ifneq ($(filter-out 0 no false,$(strip $(REUSE))),)
 $(error make sim: error: REUSE=$(REUSE): reuse across frames is not in the hardware yet)
 endif
 endif
+# DEPTH=1: the engines' depth channel (docs/architecture.md "The depth channel"): the harness is a
+# build of msr_top with DEPTH_EN 1 in its own folder; OUT gets depth.png and the report compares
+# every pixel's inverse depth with the golden model's (msr_model.reuse, without reuse).
+DEPTH        ?=
 SIM_BUDGET_ON := $(strip $(BUDGET))
-SIM_BUILD    := build/sim/$(if $(SIM_WAVES_ON),waves,fast)$(if $(SIM_BUDGET_ON),_budget)
+SIM_DEPTH_ON := $(filter 1 yes true,$(DEPTH))
+SIM_BUILD    := build/sim/$(if $(SIM_WAVES_ON),waves,fast)$(if $(SIM_BUDGET_ON),_budget)$(if $(SIM_DEPTH_ON),_depth)
 SIM_BIN      := $(SIM_BUILD)/Vmsr_sim_top
 SIM_RTL      := $(MSR_RTL_FILES) sim/render_dpi.sv sim/msr_sim_top.sv
 SIM_CPP      := sim/harness.cpp sim/msr_dpi.cpp
@@ -57,7 +62,7 @@ build/sim/%/Vmsr_sim_top: $(SIM_RTL) $(SIM_CPP) sim/msr_dpi.h sim/msr_regs.h rtl
 	@mkdir -p $(@D)
 	@echo "make sim: building the Verilator harness into $(@D) (log: $(@D)/build.log)"
 	@$(ENV) verilator $(SIM_VFLAGS) $(if $(findstring waves,$*),--trace-fst --trace-structs) \
-	    $(if $(findstring budget,$*),-GBUDGET_EN=1) -Mdir $(@D) -o Vmsr_sim_top $(MSR_RTL_OPTS) $(SIM_RTL) \
+	    $(if $(findstring budget,$*),-GBUDGET_EN=1) $(if $(findstring depth,$*),-GDEPTH_EN=1) -Mdir $(@D) -o Vmsr_sim_top $(MSR_RTL_OPTS) $(SIM_RTL) \
 	    $(SIM_CPP) > $(@D)/build.log 2>&1 || { tail -40 $(@D)/build.log; exit 1; }
 
 .PHONY: sim-build
@@ -92,12 +97,12 @@ TEST_DEPS += $(SIM_ASSERT_BIN)
 
 # tb/msr_sim runs the harness: it is built before pytest starts, not inside a pytest worker
 # next to the cocotb builds (two 2-3 GB compilers at once on a 2-core machine).
-TEST_DEPS += build/sim/fast/Vmsr_sim_top build/sim/fast_budget/Vmsr_sim_top
+TEST_DEPS += build/sim/fast/Vmsr_sim_top build/sim/fast_budget/Vmsr_sim_top build/sim/fast_depth/Vmsr_sim_top
 
 sim: setup renderer $(SIM_BIN)
 	@$(ENV) python scripts/run_sim.py --harness $(SIM_BIN) --scene "$(SCENE)" --width "$(WIDTH)" \
 	    --height "$(HEIGHT)" --tile "$(TILE)" --levels "$(LEVELS)" --thr "$(THR)" --metric "$(METRIC)" \
-	    --fov-gain "$(FOV_GAIN)" --gaze="$(GAZE)" --rule "$(RULE)" --budget "$(BUDGET)" --frames "$(FRAMES)" --camera-path "$(CAMERA_PATH)" --reuse "$(REUSE)" --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
+	    --fov-gain "$(FOV_GAIN)" --gaze="$(GAZE)" --rule "$(RULE)" --budget "$(BUDGET)" --frames "$(FRAMES)" --camera-path "$(CAMERA_PATH)" --reuse "$(REUSE)" $(if $(SIM_DEPTH_ON),--depth) --out "$(SIM_OUT)" --camera="$(CAMERA)" $(if $(SIM_WAVES_ON),--waves) \
 	    $(if $(WAVE_TILE),--wave-tile $(WAVE_TILE)) $(if $(WAVE_CYCLES),--wave-cycles $(WAVE_CYCLES))
 
 # make waves / waves-shot: the run named by OUT=, else the last make sim WAVES=1 (its folder is

@@ -3,6 +3,8 @@
 //
 //   Vmsr_sim_top --width W --height H [--tile T] [--levels L] [--thr a,b,c] [--metric max|sum]
 //       [--fov-gain G] [--gaze X,Y] [--rule patent|lindilate|N] [--frame OUT.ppm] [--source OUT.pgm] [--stats OUT.json]
+//       [--depth OUT.pgm] (a DEPTH_EN build: every pixel's inverse depth as it left its engine, 16-bit PGM;
+//       +invz_exp=E sets the rendering unit's exponent)
 //       [--budget PIXELS] [--scale-init U] [--prior-shift P] [--seeded 0|1]   (docs/budget.md)
 //       [--frames N [--cameras FILE] [--gazes FILE]]   (a sequence: N frames in this one run,
 //       the registers reprogrammed between frames as a driver would; FILE has one camera line per
@@ -66,6 +68,7 @@ struct Options {
   std::vector<std::pair<long, long>> gazes;  // --gazes: each frame's gaze, {-1, -1}: --gaze's
   int thr[3] = {8, 16, 32};
   std::string frame_out, source_out, stats_out, waves;
+  std::string depth_out;  // --depth: the engines' inverse-depth plane (a DEPTH_EN build), 16-bit PGM
   uint64_t timeout = 0;  // 0: derived from the frame size
   int mem_pause = 0;     // percent of cycles each AXI channel is not ready
   unsigned seed = 1;
@@ -107,6 +110,7 @@ Options parse(int argc, char **argv) {
     else if (a == "--fb-base") o.fb_base = to_int(next("--fb-base"), "--fb-base");
     else if (a == "--frame") o.frame_out = next("--frame");
     else if (a == "--source") o.source_out = next("--source");
+    else if (a == "--depth") o.depth_out = next("--depth");
     else if (a == "--stats") o.stats_out = next("--stats");
     else if (a == "--waves") o.waves = next("--waves");
     else if (a == "--quiet") o.quiet = true;
@@ -521,6 +525,36 @@ bool write_ppm(const std::string &path, const Sim &s, int w, int h) {
   return std::fclose(f) == 0;
 }
 
+// The depth channel's plane: msr_sim_top's monitor (a DEPTH_EN build) calls msr_dpi_depth_pixel
+// for every pixel as it leaves its engine; -1 marks a pixel that never came.
+std::vector<int32_t> g_depth;
+int g_depth_w = 0, g_depth_h = 0;
+
+void depth_reset(int w, int h) {
+  g_depth.assign(static_cast<size_t>(w) * h, -1);
+  g_depth_w = w;
+  g_depth_h = h;
+}
+
+// 16-bit binary PGM (maxval 65535, big-endian samples); false if a pixel has no depth.
+bool write_depth_pgm(const std::string &path, int w, int h) {
+  for (int32_t v : g_depth)
+    if (v < 0) return false;
+  FILE *f = std::fopen(path.c_str(), "wb");
+  if (!f) return false;
+  std::fprintf(f, "P5\n%d %d\n65535\n", w, h);
+  std::vector<uint8_t> row(2 * static_cast<size_t>(w));
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const int32_t v = g_depth[static_cast<size_t>(y) * w + x];
+      row[2 * x] = uint8_t(v >> 8);
+      row[2 * x + 1] = uint8_t(v & 0xff);
+    }
+    std::fwrite(row.data(), 1, row.size(), f);
+  }
+  return std::fclose(f) == 0;
+}
+
 bool write_pgm(const std::string &path, const Sim &s, int w, int h) {
   FILE *f = std::fopen(path.c_str(), "wb");
   if (!f) return false;
@@ -534,6 +568,14 @@ bool write_pgm(const std::string &path, const Sim &s, int w, int h) {
 }
 
 }  // namespace
+
+extern "C" void msr_dpi_depth_pixel(int x, int y, int invz) {
+  if (x < 0 || y < 0 || x >= g_depth_w || y >= g_depth_h) {
+    std::fprintf(stderr, "harness: error: depth of pixel (%d, %d) outside the frame\n", x, y);
+    std::exit(kExitFail);
+  }
+  g_depth[static_cast<size_t>(y) * g_depth_w + x] = invz;
+}
 
 int main(int argc, char **argv) {
   const Options o = parse(argc, argv);
@@ -553,6 +595,7 @@ int main(int argc, char **argv) {
 
     uint32_t scale_prev = 0;   // the last frame's SCALE_OUT (a budget sequence)
     for (long k = 0; k < o.frames && rc == kExitOk; ++k) {
+    depth_reset(o.width, o.height);
     if (!o.cameras.empty()) {
       char err[512] = {0};
       if (!msr_dpi_set_view(o.cameras[k].c_str(), err, sizeof err)) {
@@ -656,6 +699,14 @@ int main(int argc, char **argv) {
       std::fprintf(stderr, "harness: error: cannot write %s\n", frame_out.c_str());
       rc = kExitFail;
     }
+    const std::string depth_out = frame_file(o.depth_out, o.frames, k);
+    if (!depth_out.empty() && !Vmsr_sim_top___024root::msr_sim_top__DOT__DEPTH_EN) {
+      std::fprintf(stderr, "harness: error: --depth: this harness has no depth channel (build it with make sim DEPTH=1)\n");
+      rc = kExitFail;
+    } else if (!depth_out.empty() && !write_depth_pgm(depth_out, o.width, o.height)) {
+      std::fprintf(stderr, "harness: error: cannot write %s (or a pixel's depth never came)\n", depth_out.c_str());
+      rc = kExitFail;
+    }
     if (!source_out.empty() && !write_pgm(source_out, sim, o.width, o.height)) {
       std::fprintf(stderr, "harness: error: cannot write %s\n", source_out.c_str());
       rc = kExitFail;
@@ -683,7 +734,7 @@ int main(int argc, char **argv) {
                      " \"budget\": {\"pixels\": %ld, \"scale_init\": %ld, \"prior_shift\": %ld, \"seeded\": %ld, "
                      "\"scale_out\": %u, \"scale_out_valid\": %s},\n"
                      " \"build\": {\"num_engines\": %u, \"max_outstanding\": %u, \"num_ctx\": %u, "
-                     "\"budget_en\": %u, \"axi_beat_bytes\": %u},\n"
+                     "\"budget_en\": %u, \"depth_en\": %u, \"axi_beat_bytes\": %u},\n"
                      " \"layout\": {\"fb_base\": %lld, \"fb_stride\": %u, \"src_base\": %u, \"src_stride\": %u},\n"
                      " \"params\": {\"width\": %d, \"height\": %d, \"tile\": %d, \"levels\": %d, "
                      "\"thr\": [%d, %d, %d], \"metric\": \"%s\", \"fov_gain\": %d, \"rule\": %d}}\n",
@@ -692,7 +743,7 @@ int main(int argc, char **argv) {
                      mstall, gaze_json.c_str(), o.budget, scale_init, o.prior_shift, seeded, scale_out,
                      scale_out_valid ? "true" : "false", unsigned(Root::msr_sim_top__DOT__NUM_ENGINES),
                      unsigned(Root::msr_sim_top__DOT__MAX_OUTSTANDING), unsigned(Root::msr_sim_top__DOT__NUM_CTX),
-                     unsigned(Root::msr_sim_top__DOT__BUDGET_EN), kBeatBytes, o.fb_base >= 0 ? o.fb_base : (long long)sim.fb_base(), sim.fb_stride(),
+                     unsigned(Root::msr_sim_top__DOT__BUDGET_EN), unsigned(Root::msr_sim_top__DOT__DEPTH_EN), kBeatBytes, o.fb_base >= 0 ? o.fb_base : (long long)sim.fb_base(), sim.fb_stride(),
                      sim.src_base(), sim.src_stride(), o.width, o.height, o.tile, o.levels, o.thr[0], o.thr[1],
                      o.thr[2], o.metric ? "sum" : "max", o.fov_gain, o.rule);
         std::fclose(f);

@@ -120,6 +120,20 @@ extern "C" int msr_dpi_render(void *handle, int x, int y) {
   return (rgb[0] << 16) | (rgb[1] << 8) | rgb[2];
 }
 
+extern "C" long long msr_dpi_render_cz(void *handle, int x, int y, int invz_exp) {
+  auto *ctx = static_cast<DpiCtx *>(handle);
+  uint8_t rgb[3] = {0, 0, 0};
+  uint16_t invz = 0;
+  if (ctx == nullptr) return 0;
+  if (ctx->render) {
+    const int32_t xs[1] = {x}, ys[1] = {y};
+    msr_render_pixels_invz(ctx->render, 1, xs, ys, rgb, &invz, invz_exp);
+  } else if (x >= 0 && y >= 0 && x < ctx->width && y < ctx->height) {
+    std::memcpy(rgb, &ctx->image[(static_cast<size_t>(y) * ctx->width + x) * 3], 3);
+  }
+  return (static_cast<long long>(invz) << 24) | (rgb[0] << 16) | (rgb[1] << 8) | rgb[2];
+}
+
 extern "C" void msr_dpi_close(void *handle) {
   auto *ctx = static_cast<DpiCtx *>(handle);
   if (ctx == nullptr) return;

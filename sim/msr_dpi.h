@@ -19,6 +19,15 @@ void *msr_dpi_open(const char *scene, int width, int height, int quality);
 /* Colour of pixel (x, y) as 0x00RRGGBB. */
 int msr_dpi_render(void *ctx, int x, int y);
 
+/* Colour and inverse depth of pixel (x, y) in one trace, as (invz << 24) | 0x00RRGGBB: invz the
+ * primary hit's inverse depth at exponent invz_exp (msr_render_pixels_invz; 0 for the sky and for
+ * every pixel of a picture scene, which has no depth). */
+long long msr_dpi_render_cz(void *ctx, int x, int y, int invz_exp);
+
+/* The depth channel's monitor (sim/msr_sim_top.sv with DEPTH_EN): pixel (x, y) of the frame left
+ * an engine with inverse depth invz. Implemented by the C++ harness (its --depth plane). */
+void msr_dpi_depth_pixel(int x, int y, int invz);
+
 /* Not a DPI function: the C++ harness's. The view of the last opened context becomes `camera`
  * ("EX,EY,EZ,TX,TY,TZ,FOV", as +camera=) for the frames that follow (a sequence in one run).
  * Returns 1, or 0 with the reason in err (a picture scene has no view; a bad camera). */

@@ -7,6 +7,7 @@ module msr_sim_top import msr_pkg::*; #(
   parameter int unsigned MAX_OUTSTANDING = 64,
   parameter int unsigned NUM_CTX         = 7,    // msr_top's default
   parameter bit          BUDGET_EN       = 1'b0, // the ray-budget controller (make sim BUDGET=)
+  parameter bit          DEPTH_EN        = 1'b0, // the engines' depth channel (make sim DEPTH=1)
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned RTAG_W = EID_W + $clog2(MAX_OUTSTANDING)
 ) (
@@ -41,6 +42,7 @@ module msr_sim_top import msr_pkg::*; #(
   coord_t            req_x, req_y;
   logic [RTAG_W-1:0] req_tag, rsp_tag;
   rgb_t              rsp_rgb;
+  logic [15:0]       rsp_invz;
   logic   [NUM_ENGINES-1:0] dbg_tile_done;
   coord_t [NUM_ENGINES-1:0] dbg_pix_x, dbg_pix_y;
   logic [3:0]        awid;
@@ -53,7 +55,8 @@ module msr_sim_top import msr_pkg::*; #(
     .NUM_ENGINES     (NUM_ENGINES),
     .MAX_OUTSTANDING (MAX_OUTSTANDING),
     .NUM_CTX         (NUM_CTX),
-    .BUDGET_EN       (BUDGET_EN)
+    .BUDGET_EN       (BUDGET_EN),
+    .DEPTH_EN        (DEPTH_EN)
   ) u_top (
     .clk_i, .rst_ni,
     .s_axil_awvalid, .s_axil_awready, .s_axil_awaddr, .s_axil_awprot (3'b000),
@@ -70,6 +73,7 @@ module msr_sim_top import msr_pkg::*; #(
     .rnd_rsp_ready_o (rsp_ready),
     .rnd_rsp_tag_i   (rsp_tag),
     .rnd_rsp_rgb_i   (rsp_rgb),
+    .rnd_rsp_invz_i  (rsp_invz),
     .m_axi_awid (awid), .m_axi_awaddr, .m_axi_awlen, .m_axi_awsize (awsize),
     .m_axi_awburst (awburst), .m_axi_awlock (awlock), .m_axi_awcache (awcache),
     .m_axi_awprot (awprot), .m_axi_awvalid, .m_axi_awready,
@@ -81,7 +85,7 @@ module msr_sim_top import msr_pkg::*; #(
     .dbg_pix_y_o     (dbg_pix_y)
   );
 
-  render_dpi #(.TAG_W(RTAG_W), .DEPTH(NUM_ENGINES * MAX_OUTSTANDING)) u_render (
+  render_dpi #(.TAG_W(RTAG_W), .DEPTH(NUM_ENGINES * MAX_OUTSTANDING), .DEPTH_EN(DEPTH_EN)) u_render (
     .clk_i       (clk_i),
     .rst_ni      (rst_ni),
     .req_valid_i (req_valid),
@@ -92,8 +96,23 @@ module msr_sim_top import msr_pkg::*; #(
     .rsp_valid_o (rsp_valid),
     .rsp_ready_i (rsp_ready),
     .rsp_tag_o   (rsp_tag),
-    .rsp_rgb_o   (rsp_rgb)
+    .rsp_rgb_o   (rsp_rgb),
+    .rsp_invz_o  (rsp_invz)
   );
+
+  // The depth channel's monitor: no writer stores the engines' inverse depth yet, so the harness
+  // takes every pixel's as it leaves its engine (its --depth plane).
+  import "DPI-C" function void msr_dpi_depth_pixel(input int x, input int y, input int invz);
+  if (DEPTH_EN) begin : g_depth_monitor
+    always @(posedge clk_i) begin
+      for (int unsigned i = 0; i < NUM_ENGINES; i++) begin
+        if (rst_ni && u_top.eng_pix_valid[i] && u_top.eng_pix_ready[i]) begin
+          msr_dpi_depth_pixel(int'(u_top.eng_pix_x[i]), int'(u_top.eng_pix_y[i]),
+                              int'(u_top.eng_pix_invz[i]));
+        end
+      end
+    end
+  end
 
   // Tile life markers for the harness, from msr_top's debug ports. Engines finish tiles in
   // parallel: look for the watched one among them.

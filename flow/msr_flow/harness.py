@@ -36,6 +36,24 @@ def read_pnm(path: Path) -> np.ndarray:
         return np.asarray(im)
 
 
+def read_pgm16(path: Path) -> np.ndarray:
+    """A 16-bit binary PGM (maxval 65535, big-endian samples; the harness's --depth plane)."""
+    data = Path(path).read_bytes()
+    fields, pos = [], 0
+    while len(fields) < 4:                 # P5, width, height, maxval; whitespace between
+        while data[pos:pos + 1].isspace():
+            pos += 1
+        end = pos
+        while not data[end:end + 1].isspace():
+            end += 1
+        fields.append(data[pos:end].decode())
+        pos = end
+    if fields[0] != "P5" or fields[3] != "65535":
+        raise RunFailed(f"{path}: not a 16-bit binary PGM")
+    w, h = int(fields[1]), int(fields[2])
+    return np.frombuffer(data[pos + 1:pos + 1 + 2 * w * h], dtype=">u2").reshape(h, w).astype(np.uint16)
+
+
 @dataclass(frozen=True)
 class MemoryLayout:
     """Where the harness put the two planes of a frame, as its stats file says (`layout`)."""
@@ -73,6 +91,7 @@ class RtlFrame:
     source: np.ndarray         # (H, W) uint8 source codes
     stats: dict                # the harness's stats file (cycles, perf counters, speed)
     wall_seconds: float = 0.0
+    invz: np.ndarray | None = None   # (H, W) uint16: each pixel's inverse depth (a depth run)
 
     @property
     def layout(self) -> MemoryLayout:
@@ -118,6 +137,7 @@ class HarnessRun:
     cameras: list[str] | None = None                    # a sequence: one view per frame (one run)
     gazes: list | None = None                           # ... and each frame's gaze (x, y) or None
     extra: list[str] = field(default_factory=list)     # e.g. --waves FILE --wave-tile TX,TY
+    invz_exp: int | None = None                         # a DEPTH_EN harness: the depth plane at this exponent
     _proc: subprocess.Popen | None = None
     _dir: tempfile.TemporaryDirectory | None = None
     _t0: float = 0.0
@@ -148,6 +168,8 @@ class HarnessRun:
             cmd += ["--gazes", str(workdir / "gazes.txt")]
         if self.camera:
             cmd.append(f"+camera={self.camera}")  # read by sim/msr_dpi.cpp, passed to the library unchanged
+        if self.invz_exp is not None:
+            cmd += [f"+invz_exp={self.invz_exp}", "--depth", str(workdir / "rtl_depth.pgm")]
         if self.quiet:
             cmd.append("--quiet")
         return cmd + list(self.extra)
@@ -183,7 +205,8 @@ class HarnessRun:
             d = Path(self._dir.name)
             if not self.cameras:
                 return RtlFrame(read_pnm(d / "rtl_frame.ppm"), read_pnm(d / "rtl_source.pgm"),
-                                json.loads((d / "rtl_stats.json").read_text()), round(wall, 3))
+                                json.loads((d / "rtl_stats.json").read_text()), round(wall, 3),
+                                read_pgm16(d / "rtl_depth.pgm") if self.invz_exp is not None else None)
             # a sequence: the stats file holds one JSON object per frame, one after the other
             text, dec, pos, stats = (d / "rtl_stats.json").read_text(), json.JSONDecoder(), 0, []
             while text[pos:].strip():

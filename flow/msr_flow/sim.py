@@ -23,6 +23,8 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
+
 from msr_model import Params, RULES, metrics, save_png, spec
 from msr_model.scenes import scene_id
 from msr_model.clitools import Parser, RunFailed, UsageError, int_in, int_list, run_main, gaze_of
@@ -52,6 +54,8 @@ def parse(argv):
                     "the scene's default orbit, msr_model.camera_path)")
     ap.add_argument("--reuse", default="", help="REUSE= of make sim: 1 reuses the previous frame (not in the "
                     "hardware yet: refused); empty or 0: off")
+    ap.add_argument("--depth", action="store_true", help="DEPTH=1 of make sim: the engines' depth channel "
+                    "(a DEPTH_EN harness): every pixel's inverse depth compared with the golden model's")
     ap.add_argument("--out", default="")
     ap.add_argument("--quality", default="fast")
     ap.add_argument("--camera", default="", help="EX,EY,EZ,TX,TY,TZ,FOV (model units, degrees); empty: the scene's view")
@@ -129,6 +133,8 @@ def run(a) -> int:
     out = Path(a.out or ROOT / "out" / "sim" / scene_id(a.scene))
     if out.exists() and not out.is_dir():
         raise UsageError(f"OUT {out} is not a folder")
+    if a.depth and (budget is not None or str(a.frames).strip() or str(a.camera_path).strip()):
+        raise UsageError("DEPTH=1 runs one frame without a ray budget (not with BUDGET= or FRAMES=)")
     if str(a.frames).strip() or str(a.camera_path).strip():
         from .sim_sequence import run_sequence
         return run_sequence(a, W, H, params, rule, budget, harness, out)
@@ -138,6 +144,17 @@ def run(a) -> int:
     t0 = time.perf_counter()
     renderer = open_renderer(a.scene, W, H, quality=a.quality, camera=a.camera or None)
     out.mkdir(parents=True, exist_ok=True)
+    depth = None
+    if a.depth:
+        # The driver's exponent, and the whole frame's colours and inverse depths (the renderer is
+        # deterministic: the golden model's traces are answered from them).
+        from msr_model.reuse import choose_invz_exp
+        if not hasattr(renderer, "render_invz"):
+            raise UsageError(f"DEPTH=1: scene {a.scene} has no depth (a picture scene)")
+        invz_exp = choose_invz_exp(renderer)
+        yy, xx = np.mgrid[0:H, 0:W]
+        rgb_all, invz_all = renderer.render_invz(xx.ravel().astype(np.int32), yy.ravel().astype(np.int32), invz_exp)
+        depth = (invz_exp, np.asarray(rgb_all, np.uint8).reshape(H, W, 3), np.asarray(invz_all, np.uint16).reshape(H, W))
 
     extra = []
     if a.waves:
@@ -147,7 +164,8 @@ def run(a) -> int:
                   else ["--wave-tile", a.wave_tile or f"{ntx // 2},{nty // 2}"])
     # The RTL runs in its own process while this one renders the reference and the golden frame.
     sim = HarnessRun(harness, a.scene, W, H, params, rule=rule, quality=a.quality, camera=a.camera or None,
-                     latency=a.rnd_latency, jitter=a.rnd_jitter, budget=budget, extra=extra).start()
+                     latency=a.rnd_latency, jitter=a.rnd_jitter, budget=budget, extra=extra,
+                     invz_exp=None if depth is None else depth[0]).start()
     try:
         golden_frames = GoldenFrames(a.scene, W, H, renderer=renderer)
         t_ref = time.perf_counter() - t0
@@ -176,7 +194,17 @@ def run(a) -> int:
     if budget is not None and not rtl.build.get("budget_en"):
         raise RunFailed(f"BUDGET={a.budget}: the harness {harness} is a top without the budget controller "
                         f"(build it with make sim BUDGET=...)")
+    if depth is not None and not rtl.build.get("depth_en"):
+        raise RunFailed(f"DEPTH=1: the harness {harness} is a top without the depth channel (make sim DEPTH=1)")
     verdict = compare(rtl, golden)
+    if depth is not None:
+        from msr_model.reuse import PlaneRenderer, select_with_reuse
+        g_depth, _ = select_with_reuse(PlaneRenderer(depth[1], depth[2]), W, H, params, rule, reuse=False)
+        bad = int((rtl.invz != g_depth.invz).sum())
+        verdict.update({"depth_equal": bad == 0, "mismatched_depths": bad, "invz_exp": depth[0]})
+        verdict["bit_exact"] = verdict["bit_exact"] and bad == 0
+        from PIL import Image
+        Image.fromarray(rtl.invz.astype(np.uint16)).save(out / "depth.png")      # 16-bit grey
     psnr = metrics.psnr(reference, frame)         # inf for identical frames
     ssim = metrics.ssim(reference, frame)         # None below 7x7: not defined there
 
@@ -242,6 +270,9 @@ def run(a) -> int:
           f"{'' if p.gaze else ' (default)'}, rule {rule}")
     print(f"  bit exact vs golden model : {'yes' if report['bit_exact'] else 'NO'}"
           f" (frame {'=' if verdict['frame_equal'] else '!='}, source map {'=' if verdict['source_map_equal'] else '!='})")
+    if depth is not None:
+        print(f"  inverse depth (DEPTH=1)   : {'= golden model' if verdict['depth_equal'] else 'NOT equal'}"
+              f" ({verdict['mismatched_depths']} pixels differ; INVZ_EXP {depth[0]}; {out / 'depth.png'})")
     print(f"  traced                    : {traced} of {pixels} pixels ({traced / pixels:.1%})")
     if budget is not None:
         bc = report["budget_control"]
@@ -260,8 +291,9 @@ def run(a) -> int:
         raise RunFailed(f"SCALE_OUT {report['budget_control']['scale_out_rtl']} read from the RTL, the golden "
                         f"model's is {report['budget_control']['scale_out']}")
     if not report["bit_exact"]:
-        raise RunFailed(f"not bit exact: {verdict['mismatched_pixels']} pixels and {verdict['mismatched_codes']} "
-                        f"source codes differ from the golden model (report: {out / 'report.json'})")
+        raise RunFailed(f"not bit exact: {verdict['mismatched_pixels']} pixels, {verdict['mismatched_codes']} "
+                        f"source codes and {verdict.get('mismatched_depths', 0)} depths differ from the golden "
+                        f"model (report: {out / 'report.json'})")
     print(f"make sim: passed: bit exact with the golden model (rule {rule})")
     return 0
 

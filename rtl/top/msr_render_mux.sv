@@ -16,6 +16,8 @@
 module msr_render_mux import msr_pkg::*; #(
   parameter int unsigned NUM_ENGINES = 4,                                  // engines
   parameter int unsigned ETAG_W      = 6,                                  // engine tag bits
+  // a response's data: the colour, or with the engines' depth channel {inverse depth, colour}
+  parameter int unsigned DATA_W      = $bits(rgb_t),
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned RTAG_W = EID_W + ETAG_W
 ) (
@@ -33,7 +35,7 @@ module msr_render_mux import msr_pkg::*; #(
   output logic   [NUM_ENGINES-1:0]             eng_rsp_valid_o,
   input  logic   [NUM_ENGINES-1:0]             eng_rsp_ready_i,
   output logic   [ETAG_W-1:0]                  eng_rsp_tag_o,
-  output rgb_t                                 eng_rsp_rgb_o,
+  output logic   [DATA_W-1:0]                  eng_rsp_rgb_o,
   // Render request port.
   output logic              rnd_req_valid_o,    // a request
   input  logic              rnd_req_ready_i,    // the rendering unit takes it
@@ -44,7 +46,7 @@ module msr_render_mux import msr_pkg::*; #(
   input  logic              rnd_rsp_valid_i,    // a traced colour
   output logic              rnd_rsp_ready_o,    // taken
   input  logic [RTAG_W-1:0] rnd_rsp_tag_i,      // tag of the request
-  input  rgb_t              rnd_rsp_rgb_i,      // colour
+  input  logic [DATA_W-1:0] rnd_rsp_rgb_i,      // colour (and inverse depth)
   // Status.
   output logic              busy_o,             // a request queued / offered or a response held
   output logic              bad_eid_o           // pulse: a response for an engine that is not there
@@ -57,7 +59,7 @@ module msr_render_mux import msr_pkg::*; #(
 
   typedef struct packed {
     logic [RTAG_W-1:0] tag;
-    rgb_t              rgb;
+    logic [DATA_W-1:0] rgb;
   } rrsp_t;
 
   // ---- Request queues ------------------------------------------------------------------------

@@ -24,6 +24,10 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   // The ray-budget controller (docs/budget.md; BUDGET and BUDGET_CTRL): 1 built in; 0 not (a
   // non-zero BUDGET is refused at START with STATUS.ERROR 14).
   parameter bit          BUDGET_EN       = 1'b0,
+  // The engines' depth channel (docs/architecture.md "The depth channel"): 1 every traced
+  // pixel's inverse depth comes with its colour (rnd_rsp_invz_i) and the engines interpolate
+  // and emit each pixel's (not yet written to memory); 0 not built, rnd_rsp_invz_i unused.
+  parameter bit          DEPTH_EN        = 1'b0,
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned ETAG_W = $clog2(MAX_OUTSTANDING),
   localparam int unsigned RTAG_W = EID_W + ETAG_W
@@ -41,6 +45,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   output logic              rnd_rsp_ready_o,    // taken
   input  logic [RTAG_W-1:0] rnd_rsp_tag_i,      // tag of the request
   input  rgb_t              rnd_rsp_rgb_i,      // colour
+  input  logic [15:0]       rnd_rsp_invz_i,     // DEPTH_EN: its inverse depth (0: sky)
   // Interrupt: (STATUS.DONE, CFG_ERR or WDOG) while CTRL.IRQ_EN; registered, a clock after them.
   output logic              irq_o,
   // Debug (simulation and bring-up; no function): tile hand-out and tile completion.
@@ -149,7 +154,28 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   logic   [NUM_ENGINES-1:0][ETAG_W-1:0] eng_req_tag, mux_req_tag;
   logic   [NUM_ENGINES-1:0] eng_rsp_valid, eng_rsp_ready;
   logic   [ETAG_W-1:0]      eng_rsp_tag;
+  // a response's data on its way to the engines: the colour, with DEPTH_EN {inverse depth, colour}
+  localparam int unsigned RSP_W = $bits(rgb_t) + (DEPTH_EN ? 16 : 0);
+  logic   [RSP_W-1:0]       eng_rsp_data, rnd_rsp_data;
   rgb_t                     eng_rsp_rgb;
+  logic   [15:0]            eng_rsp_invz;
+  // each engine's pixels' inverse depth (DEPTH_EN; the harness reads it, no writer takes it yet)
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic   [NUM_ENGINES-1:0][15:0] eng_pix_invz;
+  /* verilator lint_on UNUSEDSIGNAL */
+
+  if (DEPTH_EN) begin : g_depth
+    assign rnd_rsp_data = {rnd_rsp_invz_i, rnd_rsp_rgb_i};
+    assign eng_rsp_invz = eng_rsp_data[RSP_W-1 -: 16];
+  end else begin : g_no_depth
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [15:0] rnd_rsp_invz_unused;
+    /* verilator lint_on UNUSEDSIGNAL */
+    assign rnd_rsp_invz_unused = rnd_rsp_invz_i;
+    assign rnd_rsp_data        = rnd_rsp_rgb_i;
+    assign eng_rsp_invz        = '0;
+  end
+  assign eng_rsp_rgb = rgb_t'(eng_rsp_data[$bits(rgb_t)-1:0]);
   logic   [NUM_ENGINES-1:0] eng_pix_valid, eng_pix_ready, eng_pix_last;
   coord_t [NUM_ENGINES-1:0] eng_pix_x, eng_pix_y;
   rgb_t   [NUM_ENGINES-1:0] eng_pix_rgb;
@@ -179,25 +205,21 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .valid_o (sp_desc_valid), .ready_i (eng_desc_ready[i]), .data_o (sp_desc)
     );
 
-    // The engines' depth channel is off here (DEPTH_EN 0): pix_invz_o is 0.
-    /* verilator lint_off UNUSEDSIGNAL */
-    logic [15:0] eng_pix_invz;
-    /* verilator lint_on UNUSEDSIGNAL */
-
     msr_tile_engine #(
       .NUM_CTX         (NUM_CTX),
       .MAX_OUTSTANDING (MAX_OUTSTANDING),
-      .LINDILATE       (LINDILATE)
+      .LINDILATE       (LINDILATE),
+      .DEPTH_EN        (32'(DEPTH_EN))
     ) u_engine (
       .clk_i, .rst_ni, .clear_i (eng_clear[i]),
       .desc_valid_i (sp_desc_valid), .desc_ready_o (eng_desc_ready[i]), .desc_i (sp_desc),
       .req_valid_o (eng_req_valid[i]), .req_ready_i (eng_req_ready[i]),
       .req_x_o (eng_req_x[i]), .req_y_o (eng_req_y[i]), .req_tag_o (eng_req_tag[i]),
       .rsp_valid_i (eng_rsp_valid[i]), .rsp_ready_o (eng_rsp_ready[i]),
-      .rsp_tag_i (eng_rsp_tag), .rsp_rgb_i (eng_rsp_rgb), .rsp_invz_i ('0),
+      .rsp_tag_i (eng_rsp_tag), .rsp_rgb_i (eng_rsp_rgb), .rsp_invz_i (eng_rsp_invz),
       .pix_valid_o (eng_pix_valid[i]), .pix_ready_i (eng_pix_ready[i]),
       .pix_x_o (eng_pix_x[i]), .pix_y_o (eng_pix_y[i]), .pix_rgb_o (eng_pix_rgb[i]),
-      .pix_src_o (eng_pix_src[i]), .pix_last_o (eng_pix_last[i]), .pix_invz_o (eng_pix_invz),
+      .pix_src_o (eng_pix_src[i]), .pix_last_o (eng_pix_last[i]), .pix_invz_o (eng_pix_invz[i]),
       .busy_o (eng_busy[i]), .rsp_drop_o (eng_rsp_drop[i]),
       .inflight_o (eng_inflight[i]), .tags_out_o (eng_tags_out[i])
     );
@@ -216,7 +238,7 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
 
   // ---- Render mux ---------------------------------------------------------------------------------
 
-  msr_render_mux #(.NUM_ENGINES(NUM_ENGINES), .ETAG_W(ETAG_W)) u_render_mux (
+  msr_render_mux #(.NUM_ENGINES(NUM_ENGINES), .ETAG_W(ETAG_W), .DATA_W(RSP_W)) u_render_mux (
     .clk_i, .rst_ni, .clear_i (clear),
     // Requests are not held during a soft reset: an engine counts a request it offers as in
     // flight, so a held request would never come home and the drain would not end. The
@@ -226,9 +248,9 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
     .eng_req_valid_i (mux_req_valid), .eng_req_ready_o (mux_req_ready),
     .eng_req_x_i (mux_req_x), .eng_req_y_i (mux_req_y), .eng_req_tag_i (mux_req_tag),
     .eng_rsp_valid_o (eng_rsp_valid), .eng_rsp_ready_i (eng_rsp_ready),
-    .eng_rsp_tag_o (eng_rsp_tag), .eng_rsp_rgb_o (eng_rsp_rgb),
+    .eng_rsp_tag_o (eng_rsp_tag), .eng_rsp_rgb_o (eng_rsp_data),
     .rnd_req_valid_o, .rnd_req_ready_i, .rnd_req_x_o, .rnd_req_y_o, .rnd_req_tag_o,
-    .rnd_rsp_valid_i, .rnd_rsp_ready_o, .rnd_rsp_tag_i, .rnd_rsp_rgb_i,
+    .rnd_rsp_valid_i, .rnd_rsp_ready_o, .rnd_rsp_tag_i, .rnd_rsp_rgb_i (rnd_rsp_data),
     .busy_o (rmux_busy), .bad_eid_o (bad_eid)
   );
 

@@ -13,6 +13,8 @@ HARNESSES = {
     "sim-assert-build": (["sim-assert-build"], ROOT / "build" / "sim" / "assert" / "Vmsr_sim_top"),
     # make sim BUDGET=...: msr_top with the ray-budget controller (BUDGET_EN 1)
     "sim-budget-build": (["sim-build", "BUDGET=1"], ROOT / "build" / "sim" / "fast_budget" / "Vmsr_sim_top"),
+    # make sim DEPTH=1: msr_top with the engines' depth channel (DEPTH_EN 1)
+    "sim-depth-build": (["sim-build", "DEPTH=1"], ROOT / "build" / "sim" / "fast_depth" / "Vmsr_sim_top"),
 }
 
 
