@@ -29,7 +29,8 @@ help: ## list the targets
 	@echo
 	@echo "  make sim    set up, then render the default scene (SCENE=, WIDTH=, HEIGHT=, TILE=, LEVELS=,"
 	@echo "              THR=a,b,.., METRIC=max|sum, FOV_GAIN=, RULE=patent, CAMERA=, OUT=dir, WAVES=1,"
-	@echo "              BUDGET=N|P% a ray budget, FRAMES=N [CAMERA_PATH=file] a sequence)"
+	@echo "              BUDGET=N|P% a ray budget, FRAMES=N [CAMERA_PATH=file] a sequence,"
+	@echo "              DEPTH=1 the engines' depth channel, each pixel's inverse depth checked)"
 	@echo "  make waves  GTKWave on the last make sim WAVES=1 (OUT= to pick one); waves-shot: its picture"
 	@echo "  make test   set up, then run every test (pytest, cocotb on Verilator)"
 	@echo "  make lint   Verilator -Wall, Verible and slang on every RTL module"
