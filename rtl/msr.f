@@ -1,5 +1,6 @@
 // The one source-of-truth file list: packages, primitives, engine, tile generator, budget,
-// frame-buffer writer, control, top, and the reuse units (rtl/reuse, not yet in the top).
+// frame-buffer writer, control, top, and the reuse units (rtl/reuse: the engines' depth
+// interpolation, built with DEPTH_EN; the reprojection and the gather, not yet in the top).
 // Every flow reads it; msr.core is generated from it.
 +incdir+rtl/prim+rtl/regs+rtl/fbw+rtl/top+rtl/checkers
 rtl/pkg/msr_pkg.sv
@@ -20,7 +21,6 @@ rtl/prim/msr_stall_ctrl.sv
 rtl/prim/msr_tile_sram.sv
 rtl/engine/msr_base_decision.sv
 rtl/engine/msr_interp.sv
-rtl/engine/msr_depth_interp.sv
 rtl/engine/msr_decision_pipe.sv
 rtl/engine/msr_border_pkg.sv
 rtl/engine/msr_walk_pkg.sv
@@ -68,5 +68,6 @@ rtl/fbw/msr_fbw_w.sv
 rtl/fbw/msr_fb_writer.sv
 rtl/ctrl/msr_perf_counters.sv
 rtl/top/msr_top.sv
+rtl/reuse/msr_depth_interp.sv
 rtl/reuse/msr_reproject.sv
 rtl/reuse/msr_reuse_gather.sv

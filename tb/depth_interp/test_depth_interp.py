@@ -1,7 +1,7 @@
 """msr_depth_interp against msr_model.reuse.lerp_invz (the spec's interpolation on the 16-bit
 inverse-depth channel, the nearer surface where exactly one neighbour is sky).
 
-1. A pure-Python proof that the reciprocal constants of rtl/engine/msr_depth_interp.sv divide
+1. A pure-Python proof that the reciprocal constants of rtl/reuse/msr_depth_interp.sv divide
    exactly: for every g in 2..8 and every numerator below 2^19 (the largest reachable one is
    8 * 65535 + 4), (n * RECIP[g]) >> SHIFT == n // g. The constants are read from the RTL.
 2. The RTL for every (g, o), 2 <= g <= 8, 0 <= o < g: the extremes (0, 1, 65534, 65535 on
@@ -21,7 +21,7 @@ from msr_tb import next_cycle, seeded_rng, settle, start_clock_and_reset
 
 from msr_model.reuse import lerp_invz
 
-SRC = ROOT / "rtl" / "engine" / "msr_depth_interp.sv"
+SRC = ROOT / "rtl" / "reuse" / "msr_depth_interp.sv"
 
 
 def rtl_reciprocals() -> tuple[int, dict[int, int]]:
