@@ -11,7 +11,7 @@
 //   S5  product = pair0 + pair1 << 8; C is its bits 14..21 (output register)
 // No stage holds more than an 11 x 4 product or a 15-bit sum: both stay under 30 levels of
 // generic logic (an 11 x 7 product is 34), which is what an ASIC clock of several hundred MHz
-// asks for; mul4 keeps the products out of the FPGA's multiplier blocks, whose fixed rows
+// asks for; msr_pkg's mul4 keeps the products out of the FPGA's multiplier blocks, whose fixed rows
 // cost long wires on the placed top.
 module msr_interp
   import msr_pkg::*;
@@ -49,16 +49,6 @@ module msr_interp
     endcase
   endfunction
 
-  // m * x for a 4-bit m, as two levels of adds of shifted copies of x: every product here has
-  // a 4-bit factor, and written this way it stays in the logic next to its registers.
-  function automatic logic [PART_W-1:0] mul4(logic [PIECE_W-1:0] m, logic [NUM_W-1:0] x);
-    logic [PART_W-1:0] t0, t1, t2, t3;
-    t0 = m[0] ? PART_W'(x)       : '0;
-    t1 = m[1] ? PART_W'(x) << 1  : '0;
-    t2 = m[2] ? PART_W'(x) << 2  : '0;
-    t3 = m[3] ? PART_W'(x) << 3  : '0;
-    return (t0 + t1) + (t2 + t3);
-  endfunction
 
   // ---- S1: the two weighted neighbours ---------------------------------------------------
   logic [2:0][PROD_W-1:0] s1_pa_q, s1_pb_q;   // (g - o) * A, o * B per channel
@@ -66,12 +56,12 @@ module msr_interp
 
   always_ff @(posedge clk_i) begin
     if (advance_i && stage_valid_i[0]) begin
-      s1_pa_q[2] <= PROD_W'(mul4(gmo_i, NUM_W'(a_i.r)));
-      s1_pa_q[1] <= PROD_W'(mul4(gmo_i, NUM_W'(a_i.g)));
-      s1_pa_q[0] <= PROD_W'(mul4(gmo_i, NUM_W'(a_i.b)));
-      s1_pb_q[2] <= PROD_W'(mul4(off_i, NUM_W'(b_i.r)));
-      s1_pb_q[1] <= PROD_W'(mul4(off_i, NUM_W'(b_i.g)));
-      s1_pb_q[0] <= PROD_W'(mul4(off_i, NUM_W'(b_i.b)));
+      s1_pa_q[2] <= PROD_W'(mul4(gmo_i, MUL4_X_W'(a_i.r)));
+      s1_pa_q[1] <= PROD_W'(mul4(gmo_i, MUL4_X_W'(a_i.g)));
+      s1_pa_q[0] <= PROD_W'(mul4(gmo_i, MUL4_X_W'(a_i.b)));
+      s1_pb_q[2] <= PROD_W'(mul4(off_i, MUL4_X_W'(b_i.r)));
+      s1_pb_q[1] <= PROD_W'(mul4(off_i, MUL4_X_W'(b_i.g)));
+      s1_pb_q[0] <= PROD_W'(mul4(off_i, MUL4_X_W'(b_i.b)));
       s1_gap_q   <= gap_i;
     end
   end
@@ -96,7 +86,8 @@ module msr_interp
     if (advance_i && stage_valid_i[2]) begin
       for (int unsigned c = 0; c < 3; c++) begin
         for (int unsigned k = 0; k < 4; k++) begin
-          s3_part_q[c][k] <= mul4(s2_recip_q[PIECE_W*k +: PIECE_W], s2_num_q[c]);
+          s3_part_q[c][k] <= PART_W'(mul4(s2_recip_q[PIECE_W*k +: PIECE_W],
+                                          MUL4_X_W'(s2_num_q[c])));
         end
       end
     end

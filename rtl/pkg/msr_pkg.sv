@@ -167,16 +167,23 @@ package msr_pkg;
     return (x > y) ? x - y : y - x;
   endfunction
 
-  // thr * g (the right-hand side of every threshold test, <= 2040) as adds of shifted copies:
-  // it stays in the logic beside its registers, out of the FPGA's multiplier blocks, whose
+  // x * m for a 4-bit m, as two levels of adds of shifted copies of x (x up to MUL4_X_W bits):
+  // every product of the decision and interpolation units has a 4-bit factor, and written this
+  // way it stays in the logic beside its registers, out of the FPGA's multiplier blocks, whose
   // fixed rows cost the placed top most of a clock in wire (docs/handoff.md section 6).
-  function automatic logic [THR_W+GAP_W-1:0] thr_times_gap(thr_t thr, gap_t g);
-    logic [THR_W+GAP_W-1:0] t0, t1, t2, t3;
-    t0 = g[0] ? (THR_W+GAP_W)'(thr)      : '0;
-    t1 = g[1] ? (THR_W+GAP_W)'(thr) << 1 : '0;
-    t2 = g[2] ? (THR_W+GAP_W)'(thr) << 2 : '0;
-    t3 = g[3] ? (THR_W+GAP_W)'(thr) << 3 : '0;
+  localparam int unsigned MUL4_X_W = 19;
+  function automatic logic [MUL4_X_W+3:0] mul4(logic [3:0] m, logic [MUL4_X_W-1:0] x);
+    logic [MUL4_X_W+3:0] t0, t1, t2, t3;
+    t0 = m[0] ? (MUL4_X_W+4)'(x)      : '0;
+    t1 = m[1] ? (MUL4_X_W+4)'(x) << 1 : '0;
+    t2 = m[2] ? (MUL4_X_W+4)'(x) << 2 : '0;
+    t3 = m[3] ? (MUL4_X_W+4)'(x) << 3 : '0;
     return (t0 + t1) + (t2 + t3);
+  endfunction
+
+  // thr * g: the right-hand side of every threshold test (<= 2040).
+  function automatic logic [THR_W+GAP_W-1:0] thr_times_gap(thr_t thr, gap_t g);
+    return (THR_W+GAP_W)'(mul4(g, MUL4_X_W'(thr)));
   endfunction
 
   /* verilator lint_on UNUSEDPARAM */

@@ -13,7 +13,8 @@
 //   S3  numerator times the six 4-bit pieces of RECIP[g]
 //   S4  pieces summed in pairs
 //   S5  product = pair0 + pair1 << 8 + pair2 << 16; W is its bits 22..37 (output register)
-// As in msr_interp, no stage holds more than a 19 x 4 product or a three-term sum.
+// As in msr_interp (msr_pkg's mul4), no stage holds more than a 19 x 4 product or a three-term
+// sum.
 `include "msr_flops.svh"
 
 module msr_depth_interp
@@ -55,15 +56,6 @@ module msr_depth_interp
     endcase
   endfunction
 
-  // m * x for a 4-bit m as adds of shifted copies of x (msr_interp's mul4, wider).
-  function automatic logic [PART_W-1:0] mul4(logic [PIECE_W-1:0] m, logic [NUM_W-1:0] x);
-    logic [PART_W-1:0] t0, t1, t2, t3;
-    t0 = m[0] ? PART_W'(x)      : '0;
-    t1 = m[1] ? PART_W'(x) << 1 : '0;
-    t2 = m[2] ? PART_W'(x) << 2 : '0;
-    t3 = m[3] ? PART_W'(x) << 3 : '0;
-    return (t0 + t1) + (t2 + t3);
-  endfunction
 
   logic [5:0] stage_valid_q;    // S0..S5 hold a position; S5's bit is valid_o
 
@@ -87,8 +79,8 @@ module msr_depth_interp
   logic [W_W-1:0]    s1_near_q;      // max(WA, WB)
   always_ff @(posedge clk_i) begin
     if (advance_i && stage_valid_q[0]) begin
-      s1_pa_q   <= NUM_W'(mul4(s0_gmo_q, NUM_W'(s0_wa_q)));
-      s1_pb_q   <= NUM_W'(mul4(s0_off_q, NUM_W'(s0_wb_q)));
+      s1_pa_q   <= NUM_W'(mul4(s0_gmo_q, MUL4_X_W'(s0_wa_q)));
+      s1_pb_q   <= NUM_W'(mul4(s0_off_q, MUL4_X_W'(s0_wb_q)));
       s1_gap_q  <= s0_gap_q;
       s1_sky_q  <= (s0_wa_q == '0) != (s0_wb_q == '0);
       s1_near_q <= (s0_wa_q > s0_wb_q) ? s0_wa_q : s0_wb_q;

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import os
 import random
+import re
+from pathlib import Path
 
 import cocotb
 from cocotb.clock import Clock
@@ -85,3 +87,13 @@ async def stream(dut, rng: random.Random, n: int, drive, check, p_valid: float, 
             check(got)
             got += 1
         await next_cycle()
+
+
+def rtl_reciprocals(src: Path, bits: int) -> tuple[int, dict[int, int]]:
+    """An interpolation unit's division by g as the RTL source has it: its SHIFT and the
+    case table of RECIP[g] (`4'dG: return <bits>'dR;`), read from the file, not copied."""
+    text = Path(src).read_text()
+    shift = int(re.search(r"localparam int unsigned SHIFT\s*=\s*(\d+)", text).group(1))
+    table = {int(g): int(v) for g, v in re.findall(rf"4'd(\d):\s*return {bits}'d(\d+);", text)}
+    return shift, table
+

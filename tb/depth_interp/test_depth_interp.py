@@ -9,7 +9,6 @@ inverse-depth channel, the nearer surface where exactly one neighbour is sky).
    with random valid and a random consumer that stalls the pipeline (advance_i low)."""
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import cocotb
@@ -17,22 +16,15 @@ import numpy as np
 
 from msr_flow.filelist import ROOT
 from msr_flow.runner import run_cocotb
-from msr_tb import next_cycle, seeded_rng, settle, start_clock_and_reset
+from msr_tb import rtl_reciprocals, next_cycle, seeded_rng, settle, start_clock_and_reset
 
 from msr_model.reuse import lerp_invz
 
 SRC = ROOT / "rtl" / "reuse" / "msr_depth_interp.sv"
 
 
-def rtl_reciprocals() -> tuple[int, dict[int, int]]:
-    text = SRC.read_text()
-    shift = int(re.search(r"localparam int unsigned SHIFT\s*=\s*(\d+)", text).group(1))
-    table = {int(g): int(v) for g, v in re.findall(r"4'd(\d):\s*return 24'd(\d+);", text)}
-    return shift, table
-
-
 def test_reciprocals_exact():
-    shift, table = rtl_reciprocals()
+    shift, table = rtl_reciprocals(SRC, 24)
     assert sorted(table) == list(range(2, 9)), table
     n = np.arange(1 << 19, dtype=np.int64)
     for g, r in table.items():

@@ -9,7 +9,6 @@
    1 <= o < g on the channel extremes and random values; random valid/ready."""
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import cocotb
@@ -17,22 +16,15 @@ import numpy as np
 
 from msr_flow.filelist import ROOT
 from msr_flow.runner import run_cocotb
-from msr_tb import pack_rgb, seeded_rng, start_clock_and_reset, stream, unpack_rgb
+from msr_tb import rtl_reciprocals, pack_rgb, seeded_rng, start_clock_and_reset, stream, unpack_rgb
 
 from msr_model import spec
 
 SRC = ROOT / "rtl" / "engine" / "msr_interp.sv"
 
 
-def rtl_reciprocals() -> tuple[int, dict[int, int]]:
-    text = SRC.read_text()
-    shift = int(re.search(r"localparam int unsigned SHIFT\s*=\s*(\d+)", text).group(1))
-    table = {int(g): int(v) for g, v in re.findall(r"4'd(\d):\s*return 1[46]'d(\d+);", text)}
-    return shift, table
-
-
 def test_reciprocals_exact():
-    shift, table = rtl_reciprocals()
+    shift, table = rtl_reciprocals(SRC, 16)
     assert sorted(table) == list(range(2, 9)), table
     n = np.arange(2048, dtype=np.int64)
     for g, r in table.items():
