@@ -22,8 +22,8 @@ module msr_tile_ctx
 #(
   parameter int unsigned PEND_W    = 8,  // width of the pending-position count
   parameter int unsigned LINDILATE = 1,  // 0: no third port (patent-only engine; rd_o2_o is 0)
-  parameter int unsigned DEPTH_EN  = 0   // 1: a depth buffer beside the tile buffer (else the
-                                         //    inverse-depth outputs are 0)
+  parameter int unsigned DEPTH_EN  = 0   // 1: the tile buffer's word holds the inverse depth
+                                         //    too (else the inverse-depth outputs are 0)
 ) (
   input  logic               clk_i,
   input  logic               rst_ni,
@@ -67,7 +67,8 @@ module msr_tile_ctx
   input  logic               str_done_i     // the streamer has emitted the whole tile
 );
 
-  localparam int unsigned WORD_W = $bits(src_t) + $bits(rgb_t);
+  // A tile-buffer word: {source code, colour}, with DEPTH_EN the inverse depth above them.
+  localparam int unsigned WORD_W = $bits(src_t) + $bits(rgb_t) + ((DEPTH_EN != 0) ? 16 : 0);
 
   typedef enum logic [1:0] {
     CTX_FREE    = 2'd0,
@@ -248,7 +249,7 @@ module msr_tile_ctx
     .re0_i (str_own_i ? str_re_i : rd_issue),
     .raddr0_i (str_own_i ? str_raddr_i : {head_q.by, head_q.bx}), .rdata0_o (rdata0),
     .re1_i (rd_issue), .raddr1_i ({head_q.ay, head_q.ax}), .rdata1_o (rdata1),
-    .we_i, .waddr_i, .wdata_i ({wsrc_i, wrgb_i})
+    .we_i, .waddr_i, .wdata_i (WORD_W'({winvz_i, wsrc_i, wrgb_i}))
   );
 
   // Port 2 (lindilate): a colour-only copy written with the buffer, reading the head's
@@ -290,29 +291,16 @@ module msr_tile_ctx
   end
 
   // After an initial-grid position the read data is stale: the engine forces a trace there.
-  // The depth buffer: the tile buffer's addresses, enables and timing, 16 bits a pixel.
+  assign rd_a_o    = rgb_t'(rdata1_q[$bits(rgb_t)-1:0]);
+  assign rd_b_o    = rgb_t'(rdata0_q[$bits(rgb_t)-1:0]);
+  assign str_rgb_o = rgb_t'(rdata0_q[$bits(rgb_t)-1:0]);
+  assign str_src_o = src_t'(rdata0_q[$bits(rgb_t) +: $bits(src_t)]);
+
+  // The inverse depth: the top 16 bits of the tile buffer's word (DEPTH_EN).
   if (DEPTH_EN != 0) begin : g_depth
-    logic [15:0] wb_rd, wa_rd, wb_q, wa_q;
-
-    msr_tile_sram #(
-      .DEPTH  (MAX_TILE * MAX_TILE),
-      .DATA_W (16)
-    ) u_depth_sram (
-      .clk_i,
-      .re0_i (str_own_i ? str_re_i : rd_issue),
-      .raddr0_i (str_own_i ? str_raddr_i : {head_q.by, head_q.bx}), .rdata0_o (wb_rd),
-      .re1_i (rd_issue), .raddr1_i ({head_q.ay, head_q.ax}), .rdata1_o (wa_rd),
-      .we_i, .waddr_i, .wdata_i (winvz_i)
-    );
-
-    always_ff @(posedge clk_i) begin
-      wb_q <= wb_rd;
-      wa_q <= wa_rd;
-    end
-
-    assign rd_wa_o    = wa_q;
-    assign rd_wb_o    = wb_q;
-    assign str_invz_o = wb_q;
+    assign rd_wa_o    = rdata1_q[WORD_W-1 -: 16];
+    assign rd_wb_o    = rdata0_q[WORD_W-1 -: 16];
+    assign str_invz_o = rdata0_q[WORD_W-1 -: 16];
   end else begin : g_no_depth
     /* verilator lint_off UNUSEDSIGNAL */
     logic [15:0] winvz_unused;
@@ -322,11 +310,6 @@ module msr_tile_ctx
     assign rd_wb_o    = '0;
     assign str_invz_o = '0;
   end
-
-  assign rd_a_o    = rgb_t'(rdata1_q[$bits(rgb_t)-1:0]);
-  assign rd_b_o    = rgb_t'(rdata0_q[$bits(rgb_t)-1:0]);
-  assign str_rgb_o = rgb_t'(rdata0_q[$bits(rgb_t)-1:0]);
-  assign str_src_o = src_t'(rdata0_q[WORD_W-1:$bits(rgb_t)]);
 
   // ---- Checks ---------------------------------------------------------------------------------
 `ifndef SYNTHESIS

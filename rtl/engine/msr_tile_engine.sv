@@ -48,7 +48,7 @@ module msr_tile_engine
   parameter int unsigned LINDILATE       = 1,
   // 1: the depth channel (docs/spec/reuse.md): every traced pixel's inverse depth comes with its
   // colour (rsp_invz_i), an interpolated one's is interpolated from the same neighbours
-  // (msr_depth_interp), a depth buffer beside each tile buffer, pix_invz_o with each pixel;
+  // (msr_depth_interp), 16 more bits in each tile buffer's word, pix_invz_o with each pixel;
   // 0: none of it is built and pix_invz_o is 0.
   parameter int unsigned DEPTH_EN        = 0,
   parameter int unsigned TAG_W = $clog2(MAX_OUTSTANDING)
