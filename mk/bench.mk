@@ -6,9 +6,9 @@
 # prerequisites are expanded when the rule is read (MSR_RTL_FILES: the top Makefile).
 BENCH_HW_RTL  := $(MSR_RTL_FILES) sim/render_dpi.sv sim/msr_sim_top.sv
 BENCH_HW_CPP  := sim/harness.cpp sim/msr_dpi.cpp
-# Harness builds: e<N>_mo<M>[_c<C>] = NUM_ENGINES N, MAX_OUTSTANDING M (64 is the default of msr_top;
+# Harness builds: e<N>_mo<M>[_c<C>][_rl<L>] = NUM_ENGINES N, MAX_OUTSTANDING M (64 is the default of msr_top;
 # e1_mo16 shows what fewer tags cost one engine at long latencies, and is the one build
-# scripts/tests/test_bench_hw.py needs).
+# scripts/tests/test_bench_hw.py needs), NUM_CTX C, the tile buffers' read latency L (RD_LAT).
 BENCH_HW_CFGS ?= e1_mo16 e1_mo64 e2_mo64 e4_mo64
 BENCH_HW_BINS  = $(foreach c,$(BENCH_HW_CFGS),build/bench/hw_$(c)/Vmsr_sim_top)
 BENCH_HW_ARGS ?=
@@ -20,8 +20,9 @@ build/bench/hw_%/Vmsr_sim_top: $(BENCH_HW_RTL) $(BENCH_HW_CPP) sim/msr_dpi.h sim
 	@mkdir -p $(@D)
 	@echo "make bench: building the Verilator harness $* into $(@D) (log: $(@D)/build.log)"
 	@$(ENV) verilator $(SIM_VFLAGS) -GNUM_ENGINES=$(word 1,$(subst _mo, ,$(patsubst e%,%,$*))) \
-	    -GMAX_OUTSTANDING=$(word 1,$(subst _c, ,$(word 2,$(subst _mo, ,$*)))) \
-	    $(if $(findstring _c,$*),-GNUM_CTX=$(lastword $(subst _c, ,$*))) -Mdir $(@D) -o Vmsr_sim_top \
+	    -GMAX_OUTSTANDING=$(word 1,$(subst _c, ,$(word 2,$(subst _mo, ,$(firstword $(subst _rl, ,$*)))))) \
+	    $(if $(findstring _c,$*),-GNUM_CTX=$(lastword $(subst _c, ,$(firstword $(subst _rl, ,$*))))) \
+	    $(if $(findstring _rl,$*),-GRD_LAT=$(lastword $(subst _rl, ,$*))) -Mdir $(@D) -o Vmsr_sim_top \
 	    $(MSR_RTL_OPTS) $(BENCH_HW_RTL) $(BENCH_HW_CPP) > $(@D)/build.log 2>&1 || { tail -40 $(@D)/build.log; exit 1; }
 
 .PHONY: bench-hw bench-hw-build

@@ -4,7 +4,8 @@
 `include "msr_flops.svh"
 module msr_ctx_drain import msr_pkg::*; #(
   parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX),
-  parameter int unsigned DEPTH_EN = 0   // 1: each pixel's inverse depth beside it (else 0)
+  parameter int unsigned DEPTH_EN = 0,  // 1: each pixel's inverse depth beside it (else 0)
+  parameter int unsigned RD_LAT   = 1   // the tile buffers' read latency (1..4)
 ) (
   input  logic                       clk_i, rst_ni, clear_i,  // clear: synchronous soft reset
   // the contexts
@@ -13,7 +14,7 @@ module msr_ctx_drain import msr_pkg::*; #(
   output logic       [NUM_CTX-1:0]   own_o,      // the streamer reads this context now
   output logic                       re_o,       // the read, to every context (own_o selects)
   output logic       [TADDR_W-1:0]   raddr_o,
-  input  rgb_t       [NUM_CTX-1:0]   rgb_i,      // two cycles after re_o
+  input  rgb_t       [NUM_CTX-1:0]   rgb_i,      // RD_LAT + 1 cycles after re_o
   input  src_t       [NUM_CTX-1:0]   src_i,
   input  logic       [NUM_CTX-1:0][15:0] invz_i,  // DEPTH_EN: with rgb_i
   output logic       [NUM_CTX-1:0]   done_o,     // pulse: the whole tile has left
@@ -50,7 +51,7 @@ module msr_ctx_drain import msr_pkg::*; #(
 
   assign cur_desc = desc_i[cur_q];
 
-  msr_tile_stream #(.DEPTH_EN(DEPTH_EN)) u_stream (
+  msr_tile_stream #(.RD_LAT(RD_LAT), .DEPTH_EN(DEPTH_EN)) u_stream (
     .clk_i, .rst_ni, .clear_i,
     .start_valid_i (start_q), .start_ready_o (start_ready),
     .x0_i (cur_desc.x0), .y0_i (cur_desc.y0), .w_i (cur_desc.w), .h_i (cur_desc.h),

@@ -22,8 +22,9 @@ module msr_tile_ctx
 #(
   parameter int unsigned PEND_W    = 8,  // width of the pending-position count
   parameter int unsigned LINDILATE = 1,  // 0: no third port (patent-only engine; rd_o2_o is 0)
-  parameter int unsigned DEPTH_EN  = 0   // 1: the tile buffer's word holds the inverse depth
+  parameter int unsigned DEPTH_EN  = 0,  // 1: the tile buffer's word holds the inverse depth
                                          //    too (else the inverse-depth outputs are 0)
+  parameter int unsigned RD_LAT    = 1   // the tile buffers' read latency in clocks (1..4)
 ) (
   input  logic               clk_i,
   input  logic               rst_ni,
@@ -41,7 +42,7 @@ module msr_tile_ctx
   // its position (init: traced, no reads; o2a: lindilate's A' is rd_o2_o, else the last A)
   output eng_pos_t           step_o,
   input  logic               issue_i,       // the head leaves this cycle (granted the cycle before)
-  // decision reads: the neighbours of the position issued two cycles before
+  // decision reads: the neighbours of the position issued RD_LAT + 1 cycles before
   output rgb_t               rd_a_o,
   output rgb_t               rd_b_o,
   output rgb_t               rd_o2_o,       // the third port: B' (or A' where o2a)
@@ -61,7 +62,7 @@ module msr_tile_ctx
   input  logic               str_own_i,     // the streamer reads port 0 now
   input  logic               str_re_i,
   input  logic [TADDR_W-1:0] str_raddr_i,
-  output rgb_t               str_rgb_o,     // two cycles after str_re_i
+  output rgb_t               str_rgb_o,     // RD_LAT + 1 cycles after str_re_i
   output src_t               str_src_o,
   output logic [15:0]        str_invz_o,    // DEPTH_EN: with str_rgb_o
   input  logic               str_done_i     // the streamer has emitted the whole tile
@@ -227,10 +228,11 @@ module msr_tile_ctx
   // Port 0: B of the queue's head, or the streamer once the tile is full; port 1: A. The ports
   // read the head's neighbours only in the clock the head leaves (issue_i, the registered
   // grant: a flip-flop, so the read enable adds no logic to the arbiter's path), and the data
-  // of the issued position is there the clock after. A buffer is read once per decision of its
+  // of the issued position is there RD_LAT clocks after. A buffer is read once per decision of its
   // context, not every clock its context computes: most of the buffers' energy was reads whose
   // data nobody used. The pass barrier keeps a position from being issued until its neighbours
-  // are written, and a write is visible to the read of the next clock.
+  // are written, and a write is visible to the read of the next clock. A read that takes
+  // several clocks (RD_LAT) changes none of this: the memory takes the address on the issue.
   logic computing, rd_issue;
   assign computing = (state_q == CTX_COMPUTE);
   assign rd_issue  = computing && issue_i;
@@ -243,7 +245,8 @@ module msr_tile_ctx
 
   msr_tile_sram #(
     .DEPTH  (MAX_TILE * MAX_TILE),
-    .DATA_W (WORD_W)
+    .DATA_W (WORD_W),
+    .RD_LAT (RD_LAT)
   ) u_tile_sram (
     .clk_i,
     .re0_i (str_own_i ? str_re_i : rd_issue),
@@ -264,7 +267,8 @@ module msr_tile_ctx
 
   msr_tile_sram #(
     .DEPTH  (MAX_TILE * MAX_TILE),
-    .DATA_W ($bits(rgb_t))
+    .DATA_W ($bits(rgb_t)),
+    .RD_LAT (RD_LAT)
   ) u_tile_sram_outer (
     .clk_i,
     .re0_i (rd_issue && LINDILATE != 0),
@@ -284,7 +288,7 @@ module msr_tile_ctx
 
   // The read data is registered once more, beside the memory, before anything selects between
   // contexts: a block RAM's clock-to-output (5.8 ns on an ECP5 DP16KD) leaves no room for the
-  // 8:1 choice behind it. Read data reaches the engine two clocks after the address.
+  // 8:1 choice behind it. Read data reaches the engine RD_LAT + 1 clocks after the address.
   always_ff @(posedge clk_i) begin
     rdata0_q <= rdata0;
     rdata1_q <= rdata1;

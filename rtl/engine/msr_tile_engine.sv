@@ -34,6 +34,7 @@
 // Registers: control flip-flops (valid bits, flags, counts) are msr_clr_reg instances (reset
 // and clear_i); data registers that a valid bit qualifies are plain flip-flops without reset.
 `include "msr_assert.svh"
+`include "msr_flops.svh"
 
 module msr_tile_engine
   import msr_pkg::*;
@@ -51,6 +52,10 @@ module msr_tile_engine
   // (msr_depth_interp), 16 more bits in each tile buffer's word, pix_invz_o with each pixel;
   // 0: none of it is built and pix_invz_o is 0.
   parameter int unsigned DEPTH_EN        = 0,
+  // The tile buffers' read latency in clocks (1..4): 1, a block RAM or a fast SRAM; more, a
+  // compiled macro that needs several clocks (docs/asic.md). The operand fetch waits as many
+  // clocks for the data, so a context still issues one position a clock.
+  parameter int unsigned RD_LAT          = 1,
   parameter int unsigned TAG_W = $clog2(MAX_OUTSTANDING)
 ) (
   // The port list is the interface agreed with the system top, comments included.
@@ -87,8 +92,11 @@ module msr_tile_engine
 );
 
   localparam int unsigned CTX_W  = (NUM_CTX > 1) ? $clog2(NUM_CTX) : 1;
+  // The output buffer's slots: the credits of the positions between the grant and the buffer's
+  // output (msr_out_buf), about 12 clocks plus the read latency beyond one.
+  localparam int unsigned OUT_DEPTH = (RD_LAT > 1) ? 32 : 16;
   // Positions of one context issued and not yet written: at most the pipeline plus its tags.
-  localparam int unsigned PEND_W = $clog2(MAX_OUTSTANDING + 16) + 1;
+  localparam int unsigned PEND_W = $clog2(MAX_OUTSTANDING + OUT_DEPTH) + 1;
   // A pixel's data on its way into a context: the colour, with DEPTH_EN {inverse depth, colour}.
   localparam int unsigned PIX_W  = $bits(rgb_t) + ((DEPTH_EN != 0) ? 16 : 0);
 
@@ -112,6 +120,9 @@ module msr_tile_engine
   end
   if (DEPTH_EN > 1) begin : g_check_depth
     $fatal(1, "msr_tile_engine: DEPTH_EN %0d must be 0 or 1", DEPTH_EN);
+  end
+  if (RD_LAT < 1 || RD_LAT > 4) begin : g_check_rd_lat
+    $fatal(1, "msr_tile_engine: RD_LAT %0d must be in 1..4", RD_LAT);
   end
 
   // ---- Contexts ---------------------------------------------------------------------------------
@@ -152,6 +163,37 @@ module msr_tile_engine
     .gr_valid_o (gr_valid), .gr_gnt_o (gr_gnt), .gr_ctx_o (gr_ctx), .gr_pos_o (iss_pos)
   );
 
+  // ---- The grant as the operand fetch sees it: RD_LAT - 1 clocks later -----------------------
+  // The tile buffers take the address on the grant (GR); their data is there RD_LAT clocks
+  // later, then registered beside the memory. The operand fetch's stages stay as they are,
+  // behind a delay of the grant: with RD_LAT 1 none.
+  logic               of_valid;
+  logic [NUM_CTX-1:0] of_gnt;
+  ctx_t               of_ctx;
+  eng_pos_t           of_pos;
+
+  if (RD_LAT > 1) begin : g_gr_delay
+    logic [RD_LAT-2:0]                         dv_q;
+    logic [RD_LAT-2:0][NUM_CTX-1:0]            dgnt_q;
+    logic [RD_LAT-2:0][CTX_W-1:0]              dctx_q;
+    logic [RD_LAT-2:0][$bits(eng_pos_t)-1:0]   dpos_q;
+    `MSR_CLR_REG(u_dv_q, RD_LAT - 1, clear_i, 1'b1, (RD_LAT - 1)'({dv_q, gr_valid}), dv_q)
+    always_ff @(posedge clk_i) begin
+      dgnt_q <= ((RD_LAT - 1) * NUM_CTX)'({dgnt_q, gr_gnt});
+      dctx_q <= ((RD_LAT - 1) * CTX_W)'({dctx_q, gr_ctx});
+      dpos_q <= ((RD_LAT - 1) * $bits(eng_pos_t))'({dpos_q, iss_pos});
+    end
+    assign of_valid = dv_q[RD_LAT-2];
+    assign of_gnt   = dgnt_q[RD_LAT-2];   // read under of_valid only
+    assign of_ctx   = dctx_q[RD_LAT-2];
+    assign of_pos   = eng_pos_t'(dpos_q[RD_LAT-2]);
+  end else begin : g_gr_now
+    assign of_valid = gr_valid;
+    assign of_gnt   = gr_gnt;
+    assign of_ctx   = gr_ctx;
+    assign of_pos   = iss_pos;
+  end
+
   // ---- Operands: GR -> IS -> RD -> AB (msr_operand_fetch) -----------------------------------
   logic                ab_valid, ab_lin, ab_fline, ab_oka, ab_okb, rd_valid;
   ctx_t                ab_ctx, rd_ctx;
@@ -167,7 +209,7 @@ module msr_tile_engine
 
   msr_operand_fetch #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .LINDILATE(LINDILATE)) u_operand_fetch (
     .clk_i, .rst_ni, .clear_i,
-    .gr_valid_i (gr_valid), .gr_gnt_i (gr_gnt), .gr_ctx_i (gr_ctx), .gr_pos_i (iss_pos),
+    .gr_valid_i (of_valid), .gr_gnt_i (of_gnt), .gr_ctx_i (of_ctx), .gr_pos_i (of_pos),
     .desc_i (ctx_desc), .rd_a_i (ctx_rd_a), .rd_b_i (ctx_rd_b), .rd_o2_i (ctx_rd_o2),
     .rd_valid_o (rd_valid), .rd_ctx_o (rd_ctx),
     .valid_o (ab_valid), .ctx_o (ab_ctx), .pos_o (ab_pos), .gx_o (ab_gx), .gy_o (ab_gy),
@@ -206,7 +248,6 @@ module msr_tile_engine
                      init: ab_pos.init, lin: ab_lin, mh: ab_mh, fline: ab_fline};
 
   // ---- Decision pipeline and output buffer (msr_out_buf: the credits) -----------------------
-  localparam int unsigned OUT_DEPTH = 16;
 
   // trace is formed before the output buffer, so the tag allocation starts at a register.
   typedef struct packed {
@@ -395,7 +436,9 @@ module msr_tile_engine
   pix_word_t          pix_word;            // the engine's ports stay flat for the benches
   assign {pix_x_o, pix_y_o, pix_rgb_o, pix_src_o, pix_last_o} = pix_word;
 
-  msr_ctx_drain #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .DEPTH_EN(DEPTH_EN)) u_ctx_drain (
+  msr_ctx_drain #(
+    .NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .DEPTH_EN(DEPTH_EN), .RD_LAT(RD_LAT)
+  ) u_ctx_drain (
     .clk_i, .rst_ni, .clear_i,
     .full_i (ctx_full), .desc_i (ctx_desc), .own_o (ctx_str_own),
     .re_o (str_re), .raddr_o (str_raddr), .rgb_i (ctx_str_rgb), .src_i (ctx_str_src),
@@ -409,7 +452,8 @@ module msr_tile_engine
     msr_tile_ctx #(
       .PEND_W    (PEND_W),
       .LINDILATE (LINDILATE),
-      .DEPTH_EN  (DEPTH_EN)
+      .DEPTH_EN  (DEPTH_EN),
+      .RD_LAT    (RD_LAT)
     ) u_ctx (
       .clk_i, .rst_ni, .clear_i,
       .start_i (ctx_start[c]), .desc_i (alloc_desc), .free_o (ctx_free[c]),

@@ -1,7 +1,7 @@
 // Output streamer: reads a finished tile from the tile buffer row-major and emits it as a
 // valid/ready pixel stream in global coordinates (claim 10's hand-over to the frame
-// buffer). Read data arrives two cycles after the address (the tile buffer's registered read
-// and the register behind it). Reads are issued only when the skid FIFO has room for every
+// buffer). Read data arrives RD_LAT + 1 cycles after the address (the tile buffer's read and
+// the register behind it). Reads are issued only when the skid FIFO has room for every
 // read in flight, so a stalled consumer never loses data and a ready consumer gets one pixel
 // per clock.
 `include "msr_flops.svh"
@@ -9,7 +9,9 @@
 module msr_tile_stream
   import msr_pkg::*;
 #(
-  parameter int unsigned FIFO_DEPTH = 4,
+  parameter int unsigned RD_LAT     = 1,  // the tile buffer's read latency (1..4)
+  // the skid FIFO: the reads in flight, one pixel in the FIFO and one more keep a pixel a clock
+  parameter int unsigned FIFO_DEPTH = (RD_LAT + 3 <= 4) ? 4 : 8,
   parameter int unsigned DEPTH_EN   = 0   // 1: each pixel's inverse depth beside it (else 0)
 ) (
   input  logic                 clk_i,
@@ -23,7 +25,7 @@ module msr_tile_stream
   input  ldim_t                h_i,
   output logic                 re_o,         // tile buffer read port
   output logic [TADDR_W-1:0]   raddr_o,
-  input  rgb_t                 rdata_rgb_i,  // two cycles after re_o
+  input  rgb_t                 rdata_rgb_i,  // RD_LAT + 1 cycles after re_o
   input  src_t                 rdata_src_i,
   input  logic [15:0]          rdata_invz_i, // DEPTH_EN: with rdata_rgb_i
   output logic                 pix_valid_o,  // pixel stream
@@ -38,6 +40,9 @@ module msr_tile_stream
   if (FIFO_DEPTH < 2 || (FIFO_DEPTH & (FIFO_DEPTH - 1)) != 0) begin : g_check_depth
     $fatal(1, "msr_tile_stream: FIFO_DEPTH %0d must be a power of two >= 2", FIFO_DEPTH);
   end
+  if (RD_LAT < 1 || RD_LAT > 4 || FIFO_DEPTH < RD_LAT + 2) begin : g_check_rd_lat
+    $fatal(1, "msr_tile_stream: RD_LAT %0d must be in 1..4 and below FIFO_DEPTH - 1", RD_LAT);
+  end
 
   logic    active_q;
   coord_t  x0_q, y0_q;
@@ -45,10 +50,11 @@ module msr_tile_stream
   lcoord_t rx_q, ry_q;          // next pixel to read
   logic    rd_done_q;           // all reads issued
 
-  // Reads in flight (data arrives two cycles after the read) and their coordinates.
-  logic    [1:0] rd_pend_q;
-  lcoord_t [1:0] pend_x_q, pend_y_q;
-  logic    [1:0] pend_last_q;
+  // Reads in flight (data arrives RD_LAT + 1 cycles after the read) and their coordinates.
+  localparam int unsigned NPEND = RD_LAT + 1;
+  logic    [NPEND-1:0] rd_pend_q;
+  lcoord_t [NPEND-1:0] pend_x_q, pend_y_q;
+  logic    [NPEND-1:0] pend_last_q;
 
   // Skid FIFO: a push always finds room (issue counts the reads in flight), so its ready is
   // not needed.
@@ -64,8 +70,8 @@ module msr_tile_stream
   assign last_rd  = (rx_q == wm1_q) && (ry_q == hm1_q);
   // room for the reads in flight plus this one, without looking at this cycle's pop
   assign issue    = active_q && !rd_done_q &&
-                    (32'(cnt) + 32'(rd_pend_q[0]) + 32'(rd_pend_q[1]) < FIFO_DEPTH);
-  assign push     = rd_pend_q[1];
+                    (32'(cnt) + $countones(rd_pend_q) < FIFO_DEPTH);
+  assign push     = rd_pend_q[NPEND-1];
   assign pop      = pix_valid_o && pix_ready_i;
   assign re_o     = issue;
   assign raddr_o  = {ry_q, rx_q};
@@ -87,8 +93,8 @@ module msr_tile_stream
     if (done_o) active_d = 1'b0;
   end
 
-  `MSR_CLR_REG(u_ctl_q, 4, clear_i, 1'b1, {active_d, rd_done_d, rd_pend_q[0], issue},
-               {active_q, rd_done_q, rd_pend_q})
+  `MSR_CLR_REG(u_ctl_q, 2 + NPEND, clear_i, 1'b1,
+               {active_d, rd_done_d, NPEND'({rd_pend_q, issue})}, {active_q, rd_done_q, rd_pend_q})
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -110,9 +116,9 @@ module msr_tile_stream
         rx_q      <= '0;
         ry_q      <= '0;
       end
-      pend_x_q    <= {pend_x_q[0], rx_q};
-      pend_y_q    <= {pend_y_q[0], ry_q};
-      pend_last_q <= {pend_last_q[0], last_rd && issue};
+      pend_x_q    <= (NPEND * LCOORD_W)'({pend_x_q, rx_q});
+      pend_y_q    <= (NPEND * LCOORD_W)'({pend_y_q, ry_q});
+      pend_last_q <= NPEND'({pend_last_q, last_rd && issue});
       if (issue && !last_rd) begin
         if (rx_q == wm1_q) begin
           rx_q <= '0;
@@ -124,8 +130,8 @@ module msr_tile_stream
     end
   end
 
-  assign push_word = '{x: x0_q + coord_t'(pend_x_q[1]), y: y0_q + coord_t'(pend_y_q[1]),
-                      rgb: rdata_rgb_i, src: rdata_src_i, last: pend_last_q[1]};
+  assign push_word = '{x: x0_q + coord_t'(pend_x_q[NPEND-1]), y: y0_q + coord_t'(pend_y_q[NPEND-1]),
+                      rgb: rdata_rgb_i, src: rdata_src_i, last: pend_last_q[NPEND-1]};
 
   msr_fifo #(.WIDTH($bits(pix_word_t)), .DEPTH(FIFO_DEPTH)) u_fifo (
     .clk_i,
@@ -177,7 +183,7 @@ module msr_tile_stream
       push |-> 32'(cnt) < FIFO_DEPTH)
     else $error("msr_tile_stream: FIFO overflow");
   a_no_wrap : assert property (@(posedge clk_i) disable iff (!rst_ni || clear_i || $time == 0)
-      32'(cnt) + 32'(rd_pend_q[0]) + 32'(rd_pend_q[1]) <= FIFO_DEPTH)
+      32'(cnt) + $countones(rd_pend_q) <= FIFO_DEPTH)
     else $error("msr_tile_stream: reads in flight beyond the FIFO");
   /* verilator lint_on SYNCASYNCNET */
 `endif

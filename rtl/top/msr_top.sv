@@ -28,6 +28,9 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   // pixel's inverse depth comes with its colour (rnd_rsp_invz_i) and the engines interpolate
   // and emit each pixel's (not yet written to memory); 0 not built, rnd_rsp_invz_i unused.
   parameter bit          DEPTH_EN        = 1'b0,
+  // The tile buffers' read latency in clocks (1..4): 1 for block RAM (the FPGA build); a
+  // standard-cell build takes what its SRAM macro needs (docs/asic.md).
+  parameter int unsigned RD_LAT          = 1,
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned ETAG_W = $clog2(MAX_OUTSTANDING),
   localparam int unsigned RTAG_W = EID_W + ETAG_W
@@ -209,7 +212,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .NUM_CTX         (NUM_CTX),
       .MAX_OUTSTANDING (MAX_OUTSTANDING),
       .LINDILATE       (LINDILATE),
-      .DEPTH_EN        (32'(DEPTH_EN))
+      .DEPTH_EN        (32'(DEPTH_EN)),
+      .RD_LAT          (RD_LAT)
     ) u_engine (
       .clk_i, .rst_ni, .clear_i (eng_clear[i]),
       .desc_valid_i (sp_desc_valid), .desc_ready_o (eng_desc_ready[i]), .desc_i (sp_desc),

@@ -413,39 +413,41 @@ async def worked_example_lindilate(dut):
 
 
 BUILDS = [
-    # (MAX_OUTSTANDING, NUM_CTX, tiles per profile fast,jitter,long, seed)
+    # (MAX_OUTSTANDING, NUM_CTX, RD_LAT, tiles per profile fast,jitter,long, seed)
     # half the tiles of each profile patent, half lindilate: some 1 450 tiles of each rule.
     # 16 tags and 8 contexts are msr_top's 4-engine build too (tb/msr_top), whose frames put
-    # this engine through whole frames as well.
-    (16, 8, "1100,225,30", 11),
-    (2, 2, "600,150,20", 12),
-    (64, 5, "600,150,30", 13),        # a ring that is not a power of two
+    # this engine through whole frames as well. RD_LAT: the tile buffers' read latency (the
+    # standard-cell build's macros take several clocks; 1 is the FPGA's block RAM).
+    (16, 8, 1, "1100,225,30", 11),
+    (2, 2, 2, "600,150,20", 12),
+    (64, 5, 4, "600,150,30", 13),     # a ring that is not a power of two
 ]
 
 
 QUICK = os.environ.get("MSR_TB_QUICK")
 
 
-@pytest.mark.parametrize("max_out,ctx,counts,seed", BUILDS)
-def test_tile_engine(max_out, ctx, counts, seed):
+@pytest.mark.parametrize("max_out,ctx,rd_lat,counts,seed", BUILDS)
+def test_tile_engine(max_out, ctx, rd_lat, counts, seed):
     run_cocotb("msr_tile_engine", "test_tile_engine", Path(__file__).parent,
-               {"MAX_OUTSTANDING": max_out, "NUM_CTX": ctx},
+               {"MAX_OUTSTANDING": max_out, "NUM_CTX": ctx, "RD_LAT": rd_lat},
                extra_env={"TILE_COUNTS": QUICK or counts, "SEED": seed, "MAX_OUTSTANDING": max_out})
 
 
 def test_tile_engine_depth():
-    """The DEPTH_EN=1 build: every pixel's inverse depth checked as well (16 tags, 4 contexts)."""
+    """The DEPTH_EN=1 build: every pixel's inverse depth checked as well (16 tags, 4 contexts,
+    reads of 3 clocks)."""
     run_cocotb("msr_tile_engine", "test_tile_engine", Path(__file__).parent,
-               {"MAX_OUTSTANDING": 16, "NUM_CTX": 4, "DEPTH_EN": 1},
+               {"MAX_OUTSTANDING": 16, "NUM_CTX": 4, "DEPTH_EN": 1, "RD_LAT": 3},
                extra_env={"TILE_COUNTS": QUICK or "300,80,10", "SEED": 14, "MAX_OUTSTANDING": 16, "DEPTH_EN": "1"})
 
 
 @pytest.mark.parametrize("params", [{"MAX_OUTSTANDING": 12}, {"MAX_OUTSTANDING": 1},
                                     {"MAX_OUTSTANDING": 128}, {"MAX_OUTSTANDING": 16, "TAG_W": 3},
-                                    {"NUM_CTX": 1}, {"NUM_CTX": 17}])
+                                    {"NUM_CTX": 1}, {"NUM_CTX": 17}, {"RD_LAT": 0}, {"RD_LAT": 5}])
 def test_bad_parameters_rejected(params):
-    """The elaboration-time checks stop an illegal MAX_OUTSTANDING / TAG_W / NUM_CTX with a
-    message."""
+    """The elaboration-time checks stop an illegal MAX_OUTSTANDING / TAG_W / NUM_CTX / RD_LAT
+    with a message."""
     import subprocess
 
     from msr_flow.filelist import ROOT, rtl_sources

@@ -7,7 +7,7 @@ plus a Markdown table on stdout.
 Set-up per point: 32 tiles of 16x16 back to back, L = 2, metric max; the renderer answers a
 request exactly `latency` cycles after the cycle that accepted it (latency 0 = the next
 cycle), in order; req_ready and pix_ready always 1; NUM_CTX 7 (msr_top's) unless MSR_BENCH_NUM_CTX says
-otherwise. Scenes: a smooth image with thr 8,16 (31 % traced), 26,52 (17 %, like the
+otherwise, the tile buffers' read latency RD_LAT 1 unless MSR_BENCH_RD_LAT says otherwise. Scenes: a smooth image with thr 8,16 (31 % traced), 26,52 (17 %, like the
 default cornell frame) and 0,0 (every pixel traced: the worst case). Reported: steady-state
 cycles per tile (between the last pixels of tile 8 and tile 32, so the ramp while the
 contexts fill is left out), the same with the ramp, cycles of a lone tile (descriptor to last
@@ -25,10 +25,12 @@ from pathlib import Path
 
 from ..filelist import ROOT
 
-# MSR_BENCH_LATENCIES / MSR_BENCH_OUTSTANDING / MSR_BENCH_NUM_CTX narrow or change the sweep.
+# MSR_BENCH_LATENCIES / MSR_BENCH_OUTSTANDING / MSR_BENCH_NUM_CTX / MSR_BENCH_RD_LAT narrow or change
+# the sweep.
 LATENCIES = tuple(int(v) for v in os.environ.get("MSR_BENCH_LATENCIES", "0,16,64,256").split(","))
 OUTSTANDING = tuple(int(v) for v in os.environ.get("MSR_BENCH_OUTSTANDING", "16,64").split(","))
 NUM_CTX = int(os.environ.get("MSR_BENCH_NUM_CTX", "7"))  # msr_top's default
+RD_LAT = int(os.environ.get("MSR_BENCH_RD_LAT", "1"))    # msr_top's default
 THRS = tuple(tuple(int(v) for v in s.split(",")) for s in os.environ.get("MSR_BENCH_THR", "8,16 26,52 0,0").split())
 TILES = 32
 RULE = os.environ.get("MSR_BENCH_RULE", "patent")
@@ -168,20 +170,23 @@ def main() -> int:
     if RULE not in RULES:
         print(f"bench_engine: MSR_BENCH_RULE={RULE!r} is not one of {', '.join(RULES)}", file=sys.stderr)
         return 2
+    if not 1 <= RD_LAT <= 4:
+        print(f"bench_engine: MSR_BENCH_RD_LAT={RD_LAT} is not in 1..4", file=sys.stderr)
+        return 2
     table = []
     for max_out in OUTSTANDING:
-        part = ROOT / "build" / "bench" / f"engine_{max_out}.json"
+        part = ROOT / "build" / "bench" / f"engine_{max_out}_rl{RD_LAT}.json"
         part.parent.mkdir(parents=True, exist_ok=True)
         # this module is the cocotb test module too (MSR_BENCH_SIM=1 inside the simulator)
         run_cocotb("msr_tile_engine", "msr_flow.bench.engine", part.parent,
-                   {"MAX_OUTSTANDING": max_out, "NUM_CTX": NUM_CTX}, tag="bench",
+                   {"MAX_OUTSTANDING": max_out, "NUM_CTX": NUM_CTX, "RD_LAT": RD_LAT}, tag="bench",
                    extra_env={"MSR_BENCH_SIM": "1", "MSR_BENCH_OUT": part})
         for r in json.loads(part.read_text()):
             r["max_outstanding"] = max_out
             table.append(r)
     OUT.parent.mkdir(parents=True, exist_ok=True)
     OUT.write_text(json.dumps({"setup": __doc__.split("Set-up per point:")[1].strip(), "rule": RULE,
-                               "results": table}, indent=1))
+                               "num_ctx": NUM_CTX, "rd_lat": RD_LAT, "results": table}, indent=1))
     print("| MAX_OUTSTANDING | thr | latency | cycles / 16x16 tile (steady) | with ramp | lone tile | pixels / clock "
           "| traced | decisions / clock in a pass |")
     print("|---|---|---|---|---|---|---|---|---|")
