@@ -50,8 +50,9 @@ build/bench/hw_%_l0/Vmsr_sim_top: $(BENCH_HW_RTL) $(BENCH_HW_CPP) sim/msr_dpi.h 
 	@sed 's/^\(\s*\.NUM_CTX\s*(NUM_CTX),\)/\1 .LINDILATE (0),/' sim/msr_sim_top.sv > $(@D)/msr_sim_top.sv
 	@grep -q '\.LINDILATE (0)' $(@D)/msr_sim_top.sv || { echo "no .NUM_CTX (NUM_CTX), line in sim/msr_sim_top.sv"; exit 1; }
 	@$(ENV) verilator $(SIM_VFLAGS) -GNUM_ENGINES=$(word 1,$(subst _mo, ,$(patsubst e%,%,$*))) \
-	    -GMAX_OUTSTANDING=$(word 1,$(subst _c, ,$(word 2,$(subst _mo, ,$*)))) \
-	    $(if $(findstring _c,$*),-GNUM_CTX=$(lastword $(subst _c, ,$*))) -Mdir $(@D) -o Vmsr_sim_top \
+	    -GMAX_OUTSTANDING=$(word 1,$(subst _c, ,$(word 2,$(subst _mo, ,$(firstword $(subst _rl, ,$*)))))) \
+	    $(if $(findstring _c,$*),-GNUM_CTX=$(lastword $(subst _c, ,$(firstword $(subst _rl, ,$*))))) \
+	    $(if $(findstring _rl,$*),-GRD_LAT=$(lastword $(subst _rl, ,$*))) -Mdir $(@D) -o Vmsr_sim_top \
 	    $(MSR_RTL_OPTS) $(filter-out sim/msr_sim_top.sv,$(BENCH_HW_RTL)) $(@D)/msr_sim_top.sv \
 	    $(BENCH_HW_CPP) > $(@D)/build.log 2>&1 || { tail -40 $(@D)/build.log; exit 1; }
 

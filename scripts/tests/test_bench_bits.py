@@ -34,20 +34,24 @@ def test_bits_scale():
 
 
 def test_points_and_names(tmp_path):
-    assert bits.parse_points("7:1 4:0") == [(7, 1), (4, 0)]
-    for bad in ("7", "4:2", "1:1", "x:1", ""):
+    assert bits.parse_points("7:1 4:0 6:1:4") == [(7, 1, 1), (4, 0, 1), (6, 1, 4)]
+    for bad in ("7", "4:2", "1:1", "x:1", "", "6:1:5", "6:1:0", "6:1:x"):
         with pytest.raises(UsageError):
             bits.parse_points(bad)
     assert bits.config_name(5, 1) == "e4_mo64_c5"
     assert bits.config_name(5, 0) == "e4_mo64_c5_l0"
     assert bits.harness_of(tmp_path, 5, 0) == tmp_path / "hw_e4_mo64_c5_l0" / "Vmsr_sim_top"
+    assert bits.harness_of(tmp_path, 5, 1) == tmp_path / "hw_e4_mo64_c5" / "Vmsr_sim_top"
+    # RD_LAT before LINDILATE's suffix: mk/bench.mk's rules read both
+    assert bits.config_name(6, 0, 4) == "e4_mo64_c6_rl4_l0"
+    assert bits.harness_of(tmp_path, 6, 1, 2) == tmp_path / "hw_e4_mo64_c6_rl2" / "Vmsr_sim_top"
     assert bits.rules_for(0, ["patent", "lindilate"]) == ["patent"]
 
 
-def _dp(ctx, lin, ppc256):
+def _dp(ctx, lin, ppc256, rd_lat=1):
     pts = [{"rule": r, "render_latency": 256, "pixels_per_clock": v} for r, v in ppc256.items()]
-    return {"num_ctx": ctx, "lindilate": lin, "config": bits.config_name(ctx, lin), **bits.cost(ctx, lin),
-            "points": pts}
+    return {"num_ctx": ctx, "lindilate": lin, "rd_lat": rd_lat, "config": bits.config_name(ctx, lin, rd_lat),
+            **bits.cost(ctx, lin), "points": pts}
 
 
 def test_choice_fewest_bits_meeting_goal_in_every_rule():
@@ -59,6 +63,11 @@ def test_choice_fewest_bits_meeting_goal_in_every_rule():
     assert c["area_reduction"] == pytest.approx(1 - bits.cost(4, 1)["macro_area_mm2"] / default, abs=1e-4)
     assert (bits.choose(dps, ["patent"], default)["num_ctx"], bits.choose(dps, ["patent"], default)["lindilate"]) == (3, 0)
     assert bits.choose(dps[2:3], ["lindilate"], default) is None
+    # a longer read latency is a choice of its own: its points only
+    slow = dps + [_dp(3, 1, {"patent": 3.61, "lindilate": 3.60}, rd_lat=4), _dp(5, 1, {"patent": 3.7, "lindilate": 3.7}, 4)]
+    assert bits.choose(slow, ["patent", "lindilate"], default)["num_ctx"] == 4
+    c4 = bits.choose(slow, ["patent", "lindilate"], default, rd_lat=4)
+    assert (c4["num_ctx"], c4["rd_lat"]) == (3, 4)
 
 
 def test_committed_record_shape():
@@ -79,5 +88,6 @@ def test_committed_record_shape():
             assert p["bit_exact"] is True
     ch = r["choice"]
     if ch is not None:
-        best = next(d for d in r["design_points"] if (d["num_ctx"], d["lindilate"]) == (ch["num_ctx"], ch["lindilate"]))
+        best = next(d for d in r["design_points"] if (d["num_ctx"], d["lindilate"], d.get("rd_lat", 1))
+                    == (ch["num_ctx"], ch["lindilate"], ch.get("rd_lat", 1)))
         assert all(bits.ppc(best, rule, 256) >= 3.6 for rule in ch["rules"])

@@ -94,6 +94,15 @@ def measure(scenes: list[str], modes: list[str], width: int, height: int, sweep:
     return points
 
 
+def record_points(path: Path, families: tuple[str, ...] | None = None) -> list[Point]:
+    """The points of an evaluation's records (results.json of `make eval`, e.g. the committed
+    1920x1080 data/results.json): no rendering."""
+    import json
+    recs = json.loads(Path(path).read_text())["records"]
+    return [Point(r["scene"], r["mode"], r["family"], r["label"], float(r["traced_fraction"])) for r in recs
+            if families is None or r["family"].startswith(families)]
+
+
 def report(gaps: dict[str, Gap], limit: float = GAP_LIMIT) -> str:
     """One line per family, largest step first."""
     lines = [f"{'family':32s} {'gap':>6s}  where"]
@@ -114,15 +123,30 @@ def main(argv=None) -> int:
     ap.add_argument("--quick", action="store_true", help="the quick run's sweep instead of the full run's")
     ap.add_argument("--limit", type=float, default=GAP_LIMIT)
     ap.add_argument("--backend", default="auto", choices=("auto", "embree", "image"))
+    ap.add_argument("--records", metavar="RESULTS_JSON",
+                    help="read the traced fractions from an evaluation's results.json instead of rendering "
+                         "(data/results.json: the full run at 1920x1080)")
     a = ap.parse_args(argv)
+    prefixes = tuple(f.strip() for f in a.families.split(",")) if a.families else None
+    if a.records:
+        try:
+            points = record_points(Path(a.records), prefixes)
+        except (OSError, ValueError, KeyError) as e:
+            print(f"sweep_gaps: cannot read records from {a.records}: {e}", file=sys.stderr)
+            return 2
+        gaps = family_gaps(points)
+        print(f"sweep_gaps: {a.records}, {len(points)} records")
+        print(report(gaps, a.limit))
+        worst = max((g.points for g in gaps.values()), default=0.0)
+        print(f"largest gap: {worst:.2f} points (limit {a.limit:g})")
+        return 1 if worst > a.limit else 0
     backend = Backend(a.backend)
     if a.scenes:
         scenes = [s.strip() for s in a.scenes.split(",") if s.strip()]
     else:
         scenes = backend.builtin_scenes() + ([m for m in MODEL_FILES if Path(m).is_file()] if backend.embree else [])
     sweep = settings(a.width, a.height, QUICK_SCALES if a.quick else FULL_SCALES, a.quick)
-    if a.families:
-        prefixes = tuple(f.strip() for f in a.families.split(","))
+    if prefixes:
         sweep = [st for st in sweep if st.family.startswith(prefixes)]
     modes = [m.strip() for m in a.modes.split(",")] if backend.embree else ["fast"]
     print(f"sweep_gaps: {a.width}x{a.height}, {len(scenes)} scenes, modes {modes}, {len(sweep)} settings", flush=True)

@@ -31,3 +31,24 @@ def test_dacs_ladder_has_every_sixteenth_below_one():
     above = [t for t in S.DACS_THR if 1 <= t <= 8192]
     assert all(b / a <= 2 for a, b in zip(above, above[1:]))
     assert set(S.DACS_THR_QUICK) <= set(S.DACS_THR)
+
+
+def test_gaps_from_records(tmp_path, capsys):
+    """--records reads an evaluation's results.json (no rendering): the same gaps as the points,
+    exit 1 above the limit, 2 on a file that is not one."""
+    import json
+    recs = [{"scene": "a", "mode": "heavy", "family": "dacs", "label": lab, "traced_fraction": f}
+            for lab, f in (("t0", 0.73), ("t1", 0.60), ("t2", 0.55))]
+    recs += [{"scene": "a", "mode": "heavy", "family": "multi_L2_T16", "label": "x", "traced_fraction": 0.2}]
+    f = tmp_path / "results.json"
+    f.write_text(json.dumps({"records": recs}))
+    pts = SG.record_points(f, ("dacs",))
+    assert [p.label for p in pts] == ["t0", "t1", "t2"]
+    gaps = SG.family_gaps(SG.record_points(f))
+    assert abs(gaps["dacs"].points - 13.0) < 1e-9 and gaps["multi_L2_T16"].points == 0
+    assert SG.main(["--records", str(f)]) == 1
+    assert "dacs" in capsys.readouterr().out
+    assert SG.main(["--records", str(f), "--limit", "20"]) == 0
+    bad = tmp_path / "bad.json"
+    bad.write_text("{}")
+    assert SG.main(["--records", str(bad)]) == 2

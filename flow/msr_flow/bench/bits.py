@@ -1,17 +1,19 @@
 """Tile-buffer bits against throughput: `make bench-bits` (scripts/bench_bits.py).
 
-    python scripts/bench_bits.py [--points "7:1 6:1 5:1 4:1 3:1 7:0 5:0 4:0 3:0"]
+    python scripts/bench_bits.py [--points "7:1 6:1 5:1 4:1 3:1 7:0 5:0 4:0 3:0 6:1:4"]
         [--latencies 64,256,1024] [--rules patent,lindilate] [--scene cornell]
         [--width 640 --height 480] [--out build/bench/tile_bits.json] [--update] [--no-build]
 
-A design point is NUM_CTX:LINDILATE of msr_top with 4 engines and 64 tags (MAX_OUTSTANDING).
+A design point is NUM_CTX:LINDILATE[:RD_LAT] of msr_top with 4 engines and 64 tags (MAX_OUTSTANDING);
+RD_LAT, the tile buffers' read latency in clocks (default 1), sets no bits but may cost pixels
+per clock (a standard-cell build's macros need several clocks, docs/asic.md).
 Each context of an engine holds a tile buffer of MAX_TILE^2 words of a source code and a colour
 (msr_tile_ctx: a 2R1W memory, two 1R1W macros written in parallel) and, with LINDILATE 1, a
 colour-only copy read by a third port (one macro). The bits (DEPTH x DATA_W of every buffer,
 as docs/asic.md counts them) and the macro area (msr_flow.asic's model of
 syn/asic/sram_macro.json) follow from the point; the pixels per clock are measured: one frame
-per (point, rule, latency) through the harness build e4_mo64_c<N> (LINDILATE 1) or
-e4_mo64_c<N>_l0 (LINDILATE 0: the patent rule only), made by mk/bench.mk, run by
+per (point, rule, latency) through the harness build e4_mo64_c<N>[_rl<L>] (LINDILATE 1) or
+e4_mo64_c<N>[_rl<L>]_l0 (LINDILATE 0: the patent rule only), made by mk/bench.mk, run by
 msr_flow.bench.hw.run_point, so every frame and source map is compared with the golden model.
 
 The choice: the point with the fewest bits whose pixels per clock at latency 256 reach the
@@ -77,13 +79,12 @@ def cost(num_ctx: int, lindilate: int, engines: int = ENGINES, model: MacroModel
             "macro_area_mm2": round(area / 1e6, 3)}
 
 
-def config_name(num_ctx: int, lindilate: int) -> str:
-    return f"e{ENGINES}_mo{TAGS}_c{num_ctx}" + ("" if lindilate else "_l0")
+def config_name(num_ctx: int, lindilate: int, rd_lat: int = 1) -> str:
+    return f"e{ENGINES}_mo{TAGS}_c{num_ctx}" + (f"_rl{rd_lat}" if rd_lat > 1 else "") + ("" if lindilate else "_l0")
 
 
-def harness_of(build_dir: Path, num_ctx: int, lindilate: int) -> Path:
-    h = harness_path(build_dir, ENGINES, TAGS, num_ctx)
-    return h if lindilate else h.parent.with_name(h.parent.name + "_l0") / h.name
+def harness_of(build_dir: Path, num_ctx: int, lindilate: int, rd_lat: int = 1) -> Path:
+    return Path(build_dir) / f"hw_{config_name(num_ctx, lindilate, rd_lat)}" / "Vmsr_sim_top"
 
 
 def check_lindilate(harness: Path, lindilate: int) -> None:
@@ -102,13 +103,16 @@ def build(harness: Path) -> None:
         raise RunFailed(f"make {target} failed: {(r.stdout + r.stderr).strip().splitlines()[-1:]}")
 
 
-def parse_points(text: str) -> list[tuple[int, int]]:
+def parse_points(text: str) -> list[tuple[int, int, int]]:
     pts = []
     for item in text.split():
-        ctx, _, lin = item.partition(":")
-        if not (ctx.isdigit() and lin in ("0", "1") and 2 <= int(ctx) <= 16):
-            raise UsageError(f"design point {item!r} is not NUM_CTX:LINDILATE (NUM_CTX 2..16, LINDILATE 0 or 1)")
-        pts.append((int(ctx), int(lin)))
+        ctx, _, rest = item.partition(":")
+        lin, _, lat = rest.partition(":")
+        lat = lat or "1"
+        if not (ctx.isdigit() and lin in ("0", "1") and 2 <= int(ctx) <= 16 and lat in ("1", "2", "3", "4")):
+            raise UsageError(f"design point {item!r} is not NUM_CTX:LINDILATE[:RD_LAT] "
+                             "(NUM_CTX 2..16, LINDILATE 0 or 1, RD_LAT 1..4)")
+        pts.append((int(ctx), int(lin), int(lat)))
     if not pts:
         raise UsageError("no design points given (--points)")
     return pts
@@ -163,10 +167,11 @@ def ppc(dp: dict, rule: str, latency: int) -> float | None:
                  if p["rule"] == rule and p["render_latency"] == latency), None)
 
 
-def choose(dps: list[dict], rules: list[str], default_area: float) -> dict | None:
-    """Fewest bits with >= GOAL_PIXELS at GOAL_LATENCY in every rule (ties: more pixels per clock)."""
+def choose(dps: list[dict], rules: list[str], default_area: float, rd_lat: int = 1) -> dict | None:
+    """Fewest bits with >= GOAL_PIXELS at GOAL_LATENCY in every rule (ties: more pixels per clock),
+    among the points of read latency rd_lat."""
     ok = []
-    for dp in dps:
+    for dp in (d for d in dps if d.get("rd_lat", 1) == rd_lat):
         got = [ppc(dp, r, GOAL_LATENCY) for r in rules]
         if all(g is not None and g >= GOAL_PIXELS for g in got):
             ok.append((dp["bits"], -min(got), dp))
@@ -176,7 +181,8 @@ def choose(dps: list[dict], rules: list[str], default_area: float) -> dict | Non
     area = dp["macro_area_mm2"]
     return {"rules": rules, "criterion": f">= {GOAL_PIXELS} pixels per clock at latency {GOAL_LATENCY} "
                                          f"in {' and '.join(rules)}, fewest bits",
-            "num_ctx": dp["num_ctx"], "lindilate": dp["lindilate"], "config": dp["config"],
+            "num_ctx": dp["num_ctx"], "lindilate": dp["lindilate"], "rd_lat": dp.get("rd_lat", 1),
+            "config": dp["config"],
             "bits": dp["bits"], "macro_area_mm2": area, "default_macro_area_mm2": default_area,
             "area_reduction": round(1 - area / default_area, 4), "target_reduction": TARGET_REDUCTION,
             "target_met": 1 - area / default_area >= TARGET_REDUCTION,
@@ -195,7 +201,7 @@ def reference() -> dict | None:
 
 
 def record(a, dps: list[dict], seconds: float) -> dict:
-    dps = sorted(dps, key=lambda d: (-d["lindilate"], -d["num_ctx"]))
+    dps = sorted(dps, key=lambda d: (d.get("rd_lat", 1), -d["lindilate"], -d["num_ctx"]))
     default_area = cost(*DEFAULT_POINT)["macro_area_mm2"]
     ref = reference()
     model = json.loads(MACRO_JSON.read_text())
@@ -220,6 +226,9 @@ def record(a, dps: list[dict], seconds: float) -> dict:
         "bit_exact": all(p.get("bit_exact", False) for d in dps for p in d["points"]),
         "choice": choose(dps, a.rules, default_area),
         "choice_patent_only": choose(dps, ["patent"], default_area) if "patent" in a.rules else None,
+        # the same choice among the points of each longer read latency measured (a macro build's)
+        "choice_by_rd_lat": {str(rl): choose(dps, a.rules, default_area, rl)
+                             for rl in sorted({d.get("rd_lat", 1) for d in dps}) if rl > 1},
         "bench_seconds": round(seconds, 1),
     }
 
@@ -233,25 +242,27 @@ def print_table(r: dict) -> None:
     lats = r["setup"]["latencies"]
     rules = sorted({p["rule"] for d in r["design_points"] for p in d["points"]}, key=RTL_RULES.index)
     lat = " / ".join(map(str, lats))
-    print(f"\n| NUM_CTX | LINDILATE | bits per top | macro mm^2 | "
+    print(f"\n| NUM_CTX | LINDILATE | RD_LAT | bits per top | macro mm^2 | "
           + " | ".join(f"{rule}: px/clk at {lat}" for rule in rules) + " | bit exact |")
-    print("|---:|---:|---:|---:|" + "---|" * len(rules) + "---|")
+    print("|---:|---:|---:|---:|---:|" + "---|" * len(rules) + "---|")
     for d in r["design_points"]:
         cells = []
         for rule in rules:
             v = [ppc(d, rule, x) for x in lats]
             cells.append("n/a" if all(x is None for x in v) else
                          " / ".join("-" if x is None else f"{x:.3f}" for x in v))
-        print(f"| {d['num_ctx']} | {d['lindilate']} | {grouped(d['bits'])} | {d['macro_area_mm2']:.1f} | "
+        print(f"| {d['num_ctx']} | {d['lindilate']} | {d.get('rd_lat', 1)} | {grouped(d['bits'])} | "
+              f"{d['macro_area_mm2']:.1f} | "
               + " | ".join(cells) + f" | {all(p.get('bit_exact') for p in d['points'])} |")
-    for key in ("choice", "choice_patent_only"):
-        c = r.get(key)
+    extra = [(f"choice at RD_LAT {rl}", c) for rl, c in r.get("choice_by_rd_lat", {}).items()]
+    for key, c in [(k, r.get(k)) for k in ("choice", "choice_patent_only")] + extra:
         if c:
-            print(f"{key}: NUM_CTX {c['num_ctx']} LINDILATE {c['lindilate']}: {grouped(c['bits'])} bits, "
+            print(f"{key}: NUM_CTX {c['num_ctx']} LINDILATE {c['lindilate']} RD_LAT {c['rd_lat']}: "
+                  f"{grouped(c['bits'])} bits, "
                   f"{c['macro_area_mm2']:.1f} mm^2 against {c['default_macro_area_mm2']:.1f} "
                   f"({c['area_reduction']:.1%} less; target {c['target_reduction']:.0%}: "
                   f"{'met' if c['target_met'] else 'NOT met'})")
-        elif key in r:
+        elif key in r or key.startswith("choice at"):
             print(f"{key}: no point reaches {GOAL_PIXELS} pixels per clock at latency {GOAL_LATENCY}")
 
 
@@ -264,28 +275,32 @@ def run(a) -> int:
         old = json.loads(out.read_text())
         if old.get("setup") != setup_of(a):
             raise UsageError(f"--update: {out} was measured with another set-up (frame, latencies or scene)")
-        kept = [d for d in old["design_points"] if (d["num_ctx"], d["lindilate"]) not in a.design]
-    for ctx, lin in a.design:
-        h = harness_of(build_dir, ctx, lin)
+        kept = [d for d in old["design_points"]
+                if (d["num_ctx"], d["lindilate"], d.get("rd_lat", 1)) not in a.design]
+    for ctx, lin, rl in a.design:
+        h = harness_of(build_dir, ctx, lin, rl)
         if a.no_build and not h.is_file():
             raise UsageError(f"harness {h} not built (make {h.relative_to(ROOT) if h.is_relative_to(ROOT) else h})")
-    jobs = [(ctx, lin, rule, lat) for ctx, lin in a.design for rule in rules_for(lin, a.rules) for lat in a.latencies]
+    jobs = [(ctx, lin, rl, rule, lat) for ctx, lin, rl in a.design for rule in rules_for(lin, a.rules)
+            for lat in a.latencies]
     golden = GoldenFrames(a.scene, a.width, a.height)
     t0 = time.perf_counter()
-    dps: dict[tuple[int, int], dict] = {}
+    dps: dict[tuple[int, int, int], dict] = {}
     bar = tqdm(jobs, desc="bench_bits", unit="frame", disable=True if a.no_progress else None, file=sys.stderr)
-    for ctx, lin, rule, lat in bar:
-        h = harness_of(build_dir, ctx, lin)
-        if (ctx, lin) not in dps:
+    for ctx, lin, rl, rule, lat in bar:
+        h = harness_of(build_dir, ctx, lin, rl)
+        name = config_name(ctx, lin, rl)
+        if (ctx, lin, rl) not in dps:
             if not a.no_build:
-                bar.set_postfix_str(f"building {config_name(ctx, lin)}")
+                bar.set_postfix_str(f"building {name}")
                 build(h)
             check_lindilate(h, lin)
-            dps[(ctx, lin)] = {"num_ctx": ctx, "lindilate": lin, "config": config_name(ctx, lin),
-                               **cost(ctx, lin), "rtl_digest": rtl_digest(), "points": []}
-        bar.set_postfix_str(f"{config_name(ctx, lin)} {rule} latency {lat}")
-        pt = run_point(h, ENGINES, TAGS, a.scene, a.width, a.height, a.tile, a.levels, lat, golden, rule, ctx)
-        dps[(ctx, lin)]["points"].append({
+            dps[(ctx, lin, rl)] = {"num_ctx": ctx, "lindilate": lin, "rd_lat": rl, "config": name,
+                                   **cost(ctx, lin), "rtl_digest": rtl_digest(), "points": []}
+        bar.set_postfix_str(f"{name} {rule} latency {lat}")
+        pt = run_point(h, ENGINES, TAGS, a.scene, a.width, a.height, a.tile, a.levels, lat, golden, rule, ctx,
+                       rd_lat=rl)
+        dps[(ctx, lin, rl)]["points"].append({
             "rule": rule, "render_latency": lat, "cycles": pt["cycles"], "pixels_per_clock": pt["pixels_per_clock"],
             "traced_fraction": pt["traced_fraction"], "render_stall_cycles": pt["render_stall_cycles"],
             "bit_exact": pt.get("bit_exact"), "mismatched_pixels": pt.get("mismatched_pixels"),
