@@ -93,8 +93,9 @@ module msr_tile_engine
 
   localparam int unsigned CTX_W  = (NUM_CTX > 1) ? $clog2(NUM_CTX) : 1;
   // The output buffer's slots: the credits of the positions between the grant and the buffer's
-  // output (msr_out_buf), about 12 clocks plus the read latency beyond one.
-  localparam int unsigned OUT_DEPTH = (RD_LAT > 1) ? 32 : 16;
+  // output (msr_out_buf), about 12 clocks; twice as many for reads of more than a clock.
+  localparam int unsigned OUT_DEPTH_RD1 = 16;
+  localparam int unsigned OUT_DEPTH     = (RD_LAT > 1) ? 2 * OUT_DEPTH_RD1 : OUT_DEPTH_RD1;
   // Positions of one context issued and not yet written: at most the pipeline plus its tags.
   localparam int unsigned PEND_W = $clog2(MAX_OUTSTANDING + OUT_DEPTH) + 1;
   // A pixel's data on its way into a context: the colour, with DEPTH_EN {inverse depth, colour}.

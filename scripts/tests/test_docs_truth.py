@@ -68,7 +68,7 @@ FACTS = [
     ("decision pipeline stages", decision_stages, "architecture.md", r"in one (\d+)-stage pipeline"),
     ("level controller set-up cycles per pass", level_setup_cycles, "architecture.md",
      r"Each pass starts with (\d+) set-up cycles"),
-    ("engine output buffer entries", lambda: param_default(engine_units(), "OUT_DEPTH"),
+    ("engine output buffer entries", lambda: param_default(engine_units(), "OUT_DEPTH_RD1"),
      "architecture.md", r"the (\d+)-entry output buffer"),
     ("tile contexts per engine (the top's default)",
      lambda: param_default(rtl_text("msr_top.sv"), "NUM_CTX"), "architecture.md",
