@@ -71,3 +71,4 @@ rtl/top/msr_top.sv
 rtl/reuse/msr_depth_interp.sv
 rtl/reuse/msr_reproject.sv
 rtl/reuse/msr_reuse_gather.sv
+rtl/reuse/msr_reuse_check.sv

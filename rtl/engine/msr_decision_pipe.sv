@@ -83,9 +83,7 @@ module msr_decision_pipe
 
   always_ff @(posedge clk_i) begin
     if (advance && s0_valid_q) begin
-      s1_abs_q[2] <= chan_absdiff(s0_a_q.r, s0_b_q.r);
-      s1_abs_q[1] <= chan_absdiff(s0_a_q.g, s0_b_q.g);
-      s1_abs_q[0] <= chan_absdiff(s0_a_q.b, s0_b_q.b);
+      s1_abs_q    <= rgb_absdiff(s0_a_q, s0_b_q);
       s1_rhs_q    <= thr_times_gap(s0_thr_q, s0_gap_q);
       s1_metric_q <= s0_metric_q;
       s1_nshift_q <= s0_nshift_q;
@@ -99,18 +97,9 @@ module msr_decision_pipe
   logic  [PROD_W-1:0]      s2_rhs_q;
   logic  [1:0]             s2_nshift_q;
   logic  [USER_W-1:0]      s2_user_q;
-  diff_t                   d_max, d_sum;
-
-  always_comb begin
-    d_max = diff_t'(s1_abs_q[2]);
-    if (diff_t'(s1_abs_q[1]) > d_max) d_max = diff_t'(s1_abs_q[1]);
-    if (diff_t'(s1_abs_q[0]) > d_max) d_max = diff_t'(s1_abs_q[0]);
-    d_sum = diff_t'(s1_abs_q[2]) + diff_t'(s1_abs_q[1]) + diff_t'(s1_abs_q[0]);
-  end
-
   always_ff @(posedge clk_i) begin
     if (advance && s1_valid_q) begin
-      s2_d_q      <= (s1_metric_q == METRIC_SUM) ? d_sum : d_max;
+      s2_d_q      <= metric_diff(s1_abs_q, s1_metric_q);
       s2_rhs_q    <= s1_rhs_q;
       s2_nshift_q <= s1_nshift_q;
       s2_user_q   <= s1_user_q;

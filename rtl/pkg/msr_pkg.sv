@@ -167,6 +167,20 @@ package msr_pkg;
     return (x > y) ? x - y : y - x;
   endfunction
 
+  // The per-channel |x - y| of two colours, [2] red .. [0] blue.
+  function automatic logic [2:0][7:0] rgb_absdiff(rgb_t x, rgb_t y);
+    return {chan_absdiff(x.r, y.r), chan_absdiff(x.g, y.g), chan_absdiff(x.b, y.b)};
+  endfunction
+
+  // The spec's colour difference d from the per-channel differences: their maximum or sum.
+  function automatic diff_t metric_diff(logic [2:0][7:0] d, metric_e metric);
+    diff_t m;
+    m = diff_t'(d[2]);
+    if (diff_t'(d[1]) > m) m = diff_t'(d[1]);
+    if (diff_t'(d[0]) > m) m = diff_t'(d[0]);
+    return (metric == METRIC_SUM) ? diff_t'(d[2]) + diff_t'(d[1]) + diff_t'(d[0]) : m;
+  endfunction
+
   // x * m for a 4-bit m, as two levels of adds of shifted copies of x (x up to MUL4_X_W bits):
   // every product of the decision and interpolation units has a 4-bit factor, and written this
   // way it stays in the logic beside its registers, out of the FPGA's multiplier blocks, whose
