@@ -72,3 +72,4 @@ rtl/reuse/msr_depth_interp.sv
 rtl/reuse/msr_reproject.sv
 rtl/reuse/msr_reuse_gather.sv
 rtl/reuse/msr_reuse_check.sv
+rtl/reuse/msr_reuse_path.sv

@@ -27,6 +27,7 @@ import numpy as np
 from msr_flow.filelist import ROOT
 from msr_flow.runner import run_cocotb
 from msr_tb import seeded_rng, start_clock_and_reset, stream
+from msr_tb_reuse import rand_camera
 
 from msr_model import reuse
 from msr_model.reuse import CameraMap
@@ -54,24 +55,6 @@ def test_seed_table_and_newton_bounds():
 
 
 # --- stimulus -----------------------------------------------------------------------------
-
-def rand_camera(rng) -> tuple[str, str]:
-    """A previous camera and the current one: moved by up to ~0.3 model units, its target by up
-    to ~0.5, the same field of view (now and then another)."""
-    eye = np.array([rng.uniform(-5, 5) for _ in range(3)])
-    if rng.random() < 0.05:
-        direc = np.array([rng.uniform(-0.05, 0.05), rng.choice([-1.0, 1.0]), rng.uniform(-0.05, 0.05)])
-    else:
-        direc = np.array([rng.gauss(0, 1) for _ in range(3)])
-    tgt = eye + direc / np.linalg.norm(direc) * rng.uniform(0.5, 10)
-    fov = rng.uniform(20, 100)
-    step = rng.choice([0.0, 0.01, 0.05, 0.3])
-    eye2 = eye + np.array([rng.gauss(0, step) for _ in range(3)])
-    tgt2 = tgt + np.array([rng.gauss(0, step * 1.5) for _ in range(3)])
-    fov2 = fov if rng.random() < 0.9 else fov * rng.uniform(0.95, 1.05)
-    fmt = lambda e, t, f: ",".join(f"{v:.6f}" for v in (*e, *t, f))   # noqa: E731
-    return fmt(eye, tgt, fov), fmt(eye2, tgt2, fov2)
-
 
 def frame_size(rng) -> tuple[int, int]:
     return rng.choice([(160, 120), (480, 270), (960, 540), (1920, 1080), (4096, 4096), (33, 17),

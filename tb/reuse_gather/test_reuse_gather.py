@@ -20,33 +20,17 @@ from pathlib import Path
 
 import cocotb
 import numpy as np
-from cocotb.triggers import FallingEdge, ReadOnly
 
 from msr_flow.filelist import ROOT
 from msr_flow.runner import run_cocotb
-from msr_tb import pack_rgb, seeded_rng, start_clock_and_reset, stream, unpack_rgb
+from msr_tb import seeded_rng, start_clock_and_reset, stream, unpack_rgb
+from msr_tb_reuse import prev_frame, window_memory
 
 from msr_model import reuse
 
 RTL = ROOT / "rtl"
 UV_W, WP_W = 18, 17
 SIZES = ((1, 1), (2, 3), (37, 23), (64, 48), (4096, 6), (5, 4096))
-
-
-def prev_frame(rng, wd, ht):
-    nrng = np.random.default_rng(rng.randrange(1 << 30))
-    frame = nrng.integers(0, 256, (ht, wd, 3))
-    base = nrng.integers(0, 256, 3)
-    smooth = nrng.random((ht, wd)) < 0.6
-    frame[smooth] = np.clip(base + nrng.integers(-3, 4, (int(smooth.sum()), 3)), 0, 255)
-    invz = nrng.integers(1, 65535, (ht, wd))
-    surf = nrng.random((ht, wd)) < 0.6
-    invz[surf] = nrng.integers(20000, 20100, int(surf.sum()))
-    invz[nrng.random((ht, wd)) < 0.1] = 0
-    invz[nrng.random((ht, wd)) < 0.03] = 65535
-    invz[: ht // 3] = 0                  # a band of sky
-    age = nrng.integers(0, 8, (ht, wd))
-    return reuse.ReuseState(frame.astype(np.uint8), invz.astype(np.uint16), age.astype(np.uint8), None)
 
 
 def pixels(rng, state, n):
@@ -86,26 +70,6 @@ def golden(state, u, v, wm, wp, ok):
     depth_ok = np.abs(g.wb - wp) <= (wp >> reuse.DEPTH_TOL_SHIFT) + 1
     geo = (ok == 1) & g.inside & np.where(wm == 0, g.sky_all, g.sky_none & (wm < reuse.INVZ_MAX) & depth_ok)
     return g, geo
-
-
-async def window_memory(dut, holder):
-    """Each clock: the taps read at the coming edge (seen in ReadOnly) are on tap_*_i after it."""
-    rgb, w, age = [0] * 4, [0] * 4, [0] * 4
-    while True:
-        await ReadOnly()
-        rd = int(dut.tap_rd_o.value)
-        state = holder[0]
-        if rd and state is not None:
-            xs, ys = int(dut.tap_x_o.value), int(dut.tap_y_o.value)
-            for k in range(4):
-                if rd >> k & 1:
-                    x, y = xs >> (12 * k) & 0xFFF, ys >> (12 * k) & 0xFFF
-                    assert y < state.invz.shape[0] and x < state.invz.shape[1], f"tap {k} read outside ({x}, {y})"
-                    rgb[k], w[k], age[k] = pack_rgb(state.frame[y, x]), int(state.invz[y, x]), int(state.age[y, x])
-        await FallingEdge(dut.clk_i)
-        dut.tap_rgb_i.value = sum(c << (24 * k) for k, c in enumerate(rgb))
-        dut.tap_w_i.value = sum(c << (16 * k) for k, c in enumerate(w))
-        dut.tap_age_i.value = sum(c << (3 * k) for k, c in enumerate(age))
 
 
 @cocotb.test()
