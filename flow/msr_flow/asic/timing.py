@@ -61,10 +61,26 @@ def fmax_mhz(period_ns: float, slack_ns: float) -> float:
     return round(1000.0 / (period_ns - slack_ns), 1)
 
 
-def run_sta(top: str, netlists: list[Path], macro_lib: Path | None, period_ns: float, tag: str) -> dict:
+def fmax_with_macros(period_ns: float, sta: dict, read_clocks: int = 1) -> float:
+    """The clock every path meets with the macros' own timing: with one-clock reads that of the
+    worst path; with reads of N clocks the paths out of the macros have N periods, so each kind
+    gives its own bound (logic alone, out of the macros over N periods, into them over one)."""
+    if read_clocks <= 1 or sta.get("from_macro") is None:
+        return fmax_mhz(period_ns, float(sta["WORST_ALL"]))
+    bounds = [fmax_mhz(period_ns, float(sta["WORST_LOGIC"])),
+              round(1000.0 * read_clocks / (read_clocks * period_ns - sta["from_macro"].slack_ns), 1)]
+    if sta.get("to_macro") is not None:
+        bounds.append(fmax_mhz(period_ns, sta["to_macro"].slack_ns))
+    return min(bounds)
+
+
+def run_sta(top: str, netlists: list[Path], macro_lib: Path | None, period_ns: float, tag: str,
+            read_clocks: int = 1) -> dict:
     """OpenSTA on the netlist(s) with the SDC at `period_ns`. Reports (1) every path with the
     cited macro timing, (2) the paths into and out of the macros, (3) the logic alone (macro
-    pins cut), each with its worst path."""
+    pins cut), each with its worst path. read_clocks > 1 (the RTL's RD_LAT): a macro's read data
+    is taken that many clocks after its address, so the paths out of the macros are multi-cycle
+    (setup read_clocks, hold read_clocks - 1)."""
     if shutil.which("sta") is None:
         raise AsicError("OpenSTA (`sta`) is not on PATH: install the Debian package opensta (make setup does)")
     libs = [OUT / LIBERTY_SRC.name] + ([macro_lib] if macro_lib else [])
@@ -75,7 +91,9 @@ def run_sta(top: str, netlists: list[Path], macro_lib: Path | None, period_ns: f
             "proc path {name args} {\n  puts \"@@BEGIN $name\"\n"
             "  report_checks -path_delay max -digits 3 -fields {fanout cap slew} {*}$args\n"
             "  puts \"@@END $name\"\n}\n"
-            "puts \"@@WORST_ALL [sta::worst_slack -max]\"\npath all\n")
+            + (f"set m {macros}\nset_multicycle_path -setup {read_clocks} -from $m\n"
+               f"set_multicycle_path -hold {read_clocks - 1} -from $m\n" if macro_lib and read_clocks > 1 else "")
+            + "puts \"@@WORST_ALL [sta::worst_slack -max]\"\npath all\n")
     if macro_lib:
         tcl += (f"set m {macros}\nputs \"@@MACROS [llength $m]\"\n"
                 "path from_macro -from $m\npath to_macro -to $m\n"
