@@ -8,6 +8,8 @@
 //   RD -> AB : the issued context's read data (A, B and lindilate's A', B') registered with
 //              everything else the decision needs
 //
+// gr_*_i is the grant as the tile buffers' read latency leaves it: the engine delays the grant
+// by RD_LAT - 1 clocks (none by default), so the read data meet their position in RD.
 // lindilate's line tracking and outer samples (msr_lin_track) run beside IS and RD. No stage
 // stalls (the issue holds a credit for the output buffer), so the data registers have no
 // enable but their stage's valid bit, and only the valid bits are reset.
@@ -71,7 +73,7 @@ module msr_operand_fetch
     is_pos_q <= gr_pos_i;
   end
 
-  // ---- RD: the descriptor's fields (the tile buffer's data arrive two clocks after GR) ----
+  // ---- RD: the descriptor's fields (the tile buffer's data arrive two clocks after gr_*_i) --
   logic [CTX_W-1:0]    rd_ctx_q;
   eng_pos_t            rd_pos_q;
   coord_t              rd_gx_q, rd_gy_q;
