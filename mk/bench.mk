@@ -10,6 +10,13 @@ BENCH_HW_CPP  := sim/harness.cpp sim/msr_dpi.cpp
 # e1_mo16 shows what fewer tags cost one engine at long latencies, and is the one build
 # scripts/tests/test_bench_hw.py needs), NUM_CTX C, the tile buffers' read latency L (RD_LAT).
 BENCH_HW_CFGS ?= e1_mo16 e1_mo64 e2_mo64 e4_mo64
+# The -G flags of a build name's stem (e4_mo64_c6_rl4 -> NUM_ENGINES 4, MAX_OUTSTANDING 64,
+# NUM_CTX 6, RD_LAT 4), for both build rules below.
+bench_base    = $(firstword $(subst _rl, ,$(1)))
+bench_gflags  = -GNUM_ENGINES=$(word 1,$(subst _mo, ,$(patsubst e%,%,$(1)))) \
+    -GMAX_OUTSTANDING=$(word 1,$(subst _c, ,$(word 2,$(subst _mo, ,$(call bench_base,$(1)))))) \
+    $(if $(findstring _c,$(1)),-GNUM_CTX=$(lastword $(subst _c, ,$(call bench_base,$(1))))) \
+    $(if $(findstring _rl,$(1)),-GRD_LAT=$(lastword $(subst _rl, ,$(1))))
 BENCH_HW_BINS  = $(foreach c,$(BENCH_HW_CFGS),build/bench/hw_$(c)/Vmsr_sim_top)
 BENCH_HW_ARGS ?=
 # MSR_BENCH_RULE=lindilate (the environment, or --rule in BENCH_HW_ARGS): the decision rule of every
@@ -19,10 +26,7 @@ build/bench/hw_%/Vmsr_sim_top: $(BENCH_HW_RTL) $(BENCH_HW_CPP) sim/msr_dpi.h sim
         mk/sim.mk build/renderer/libmsr_render.so
 	@mkdir -p $(@D)
 	@echo "make bench: building the Verilator harness $* into $(@D) (log: $(@D)/build.log)"
-	@$(ENV) verilator $(SIM_VFLAGS) -GNUM_ENGINES=$(word 1,$(subst _mo, ,$(patsubst e%,%,$*))) \
-	    -GMAX_OUTSTANDING=$(word 1,$(subst _c, ,$(word 2,$(subst _mo, ,$(firstword $(subst _rl, ,$*)))))) \
-	    $(if $(findstring _c,$*),-GNUM_CTX=$(lastword $(subst _c, ,$(firstword $(subst _rl, ,$*))))) \
-	    $(if $(findstring _rl,$*),-GRD_LAT=$(lastword $(subst _rl, ,$*))) -Mdir $(@D) -o Vmsr_sim_top \
+	@$(ENV) verilator $(SIM_VFLAGS) $(call bench_gflags,$*) -Mdir $(@D) -o Vmsr_sim_top \
 	    $(MSR_RTL_OPTS) $(BENCH_HW_RTL) $(BENCH_HW_CPP) > $(@D)/build.log 2>&1 || { tail -40 $(@D)/build.log; exit 1; }
 
 .PHONY: bench-hw bench-hw-build
@@ -49,10 +53,7 @@ build/bench/hw_%_l0/Vmsr_sim_top: $(BENCH_HW_RTL) $(BENCH_HW_CPP) sim/msr_dpi.h 
 	@echo "make bench: building the Verilator harness $*_l0 (LINDILATE 0) into $(@D) (log: $(@D)/build.log)"
 	@sed 's/^\(\s*\.NUM_CTX\s*(NUM_CTX),\)/\1 .LINDILATE (0),/' sim/msr_sim_top.sv > $(@D)/msr_sim_top.sv
 	@grep -q '\.LINDILATE (0)' $(@D)/msr_sim_top.sv || { echo "no .NUM_CTX (NUM_CTX), line in sim/msr_sim_top.sv"; exit 1; }
-	@$(ENV) verilator $(SIM_VFLAGS) -GNUM_ENGINES=$(word 1,$(subst _mo, ,$(patsubst e%,%,$*))) \
-	    -GMAX_OUTSTANDING=$(word 1,$(subst _c, ,$(word 2,$(subst _mo, ,$(firstword $(subst _rl, ,$*)))))) \
-	    $(if $(findstring _c,$*),-GNUM_CTX=$(lastword $(subst _c, ,$(firstword $(subst _rl, ,$*))))) \
-	    $(if $(findstring _rl,$*),-GRD_LAT=$(lastword $(subst _rl, ,$*))) -Mdir $(@D) -o Vmsr_sim_top \
+	@$(ENV) verilator $(SIM_VFLAGS) $(call bench_gflags,$*) -Mdir $(@D) -o Vmsr_sim_top \
 	    $(MSR_RTL_OPTS) $(filter-out sim/msr_sim_top.sv,$(BENCH_HW_RTL)) $(@D)/msr_sim_top.sv \
 	    $(BENCH_HW_CPP) > $(@D)/build.log 2>&1 || { tail -40 $(@D)/build.log; exit 1; }
 

@@ -134,29 +134,25 @@ def main(argv=None) -> int:
         except (OSError, ValueError, KeyError) as e:
             print(f"sweep_gaps: cannot read records from {a.records}: {e}", file=sys.stderr)
             return 2
-        gaps = family_gaps(points)
         print(f"sweep_gaps: {a.records}, {len(points)} records")
-        print(report(gaps, a.limit))
-        worst = max((g.points for g in gaps.values()), default=0.0)
-        print(f"largest gap: {worst:.2f} points (limit {a.limit:g})")
-        return 1 if worst > a.limit else 0
-    backend = Backend(a.backend)
-    if a.scenes:
-        scenes = [s.strip() for s in a.scenes.split(",") if s.strip()]
     else:
-        scenes = backend.builtin_scenes() + ([m for m in MODEL_FILES if Path(m).is_file()] if backend.embree else [])
-    sweep = settings(a.width, a.height, QUICK_SCALES if a.quick else FULL_SCALES, a.quick)
-    if prefixes:
-        sweep = [st for st in sweep if st.family.startswith(prefixes)]
-    modes = [m.strip() for m in a.modes.split(",")] if backend.embree else ["fast"]
-    print(f"sweep_gaps: {a.width}x{a.height}, {len(scenes)} scenes, modes {modes}, {len(sweep)} settings", flush=True)
-    gaps = family_gaps(measure(scenes, modes, a.width, a.height, sweep, backend,
-                               log=lambda m: print(m, flush=True)))
+        backend = Backend(a.backend)
+        if a.scenes:
+            scenes = [s.strip() for s in a.scenes.split(",") if s.strip()]
+        else:
+            scenes = backend.builtin_scenes() + ([m for m in MODEL_FILES if Path(m).is_file()] if backend.embree else [])
+        sweep = settings(a.width, a.height, QUICK_SCALES if a.quick else FULL_SCALES, a.quick)
+        if prefixes:
+            sweep = [st for st in sweep if st.family.startswith(prefixes)]
+        modes = [m.strip() for m in a.modes.split(",")] if backend.embree else ["fast"]
+        print(f"sweep_gaps: {a.width}x{a.height}, {len(scenes)} scenes, modes {modes}, {len(sweep)} settings",
+              flush=True)
+        points = measure(scenes, modes, a.width, a.height, sweep, backend, log=lambda m: print(m, flush=True))
+    gaps = family_gaps(points)
     print(report(gaps, a.limit))
     worst = max((g.points for g in gaps.values()), default=0.0)
     print(f"largest gap: {worst:.2f} points (limit {a.limit:g})")
     return 1 if worst > a.limit else 0
-
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -37,7 +37,7 @@ from ..asic.config import MACRO_JSON
 from ..asic.macros import MacroModel
 from ..filelist import ROOT, rtl_digest
 from ..harness import RTL_RULES, GoldenFrames
-from .hw import GOAL_LATENCY, GOAL_PIXELS, bottleneck, harness_path, run_point
+from .hw import GOAL_LATENCY, GOAL_PIXELS, bottleneck, run_point
 
 ENGINES, TAGS = 4, 64
 DEFAULT_POINT = (7, 1)            # msr_top's NUM_CTX and LINDILATE
