@@ -1,7 +1,8 @@
 // Configuration check and frame control of the accelerator.
 //
 // START in idle samples the registers (SAMPLE) and checks them from registers (CHECK, 27
-// clocks): every field check into a flag of its own; the byte range of each plane, whether it
+// clocks): every field check into a flag of its own (CONFIG.TILE: 8, 16 or 32 and at most the
+// top's TILE_LIMIT, code 2); the byte range of each plane, whether it
 // wraps past 4 GiB and whether the two overlap (msr_cfg_ranges); the rule encoding
 // (CONFIG.RULE 2 or 3, or 1 in a top built without it, LINDILATE 0: code 13); with a ray budget
 // (BUDGET non-zero), the budget controller's own check, run beside these from the sampled registers
@@ -31,6 +32,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   parameter int unsigned NUM_ENGINES   = 4,      // tile engines (tile-done inputs)
   parameter int unsigned DRAIN_TIMEOUT = 16384,  // drain bound without progress when WATCHDOG is 0
   parameter int unsigned LINDILATE     = 1,      // 0: patent-only engines, CONFIG.RULE 1 refused
+  parameter int unsigned TILE_LIMIT    = 32,     // the largest T the tile buffers hold (8, 16, 32)
   parameter bit          BUDGET_EN     = 1'b0    // the ray-budget controller is built in
 ) (
   input  logic                   clk_i,          // clock
@@ -78,6 +80,9 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
   input  logic                   bud_err_profile_i,  // ... SEEDED without a matching memory
   input  logic                   bud_busy_i      // a budget frame's rows are not all accounted
 );
+  if (!(TILE_LIMIT inside {8, 16, 32})) begin : g_check_tile_limit
+    $fatal(1, "msr_cfg_ctrl: TILE_LIMIT must be 8, 16 or 32, got %0d", TILE_LIMIT);
+  end
   if (NUM_ENGINES > 30) begin : g_check_engines
     $fatal(1, "msr_cfg_ctrl: NUM_ENGINES must be 1..30 (5-bit drop count), got %0d", NUM_ENGINES);
   end
@@ -179,7 +184,7 @@ module msr_cfg_ctrl import msr_pkg::*; import msr_sys_pkg::*; #(
     fchk    = '0;
     fchk[0] = raw_q.width == '0 || raw_q.width > dim_t'(MAX_FRAME) ||
               raw_q.height == '0 || raw_q.height > dim_t'(MAX_FRAME);
-    fchk[1] = !(raw_q.tile inside {6'd8, 6'd16, 6'd32});
+    fchk[1] = !(raw_q.tile inside {6'd8, 6'd16, 6'd32}) || 32'(raw_q.tile) > TILE_LIMIT;
     fchk[2] = raw_q.levels == '0;
     fchk[3] = (raw_q.fb.fb_stride[31:15] == '0 && raw_q.fb.fb_stride[14:0] < {raw_q.width, 2'b0}) ||
               raw_q.fb.fb_stride[1:0] != '0;

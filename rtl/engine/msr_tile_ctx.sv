@@ -24,7 +24,9 @@ module msr_tile_ctx
   parameter int unsigned LINDILATE = 1,  // 0: no third port (patent-only engine; rd_o2_o is 0)
   parameter int unsigned DEPTH_EN  = 0,  // 1: the tile buffer's word holds the inverse depth
                                          //    too (else the inverse-depth outputs are 0)
-  parameter int unsigned RD_LAT    = 1   // the tile buffers' read latency in clocks (1..4)
+  parameter int unsigned RD_LAT    = 1,  // the tile buffers' read latency in clocks (1..4)
+  parameter int unsigned TILE_LIMIT = MAX_TILE  // the largest tile edge the buffer holds (8, 16,
+                                                // 32): TILE_LIMIT^2 words
 ) (
   input  logic               clk_i,
   input  logic               rst_ni,
@@ -70,6 +72,19 @@ module msr_tile_ctx
 
   // A tile-buffer word: {source code, colour}, with DEPTH_EN the inverse depth above them.
   localparam int unsigned WORD_W = $bits(src_t) + $bits(rgb_t) + ((DEPTH_EN != 0) ? 16 : 0);
+
+  // The buffer's address: the low log2(TILE_LIMIT) bits of the tile-local y and x. The engine
+  // forms {y, x} addresses for the largest tile (MAX_TILE); a top built for smaller tiles
+  // (msr_top TILE_LIMIT, which CONFIG.TILE may not exceed) keeps the words it can use: a
+  // standard-cell build's macros are most of its area (docs/asic.md).
+  localparam int unsigned BUF_LG = $clog2(TILE_LIMIT);
+  localparam int unsigned BUF_AW = 2 * BUF_LG;
+  if (!(TILE_LIMIT inside {8, 16, 32}) || TILE_LIMIT > MAX_TILE) begin : g_check_limit
+    $fatal(1, "msr_tile_ctx: TILE_LIMIT %0d must be 8, 16 or 32", TILE_LIMIT);
+  end
+  function automatic logic [BUF_AW-1:0] buf_addr(logic [TADDR_W-1:0] a);
+    return {a[LCOORD_W +: BUF_LG], a[0 +: BUF_LG]};
+  endfunction
 
   typedef enum logic [1:0] {
     CTX_FREE    = 2'd0,
@@ -244,15 +259,15 @@ module msr_tile_ctx
   /* verilator lint_on UNUSEDSIGNAL */
 
   msr_tile_sram #(
-    .DEPTH  (MAX_TILE * MAX_TILE),
+    .DEPTH  (TILE_LIMIT * TILE_LIMIT),
     .DATA_W (WORD_W),
     .RD_LAT (RD_LAT)
   ) u_tile_sram (
     .clk_i,
     .re0_i (str_own_i ? str_re_i : rd_issue),
-    .raddr0_i (str_own_i ? str_raddr_i : {head_q.by, head_q.bx}), .rdata0_o (rdata0),
-    .re1_i (rd_issue), .raddr1_i ({head_q.ay, head_q.ax}), .rdata1_o (rdata1),
-    .we_i, .waddr_i, .wdata_i (WORD_W'({winvz_i, wsrc_i, wrgb_i}))
+    .raddr0_i (buf_addr(str_own_i ? str_raddr_i : {head_q.by, head_q.bx})), .rdata0_o (rdata0),
+    .re1_i (rd_issue), .raddr1_i (buf_addr({head_q.ay, head_q.ax})), .rdata1_o (rdata1),
+    .we_i, .waddr_i (buf_addr(waddr_i)), .wdata_i (WORD_W'({winvz_i, wsrc_i, wrgb_i}))
   );
 
   // Port 2 (lindilate): a colour-only copy written with the buffer, reading the head's
@@ -266,16 +281,16 @@ module msr_tile_ctx
   /* verilator lint_on UNUSEDSIGNAL */
 
   msr_tile_sram #(
-    .DEPTH  (MAX_TILE * MAX_TILE),
+    .DEPTH  (TILE_LIMIT * TILE_LIMIT),
     .DATA_W ($bits(rgb_t)),
     .RD_LAT (RD_LAT)
   ) u_tile_sram_outer (
     .clk_i,
     .re0_i (rd_issue && LINDILATE != 0),
-    .raddr0_i ((head_q.dir == DIR_V) ? {head_q.o2, head_q.x} : {head_q.y, head_q.o2}),
+    .raddr0_i (buf_addr((head_q.dir == DIR_V) ? {head_q.o2, head_q.x} : {head_q.y, head_q.o2})),
     .rdata0_o (rdata2),
     .re1_i (1'b0), .raddr1_i ('0), .rdata1_o (rdata2_unused),
-    .we_i (we_i && LINDILATE != 0), .waddr_i, .wdata_i (wrgb_i)
+    .we_i (we_i && LINDILATE != 0), .waddr_i (buf_addr(waddr_i)), .wdata_i (wrgb_i)
   );
 
   always_ff @(posedge clk_i) begin
@@ -342,6 +357,8 @@ module msr_tile_ctx
 
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT_IMP(a_start_free, start_i, free_o)
+  // the tile fits the buffer (the configuration check refuses larger T)
+  `MSR_ASSERT_IMP(a_start_fits, start_i, 32'(desc_i.w) <= TILE_LIMIT && 32'(desc_i.h) <= TILE_LIMIT)
   `MSR_ASSERT_IMP(a_issue_head, issue_i, head_valid_q && state_q == CTX_COMPUTE &&
       (!head_q.first || pend_zero_q))
   `MSR_ASSERT(a_pend_no_wrap, !(pend_q == '0 && we_i && !pend_up) &&

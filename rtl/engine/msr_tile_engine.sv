@@ -56,6 +56,10 @@ module msr_tile_engine
   // compiled macro that needs several clocks (docs/asic.md). The operand fetch waits as many
   // clocks for the data, so a context still issues one position a clock.
   parameter int unsigned RD_LAT          = 1,
+  // The largest tile edge the tile buffers hold (8, 16 or 32): TILE_LIMIT^2 words a context.
+  // A standard-cell build whose tiles stay at 16 keeps a quarter of the bits (docs/asic.md);
+  // a larger tile is refused by the top's configuration check.
+  parameter int unsigned TILE_LIMIT      = MAX_TILE,
   parameter int unsigned TAG_W = $clog2(MAX_OUTSTANDING)
 ) (
   // The port list is the interface agreed with the system top, comments included.
@@ -124,6 +128,9 @@ module msr_tile_engine
   end
   if (RD_LAT < 1 || RD_LAT > 4) begin : g_check_rd_lat
     $fatal(1, "msr_tile_engine: RD_LAT %0d must be in 1..4", RD_LAT);
+  end
+  if (!(TILE_LIMIT inside {8, 16, 32})) begin : g_check_tile_limit
+    $fatal(1, "msr_tile_engine: TILE_LIMIT %0d must be 8, 16 or 32", TILE_LIMIT);
   end
 
   // ---- Contexts ---------------------------------------------------------------------------------
@@ -454,7 +461,8 @@ module msr_tile_engine
       .PEND_W    (PEND_W),
       .LINDILATE (LINDILATE),
       .DEPTH_EN  (DEPTH_EN),
-      .RD_LAT    (RD_LAT)
+      .RD_LAT    (RD_LAT),
+      .TILE_LIMIT (TILE_LIMIT)
     ) u_ctx (
       .clk_i, .rst_ni, .clear_i,
       .start_i (ctx_start[c]), .desc_i (alloc_desc), .free_o (ctx_free[c]),

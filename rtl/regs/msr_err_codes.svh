@@ -7,7 +7,8 @@ typedef enum logic [4:0] {
   ERR_NONE       = 5'd0,
   // Bad frame size (0 or > 4096).
   ERR_FRAME_SIZE = 5'd1,
-  // Tile size not 8, 16 or 32.
+  // Tile size not 8, 16 or 32, or above the largest the top's tile buffers hold (msr_top
+  // TILE_LIMIT, 32 by default).
   ERR_TILE       = 5'd2,
   // Levels not 1..3.
   ERR_LEVELS     = 5'd3,

@@ -31,6 +31,10 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   // The tile buffers' read latency in clocks (1..4): 1 for block RAM (the FPGA build); a
   // standard-cell build takes what its SRAM macro needs (docs/asic.md).
   parameter int unsigned RD_LAT          = 1,
+  // The largest tile edge the tile buffers hold: 32 (the default; CONFIG.TILE 8, 16, 32), or 16
+  // or 8 for a build that keeps a quarter or a sixteenth of the tile-buffer bits (docs/asic.md);
+  // a larger CONFIG.TILE is refused at START with STATUS.ERROR 2.
+  parameter int unsigned TILE_LIMIT      = 32,
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned ETAG_W = $clog2(MAX_OUTSTANDING),
   localparam int unsigned RTAG_W = EID_W + ETAG_W
@@ -100,7 +104,10 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   cfg_raw_t raw_q;                 // the registers as the check samples them
   logic     bud_check, bud_done, bud_err_budget, bud_err_profile, bud_busy;
 
-  msr_cfg_ctrl #(.NUM_ENGINES(NUM_ENGINES), .LINDILATE(LINDILATE), .BUDGET_EN(BUDGET_EN)) u_ctrl (
+  msr_cfg_ctrl #(
+    .NUM_ENGINES (NUM_ENGINES), .LINDILATE (LINDILATE), .TILE_LIMIT (TILE_LIMIT),
+    .BUDGET_EN   (BUDGET_EN)
+  ) u_ctrl (
     .clk_i, .rst_ni,
     .start_i (reg_ctrl.start), .soft_reset_i (reg_ctrl.soft_reset),
     .wdog_limit_i (reg_ctrl.wdog_limit),
@@ -213,7 +220,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .MAX_OUTSTANDING (MAX_OUTSTANDING),
       .LINDILATE       (LINDILATE),
       .DEPTH_EN        (32'(DEPTH_EN)),
-      .RD_LAT          (RD_LAT)
+      .RD_LAT          (RD_LAT),
+      .TILE_LIMIT      (TILE_LIMIT)
     ) u_engine (
       .clk_i, .rst_ni, .clear_i (eng_clear[i]),
       .desc_valid_i (sp_desc_valid), .desc_ready_o (eng_desc_ready[i]), .desc_i (sp_desc),

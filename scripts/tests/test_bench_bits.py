@@ -24,6 +24,13 @@ def test_default_top_matches_make_asic():
     assert c["macro_area_mm2"] == pytest.approx(ref["macro_area_mm2"], abs=0.01)
 
 
+def test_tile_limit_quarters_the_words():
+    """TILE_LIMIT 16: 256-word buffers, a quarter of the bits; the macros shrink less (periphery)."""
+    full, small = bits.cost(7, 1), bits.cost(7, 1, tile_limit=16)
+    assert small["bits"] * 4 == full["bits"] and small["macros_1r1w"] == full["macros_1r1w"]
+    assert full["macro_area_mm2"] / 4 < small["macro_area_mm2"] < full["macro_area_mm2"] * 0.7
+
+
 def test_bits_scale():
     word = bits.pkg_constant("SRC_W") + bits.RGB_BITS
     depth = bits.pkg_constant("MAX_TILE") ** 2
@@ -34,8 +41,9 @@ def test_bits_scale():
 
 
 def test_points_and_names(tmp_path):
-    assert bits.parse_points("7:1 4:0 6:1:4") == [(7, 1, 1), (4, 0, 1), (6, 1, 4)]
-    for bad in ("7", "4:2", "1:1", "x:1", "", "6:1:5", "6:1:0", "6:1:x"):
+    assert bits.parse_points("7:1 4:0 6:1:4 7:1:4:16") == [(7, 1, 1, 32), (4, 0, 1, 32), (6, 1, 4, 32),
+                                                          (7, 1, 4, 16)]
+    for bad in ("7", "4:2", "1:1", "x:1", "", "6:1:5", "6:1:0", "6:1:x", "6:1:4:64", "6:1:4:4", "6:1::16x"):
         with pytest.raises(UsageError):
             bits.parse_points(bad)
     assert bits.config_name(5, 1) == "e4_mo64_c5"
@@ -45,13 +53,17 @@ def test_points_and_names(tmp_path):
     # RD_LAT before LINDILATE's suffix: mk/bench.mk's rules read both
     assert bits.config_name(6, 0, 4) == "e4_mo64_c6_rl4_l0"
     assert bits.harness_of(tmp_path, 6, 1, 2) == tmp_path / "hw_e4_mo64_c6_rl2" / "Vmsr_sim_top"
+    # TILE_LIMIT after RD_LAT, before LINDILATE's suffix (mk/bench.mk's bench_gflags)
+    assert bits.config_name(7, 1, 4, 16) == "e4_mo64_c7_rl4_t16"
+    assert bits.config_name(7, 0, 1, 16) == "e4_mo64_c7_t16_l0"
     assert bits.rules_for(0, ["patent", "lindilate"]) == ["patent"]
 
 
-def _dp(ctx, lin, ppc256, rd_lat=1):
+def _dp(ctx, lin, ppc256, rd_lat=1, tile_limit=32):
     pts = [{"rule": r, "render_latency": 256, "pixels_per_clock": v} for r, v in ppc256.items()]
-    return {"num_ctx": ctx, "lindilate": lin, "rd_lat": rd_lat, "config": bits.config_name(ctx, lin, rd_lat),
-            **bits.cost(ctx, lin), "points": pts}
+    return {"num_ctx": ctx, "lindilate": lin, "rd_lat": rd_lat, "tile_limit": tile_limit,
+            "config": bits.config_name(ctx, lin, rd_lat, tile_limit),
+            **bits.cost(ctx, lin, tile_limit=tile_limit), "points": pts}
 
 
 def test_choice_fewest_bits_meeting_goal_in_every_rule():
@@ -68,6 +80,11 @@ def test_choice_fewest_bits_meeting_goal_in_every_rule():
     assert bits.choose(slow, ["patent", "lindilate"], default)["num_ctx"] == 4
     c4 = bits.choose(slow, ["patent", "lindilate"], default, rd_lat=4)
     assert (c4["num_ctx"], c4["rd_lat"]) == (3, 4)
+    # and so is a smaller tile limit
+    small = slow + [_dp(7, 1, {"patent": 3.69, "lindilate": 3.69}, 4, 16)]
+    assert bits.choose(small, ["patent", "lindilate"], default, rd_lat=4)["tile_limit"] == 32
+    c16 = bits.choose(small, ["patent", "lindilate"], default, rd_lat=4, tile_limit=16)
+    assert (c16["num_ctx"], c16["tile_limit"], c16["target_met"]) == (7, 16, True)
 
 
 def test_committed_record_shape():
@@ -79,7 +96,7 @@ def test_committed_record_shape():
     lats = r["setup"]["latencies"]
     assert 256 in lats
     for d in r["design_points"]:
-        c = bits.cost(d["num_ctx"], d["lindilate"])
+        c = bits.cost(d["num_ctx"], d["lindilate"], tile_limit=d.get("tile_limit", 32))
         assert (d["bits"], d["macro_area_mm2"]) == (c["bits"], c["macro_area_mm2"])
         rules = {p["rule"] for p in d["points"]}
         assert rules <= {"patent", "lindilate"} and (d["lindilate"] or rules == {"patent"})
@@ -88,6 +105,7 @@ def test_committed_record_shape():
             assert p["bit_exact"] is True
     ch = r["choice"]
     if ch is not None:
-        best = next(d for d in r["design_points"] if (d["num_ctx"], d["lindilate"], d.get("rd_lat", 1))
-                    == (ch["num_ctx"], ch["lindilate"], ch.get("rd_lat", 1)))
+        best = next(d for d in r["design_points"]
+                    if (d["num_ctx"], d["lindilate"], d.get("rd_lat", 1), d.get("tile_limit", 32))
+                    == (ch["num_ctx"], ch["lindilate"], ch.get("rd_lat", 1), ch.get("tile_limit", 32)))
         assert all(bits.ppc(best, rule, 256) >= 3.6 for rule in ch["rules"])

@@ -29,8 +29,9 @@ from msr_flow.filelist import rtl_sources
 from msr_flow.runner import run_cocotb
 from msr_tb import next_cycle, settle, start_clock_and_reset
 
-NETLIST = ROOT / "build" / "asic" / "msr_tile_engine.sim.v"
-MACROS = ROOT / "build" / "asic" / "msr_tile_engine.macros.v"
+# The engine's mappings by read latency: the default top's (RD_LAT 1), and the standard-cell
+# build's with the cited macro's reads of four clocks (make asic --rd-lat=4; msr_flow.asic.cli.unit_tag)
+TAGS = {1: "msr_tile_engine", 4: "msr_tile_engine_rl4"}
 
 
 
@@ -74,9 +75,12 @@ async def gate_level_random_tiles(dut):
 
 
 @pytest.mark.gate
-def test_gate_level_tile_engine():
-    if not NETLIST.is_file():
-        pytest.fail(f"{NETLIST} is missing: make {NETLIST.relative_to(ROOT)} (make test does)")
+@pytest.mark.parametrize("rd_lat", sorted(TAGS))
+def test_gate_level_tile_engine(rd_lat):
+    netlist = ROOT / "build" / "asic" / f"{TAGS[rd_lat]}.sim.v"
+    macros = ROOT / "build" / "asic" / f"{TAGS[rd_lat]}.macros.v"
+    if not netlist.is_file():
+        pytest.fail(f"{netlist} is missing: make {netlist.relative_to(ROOT)} (make test-gate does)")
     sram = [s for s in rtl_sources() if s.name == "msr_tile_sram.sv"]
     # 80 MB of generated C++ (every net of the netlist is public for cocotb): -O0 compiles it
     # several times faster than Verilator's default -Os, and the simulation's time goes to
@@ -85,8 +89,8 @@ def test_gate_level_tile_engine():
     if "OPT_FAST" not in (flags or ""):
         os.environ["MAKEFLAGS"] = ((flags or "") + " OPT_FAST=-O0 OPT_SLOW=-O0 OPT_GLOBAL=-O0").strip()
     try:
-        run_cocotb("msr_tile_engine", "test_gate_level", HERE, tag="gate",
-                   sources=[*sram, MACROS, NETLIST],
+        run_cocotb("msr_tile_engine", "test_gate_level", HERE, tag="gate" + (f"_rl{rd_lat}" if rd_lat > 1 else ""),
+                   sources=[*sram, macros, netlist],
                    # the simulator's Python imports the RTL bench's module (tb/tile_engine is on
                    # pytest.ini's pythonpath; the runner hands the simulator pytest's sys.path)
                    extra_env={"GATE_TILE_COUNTS": TILE_COUNTS, "MAX_OUTSTANDING": max_outstanding()})

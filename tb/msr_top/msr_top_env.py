@@ -35,6 +35,8 @@ ERR_GAZE = R.STATUS_ERROR_GAZE
 RULES = ("patent", "lindilate")   # CONFIG.RULE 0, 1 (2, 3 are refused with ERR_RULE)
 # msr_top's LINDILATE of this build (the rules it carries): 0 = patent only, RULE 1 refused too
 LINDILATE = int(os.environ.get("LINDILATE", "1"))
+# msr_top's TILE_LIMIT of this build: the largest CONFIG.TILE it takes (a larger one: ERR_TILE)
+TILE_LIMIT = int(os.environ.get("TILE_LIMIT", "32"))
 # msr_top's BUDGET_EN of this build: 0 = no ray-budget controller, a non-zero BUDGET refused
 BUDGET_EN = int(os.environ.get("BUDGET_EN", "0"))
 DRAIN_TIMEOUT = 16384      # msr_cfg_ctrl: a soft reset's wait without progress, WATCHDOG 0
@@ -289,7 +291,7 @@ async def setup(dut, seed):
 
 
 def random_config(rng):
-    tile = rng.choice((8, 16, 32))
+    tile = rng.choice([t for t in (8, 16, 32) if t <= TILE_LIMIT])
     levels = rng.randint(1, 3)
     return dict(W=rng.randint(1, 48), H=rng.randint(1, 40), tile=tile, levels=levels, metric=rng.randint(0, 1),
                 thr=[rng.choice((0, 4, 8, 16, 40, 255)) for _ in range(levels)], gain=rng.choice((0, 0, 30, 255)))

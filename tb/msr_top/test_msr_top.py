@@ -76,13 +76,16 @@ def test_msr_top(engines, outstanding, ctx, width):
 
 
 def test_msr_top_patent_only():
-    """msr_top built with LINDILATE 0 (the rules a top carries): test_rule's
-    patent-only branch (RULE 1 refused, patent frames bit-exact)."""
+    """msr_top built with LINDILATE 0 (the rules a top carries) and tile buffers of 16 x 16
+    (TILE_LIMIT 16): test_rule's patent-only branch (RULE 1 and T 32 refused, patent frames
+    bit-exact)."""
     from msr_flow.filelist import rtl_sources
     from msr_flow.runner import run_cocotb
     run_cocotb("msr_top", ",".join(COCOTB_MODULES), HERE,
-               {"NUM_ENGINES": 2, "MAX_OUTSTANDING": 16, "NUM_CTX": 3, "AXI_DATA_W": 256, "LINDILATE": 0},
-               "patent_only", extra_env={"NUM_ENGINES": "2", "LINDILATE": "0"}, sources=rtl_sources(),
+               {"NUM_ENGINES": 2, "MAX_OUTSTANDING": 16, "NUM_CTX": 3, "AXI_DATA_W": 256, "LINDILATE": 0,
+                "TILE_LIMIT": 16},
+               "patent_only_t16", extra_env={"NUM_ENGINES": "2", "LINDILATE": "0", "TILE_LIMIT": "16"},
+               sources=rtl_sources(),
                testcase="test_rule")
 
 

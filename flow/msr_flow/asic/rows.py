@@ -162,14 +162,16 @@ def scaled(row: dict) -> dict:
     return out
 
 
-def top_row(files, mapped: dict, n: int, period_ns: float, nand2: float) -> dict:
+def top_row(files, mapped: dict, n: int, period_ns: float, nand2: float, params: dict | None = None) -> dict:
     """Map the glue (engines black-boxed), time the whole top with the engine's netlist in every
-    engine instance, and compose the area."""
+    engine instance, and compose the area. params: the top's parameters other than its defaults
+    that its glue sees (TILE_LIMIT: the configuration check's)."""
     if ENGINE not in mapped:
         raise AsicError(f"{TOP} needs {ENGINE}'s netlist, and its run failed")
     eng = mapped[ENGINE]
-    glue = map_unit(files, TOP, None, blackbox=ENGINE, tag=f"{TOP}_glue", bb_netlist=eng["mapped"].netlist)
-    resized = [ln for ln in (OUT / f"{TOP}_glue.synth.yosys.log").read_text().splitlines()
+    suffix = "".join(f"_{k.lower()}{v}" for k, v in sorted((params or {}).items()))
+    glue = map_unit(files, TOP, params, blackbox=ENGINE, tag=f"{TOP}_glue{suffix}", bb_netlist=eng["mapped"].netlist)
+    resized = [ln for ln in (OUT / f"{TOP}_glue{suffix}.synth.yosys.log").read_text().splitlines()
                if "Resizing cell port" in ln and SRAM_MODULE not in ln]
     if resized:
         raise AsicError(f"{TOP} glue: an engine port was resized ({resized[0].strip()})")
@@ -180,7 +182,7 @@ def top_row(files, mapped: dict, n: int, period_ns: float, nand2: float) -> dict
     figs = netlist_figures(text, TOP)
     rd_lat = eng["row"].get("sram_read_clocks", 1)
     sta = run_sta(TOP, [glue.netlist, eng["mapped"].netlist], OUT / f"{eng['mapped'].tag}.macros.lib",
-                  period_ns, f"{TOP}_whole" + (f"_rl{rd_lat}" if rd_lat > 1 else ""), read_clocks=rd_lat)
+                  period_ns, f"{TOP}_whole" + (f"_rl{rd_lat}" if rd_lat > 1 else "") + suffix, read_clocks=rd_lat)
     st = glue.stat
     types = {k: v for k, v in st["num_cells_by_type"].items() if k != ENGINE}
     glue_row = {"area_um2": round(float(st["area"]), 1), "nand2_eq": round(float(st["area"]) / nand2),

@@ -1,19 +1,20 @@
 """Tile-buffer bits against throughput: `make bench-bits` (scripts/bench_bits.py).
 
-    python scripts/bench_bits.py [--points "7:1 6:1 5:1 4:1 3:1 7:0 5:0 4:0 3:0 6:1:4"]
+    python scripts/bench_bits.py [--points "7:1 6:1 5:1 4:1 3:1 7:0 5:0 4:0 3:0 6:1:4 7:1:4:16"]
         [--latencies 64,256,1024] [--rules patent,lindilate] [--scene cornell]
         [--width 640 --height 480] [--out build/bench/tile_bits.json] [--update] [--no-build]
 
-A design point is NUM_CTX:LINDILATE[:RD_LAT] of msr_top with 4 engines and 64 tags (MAX_OUTSTANDING);
-RD_LAT, the tile buffers' read latency in clocks (default 1), sets no bits but may cost pixels
-per clock (a standard-cell build's macros need several clocks, docs/asic.md).
-Each context of an engine holds a tile buffer of MAX_TILE^2 words of a source code and a colour
+A design point is NUM_CTX:LINDILATE[:RD_LAT[:TILE_LIMIT]] of msr_top with 4 engines and 64 tags
+(MAX_OUTSTANDING); RD_LAT, the tile buffers' read latency in clocks (default 1), sets no bits but
+may cost pixels per clock (a standard-cell build's macros need several clocks, docs/asic.md);
+TILE_LIMIT, the largest tile edge the buffers hold (default 32, MAX_TILE), sets the words.
+Each context of an engine holds a tile buffer of TILE_LIMIT^2 words of a source code and a colour
 (msr_tile_ctx: a 2R1W memory, two 1R1W macros written in parallel) and, with LINDILATE 1, a
 colour-only copy read by a third port (one macro). The bits (DEPTH x DATA_W of every buffer,
 as docs/asic.md counts them) and the macro area (msr_flow.asic's model of
 syn/asic/sram_macro.json) follow from the point; the pixels per clock are measured: one frame
-per (point, rule, latency) through the harness build e4_mo64_c<N>[_rl<L>] (LINDILATE 1) or
-e4_mo64_c<N>[_rl<L>]_l0 (LINDILATE 0: the patent rule only), made by mk/bench.mk, run by
+per (point, rule, latency) through the harness build e4_mo64_c<N>[_rl<L>][_t<T>] (LINDILATE 1)
+or e4_mo64_c<N>[_rl<L>][_t<T>]_l0 (LINDILATE 0: the patent rule only), made by mk/bench.mk, run by
 msr_flow.bench.hw.run_point, so every frame and source map is compared with the golden model.
 
 The choice: the point with the fewest bits whose pixels per clock at latency 256 reach the
@@ -56,9 +57,9 @@ def pkg_constant(name: str, text: str | None = None) -> int:
     return int(m.group(1))
 
 
-def buffers(num_ctx: int, lindilate: int, engines: int = ENGINES) -> list[dict]:
+def buffers(num_ctx: int, lindilate: int, engines: int = ENGINES, tile_limit: int | None = None) -> list[dict]:
     """The tile buffers of a top: (depth, width, read ports, count), as msr_tile_ctx has them."""
-    depth = pkg_constant("MAX_TILE") ** 2
+    depth = (tile_limit or pkg_constant("MAX_TILE")) ** 2
     word = pkg_constant("SRC_W") + RGB_BITS          # WORD_W = $bits(src_t) + $bits(rgb_t)
     out = [{"depth": depth, "width": word, "read_ports": 2, "count": engines * num_ctx}]
     if lindilate:
@@ -66,10 +67,11 @@ def buffers(num_ctx: int, lindilate: int, engines: int = ENGINES) -> list[dict]:
     return out
 
 
-def cost(num_ctx: int, lindilate: int, engines: int = ENGINES, model: MacroModel | None = None) -> dict:
+def cost(num_ctx: int, lindilate: int, engines: int = ENGINES, model: MacroModel | None = None,
+         tile_limit: int | None = None) -> dict:
     """Bits and macro area of the tile buffers of a top (msr_flow.asic's macro model)."""
     model = model or MacroModel.load()
-    bufs = buffers(num_ctx, lindilate, engines)
+    bufs = buffers(num_ctx, lindilate, engines, tile_limit)
     area = sum(b["count"] * b["read_ports"] * model.area_1r1w(b["depth"], b["width"]) for b in bufs)
     return {"bits": sum(b["count"] * b["depth"] * b["width"] for b in bufs),
             "stored_bits": sum(b["count"] * b["read_ports"] * b["depth"] * b["width"] for b in bufs),
@@ -79,12 +81,13 @@ def cost(num_ctx: int, lindilate: int, engines: int = ENGINES, model: MacroModel
             "macro_area_mm2": round(area / 1e6, 3)}
 
 
-def config_name(num_ctx: int, lindilate: int, rd_lat: int = 1) -> str:
-    return f"e{ENGINES}_mo{TAGS}_c{num_ctx}" + (f"_rl{rd_lat}" if rd_lat > 1 else "") + ("" if lindilate else "_l0")
+def config_name(num_ctx: int, lindilate: int, rd_lat: int = 1, tile_limit: int = 32) -> str:
+    return (f"e{ENGINES}_mo{TAGS}_c{num_ctx}" + (f"_rl{rd_lat}" if rd_lat > 1 else "")
+            + (f"_t{tile_limit}" if tile_limit != 32 else "") + ("" if lindilate else "_l0"))
 
 
-def harness_of(build_dir: Path, num_ctx: int, lindilate: int, rd_lat: int = 1) -> Path:
-    return Path(build_dir) / f"hw_{config_name(num_ctx, lindilate, rd_lat)}" / "Vmsr_sim_top"
+def harness_of(build_dir: Path, num_ctx: int, lindilate: int, rd_lat: int = 1, tile_limit: int = 32) -> Path:
+    return Path(build_dir) / f"hw_{config_name(num_ctx, lindilate, rd_lat, tile_limit)}" / "Vmsr_sim_top"
 
 
 def check_lindilate(harness: Path, lindilate: int) -> None:
@@ -103,16 +106,18 @@ def build(harness: Path) -> None:
         raise RunFailed(f"make {target} failed: {(r.stdout + r.stderr).strip().splitlines()[-1:]}")
 
 
-def parse_points(text: str) -> list[tuple[int, int, int]]:
+def parse_points(text: str) -> list[tuple[int, int, int, int]]:
     pts = []
     for item in text.split():
         ctx, _, rest = item.partition(":")
-        lin, _, lat = rest.partition(":")
-        lat = lat or "1"
-        if not (ctx.isdigit() and lin in ("0", "1") and 2 <= int(ctx) <= 16 and lat in ("1", "2", "3", "4")):
-            raise UsageError(f"design point {item!r} is not NUM_CTX:LINDILATE[:RD_LAT] "
-                             "(NUM_CTX 2..16, LINDILATE 0 or 1, RD_LAT 1..4)")
-        pts.append((int(ctx), int(lin), int(lat)))
+        lin, _, rest = rest.partition(":")
+        lat, _, lim = rest.partition(":")
+        lat, lim = lat or "1", lim or "32"
+        if not (ctx.isdigit() and lin in ("0", "1") and 2 <= int(ctx) <= 16 and lat in ("1", "2", "3", "4")
+                and lim in ("8", "16", "32")):
+            raise UsageError(f"design point {item!r} is not NUM_CTX:LINDILATE[:RD_LAT[:TILE_LIMIT]] "
+                             "(NUM_CTX 2..16, LINDILATE 0 or 1, RD_LAT 1..4, TILE_LIMIT 8, 16 or 32)")
+        pts.append((int(ctx), int(lin), int(lat), int(lim)))
     if not pts:
         raise UsageError("no design points given (--points)")
     return pts
@@ -167,11 +172,12 @@ def ppc(dp: dict, rule: str, latency: int) -> float | None:
                  if p["rule"] == rule and p["render_latency"] == latency), None)
 
 
-def choose(dps: list[dict], rules: list[str], default_area: float, rd_lat: int = 1) -> dict | None:
+def choose(dps: list[dict], rules: list[str], default_area: float, rd_lat: int = 1,
+           tile_limit: int = 32) -> dict | None:
     """Fewest bits with >= GOAL_PIXELS at GOAL_LATENCY in every rule (ties: more pixels per clock),
-    among the points of read latency rd_lat."""
+    among the points of read latency rd_lat and tile limit tile_limit."""
     ok = []
-    for dp in (d for d in dps if d.get("rd_lat", 1) == rd_lat):
+    for dp in (d for d in dps if d.get("rd_lat", 1) == rd_lat and d.get("tile_limit", 32) == tile_limit):
         got = [ppc(dp, r, GOAL_LATENCY) for r in rules]
         if all(g is not None and g >= GOAL_PIXELS for g in got):
             ok.append((dp["bits"], -min(got), dp))
@@ -182,7 +188,7 @@ def choose(dps: list[dict], rules: list[str], default_area: float, rd_lat: int =
     return {"rules": rules, "criterion": f">= {GOAL_PIXELS} pixels per clock at latency {GOAL_LATENCY} "
                                          f"in {' and '.join(rules)}, fewest bits",
             "num_ctx": dp["num_ctx"], "lindilate": dp["lindilate"], "rd_lat": dp.get("rd_lat", 1),
-            "config": dp["config"],
+            "tile_limit": dp.get("tile_limit", 32), "config": dp["config"],
             "bits": dp["bits"], "macro_area_mm2": area, "default_macro_area_mm2": default_area,
             "area_reduction": round(1 - area / default_area, 4), "target_reduction": TARGET_REDUCTION,
             "target_met": 1 - area / default_area >= TARGET_REDUCTION,
@@ -201,7 +207,7 @@ def reference() -> dict | None:
 
 
 def record(a, dps: list[dict], seconds: float) -> dict:
-    dps = sorted(dps, key=lambda d: (d.get("rd_lat", 1), -d["lindilate"], -d["num_ctx"]))
+    dps = sorted(dps, key=lambda d: (-d.get("tile_limit", 32), d.get("rd_lat", 1), -d["lindilate"], -d["num_ctx"]))
     default_area = cost(*DEFAULT_POINT)["macro_area_mm2"]
     ref = reference()
     model = json.loads(MACRO_JSON.read_text())
@@ -216,7 +222,8 @@ def record(a, dps: list[dict], seconds: float) -> dict:
                        "stored_bits": "the same over the 1R1W macros (a 2R1W buffer is two)",
                        "macro_area": f"msr_flow.asic.macros.MacroModel.area_1r1w ({MACRO_JSON.relative_to(ROOT)}: "
                                      f"{model['source']['name']})",
-                       "tile_size_limit": "MAX_TILE is a localparam of msr_pkg, not a build parameter: not swept",
+                       "tile_size_limit": "msr_top TILE_LIMIT (8, 16, 32; default 32 = MAX_TILE): "
+                                          "TILE_LIMIT^2 words per buffer, CONFIG.TILE above it refused",
                        "default_top": {**cost(*DEFAULT_POINT), "num_ctx": DEFAULT_POINT[0],
                                        "lindilate": DEFAULT_POINT[1]},
                        "reference": ref,
@@ -229,6 +236,10 @@ def record(a, dps: list[dict], seconds: float) -> dict:
         # the same choice among the points of each longer read latency measured (a macro build's)
         "choice_by_rd_lat": {str(rl): choose(dps, a.rules, default_area, rl)
                              for rl in sorted({d.get("rd_lat", 1) for d in dps}) if rl > 1},
+        # and among the points of each smaller tile limit, by read latency ("<RD_LAT>:<TILE_LIMIT>")
+        "choice_by_tile_limit": {f"{rl}:{tl}": choose(dps, a.rules, default_area, rl, tl)
+                                 for rl, tl in sorted({(d.get("rd_lat", 1), d.get("tile_limit", 32))
+                                                       for d in dps}) if tl < 32},
         "bench_seconds": round(seconds, 1),
     }
 
@@ -242,22 +253,25 @@ def print_table(r: dict) -> None:
     lats = r["setup"]["latencies"]
     rules = sorted({p["rule"] for d in r["design_points"] for p in d["points"]}, key=RTL_RULES.index)
     lat = " / ".join(map(str, lats))
-    print(f"\n| NUM_CTX | LINDILATE | RD_LAT | bits per top | macro mm^2 | "
+    print(f"\n| NUM_CTX | LINDILATE | RD_LAT | TILE_LIMIT | bits per top | macro mm^2 | "
           + " | ".join(f"{rule}: px/clk at {lat}" for rule in rules) + " | bit exact |")
-    print("|---:|---:|---:|---:|---:|" + "---|" * len(rules) + "---|")
+    print("|---:|---:|---:|---:|---:|---:|" + "---|" * len(rules) + "---|")
     for d in r["design_points"]:
         cells = []
         for rule in rules:
             v = [ppc(d, rule, x) for x in lats]
             cells.append("n/a" if all(x is None for x in v) else
                          " / ".join("-" if x is None else f"{x:.3f}" for x in v))
-        print(f"| {d['num_ctx']} | {d['lindilate']} | {d.get('rd_lat', 1)} | {grouped(d['bits'])} | "
+        print(f"| {d['num_ctx']} | {d['lindilate']} | {d.get('rd_lat', 1)} | {d.get('tile_limit', 32)} | "
+              f"{grouped(d['bits'])} | "
               f"{d['macro_area_mm2']:.1f} | "
               + " | ".join(cells) + f" | {all(p.get('bit_exact') for p in d['points'])} |")
     extra = [(f"choice at RD_LAT {rl}", c) for rl, c in r.get("choice_by_rd_lat", {}).items()]
+    extra += [(f"choice at RD_LAT:TILE_LIMIT {k}", c) for k, c in r.get("choice_by_tile_limit", {}).items()]
     for key, c in [(k, r.get(k)) for k in ("choice", "choice_patent_only")] + extra:
         if c:
-            print(f"{key}: NUM_CTX {c['num_ctx']} LINDILATE {c['lindilate']} RD_LAT {c['rd_lat']}: "
+            print(f"{key}: NUM_CTX {c['num_ctx']} LINDILATE {c['lindilate']} RD_LAT {c['rd_lat']} "
+                  f"TILE_LIMIT {c.get('tile_limit', 32)}: "
                   f"{grouped(c['bits'])} bits, "
                   f"{c['macro_area_mm2']:.1f} mm^2 against {c['default_macro_area_mm2']:.1f} "
                   f"({c['area_reduction']:.1%} less; target {c['target_reduction']:.0%}: "
@@ -276,31 +290,34 @@ def run(a) -> int:
         if old.get("setup") != setup_of(a):
             raise UsageError(f"--update: {out} was measured with another set-up (frame, latencies or scene)")
         kept = [d for d in old["design_points"]
-                if (d["num_ctx"], d["lindilate"], d.get("rd_lat", 1)) not in a.design]
-    for ctx, lin, rl in a.design:
-        h = harness_of(build_dir, ctx, lin, rl)
+                if (d["num_ctx"], d["lindilate"], d.get("rd_lat", 1), d.get("tile_limit", 32)) not in a.design]
+    for ctx, lin, rl, tl in a.design:
+        if a.tile > tl:
+            raise UsageError(f"design point {ctx}:{lin}:{rl}:{tl}: --tile {a.tile} is above its TILE_LIMIT")
+        h = harness_of(build_dir, ctx, lin, rl, tl)
         if a.no_build and not h.is_file():
             raise UsageError(f"harness {h} not built (make {h.relative_to(ROOT) if h.is_relative_to(ROOT) else h})")
-    jobs = [(ctx, lin, rl, rule, lat) for ctx, lin, rl in a.design for rule in rules_for(lin, a.rules)
+    jobs = [(ctx, lin, rl, tl, rule, lat) for ctx, lin, rl, tl in a.design for rule in rules_for(lin, a.rules)
             for lat in a.latencies]
     golden = GoldenFrames(a.scene, a.width, a.height)
     t0 = time.perf_counter()
-    dps: dict[tuple[int, int, int], dict] = {}
+    dps: dict[tuple[int, int, int, int], dict] = {}
     bar = tqdm(jobs, desc="bench_bits", unit="frame", disable=True if a.no_progress else None, file=sys.stderr)
-    for ctx, lin, rl, rule, lat in bar:
-        h = harness_of(build_dir, ctx, lin, rl)
-        name = config_name(ctx, lin, rl)
-        if (ctx, lin, rl) not in dps:
+    for ctx, lin, rl, tl, rule, lat in bar:
+        h = harness_of(build_dir, ctx, lin, rl, tl)
+        name = config_name(ctx, lin, rl, tl)
+        key = (ctx, lin, rl, tl)
+        if key not in dps:
             if not a.no_build:
                 bar.set_postfix_str(f"building {name}")
                 build(h)
             check_lindilate(h, lin)
-            dps[(ctx, lin, rl)] = {"num_ctx": ctx, "lindilate": lin, "rd_lat": rl, "config": name,
-                                   **cost(ctx, lin), "rtl_digest": rtl_digest(), "points": []}
+            dps[key] = {"num_ctx": ctx, "lindilate": lin, "rd_lat": rl, "tile_limit": tl, "config": name,
+                        **cost(ctx, lin, tile_limit=tl), "rtl_digest": rtl_digest(), "points": []}
         bar.set_postfix_str(f"{name} {rule} latency {lat}")
         pt = run_point(h, ENGINES, TAGS, a.scene, a.width, a.height, a.tile, a.levels, lat, golden, rule, ctx,
-                       rd_lat=rl)
-        dps[(ctx, lin, rl)]["points"].append({
+                       rd_lat=rl, tile_limit=tl)
+        dps[key]["points"].append({
             "rule": rule, "render_latency": lat, "cycles": pt["cycles"], "pixels_per_clock": pt["pixels_per_clock"],
             "traced_fraction": pt["traced_fraction"], "render_stall_cycles": pt["render_stall_cycles"],
             "bit_exact": pt.get("bit_exact"), "mismatched_pixels": pt.get("mismatched_pixels"),
