@@ -6,19 +6,21 @@
 # prerequisites are expanded when the rule is read (MSR_RTL_FILES: the top Makefile).
 BENCH_HW_RTL  := $(MSR_RTL_FILES) sim/render_dpi.sv sim/msr_sim_top.sv
 BENCH_HW_CPP  := sim/harness.cpp sim/msr_dpi.cpp
-# Harness builds: e<N>_mo<M>[_c<C>][_rl<L>][_t<T>] = NUM_ENGINES N, MAX_OUTSTANDING M (64 is the default of msr_top;
+# Harness builds: e<N>_mo<M>[_c<C>][_rl<L>][_t<T>][_cy<Y>] = NUM_ENGINES N, MAX_OUTSTANDING M (64 is the default of msr_top;
 # e1_mo16 shows what fewer tags cost one engine at long latencies, and is the one build
 # scripts/tests/test_bench_hw.py needs), NUM_CTX C, the tile buffers' read latency L (RD_LAT),
-# the largest tile T the buffers hold (TILE_LIMIT).
+# the largest tile T the buffers hold (TILE_LIMIT), the buffers' cycle Y (BUF_CYCLE).
 BENCH_HW_CFGS ?= e1_mo16 e1_mo64 e2_mo64 e4_mo64
-# The -G flags of a build name's stem (e4_mo64_c6_rl4_t16 -> NUM_ENGINES 4, MAX_OUTSTANDING 64,
-# NUM_CTX 6, RD_LAT 4, TILE_LIMIT 16), for both build rules below.
-bench_base    = $(firstword $(subst _rl, ,$(firstword $(subst _t, ,$(1)))))
+# The -G flags of a build name's stem (e4_mo64_c6_rl4_t16_cy5 -> NUM_ENGINES 4, MAX_OUTSTANDING 64,
+# NUM_CTX 6, RD_LAT 4, TILE_LIMIT 16, BUF_CYCLE 5), for both build rules below.
+bench_nocy    = $(firstword $(subst _cy, ,$(1)))
+bench_base    = $(firstword $(subst _rl, ,$(firstword $(subst _t, ,$(call bench_nocy,$(1))))))
 bench_gflags  = -GNUM_ENGINES=$(word 1,$(subst _mo, ,$(patsubst e%,%,$(1)))) \
     -GMAX_OUTSTANDING=$(word 1,$(subst _c, ,$(word 2,$(subst _mo, ,$(call bench_base,$(1)))))) \
     $(if $(findstring _c,$(1)),-GNUM_CTX=$(lastword $(subst _c, ,$(call bench_base,$(1))))) \
-    $(if $(findstring _rl,$(1)),-GRD_LAT=$(firstword $(subst _t, ,$(lastword $(subst _rl, ,$(1)))))) \
-    $(if $(findstring _t,$(1)),-GTILE_LIMIT=$(lastword $(subst _t, ,$(1))))
+    $(if $(findstring _rl,$(1)),-GRD_LAT=$(firstword $(subst _t, ,$(lastword $(subst _rl, ,$(call bench_nocy,$(1))))))) \
+    $(if $(findstring _t,$(1)),-GTILE_LIMIT=$(lastword $(subst _t, ,$(call bench_nocy,$(1))))) \
+    $(if $(findstring _cy,$(1)),-GBUF_CYCLE=$(lastword $(subst _cy, ,$(1))))
 BENCH_HW_BINS  = $(foreach c,$(BENCH_HW_CFGS),build/bench/hw_$(c)/Vmsr_sim_top)
 BENCH_HW_ARGS ?=
 # MSR_BENCH_RULE=lindilate (the environment, or --rule in BENCH_HW_ARGS): the decision rule of every

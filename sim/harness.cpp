@@ -734,7 +734,7 @@ int main(int argc, char **argv) {
                      " \"budget\": {\"pixels\": %ld, \"scale_init\": %ld, \"prior_shift\": %ld, \"seeded\": %ld, "
                      "\"scale_out\": %u, \"scale_out_valid\": %s},\n"
                      " \"build\": {\"num_engines\": %u, \"max_outstanding\": %u, \"num_ctx\": %u, "
-                     "\"budget_en\": %u, \"depth_en\": %u, \"rd_lat\": %u, \"tile_limit\": %u, "
+                     "\"budget_en\": %u, \"depth_en\": %u, \"rd_lat\": %u, \"tile_limit\": %u, \"buf_cycle\": %u, "
                      "\"axi_beat_bytes\": %u},\n"
                      " \"layout\": {\"fb_base\": %lld, \"fb_stride\": %u, \"src_base\": %u, \"src_stride\": %u},\n"
                      " \"params\": {\"width\": %d, \"height\": %d, \"tile\": %d, \"levels\": %d, "
@@ -746,7 +746,8 @@ int main(int argc, char **argv) {
                      unsigned(Root::msr_sim_top__DOT__MAX_OUTSTANDING), unsigned(Root::msr_sim_top__DOT__NUM_CTX),
                      unsigned(Root::msr_sim_top__DOT__BUDGET_EN), unsigned(Root::msr_sim_top__DOT__DEPTH_EN),
                      unsigned(Root::msr_sim_top__DOT__RD_LAT),
-                     unsigned(Root::msr_sim_top__DOT__TILE_LIMIT), kBeatBytes, o.fb_base >= 0 ? o.fb_base : (long long)sim.fb_base(), sim.fb_stride(),
+                     unsigned(Root::msr_sim_top__DOT__TILE_LIMIT),
+                     unsigned(Root::msr_sim_top__DOT__BUF_CYCLE), kBeatBytes, o.fb_base >= 0 ? o.fb_base : (long long)sim.fb_base(), sim.fb_stride(),
                      sim.src_base(), sim.src_stride(), o.width, o.height, o.tile, o.levels, o.thr[0], o.thr[1],
                      o.thr[2], o.metric ? "sum" : "max", o.fov_gain, o.rule);
         std::fclose(f);

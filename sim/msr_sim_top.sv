@@ -10,6 +10,7 @@ module msr_sim_top import msr_pkg::*; #(
   parameter bit          DEPTH_EN        = 1'b0, // the engines' depth channel (make sim DEPTH=1)
   parameter int unsigned RD_LAT          = 1,    // the tile buffers' read latency (make bench: _rl<L>)
   parameter int unsigned TILE_LIMIT      = 32,   // the largest tile the buffers hold (make bench: _t<T>)
+  parameter int unsigned BUF_CYCLE       = 1,    // the tile buffers' cycle (make bench: _cy<N>)
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned RTAG_W = EID_W + $clog2(MAX_OUTSTANDING)
 ) (
@@ -60,7 +61,8 @@ module msr_sim_top import msr_pkg::*; #(
     .BUDGET_EN       (BUDGET_EN),
     .DEPTH_EN        (DEPTH_EN),
     .RD_LAT          (RD_LAT),
-    .TILE_LIMIT      (TILE_LIMIT)
+    .TILE_LIMIT      (TILE_LIMIT),
+    .BUF_CYCLE       (BUF_CYCLE)
   ) u_top (
     .clk_i, .rst_ni,
     .s_axil_awvalid, .s_axil_awready, .s_axil_awaddr, .s_axil_awprot (3'b000),

@@ -5,7 +5,8 @@
 module msr_ctx_drain import msr_pkg::*; #(
   parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX),
   parameter int unsigned DEPTH_EN = 0,  // 1: each pixel's inverse depth beside it (else 0)
-  parameter int unsigned RD_LAT   = 1   // the tile buffers' read latency (1..4)
+  parameter int unsigned RD_LAT   = 1,  // the tile buffers' read latency (1..4)
+  parameter int unsigned CYCLE    = 1   // clocks between two reads of one tile-buffer copy
 ) (
   input  logic                       clk_i, rst_ni, clear_i,  // clear: synchronous soft reset
   // the contexts
@@ -51,7 +52,7 @@ module msr_ctx_drain import msr_pkg::*; #(
 
   assign cur_desc = desc_i[cur_q];
 
-  msr_tile_stream #(.RD_LAT(RD_LAT), .DEPTH_EN(DEPTH_EN)) u_stream (
+  msr_tile_stream #(.RD_LAT(RD_LAT), .DEPTH_EN(DEPTH_EN), .CYCLE(CYCLE)) u_stream (
     .clk_i, .rst_ni, .clear_i,
     .start_valid_i (start_q), .start_ready_o (start_ready),
     .x0_i (cur_desc.x0), .y0_i (cur_desc.y0), .w_i (cur_desc.w), .h_i (cur_desc.h),

@@ -8,11 +8,16 @@
 // contexts, spread over the die with their tile buffers, see a register one clock later
 // (gr_gnt_o: the head leaves, the buffer reads it). The contexts' candidate bits know about
 // the grant in flight, so a context can still win every clock.
+//
+// CYCLE > 1 (a tile buffer whose macro takes an address on a port only once per CYCLE clocks,
+// docs/asic.md): a context granted now is masked for the next CYCLE - 1 clocks, so its buffer's
+// read ports see one address per CYCLE clocks; the other contexts fill the clocks between.
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
 module msr_ctx_issue import msr_pkg::*; #(
-  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX)
+  parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX),
+  parameter int unsigned CYCLE   = 1   // clocks between two grants of one context (1..8)
 ) (
   input  logic                     clk_i, rst_ni, clear_i,  // clear: synchronous soft reset
   // each context's candidate alternatives (registers): the tail may go while its head leaves
@@ -35,7 +40,8 @@ module msr_ctx_issue import msr_pkg::*; #(
   // The contexts whose position may go: one LUT per context, here beside the grant register
   // and the arbiter, so that the path can cross from a context once, from its flip-flops (the
   // placer decides where the LUT goes: msr_tile_ctx).
-  assign cand = (gr_gnt_o & cand_tail_i) | (~gr_gnt_o & cand_head_i);
+  logic [NUM_CTX-1:0] may_go;          // the context's buffer takes an address next clock
+  assign cand = ((gr_gnt_o & cand_tail_i) | (~gr_gnt_o & cand_head_i)) & may_go;
 
   msr_rr_arb #(.N(NUM_CTX), .IDX_W(CTX_W)) u_issue_arb (
     .clk_i, .rst_ni, .clear_i,
@@ -43,6 +49,29 @@ module msr_ctx_issue import msr_pkg::*; #(
   );
 
   assign issue_o = arb_valid && can_issue_i;
+
+  // The buffers' cycle: CYCLE - 1 clocks of rest after a grant, a counter per context and its
+  // "may go" bit registered beside it (the arbiter's path starts at flip-flops, as above).
+  if (CYCLE > 1) begin : g_cycle
+    localparam int unsigned CW = $clog2(CYCLE);
+    logic [NUM_CTX-1:0][CW-1:0] rest_q, rest_d;
+    logic [NUM_CTX-1:0]         may_go_d;
+    always_comb begin
+      for (int unsigned c = 0; c < NUM_CTX; c++) begin
+        rest_d[c]   = (gnt[c] && can_issue_i) ? CW'(CYCLE - 1) :
+                      (rest_q[c] != '0)       ? rest_q[c] - CW'(1) : '0;
+        may_go_d[c] = (rest_d[c] == '0);
+      end
+    end
+    // reset: no rest, every context may go
+    `MSR_CLR_REG_RST(u_rest_q, NUM_CTX * (CW + 1), (NUM_CTX * (CW + 1))'({NUM_CTX{1'b1}}),
+                     clear_i, 1'b1, {rest_d, may_go_d}, {rest_q, may_go})
+  end else begin : g_every_clock
+    assign may_go = '1;
+  end
+  if (CYCLE < 1 || CYCLE > 8) begin : g_check_cycle
+    $fatal(1, "msr_ctx_issue: CYCLE %0d must be in 1..8", CYCLE);
+  end
 
   `MSR_CLR_REG(u_gr_q, 1 + NUM_CTX, clear_i, 1'b1, {issue_o, gnt & {NUM_CTX{can_issue_i}}},
                {gr_valid_o, gr_gnt_o})

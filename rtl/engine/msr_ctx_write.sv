@@ -8,13 +8,19 @@
 // the register only delays a barrier by one clock. A clear drops a write on its way. A retro
 // request is one more pending write of its context (registered like the write). The response
 // check never writes the context that the output writes in the same cycle.
+//
+// CYCLE > 1 (a macro that takes an address on its write port once per CYCLE clocks): after a
+// write to a context its port rests CYCLE - 1 clocks; free_o tells the two writers which ports
+// may be written now (a register per context). The response check goes first, the output's
+// write waits (msr_req_out), so an answer never waits behind a context that keeps interpolating.
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
 module msr_ctx_write import msr_pkg::*; #(
   parameter int unsigned NUM_CTX = 8, parameter int unsigned CTX_W = $clog2(NUM_CTX),
   // a pixel's data: the colour, or with the engine's depth channel {inverse depth, colour}
-  parameter int unsigned DATA_W = $bits(rgb_t)
+  parameter int unsigned DATA_W = $bits(rgb_t),
+  parameter int unsigned CYCLE  = 1     // clocks between two writes of one context (1..8)
 ) (
   input  logic                              clk_i, rst_ni, clear_i,  // clear: soft reset
   // the output: an interpolated pixel, or a retro request of its context
@@ -36,7 +42,8 @@ module msr_ctx_write import msr_pkg::*; #(
   output logic     [NUM_CTX-1:0]              retro_o,
   output logic     [NUM_CTX-1:0][TADDR_W-1:0] waddr_o,
   output src_t     [NUM_CTX-1:0]              wsrc_o,
-  output logic     [NUM_CTX-1:0][DATA_W-1:0] wrgb_o
+  output logic     [NUM_CTX-1:0][DATA_W-1:0] wrgb_o,
+  output logic     [NUM_CTX-1:0]              free_o    // the context's port may be written now
 );
 
   logic [NUM_CTX-1:0]              we_d, retro_d;
@@ -65,8 +72,29 @@ module msr_ctx_write import msr_pkg::*; #(
 
   `MSR_CLR_REG(u_write_q, 2 * NUM_CTX, clear_i, 1'b1, {we_d, retro_d}, {we_o, retro_o})
 
+  if (CYCLE > 1) begin : g_cycle
+    localparam int unsigned CW = $clog2(CYCLE);
+    logic [NUM_CTX-1:0][CW-1:0] rest_q, rest_d;
+    logic [NUM_CTX-1:0]         free_d;
+    always_comb begin
+      for (int unsigned c = 0; c < NUM_CTX; c++) begin
+        rest_d[c] = we_d[c] ? CW'(CYCLE - 1) : (rest_q[c] != '0) ? rest_q[c] - CW'(1) : '0;
+        free_d[c] = (rest_d[c] == '0);
+      end
+    end
+    // reset: no rest, every port free
+    `MSR_CLR_REG_RST(u_rest_q, NUM_CTX * (CW + 1), (NUM_CTX * (CW + 1))'({NUM_CTX{1'b1}}),
+                     clear_i, 1'b1, {rest_d, free_d}, {rest_q, free_o})
+  end else begin : g_every_clock
+    assign free_o = '1;
+  end
+  if (CYCLE < 1 || CYCLE > 8) begin : g_check_cycle
+    $fatal(1, "msr_ctx_write: CYCLE %0d must be in 1..8", CYCLE);
+  end
+
   /* verilator lint_off SYNCASYNCNET */
   `MSR_ASSERT(a_one_writer, !(out_write_i && rsp_write_i && out_ctx_i == rsp_ctx_i))
+  `MSR_ASSERT(a_port_rested, (we_d & ~free_o) == '0)
   /* verilator lint_on SYNCASYNCNET */
 
 endmodule : msr_ctx_write

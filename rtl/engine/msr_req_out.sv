@@ -4,9 +4,10 @@
 // any other result. A request takes a tag from the tag pool as it enters a spill register,
 // so the render port is driven by flip-flops and its ready reaches no further than here.
 //
-// Handshakes: the result (out_valid_i / out_ready_o) leaves when its write is done (at once:
-// the write port is the pipeline's first) or its request is taken; the request port is
-// valid / ready, valid never waits for ready.
+// Handshakes: the result (out_valid_i / out_ready_o) leaves when its write is done (at once
+// where the write port is the pipeline's first; when wr_ok_i where a macro's cycle makes it
+// wait, msr_ctx_write) or its request is taken; the request port is valid / ready, valid never
+// waits for ready.
 module msr_req_out
   import msr_pkg::*;
 #(
@@ -20,6 +21,7 @@ module msr_req_out
   output logic             out_ready_o,            // it leaves this cycle
   input  logic             out_trace_i,            // traced (else interpolated: written)
   input  logic             retro_phase_i,          // its retro request goes first
+  input  logic             wr_ok_i,                // its context's port may be written now
   output logic             out_write_o,            // write its pixel now
   input  coord_t           req_x_i,                // the request's frame coordinates
   input  coord_t           req_y_i,
@@ -45,8 +47,8 @@ module msr_req_out
   req_t req_in, req_out;
 
   assign req_in       = '{x: req_x_i, y: req_y_i, tag: free_tag_i};
-  assign out_write_o  = out_valid_i && !out_trace_i && !retro_phase_i;
-  assign out_ready_o  = !retro_phase_i && (!out_trace_i || (tag_avail_i && req_in_ready));
+  assign out_write_o  = out_valid_i && !out_trace_i && !retro_phase_i && wr_ok_i;
+  assign out_ready_o  = !retro_phase_i && (out_trace_i ? (tag_avail_i && req_in_ready) : wr_ok_i);
   assign req_in_valid = out_valid_i && (out_trace_i || retro_phase_i) && tag_avail_i;
   assign alloc_tag_o  = req_in_valid && req_in_ready;
 

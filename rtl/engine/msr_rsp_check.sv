@@ -8,7 +8,8 @@
 // original is caught. R2 writes the colour when its context's port is free this cycle (the
 // pipeline's interpolated write, pipe_we_i, goes first), or drops an answer whose tag was not
 // in flight (stale, duplicate, invented): nothing is written, no tag is freed twice, drop_o
-// pulses. A tag is released when its answer is written.
+// pulses. A tag is released when its answer is written. port_ok_i says whether the answer's
+// context's port may take a write at all this cycle (a macro's cycle, msr_ctx_write; else 1).
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 
@@ -39,6 +40,7 @@ module msr_rsp_check
   // the pipeline writes this context in this cycle (its port is taken)
   input  logic                       pipe_we_i,
   input  logic [CTX_W-1:0]           pipe_ctx_i,
+  input  logic                       port_ok_i,      // the port of wctx_o may be written now
   // the answer's write
   output logic                       we_o,           // write now
   output logic [CTX_W-1:0]           wctx_o,
@@ -90,7 +92,8 @@ module msr_rsp_check
   );
 
   assign r2_drop  = r2_valid_q && !r2_ok_q;
-  assign r2_write = r2_valid_q && r2_ok_q && !(pipe_we_i && pipe_ctx_i == r2_entry_q.ctx);
+  assign r2_write = r2_valid_q && r2_ok_q && port_ok_i &&
+                    !(pipe_we_i && pipe_ctx_i == r2_entry_q.ctx);
   assign r2_done  = r2_drop || r2_write;
   assign r1_ready = !r2_valid_q || r2_done;
   assign rs_ready = !r1_valid_q || r1_ready;

@@ -25,8 +25,11 @@ module msr_tile_ctx
   parameter int unsigned DEPTH_EN  = 0,  // 1: the tile buffer's word holds the inverse depth
                                          //    too (else the inverse-depth outputs are 0)
   parameter int unsigned RD_LAT    = 1,  // the tile buffers' read latency in clocks (1..4)
-  parameter int unsigned TILE_LIMIT = MAX_TILE  // the largest tile edge the buffer holds (8, 16,
+  parameter int unsigned TILE_LIMIT = MAX_TILE, // the largest tile edge the buffer holds (8, 16,
                                                 // 32): TILE_LIMIT^2 words
+  parameter int unsigned BUF_CYCLE = 1   // clocks between two addresses on a port of a copy:
+                                         // > 1, the streamer's reads go to the two copies in
+                                         // turn (the engine spaces the rest; checked here)
 ) (
   input  logic               clk_i,
   input  logic               rst_ni,
@@ -82,9 +85,12 @@ module msr_tile_ctx
   if (!(TILE_LIMIT inside {8, 16, 32}) || TILE_LIMIT > MAX_TILE) begin : g_check_limit
     $fatal(1, "msr_tile_ctx: TILE_LIMIT %0d must be 8, 16 or 32", TILE_LIMIT);
   end
+  // (a smaller TILE_LIMIT leaves the high bits of y and x unused: they are 0 in a tile that fits)
+  /* verilator lint_off UNUSEDSIGNAL */
   function automatic logic [BUF_AW-1:0] buf_addr(logic [TADDR_W-1:0] a);
     return {a[LCOORD_W +: BUF_LG], a[0 +: BUF_LG]};
   endfunction
+  /* verilator lint_on UNUSEDSIGNAL */
 
   typedef enum logic [1:0] {
     CTX_FREE    = 2'd0,
@@ -253,10 +259,37 @@ module msr_tile_ctx
   assign rd_issue  = computing && issue_i;
 
   logic [WORD_W-1:0] rdata0, rdata0_q;
-  // A decision needs the colour of A, not its source code.
+  // A decision needs the colour of A, not its source code (the streamer reads it with BUF_CYCLE).
   /* verilator lint_off UNUSEDSIGNAL */
   logic [WORD_W-1:0] rdata1, rdata1_q;
   /* verilator lint_on UNUSEDSIGNAL */
+  logic [WORD_W-1:0] str_word;         // the streamer's word, RD_LAT + 1 clocks after its read
+
+  // The streamer's reads: port 0 (one a clock); with BUF_CYCLE > 1 ports 0 and 1 in turn (the
+  // buffer is two macros holding the same words), each port read once per BUF_CYCLE clocks
+  // (msr_tile_stream spaces every other read), the word taken from the port the read went to.
+  logic str_re0, str_re1;
+  if (BUF_CYCLE > 1) begin : g_str_two_ports
+    logic              turn_q;         // the next streamer read goes to port 1
+    logic [RD_LAT:0]   port_q;         // the port of each read in flight
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        turn_q <= 1'b0;
+      end else begin
+        turn_q <= str_own_i && (turn_q ^ str_re_i);
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      port_q <= (RD_LAT + 1)'({port_q, turn_q});
+    end
+    assign str_re0  = str_own_i && str_re_i && !turn_q;
+    assign str_re1  = str_own_i && str_re_i && turn_q;
+    assign str_word = port_q[RD_LAT] ? rdata1_q : rdata0_q;
+  end else begin : g_str_port0
+    assign str_re0  = str_own_i && str_re_i;
+    assign str_re1  = 1'b0;
+    assign str_word = rdata0_q;
+  end
 
   msr_tile_sram #(
     .DEPTH  (TILE_LIMIT * TILE_LIMIT),
@@ -264,9 +297,11 @@ module msr_tile_ctx
     .RD_LAT (RD_LAT)
   ) u_tile_sram (
     .clk_i,
-    .re0_i (str_own_i ? str_re_i : rd_issue),
+    .re0_i (str_own_i ? str_re0 : rd_issue),
     .raddr0_i (buf_addr(str_own_i ? str_raddr_i : {head_q.by, head_q.bx})), .rdata0_o (rdata0),
-    .re1_i (rd_issue), .raddr1_i (buf_addr({head_q.ay, head_q.ax})), .rdata1_o (rdata1),
+    .re1_i ((BUF_CYCLE > 1 && str_own_i) ? str_re1 : rd_issue),
+    .raddr1_i (buf_addr((BUF_CYCLE > 1 && str_own_i) ? str_raddr_i : {head_q.ay, head_q.ax})),
+    .rdata1_o (rdata1),
     .we_i, .waddr_i (buf_addr(waddr_i)), .wdata_i (WORD_W'({winvz_i, wsrc_i, wrgb_i}))
   );
 
@@ -312,14 +347,14 @@ module msr_tile_ctx
   // After an initial-grid position the read data is stale: the engine forces a trace there.
   assign rd_a_o    = rgb_t'(rdata1_q[$bits(rgb_t)-1:0]);
   assign rd_b_o    = rgb_t'(rdata0_q[$bits(rgb_t)-1:0]);
-  assign str_rgb_o = rgb_t'(rdata0_q[$bits(rgb_t)-1:0]);
-  assign str_src_o = src_t'(rdata0_q[$bits(rgb_t) +: $bits(src_t)]);
+  assign str_rgb_o = rgb_t'(str_word[$bits(rgb_t)-1:0]);
+  assign str_src_o = src_t'(str_word[$bits(rgb_t) +: $bits(src_t)]);
 
   // The inverse depth: the top 16 bits of the tile buffer's word (DEPTH_EN).
   if (DEPTH_EN != 0) begin : g_depth
     assign rd_wa_o    = rdata1_q[WORD_W-1 -: 16];
     assign rd_wb_o    = rdata0_q[WORD_W-1 -: 16];
-    assign str_invz_o = rdata0_q[WORD_W-1 -: 16];
+    assign str_invz_o = str_word[WORD_W-1 -: 16];
   end else begin : g_no_depth
     /* verilator lint_off UNUSEDSIGNAL */
     logic [15:0] winvz_unused;
@@ -372,6 +407,28 @@ module msr_tile_ctx
   `MSR_ASSERT_IMP(a_all_written, state_q == CTX_COMPUTE && state_d == CTX_FULL,
       all_written(written_q, desc_q.w, desc_q.h))
   `MSR_ASSERT_IMP(a_stream_full, str_own_i, full_o)
+`ifndef SYNTHESIS
+  // The macro's cycle: every port of the buffer and its copy (decision reads, the streamer's,
+  // writes) takes an address at most once per BUF_CYCLE clocks.
+  logic rd0, rd1;
+  int unsigned since_rd0_q, since_rd1_q, since_wr_q;
+  assign rd0 = str_own_i ? str_re0 : rd_issue;
+  assign rd1 = str_own_i ? str_re1 : rd_issue;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      since_rd0_q <= BUF_CYCLE;
+      since_rd1_q <= BUF_CYCLE;
+      since_wr_q  <= BUF_CYCLE;
+    end else begin
+      since_rd0_q <= rd0  ? 1 : (since_rd0_q < BUF_CYCLE) ? since_rd0_q + 1 : since_rd0_q;
+      since_rd1_q <= rd1  ? 1 : (since_rd1_q < BUF_CYCLE) ? since_rd1_q + 1 : since_rd1_q;
+      since_wr_q  <= we_i ? 1 : (since_wr_q < BUF_CYCLE)  ? since_wr_q + 1  : since_wr_q;
+    end
+  end
+  `MSR_ASSERT_IMP(a_read0_cycle, rd0, since_rd0_q >= BUF_CYCLE)
+  `MSR_ASSERT_IMP(a_read1_cycle, rd1, since_rd1_q >= BUF_CYCLE)
+  `MSR_ASSERT_IMP(a_write_cycle, we_i, since_wr_q >= BUF_CYCLE)
+`endif
   `MSR_ASSERT(a_pend_zero, pend_zero_q == (pend_q == '0))
   `MSR_ASSERT_IMP(a_tail_has_head, tail_valid_q, head_valid_q)
   `MSR_ASSERT(a_cand_regs, cand_tail_q == (tail_valid_q && !tail_q.first) &&

@@ -60,6 +60,13 @@ module msr_tile_engine
   // A standard-cell build whose tiles stay at 16 keeps a quarter of the bits (docs/asic.md);
   // a larger tile is refused by the top's configuration check.
   parameter int unsigned TILE_LIMIT      = MAX_TILE,
+  // The tile buffers' cycle in clocks (1..8): a macro that takes an address on a port only once
+  // per BUF_CYCLE clocks (the cited 180 nm macro: 5 at 200 MHz, docs/asic.md). Each context's
+  // decisions are then granted at most once per BUF_CYCLE clocks (the other contexts fill the
+  // clocks between) and its writes likewise (an answer first, the output's write waits); the
+  // streamer reads a finished tile from the buffer's two copies in turn, two pixels per
+  // BUF_CYCLE clocks.
+  parameter int unsigned BUF_CYCLE       = 1,
   parameter int unsigned TAG_W = $clog2(MAX_OUTSTANDING)
 ) (
   // The port list is the interface agreed with the system top, comments included.
@@ -132,6 +139,9 @@ module msr_tile_engine
   if (!(TILE_LIMIT inside {8, 16, 32})) begin : g_check_tile_limit
     $fatal(1, "msr_tile_engine: TILE_LIMIT %0d must be 8, 16 or 32", TILE_LIMIT);
   end
+  if (BUF_CYCLE < 1 || BUF_CYCLE > 8) begin : g_check_buf_cycle
+    $fatal(1, "msr_tile_engine: BUF_CYCLE %0d must be in 1..8", BUF_CYCLE);
+  end
 
   // ---- Contexts ---------------------------------------------------------------------------------
   logic       [NUM_CTX-1:0] ctx_free, ctx_full, ctx_cand_tail, ctx_cand_head, ctx_start;
@@ -164,7 +174,7 @@ module msr_tile_engine
     .start_o (ctx_start), .desc_o (alloc_desc)
   );
 
-  msr_ctx_issue #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W)) u_ctx_issue (
+  msr_ctx_issue #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .CYCLE(BUF_CYCLE)) u_ctx_issue (
     .clk_i, .rst_ni, .clear_i,
     .cand_tail_i (ctx_cand_tail), .cand_head_i (ctx_cand_head), .pos_i (ctx_pos),
     .can_issue_i (can_issue), .issue_o (issue),
@@ -377,7 +387,7 @@ module msr_tile_engine
   end
 
   // ---- Output: interpolate -> write, trace -> tag and render request -----------------------------
-  logic               out_write, retro_phase, alloc_tag, tag_avail;
+  logic               out_write, retro_phase, alloc_tag, tag_avail, out_wr_ok;
   logic [TAG_W-1:0]   free_tag;
   coord_t             req_x, req_y;
   logic [TADDR_W-1:0] req_addr;
@@ -398,7 +408,8 @@ module msr_tile_engine
   msr_req_out #(.TAG_W(TAG_W)) u_req_out (
     .clk_i, .rst_ni, .clear_i,
     .out_valid_i (out_valid), .out_ready_o (out_ready), .out_trace_i (out_result.trace),
-    .retro_phase_i (retro_phase), .out_write_o (out_write), .req_x_i (req_x), .req_y_i (req_y),
+    .retro_phase_i (retro_phase), .wr_ok_i (out_wr_ok), .out_write_o (out_write),
+    .req_x_i (req_x), .req_y_i (req_y),
     .tag_avail_i (tag_avail), .free_tag_i (free_tag), .alloc_tag_o (alloc_tag),
     .req_valid_o, .req_ready_i, .req_x_o, .req_y_o, .req_tag_o
   );
@@ -409,6 +420,26 @@ module msr_tile_engine
   logic [TADDR_W-1:0] rsp_waddr;
   level_t             rsp_wlevel;
   logic [PIX_W-1:0]   rsp_wpix;
+  logic [NUM_CTX-1:0] ctx_wfree;           // msr_ctx_write: each context's port may be written
+  logic               rsp_port_ok, rsp_pipe_we;
+
+  // Who writes a context first when both would: with one-clock ports the output (it never waits,
+  // the answer waits a clock); with a macro's cycle the answer (msr_ctx_write), and the output's
+  // write waits for its port, as a traced result waits for a tag.
+  if (BUF_CYCLE > 1) begin : g_port_cycle
+    assign rsp_port_ok = ctx_wfree[rsp_wctx];
+    assign rsp_pipe_we = 1'b0;
+    assign out_wr_ok   = ctx_wfree[out_side.ctx] && !(r2_write && rsp_wctx == out_side.ctx);
+  end else begin : g_port_every_clock
+    // every port is free every clock (msr_ctx_write's free_o is all ones)
+    /* verilator lint_off UNUSEDSIGNAL */
+    logic [NUM_CTX-1:0] wfree_unused;
+    /* verilator lint_on UNUSEDSIGNAL */
+    assign wfree_unused = ctx_wfree;
+    assign rsp_port_ok = 1'b1;
+    assign rsp_pipe_we = out_write;
+    assign out_wr_ok   = 1'b1;
+  end
 
   msr_rsp_check #(
     .MAX_OUTSTANDING (MAX_OUTSTANDING),
@@ -420,14 +451,15 @@ module msr_tile_engine
     .rsp_valid_i, .rsp_ready_o, .rsp_tag_i, .rsp_rgb_i (rsp_pix),
     .tag_avail_o (tag_avail), .free_tag_o (free_tag),
     .alloc_i (alloc_tag), .alloc_ctx_i (out_side.ctx), .alloc_addr_i (req_addr),
-    .alloc_level_i (out_side.level), .pipe_we_i (out_write), .pipe_ctx_i (out_side.ctx),
+    .alloc_level_i (out_side.level), .pipe_we_i (rsp_pipe_we), .pipe_ctx_i (out_side.ctx),
+    .port_ok_i (rsp_port_ok),
     .we_o (r2_write), .wctx_o (rsp_wctx), .waddr_o (rsp_waddr), .wlevel_o (rsp_wlevel),
     .wrgb_o (rsp_wpix),
     .drop_o (rsp_drop_o), .inflight_o, .tags_out_o, .init_o (tags_init)
   );
 
   // ---- Writes: each context's one port, registered (msr_ctx_write) ---------------------------
-  msr_ctx_write #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .DATA_W(PIX_W)) u_ctx_write (
+  msr_ctx_write #(.NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .DATA_W(PIX_W), .CYCLE(BUF_CYCLE)) u_ctx_write (
     .clk_i, .rst_ni, .clear_i,
     .out_write_i (out_write), .out_retro_i (retro_phase && alloc_tag), .out_ctx_i (out_side.ctx),
     .out_x_i (out_side.x), .out_y_i (out_side.y), .out_level_i (out_side.level),
@@ -435,7 +467,7 @@ module msr_tile_engine
     .rsp_write_i (r2_write), .rsp_ctx_i (rsp_wctx), .rsp_addr_i (rsp_waddr),
     .rsp_level_i (rsp_wlevel), .rsp_rgb_i (rsp_wpix),
     .we_o (ctx_we), .retro_o (ctx_retro), .waddr_o (ctx_waddr), .wsrc_o (ctx_wsrc),
-    .wrgb_o (ctx_wpix)
+    .wrgb_o (ctx_wpix), .free_o (ctx_wfree)
   );
 
   // ---- Finished tiles out (msr_ctx_drain) -----------------------------------------------------
@@ -445,7 +477,7 @@ module msr_tile_engine
   assign {pix_x_o, pix_y_o, pix_rgb_o, pix_src_o, pix_last_o} = pix_word;
 
   msr_ctx_drain #(
-    .NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .DEPTH_EN(DEPTH_EN), .RD_LAT(RD_LAT)
+    .NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .DEPTH_EN(DEPTH_EN), .RD_LAT(RD_LAT), .CYCLE(BUF_CYCLE)
   ) u_ctx_drain (
     .clk_i, .rst_ni, .clear_i,
     .full_i (ctx_full), .desc_i (ctx_desc), .own_o (ctx_str_own),
@@ -462,7 +494,8 @@ module msr_tile_engine
       .LINDILATE (LINDILATE),
       .DEPTH_EN  (DEPTH_EN),
       .RD_LAT    (RD_LAT),
-      .TILE_LIMIT (TILE_LIMIT)
+      .TILE_LIMIT (TILE_LIMIT),
+      .BUF_CYCLE  (BUF_CYCLE)
     ) u_ctx (
       .clk_i, .rst_ni, .clear_i,
       .start_i (ctx_start[c]), .desc_i (alloc_desc), .free_o (ctx_free[c]),

@@ -4,6 +4,10 @@
 // the register behind it). Reads are issued only when the skid FIFO has room for every
 // read in flight, so a stalled consumer never loses data and a ready consumer gets one pixel
 // per clock.
+//
+// CYCLE > 1 (a macro whose port takes an address once per CYCLE clocks): the context sends the
+// reads to its two copies in turn (msr_tile_ctx), so a read may go when the read two before it
+// went CYCLE clocks ago or more: two pixels per CYCLE clocks.
 `include "msr_flops.svh"
 
 module msr_tile_stream
@@ -12,7 +16,8 @@ module msr_tile_stream
   parameter int unsigned RD_LAT     = 1,  // the tile buffer's read latency (1..4)
   // the skid FIFO: the reads in flight, one pixel in the FIFO and one more keep a pixel a clock
   parameter int unsigned FIFO_DEPTH = (RD_LAT + 3 <= 4) ? 4 : 8,
-  parameter int unsigned DEPTH_EN   = 0   // 1: each pixel's inverse depth beside it (else 0)
+  parameter int unsigned DEPTH_EN   = 0,  // 1: each pixel's inverse depth beside it (else 0)
+  parameter int unsigned CYCLE      = 1   // clocks between two reads of one copy (1..8)
 ) (
   input  logic                 clk_i,
   input  logic                 rst_ni,
@@ -69,8 +74,29 @@ module msr_tile_stream
   assign start_ready_o = !active_q;
   assign last_rd  = (rx_q == wm1_q) && (ry_q == hm1_q);
   // room for the reads in flight plus this one, without looking at this cycle's pop
-  assign issue    = active_q && !rd_done_q &&
+  logic port_rested;                   // the copy this read goes to has rested CYCLE clocks
+  assign issue    = active_q && !rd_done_q && port_rested &&
                     (32'(cnt) + $countones(rd_pend_q) < FIFO_DEPTH);
+
+  // Ages of the last two reads (saturating at CYCLE): the next read goes to the copy of the
+  // one before the last.
+  if (CYCLE > 1) begin : g_cycle
+    localparam int unsigned AW = $clog2(CYCLE + 1);
+    logic [AW-1:0] age1_q, age2_q, age1_d, age2_d;
+    always_comb begin
+      age1_d = (age1_q < AW'(CYCLE)) ? age1_q + AW'(1) : age1_q;
+      age2_d = (age2_q < AW'(CYCLE)) ? age2_q + AW'(1) : age2_q;
+      if (issue) begin
+        age2_d = age1_d;
+        age1_d = AW'(1);
+      end
+    end
+    `MSR_CLR_REG_RST(u_age_q, 2 * AW, {AW'(CYCLE), AW'(CYCLE)}, clear_i, 1'b1,
+                     {age1_d, age2_d}, {age1_q, age2_q})
+    assign port_rested = (age2_q >= AW'(CYCLE));
+  end else begin : g_every_clock
+    assign port_rested = 1'b1;
+  end
   assign push     = rd_pend_q[NPEND-1];
   assign pop      = pix_valid_o && pix_ready_i;
   assign re_o     = issue;

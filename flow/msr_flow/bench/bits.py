@@ -1,20 +1,22 @@
 """Tile-buffer bits against throughput: `make bench-bits` (scripts/bench_bits.py).
 
-    python scripts/bench_bits.py [--points "7:1 6:1 5:1 4:1 3:1 7:0 5:0 4:0 3:0 6:1:4 7:1:4:16"]
+    python scripts/bench_bits.py [--points "7:1 6:1 5:1 4:1 3:1 7:0 5:0 4:0 3:0 6:1:4 7:1:4:16 10:1:4:16:5"]
         [--latencies 64,256,1024] [--rules patent,lindilate] [--scene cornell]
         [--width 640 --height 480] [--out build/bench/tile_bits.json] [--update] [--no-build]
 
-A design point is NUM_CTX:LINDILATE[:RD_LAT[:TILE_LIMIT]] of msr_top with 4 engines and 64 tags
-(MAX_OUTSTANDING); RD_LAT, the tile buffers' read latency in clocks (default 1), sets no bits but
-may cost pixels per clock (a standard-cell build's macros need several clocks, docs/asic.md);
-TILE_LIMIT, the largest tile edge the buffers hold (default 32, MAX_TILE), sets the words.
+A design point is NUM_CTX:LINDILATE[:RD_LAT[:TILE_LIMIT[:BUF_CYCLE]]] of msr_top with 4 engines and
+64 tags (MAX_OUTSTANDING); RD_LAT, the tile buffers' read latency in clocks (default 1), sets no
+bits but may cost pixels per clock (a standard-cell build's macros need several clocks,
+docs/asic.md); TILE_LIMIT, the largest tile edge the buffers hold (default 32, MAX_TILE), sets
+the words; BUF_CYCLE, the clocks a macro's port needs between two addresses (default 1), sets no
+bits but spaces each context's decisions and writes.
 Each context of an engine holds a tile buffer of TILE_LIMIT^2 words of a source code and a colour
 (msr_tile_ctx: a 2R1W memory, two 1R1W macros written in parallel) and, with LINDILATE 1, a
 colour-only copy read by a third port (one macro). The bits (DEPTH x DATA_W of every buffer,
 as docs/asic.md counts them) and the macro area (msr_flow.asic's model of
 syn/asic/sram_macro.json) follow from the point; the pixels per clock are measured: one frame
-per (point, rule, latency) through the harness build e4_mo64_c<N>[_rl<L>][_t<T>] (LINDILATE 1)
-or e4_mo64_c<N>[_rl<L>][_t<T>]_l0 (LINDILATE 0: the patent rule only), made by mk/bench.mk, run by
+per (point, rule, latency) through the harness build e4_mo64_c<N>[_rl<L>][_t<T>][_cy<Y>] (LINDILATE
+1) or the same name with _l0 (LINDILATE 0: the patent rule only), made by mk/bench.mk, run by
 msr_flow.bench.hw.run_point, so every frame and source map is compared with the golden model.
 
 The choice: the point with the fewest bits whose pixels per clock at latency 256 reach the
@@ -81,13 +83,15 @@ def cost(num_ctx: int, lindilate: int, engines: int = ENGINES, model: MacroModel
             "macro_area_mm2": round(area / 1e6, 3)}
 
 
-def config_name(num_ctx: int, lindilate: int, rd_lat: int = 1, tile_limit: int = 32) -> str:
+def config_name(num_ctx: int, lindilate: int, rd_lat: int = 1, tile_limit: int = 32, cycle: int = 1) -> str:
     return (f"e{ENGINES}_mo{TAGS}_c{num_ctx}" + (f"_rl{rd_lat}" if rd_lat > 1 else "")
-            + (f"_t{tile_limit}" if tile_limit != 32 else "") + ("" if lindilate else "_l0"))
+            + (f"_t{tile_limit}" if tile_limit != 32 else "") + (f"_cy{cycle}" if cycle > 1 else "")
+            + ("" if lindilate else "_l0"))
 
 
-def harness_of(build_dir: Path, num_ctx: int, lindilate: int, rd_lat: int = 1, tile_limit: int = 32) -> Path:
-    return Path(build_dir) / f"hw_{config_name(num_ctx, lindilate, rd_lat, tile_limit)}" / "Vmsr_sim_top"
+def harness_of(build_dir: Path, num_ctx: int, lindilate: int, rd_lat: int = 1, tile_limit: int = 32,
+               cycle: int = 1) -> Path:
+    return Path(build_dir) / f"hw_{config_name(num_ctx, lindilate, rd_lat, tile_limit, cycle)}" / "Vmsr_sim_top"
 
 
 def check_lindilate(harness: Path, lindilate: int) -> None:
@@ -106,18 +110,17 @@ def build(harness: Path) -> None:
         raise RunFailed(f"make {target} failed: {(r.stdout + r.stderr).strip().splitlines()[-1:]}")
 
 
-def parse_points(text: str) -> list[tuple[int, int, int, int]]:
+def parse_points(text: str) -> list[tuple[int, int, int, int, int]]:
     pts = []
     for item in text.split():
-        ctx, _, rest = item.partition(":")
-        lin, _, rest = rest.partition(":")
-        lat, _, lim = rest.partition(":")
-        lat, lim = lat or "1", lim or "32"
-        if not (ctx.isdigit() and lin in ("0", "1") and 2 <= int(ctx) <= 16 and lat in ("1", "2", "3", "4")
-                and lim in ("8", "16", "32")):
-            raise UsageError(f"design point {item!r} is not NUM_CTX:LINDILATE[:RD_LAT[:TILE_LIMIT]] "
-                             "(NUM_CTX 2..16, LINDILATE 0 or 1, RD_LAT 1..4, TILE_LIMIT 8, 16 or 32)")
-        pts.append((int(ctx), int(lin), int(lat), int(lim)))
+        f = item.split(":")
+        ctx, lin, lat, lim, cyc = (f + ["", "", "", "", ""])[:5]
+        lat, lim, cyc = lat or "1", lim or "32", cyc or "1"
+        if not (len(f) <= 5 and ctx.isdigit() and lin in ("0", "1") and 2 <= int(ctx) <= 16
+                and lat in ("1", "2", "3", "4") and lim in ("8", "16", "32") and cyc in tuple("12345678")):
+            raise UsageError(f"design point {item!r} is not NUM_CTX:LINDILATE[:RD_LAT[:TILE_LIMIT[:BUF_CYCLE]]] "
+                             "(NUM_CTX 2..16, LINDILATE 0 or 1, RD_LAT 1..4, TILE_LIMIT 8, 16 or 32, BUF_CYCLE 1..8)")
+        pts.append((int(ctx), int(lin), int(lat), int(lim), int(cyc)))
     if not pts:
         raise UsageError("no design points given (--points)")
     return pts
@@ -172,12 +175,17 @@ def ppc(dp: dict, rule: str, latency: int) -> float | None:
                  if p["rule"] == rule and p["render_latency"] == latency), None)
 
 
+def build_of(d: dict) -> tuple[int, int, int]:
+    """A point's memory build: (RD_LAT, TILE_LIMIT, BUF_CYCLE)."""
+    return d.get("rd_lat", 1), d.get("tile_limit", 32), d.get("buf_cycle", 1)
+
+
 def choose(dps: list[dict], rules: list[str], default_area: float, rd_lat: int = 1,
-           tile_limit: int = 32) -> dict | None:
+           tile_limit: int = 32, cycle: int = 1) -> dict | None:
     """Fewest bits with >= GOAL_PIXELS at GOAL_LATENCY in every rule (ties: more pixels per clock),
-    among the points of read latency rd_lat and tile limit tile_limit."""
+    among the points of read latency rd_lat, tile limit tile_limit and buffer cycle cycle."""
     ok = []
-    for dp in (d for d in dps if d.get("rd_lat", 1) == rd_lat and d.get("tile_limit", 32) == tile_limit):
+    for dp in (d for d in dps if build_of(d) == (rd_lat, tile_limit, cycle)):
         got = [ppc(dp, r, GOAL_LATENCY) for r in rules]
         if all(g is not None and g >= GOAL_PIXELS for g in got):
             ok.append((dp["bits"], -min(got), dp))
@@ -188,7 +196,7 @@ def choose(dps: list[dict], rules: list[str], default_area: float, rd_lat: int =
     return {"rules": rules, "criterion": f">= {GOAL_PIXELS} pixels per clock at latency {GOAL_LATENCY} "
                                          f"in {' and '.join(rules)}, fewest bits",
             "num_ctx": dp["num_ctx"], "lindilate": dp["lindilate"], "rd_lat": dp.get("rd_lat", 1),
-            "tile_limit": dp.get("tile_limit", 32), "config": dp["config"],
+            "tile_limit": dp.get("tile_limit", 32), "buf_cycle": dp.get("buf_cycle", 1), "config": dp["config"],
             "bits": dp["bits"], "macro_area_mm2": area, "default_macro_area_mm2": default_area,
             "area_reduction": round(1 - area / default_area, 4), "target_reduction": TARGET_REDUCTION,
             "target_met": 1 - area / default_area >= TARGET_REDUCTION,
@@ -207,7 +215,8 @@ def reference() -> dict | None:
 
 
 def record(a, dps: list[dict], seconds: float) -> dict:
-    dps = sorted(dps, key=lambda d: (-d.get("tile_limit", 32), d.get("rd_lat", 1), -d["lindilate"], -d["num_ctx"]))
+    dps = sorted(dps, key=lambda d: (d.get("buf_cycle", 1), -d.get("tile_limit", 32), d.get("rd_lat", 1),
+                                     -d["lindilate"], -d["num_ctx"]))
     default_area = cost(*DEFAULT_POINT)["macro_area_mm2"]
     ref = reference()
     model = json.loads(MACRO_JSON.read_text())
@@ -236,10 +245,10 @@ def record(a, dps: list[dict], seconds: float) -> dict:
         # the same choice among the points of each longer read latency measured (a macro build's)
         "choice_by_rd_lat": {str(rl): choose(dps, a.rules, default_area, rl)
                              for rl in sorted({d.get("rd_lat", 1) for d in dps}) if rl > 1},
-        # and among the points of each smaller tile limit, by read latency ("<RD_LAT>:<TILE_LIMIT>")
-        "choice_by_tile_limit": {f"{rl}:{tl}": choose(dps, a.rules, default_area, rl, tl)
-                                 for rl, tl in sorted({(d.get("rd_lat", 1), d.get("tile_limit", 32))
-                                                       for d in dps}) if tl < 32},
+        # and among the points of each build with smaller tiles or a macro's cycle
+        # ("<RD_LAT>:<TILE_LIMIT>:<BUF_CYCLE>")
+        "choice_by_build": {":".join(map(str, b)): choose(dps, a.rules, default_area, *b)
+                            for b in sorted({build_of(d) for d in dps}) if b[1] < 32 or b[2] > 1},
         "bench_seconds": round(seconds, 1),
     }
 
@@ -253,9 +262,9 @@ def print_table(r: dict) -> None:
     lats = r["setup"]["latencies"]
     rules = sorted({p["rule"] for d in r["design_points"] for p in d["points"]}, key=RTL_RULES.index)
     lat = " / ".join(map(str, lats))
-    print(f"\n| NUM_CTX | LINDILATE | RD_LAT | TILE_LIMIT | bits per top | macro mm^2 | "
+    print(f"\n| NUM_CTX | LINDILATE | RD_LAT | TILE_LIMIT | BUF_CYCLE | bits per top | macro mm^2 | "
           + " | ".join(f"{rule}: px/clk at {lat}" for rule in rules) + " | bit exact |")
-    print("|---:|---:|---:|---:|---:|---:|" + "---|" * len(rules) + "---|")
+    print("|---:|---:|---:|---:|---:|---:|---:|" + "---|" * len(rules) + "---|")
     for d in r["design_points"]:
         cells = []
         for rule in rules:
@@ -263,15 +272,15 @@ def print_table(r: dict) -> None:
             cells.append("n/a" if all(x is None for x in v) else
                          " / ".join("-" if x is None else f"{x:.3f}" for x in v))
         print(f"| {d['num_ctx']} | {d['lindilate']} | {d.get('rd_lat', 1)} | {d.get('tile_limit', 32)} | "
-              f"{grouped(d['bits'])} | "
+              f"{d.get('buf_cycle', 1)} | {grouped(d['bits'])} | "
               f"{d['macro_area_mm2']:.1f} | "
               + " | ".join(cells) + f" | {all(p.get('bit_exact') for p in d['points'])} |")
     extra = [(f"choice at RD_LAT {rl}", c) for rl, c in r.get("choice_by_rd_lat", {}).items()]
-    extra += [(f"choice at RD_LAT:TILE_LIMIT {k}", c) for k, c in r.get("choice_by_tile_limit", {}).items()]
+    extra += [(f"choice at RD_LAT:TILE_LIMIT:BUF_CYCLE {k}", c) for k, c in r.get("choice_by_build", {}).items()]
     for key, c in [(k, r.get(k)) for k in ("choice", "choice_patent_only")] + extra:
         if c:
             print(f"{key}: NUM_CTX {c['num_ctx']} LINDILATE {c['lindilate']} RD_LAT {c['rd_lat']} "
-                  f"TILE_LIMIT {c.get('tile_limit', 32)}: "
+                  f"TILE_LIMIT {c.get('tile_limit', 32)} BUF_CYCLE {c.get('buf_cycle', 1)}: "
                   f"{grouped(c['bits'])} bits, "
                   f"{c['macro_area_mm2']:.1f} mm^2 against {c['default_macro_area_mm2']:.1f} "
                   f"({c['area_reduction']:.1%} less; target {c['target_reduction']:.0%}: "
@@ -290,33 +299,32 @@ def run(a) -> int:
         if old.get("setup") != setup_of(a):
             raise UsageError(f"--update: {out} was measured with another set-up (frame, latencies or scene)")
         kept = [d for d in old["design_points"]
-                if (d["num_ctx"], d["lindilate"], d.get("rd_lat", 1), d.get("tile_limit", 32)) not in a.design]
-    for ctx, lin, rl, tl in a.design:
+                if (d["num_ctx"], d["lindilate"], *build_of(d)) not in a.design]
+    for ctx, lin, rl, tl, cy in a.design:
         if a.tile > tl:
-            raise UsageError(f"design point {ctx}:{lin}:{rl}:{tl}: --tile {a.tile} is above its TILE_LIMIT")
-        h = harness_of(build_dir, ctx, lin, rl, tl)
+            raise UsageError(f"design point {ctx}:{lin}:{rl}:{tl}:{cy}: --tile {a.tile} is above its TILE_LIMIT")
+        h = harness_of(build_dir, ctx, lin, rl, tl, cy)
         if a.no_build and not h.is_file():
             raise UsageError(f"harness {h} not built (make {h.relative_to(ROOT) if h.is_relative_to(ROOT) else h})")
-    jobs = [(ctx, lin, rl, tl, rule, lat) for ctx, lin, rl, tl in a.design for rule in rules_for(lin, a.rules)
-            for lat in a.latencies]
+    jobs = [(pt, rule, lat) for pt in a.design for rule in rules_for(pt[1], a.rules) for lat in a.latencies]
     golden = GoldenFrames(a.scene, a.width, a.height)
     t0 = time.perf_counter()
-    dps: dict[tuple[int, int, int, int], dict] = {}
+    dps: dict[tuple[int, int, int, int, int], dict] = {}
     bar = tqdm(jobs, desc="bench_bits", unit="frame", disable=True if a.no_progress else None, file=sys.stderr)
-    for ctx, lin, rl, tl, rule, lat in bar:
-        h = harness_of(build_dir, ctx, lin, rl, tl)
-        name = config_name(ctx, lin, rl, tl)
-        key = (ctx, lin, rl, tl)
+    for key, rule, lat in bar:
+        ctx, lin, rl, tl, cy = key
+        h = harness_of(build_dir, *key)
+        name = config_name(*key)
         if key not in dps:
             if not a.no_build:
                 bar.set_postfix_str(f"building {name}")
                 build(h)
             check_lindilate(h, lin)
-            dps[key] = {"num_ctx": ctx, "lindilate": lin, "rd_lat": rl, "tile_limit": tl, "config": name,
-                        **cost(ctx, lin, tile_limit=tl), "rtl_digest": rtl_digest(), "points": []}
+            dps[key] = {"num_ctx": ctx, "lindilate": lin, "rd_lat": rl, "tile_limit": tl, "buf_cycle": cy,
+                        "config": name, **cost(ctx, lin, tile_limit=tl), "rtl_digest": rtl_digest(), "points": []}
         bar.set_postfix_str(f"{name} {rule} latency {lat}")
         pt = run_point(h, ENGINES, TAGS, a.scene, a.width, a.height, a.tile, a.levels, lat, golden, rule, ctx,
-                       rd_lat=rl, tile_limit=tl)
+                       rd_lat=rl, tile_limit=tl, buf_cycle=cy)
         dps[key]["points"].append({
             "rule": rule, "render_latency": lat, "cycles": pt["cycles"], "pixels_per_clock": pt["pixels_per_clock"],
             "traced_fraction": pt["traced_fraction"], "render_stall_cycles": pt["render_stall_cycles"],

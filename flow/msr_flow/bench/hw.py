@@ -104,9 +104,9 @@ def params_for(tile: int, levels: int) -> Params:
 
 def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, tile: int, levels: int,
               latency: int, golden: GoldenFrames | None, rule: str = "patent", ctx: int | None = None,
-              rd_lat: int | None = None, tile_limit: int | None = None) -> dict:
-    """One frame through the harness; returns the measured point. ctx, rd_lat, tile_limit: the
-    NUM_CTX, RD_LAT and TILE_LIMIT the build must have (None: any)."""
+              rd_lat: int | None = None, tile_limit: int | None = None, buf_cycle: int | None = None) -> dict:
+    """One frame through the harness; returns the measured point. ctx, rd_lat, tile_limit,
+    buf_cycle: the NUM_CTX, RD_LAT, TILE_LIMIT and BUF_CYCLE the build must have (None: any)."""
     p = params_for(tile, levels)
     rtl = HarnessRun(harness, scene, w, h, p, rule=rule, latency=latency, jitter=0, quiet=True).run()
     st = rtl.stats
@@ -118,6 +118,8 @@ def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, 
         raise RunFailed(f"{harness} is a build of RD_LAT {rtl.build.get('rd_lat', 1)}, not {rd_lat}")
     if tile_limit is not None and rtl.build.get("tile_limit", 32) != tile_limit:
         raise RunFailed(f"{harness} is a build of TILE_LIMIT {rtl.build.get('tile_limit', 32)}, not {tile_limit}")
+    if buf_cycle is not None and rtl.build.get("buf_cycle", 1) != buf_cycle:
+        raise RunFailed(f"{harness} is a build of BUF_CYCLE {rtl.build.get('buf_cycle', 1)}, not {buf_cycle}")
     pixels = w * h
     traced = rtl.traced_counted
     cycles = st["cycles"]
@@ -128,6 +130,7 @@ def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, 
         "num_engines": engines, "max_outstanding": mo, "render_latency": latency,
         "num_ctx": rtl.build.get("num_ctx"), "num_ctx_overridden": ctx is not None,
         "rd_lat": rtl.build.get("rd_lat", 1), "tile_limit": rtl.build.get("tile_limit", 32),
+        "buf_cycle": rtl.build.get("buf_cycle", 1),
         "tile": tile, "levels": levels, "thr": list(p.thr),
         "cycles": cycles, "pixels": pixels, "tiles": tiles,
         "pixels_per_clock": pixels / cycles,
