@@ -1,4 +1,5 @@
-// The one source-of-truth file list: packages, primitives, engine, tile generator, budget,
+// The one source-of-truth file list: packages, primitives, engine (and its drain: finished
+// tiles out, rtl/drain), tile generator, budget,
 // frame-buffer writer, control, top, and the reuse units (rtl/reuse: the engines' depth
 // interpolation, built with DEPTH_EN; the reprojection and the gather, not yet in the top).
 // Every flow reads it; msr.core is generated from it.
@@ -25,7 +26,7 @@ rtl/engine/msr_decision_pipe.sv
 rtl/engine/msr_border_pkg.sv
 rtl/engine/msr_walk_pkg.sv
 rtl/engine/msr_level_ctrl.sv
-rtl/engine/msr_tile_stream.sv
+rtl/drain/msr_tile_stream.sv
 rtl/engine/msr_tag_pool.sv
 rtl/engine/msr_tile_ctx.sv
 rtl/engine/msr_lin_track.sv
@@ -37,7 +38,8 @@ rtl/engine/msr_ctx_issue.sv
 rtl/engine/msr_operand_fetch.sv
 rtl/engine/msr_out_buf.sv
 rtl/engine/msr_ctx_write.sv
-rtl/engine/msr_ctx_drain.sv
+rtl/drain/msr_row_merge.sv
+rtl/drain/msr_ctx_drain.sv
 rtl/engine/msr_tile_engine.sv
 rtl/regs/msr_regs_pkg.sv
 rtl/regs/msr_regs.sv

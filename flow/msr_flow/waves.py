@@ -25,7 +25,7 @@ from pathlib import Path
 ENGINE_SIGS = ["desc_valid_i", "desc_ready_o", "u_ctx_alloc.alloc_q", "busy_o", "ctx_start", "ctx_free", "ctx_full",
                "issue", "u_ctx_issue.gnt", "gr_gnt", "u_req_out.out_trace_i", "retro_phase",
                "req_valid_o", "req_ready_i", "req_x_o", "req_y_o", "req_tag_o", "rsp_valid_i", "rsp_tag_i",
-               "inflight_o", "ctx_str_done", "u_ctx_drain.streaming_q", "u_ctx_drain.cur_q", "pix_valid_o",
+               "inflight_o", "ctx_str_done", "ctx_str_own", "pix_valid_o",
                "pix_ready_i", "pix_x_o", "pix_y_o", "pix_src_o", "pix_last_o"]
 GROUPS = [
     ("Clock and control", "u_top", ["clk_i", "rst_ni", "irq_o"]),

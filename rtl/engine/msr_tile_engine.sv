@@ -471,13 +471,14 @@ module msr_tile_engine
   );
 
   // ---- Finished tiles out (msr_ctx_drain) -----------------------------------------------------
-  logic               str_re;
-  logic [TADDR_W-1:0] str_raddr;
+  logic [NUM_CTX-1:0]              str_re;
+  logic [NUM_CTX-1:0][TADDR_W-1:0] str_raddr;
   pix_word_t          pix_word;            // the engine's ports stay flat for the benches
   assign {pix_x_o, pix_y_o, pix_rgb_o, pix_src_o, pix_last_o} = pix_word;
 
   msr_ctx_drain #(
-    .NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .DEPTH_EN(DEPTH_EN), .RD_LAT(RD_LAT), .CYCLE(BUF_CYCLE)
+    .NUM_CTX(NUM_CTX), .CTX_W(CTX_W), .DEPTH_EN(DEPTH_EN), .RD_LAT(RD_LAT), .CYCLE(BUF_CYCLE),
+    .TILE_LIMIT(TILE_LIMIT)
   ) u_ctx_drain (
     .clk_i, .rst_ni, .clear_i,
     .full_i (ctx_full), .desc_i (ctx_desc), .own_o (ctx_str_own),
@@ -506,7 +507,7 @@ module msr_tile_engine
       .retro_i (ctx_retro[c]), .we_i (ctx_we[c]), .waddr_i (ctx_waddr[c]),
       .wsrc_i (ctx_wsrc[c]), .wrgb_i (rgb_t'(ctx_wpix[c][$bits(rgb_t)-1:0])),
       .winvz_i (ctx_winvz[c]), .full_o (ctx_full[c]),
-      .str_own_i (ctx_str_own[c]), .str_re_i (str_re), .str_raddr_i (str_raddr),
+      .str_own_i (ctx_str_own[c]), .str_re_i (str_re[c]), .str_raddr_i (str_raddr[c]),
       .str_rgb_o (ctx_str_rgb[c]), .str_src_o (ctx_str_src[c]), .str_invz_o (ctx_str_invz[c]),
       .str_done_i (ctx_str_done[c])
     );

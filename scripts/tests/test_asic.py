@@ -224,6 +224,26 @@ def test_cli_bad_read_latency_exit_status(capsys):
     assert "--rd-lat 5: RD_LAT is 1..4" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("flag", ["--tile-limit=12", "--tile-limit=64", "--buf-cycle=0", "--buf-cycle=9",
+                                  "--num-ctx=1", "--num-ctx=17"])
+def test_cli_bad_memory_build_exit_status(flag, capsys):
+    """A memory build the RTL refuses (TILE_LIMIT, BUF_CYCLE, NUM_CTX) stops before any tool runs."""
+    from msr_flow.asic.cli import main
+    assert main([flag]) == 2
+    assert flag.split("=")[0] in capsys.readouterr().err
+
+
+def test_unit_tag_names_each_memory_build():
+    """Each memory build's mapping has a name of its own (build/asic/<tag>.*): builds never share
+    cached netlists; the default build keeps the unit's name."""
+    from msr_flow.asic.cli import unit_tag
+    assert unit_tag("msr_tile_engine", {}) == "msr_tile_engine"
+    assert unit_tag("msr_tile_engine", {"RD_LAT": 4}) == "msr_tile_engine_rl4"
+    assert unit_tag("msr_tile_engine", {"RD_LAT": 4, "BUF_CYCLE": 5}) == "msr_tile_engine_rl4_cy5"
+    assert (unit_tag("msr_tile_engine", {"NUM_CTX": 12, "RD_LAT": 4, "TILE_LIMIT": 16, "BUF_CYCLE": 5})
+            == "msr_tile_engine_c12_rl4_t16_cy5")
+
+
 def test_page_is_rendered_from_its_data():
     """docs/asic.md is exactly what the template makes of docs/asic.json (make asic-doc)."""
     assert page.render(asic.read_data()) == (ROOT / "docs" / "asic.md").read_text()

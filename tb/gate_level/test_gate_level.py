@@ -29,9 +29,10 @@ from msr_flow.filelist import rtl_sources
 from msr_flow.runner import run_cocotb
 from msr_tb import next_cycle, settle, start_clock_and_reset
 
-# The engine's mappings by read latency: the default top's (RD_LAT 1), and the standard-cell
-# build's with the cited macro's reads of four clocks (make asic --rd-lat=4; msr_flow.asic.cli.unit_tag)
-TAGS = {1: "msr_tile_engine", 4: "msr_tile_engine_rl4"}
+# The engine's mappings by read latency: the default top's (RD_LAT 1), and the one the cited
+# 180 nm macro needs at 200 MHz: reads of four clocks, an address on a port once per five
+# (RD_LAT 4, BUF_CYCLE 5; msr_flow.asic.cli.unit_tag names it)
+TAGS = {1: "msr_tile_engine", 4: "msr_tile_engine_rl4_cy5"}
 
 
 
@@ -93,7 +94,9 @@ def test_gate_level_tile_engine(rd_lat):
                    sources=[*sram, macros, netlist],
                    # the simulator's Python imports the RTL bench's module (tb/tile_engine is on
                    # pytest.ini's pythonpath; the runner hands the simulator pytest's sys.path)
-                   extra_env={"GATE_TILE_COUNTS": TILE_COUNTS, "MAX_OUTSTANDING": max_outstanding()})
+                   extra_env={"GATE_TILE_COUNTS": TILE_COUNTS, "MAX_OUTSTANDING": max_outstanding(),
+                              # the second netlist's BUF_CYCLE: its rows of tiles interleave
+                              "BUF_CYCLE": "5" if rd_lat > 1 else "1"})
     finally:                # the other benches of the session keep their own flags
         if flags is None:
             os.environ.pop("MAKEFLAGS", None)

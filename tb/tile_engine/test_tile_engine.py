@@ -37,6 +37,8 @@ COORD_W, LDIM_W = 12, 6
 
 RULES = ("patent", "lindilate")     # rule_e encodings
 DEPTH = os.environ.get("DEPTH_EN") == "1"   # the build has the inverse-depth channel
+# the build's BUF_CYCLE: above 1 the engine drains several tiles at once, their rows interleaved
+ROWS_INTERLEAVE = int(os.environ.get("BUF_CYCLE", "1")) > 1
 
 
 def pack_desc(x0, y0, w, h, levels, metric, thr, rule="patent") -> int:
@@ -272,7 +274,9 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
             else:
                 assert int(dut.pix_invz_o.value) == 0, "pix_invz_o is not 0 in a build without depth"
             # Tiles leave whole and row-major, in any order (a tile that waits long for its
-            # renders does not hold up the others).
+            # renders does not hold up the others); a build whose buffers need several clocks
+            # between addresses (BUF_CYCLE > 1) drains tiles at once and keeps only each row
+            # whole: rows of different tiles interleave, each tile's in order.
             i = tile_of(got[0], got[1]) if cur is None else cur
             assert i < di, f"pixel {got[:2]} of tile {i}, not accepted yet"
             k = pix_next[i]
@@ -280,7 +284,8 @@ async def run_tiles(dut, tiles, prof: Profile, rng: random.Random, max_out: int,
                 f"tile {i} pixel {k}: got {got}, want {exp_pix[i][k] if k < len(exp_pix[i]) else None} " \
                 f"({describe(tiles[i])})"
             pix_next[i] += 1
-            cur = None if got[4] else i
+            row_end = got[0] == tiles[i]["x0"] + tiles[i]["w"] - 1
+            cur = None if got[4] or (ROWS_INTERLEAVE and row_end) else i
             pi += 1
         assert int(dut.inflight_o.value) <= max_out
         cycle += 1
@@ -433,7 +438,8 @@ QUICK = os.environ.get("MSR_TB_QUICK")
 def test_tile_engine(max_out, ctx, rd_lat, cycle, counts, seed):
     run_cocotb("msr_tile_engine", "test_tile_engine", Path(__file__).parent,
                {"MAX_OUTSTANDING": max_out, "NUM_CTX": ctx, "RD_LAT": rd_lat, "BUF_CYCLE": cycle},
-               extra_env={"TILE_COUNTS": QUICK or counts, "SEED": seed, "MAX_OUTSTANDING": max_out})
+               extra_env={"TILE_COUNTS": QUICK or counts, "SEED": seed, "MAX_OUTSTANDING": max_out,
+                          "BUF_CYCLE": cycle})
 
 
 def test_tile_engine_depth():

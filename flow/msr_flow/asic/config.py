@@ -14,7 +14,7 @@ DATA = ROOT / "docs" / "asic.json"
 SDC = ROOT / "syn" / "asic" / "msr_asic.sdc"
 MACRO_JSON = ROOT / "syn" / "asic" / "sram_macro.json"
 GATE_RESULTS = ROOT / "build" / "tb" / "msr_tile_engine" / "default_gate" / "results.xml"
-# the same bench on the engine mapped with reads of four clocks (RD_LAT 4)
+# the same bench on the engine mapped for the cited macro (RD_LAT 4, BUF_CYCLE 5)
 GATE_RESULTS_RL4 = ROOT / "build" / "tb" / "msr_tile_engine" / "default_gate_rl4" / "results.xml"
 TECH = Path("/usr/share/qflow/tech/osu018")
 LIBERTY_SRC = TECH / "osu018_stdcells.lib"

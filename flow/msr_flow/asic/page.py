@@ -60,7 +60,8 @@ def gate_level_text(gl: dict | None) -> str:
         return "not run yet (`make test-gate` runs it)"
     text = f"{gl['result']} (`make test-gate`, {gl['from']})"
     rl4 = gl.get("rd_lat_4")
-    return text + (f"; with reads of four clocks (RD_LAT 4): {rl4['result']} ({rl4['from']})" if rl4 else "")
+    return text + (f"; as the cited macro needs it (RD_LAT 4, BUF_CYCLE 5): {rl4['result']} ({rl4['from']})"
+                   if rl4 else "")
 
 
 def macro_cycle(sram: dict, period_ns: float, depth: int = 1024) -> dict:

@@ -119,7 +119,7 @@ if cocotb is not None and os.environ.get("MSR_BENCH_SIM") == "1":
                        "barrier_or_idle")
                 PROBE[key] = PROBE.get(key, 0) + 1
                 PROBE[f"full{full}"] = PROBE.get(f"full{full}", 0) + 1
-                PROBE["stream"] = PROBE.get("stream", 0) + int(dut.u_ctx_drain.streaming_q.value)
+                PROBE["stream"] = PROBE.get("stream", 0) + int(int(dut.ctx_str_own.value) != 0)
             if dut.pix_valid_o.value:
                 pixels += 1
                 if dut.pix_last_o.value:

@@ -148,6 +148,11 @@ def run_point(harness: Path, engines: int, mo: int, scene: str, w: int, h: int, 
         "bound_tags_cycles": traced * latency / (engines * mo),
         "bound_render_port_cycles": traced,
         "bound_decisions_cycles": pixels / engines,
+        # A tile buffer whose macro port takes an address once per BUF_CYCLE clocks: each of an
+        # engine's (BUF_CYCLE + 1) // 2 streamers reads two pixels (the buffer's two copies) per
+        # BUF_CYCLE clocks, the engine's stream takes one a clock (msr_ctx_drain).
+        "bound_streamer_cycles": pixels / engines / min(1.0, 2 * ((cyc + 1) // 2) / cyc)
+                                 if (cyc := rtl.build.get("buf_cycle", 1)) > 1 else pixels / engines,
         "sim_seconds": st["sim_seconds"], "wall_seconds": rtl.wall_seconds,
     }
     if golden is not None:
@@ -164,6 +169,10 @@ def bottleneck(pt: dict) -> str:
               "render tags (MAX_OUTSTANDING per engine)": pt["bound_tags_cycles"],
               "shared render port (1 request/clock)": pt["bound_render_port_cycles"],
               "engine decisions (1 position/clock/engine)": pt["bound_decisions_cycles"]}
+    if pt.get("buf_cycle", 1) > 1:
+        bounds[f"tile streamers ({(pt['buf_cycle'] + 1) // 2} per engine, 2 pixels per {pt['buf_cycle']} "
+               f"clocks each: BUF_CYCLE)"] = \
+            pt["bound_streamer_cycles"]
     name, val = max(bounds.items(), key=lambda kv: kv[1])
     return f"{name}: bound {val:.0f} of {pt['cycles']} cycles ({val / pt['cycles']:.0%})"
 

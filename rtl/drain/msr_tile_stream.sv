@@ -37,7 +37,10 @@ module msr_tile_stream
   input  logic                 pix_ready_i,
   output pix_word_t            pix_o,        // global x, y, colour, source code, last of tile
   output logic [15:0]          pix_invz_o,   // DEPTH_EN: the pixel's inverse depth
-  output logic                 done_o        // pulse: last pixel taken
+  output logic                 done_o,       // pulse: last pixel taken
+  // whole rows waiting (for msr_row_merge, which passes one streamer's row at a time)
+  output logic                 row_ready_o,  // the FIFO holds a whole row of the tile (registered)
+  output logic                 row_end_o     // pix_o is the last pixel of its row
 );
 
   localparam int unsigned CNT_W = $clog2(FIFO_DEPTH + 1);
@@ -104,6 +107,17 @@ module msr_tile_stream
 
   assign pix_o       = pop_word;
   assign done_o      = pop && pop_word.last;
+
+  // Rows whose last pixel is in the FIFO: a pushed row end counts one up, a popped one down.
+  // A FIFO that holds every read in flight and a whole row (FIFO_DEPTH >= MAX_TILE + RD_LAT + 2
+  // where the rows are merged) always completes a row, so a merge that waits for one cannot
+  // wait forever.
+  logic             push_row_end;
+  logic [CNT_W-1:0] rows_q, rows_d;
+  assign push_row_end = push && (pend_x_q[NPEND-1] == wm1_q);
+  assign row_end_o    = (pop_word.x == x0_q + coord_t'(wm1_q));
+  assign rows_d       = rows_q + CNT_W'(push_row_end) - CNT_W'(pop && row_end_o);
+  `MSR_CLR_REG(u_rows_q, CNT_W + 1, clear_i, 1'b1, {rows_d, rows_d != '0}, {rows_q, row_ready_o})
 
   // The read state: the clear stops a stream (active, all reads issued, reads in flight); the
   // tile's origin, size and read position hold through it and are loaded at the next start.
