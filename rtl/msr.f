@@ -12,6 +12,7 @@ rtl/prim/msr_seg_add.sv
 rtl/prim/msr_sat_counter.sv
 rtl/prim/msr_onehot_to_bin.sv
 rtl/prim/msr_rr_arb.sv
+rtl/prim/msr_rest_timer.sv
 rtl/prim/msr_fifo.sv
 rtl/prim/msr_spill_reg.sv
 rtl/prim/msr_shift_add_mul.sv

@@ -124,25 +124,30 @@ def main(argv: list[str] | None = None) -> int:
     limit = args.timeout or None
     blackbox = args.blackbox if args.blackbox is not None else ["msr_tile_sram"]
 
+    def old_text(rel: Path) -> str:
+        """The file at REV: by its path now, or (a file moved since) by its name in REV's rtl/."""
+        r = proc.run(["git", "show", f"{args.rev}:{rel}"], cwd=ROOT, timeout=60)
+        if r.returncode != 0:
+            tree = proc.run(["git", "ls-tree", "-r", "--name-only", args.rev, "rtl"], cwd=ROOT, timeout=60)
+            moved = [ln for ln in tree.stdout.splitlines() if Path(ln).name == rel.name]
+            if len(moved) == 1:
+                r = proc.run(["git", "show", f"{args.rev}:{moved[0]}"], cwd=ROOT, timeout=60)
+        if r.returncode != 0:
+            raise SystemExit(f"equiv: git show {args.rev}:{rel}: {r.stderr.strip()}")
+        return r.stdout
+
     files = rtl_sources()
     src = defining_file(args.unit, files)
     rel = src.relative_to(ROOT)
     tag = args.unit + "".join(f"_{p.replace('=', '')}" for p in args.params)
     work = ROOT / "build" / "equiv" / tag
     work.mkdir(parents=True, exist_ok=True)
-    old = proc.run(["git", "show", f"{args.rev}:{rel}"], cwd=ROOT, timeout=60)
-    if old.returncode != 0:
-        raise SystemExit(f"equiv: git show {args.rev}:{rel}: {old.stderr.strip()}")
     gold_name = f"{args.unit}_gold"
     gold_file = work / f"{gold_name}.sv"
-    gold_text = old.stdout
+    gold_text = old_text(rel)
     for sub in args.with_old:
         # the gold's own copy of a submodule whose ports changed: taken from REV, renamed
-        sub_rel = defining_file(sub, files).relative_to(ROOT)
-        sub_old = proc.run(["git", "show", f"{args.rev}:{sub_rel}"], cwd=ROOT, timeout=60)
-        if sub_old.returncode != 0:
-            raise SystemExit(f"equiv: git show {args.rev}:{sub_rel}: {sub_old.stderr.strip()}")
-        gold_text += "\n" + sub_old.stdout
+        gold_text += "\n" + old_text(defining_file(sub, files).relative_to(ROOT))
     for name in [args.unit, *args.with_old]:
         gold_text = re.sub(rf"\b{name}\b", f"{name}_gold", gold_text)
     gold_file.write_text(gold_text)

@@ -50,25 +50,11 @@ module msr_ctx_issue import msr_pkg::*; #(
 
   assign issue_o = arb_valid && can_issue_i;
 
-  // The buffers' cycle: CYCLE - 1 clocks of rest after a grant, a counter per context and its
-  // "may go" bit registered beside it (the arbiter's path starts at flip-flops, as above).
-  if (CYCLE > 1) begin : g_cycle
-    localparam int unsigned CW = $clog2(CYCLE);
-    logic [NUM_CTX-1:0][CW-1:0] rest_q, rest_d;
-    logic [NUM_CTX-1:0]         may_go_d;
-    always_comb begin
-      for (int unsigned c = 0; c < NUM_CTX; c++) begin
-        rest_d[c]   = (gnt[c] && can_issue_i) ? CW'(CYCLE - 1) :
-                      (rest_q[c] != '0)       ? rest_q[c] - CW'(1) : '0;
-        may_go_d[c] = (rest_d[c] == '0);
-      end
-    end
-    // reset: no rest, every context may go
-    `MSR_CLR_REG_RST(u_rest_q, NUM_CTX * (CW + 1), (NUM_CTX * (CW + 1))'({NUM_CTX{1'b1}}),
-                     clear_i, 1'b1, {rest_d, may_go_d}, {rest_q, may_go})
-  end else begin : g_every_clock
-    assign may_go = '1;
-  end
+  // The buffers' cycle: CYCLE - 1 clocks of rest after a grant, the "may go" bit a register
+  // per context (the arbiter's path starts at flip-flops, as above).
+  msr_rest_timer #(.N(NUM_CTX), .CYCLE(CYCLE)) u_rest (
+    .clk_i, .rst_ni, .clear_i, .use_i (gnt & {NUM_CTX{can_issue_i}}), .free_o (may_go)
+  );
   if (CYCLE < 1 || CYCLE > 8) begin : g_check_cycle
     $fatal(1, "msr_ctx_issue: CYCLE %0d must be in 1..8", CYCLE);
   end

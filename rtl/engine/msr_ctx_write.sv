@@ -72,22 +72,9 @@ module msr_ctx_write import msr_pkg::*; #(
 
   `MSR_CLR_REG(u_write_q, 2 * NUM_CTX, clear_i, 1'b1, {we_d, retro_d}, {we_o, retro_o})
 
-  if (CYCLE > 1) begin : g_cycle
-    localparam int unsigned CW = $clog2(CYCLE);
-    logic [NUM_CTX-1:0][CW-1:0] rest_q, rest_d;
-    logic [NUM_CTX-1:0]         free_d;
-    always_comb begin
-      for (int unsigned c = 0; c < NUM_CTX; c++) begin
-        rest_d[c] = we_d[c] ? CW'(CYCLE - 1) : (rest_q[c] != '0) ? rest_q[c] - CW'(1) : '0;
-        free_d[c] = (rest_d[c] == '0);
-      end
-    end
-    // reset: no rest, every port free
-    `MSR_CLR_REG_RST(u_rest_q, NUM_CTX * (CW + 1), (NUM_CTX * (CW + 1))'({NUM_CTX{1'b1}}),
-                     clear_i, 1'b1, {rest_d, free_d}, {rest_q, free_o})
-  end else begin : g_every_clock
-    assign free_o = '1;
-  end
+  msr_rest_timer #(.N(NUM_CTX), .CYCLE(CYCLE)) u_rest (
+    .clk_i, .rst_ni, .clear_i, .use_i (we_d), .free_o
+  );
   if (CYCLE < 1 || CYCLE > 8) begin : g_check_cycle
     $fatal(1, "msr_ctx_write: CYCLE %0d must be in 1..8", CYCLE);
   end

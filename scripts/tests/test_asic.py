@@ -296,3 +296,41 @@ def test_partial_run_never_replaces_the_page_data(monkeypatch, tmp_path):
     assert not (tmp_path / "asic.json").exists()
     assert report.write_report({"modules": {}}, full=True).name == "report.json"
     assert json.loads((tmp_path / "asic.json").read_text()) == {"modules": {}}
+
+
+def _partial(top_params: dict, with_top: bool = True) -> dict:
+    row = {"area_um2": 2.0e6, "flip_flops": 100, "fmax_mhz": 300.0, "fmax_with_cited_sram_mhz": 200.0,
+           "sram_read_clocks": 4, "sram_macros": {"bits": 1000, "area_um2": 8.0e6, "macros_1r1w": 3,
+                                                  "variants": ["256x32 (2 read ports)"]}}
+    mods = {"msr_tile_engine": row}
+    if with_top:
+        mods["msr_top"] = dict(row, area_um2=10.0e6, sram_macros=dict(row["sram_macros"], area_um2=40.0e6))
+    return {"modules": mods, "top_params": top_params}
+
+
+def test_build_summary_of_a_memory_build(tmp_path):
+    """--record-build keeps a partial run under the parameters it set, with the pixels per clock
+    make bench-bits measured for that very build (the slower rule at latency 256)."""
+    from msr_flow.asic.report import build_summary
+    default = {"NUM_CTX": 7, "LINDILATE": 1, "RD_LAT": 1, "TILE_LIMIT": 32, "BUF_CYCLE": 1}
+    built = dict(default, NUM_CTX=13, RD_LAT=4, TILE_LIMIT=16, BUF_CYCLE=5)
+    bits = tmp_path / "tile_bits.json"
+    pts = [{"rule": "patent", "render_latency": 256, "pixels_per_clock": 3.65},
+           {"rule": "lindilate", "render_latency": 256, "pixels_per_clock": 3.63},
+           {"rule": "patent", "render_latency": 64, "pixels_per_clock": 3.9}]
+    bits.write_text(json.dumps({"design_points": [
+        {"num_ctx": 13, "lindilate": 1, "rd_lat": 4, "tile_limit": 16, "buf_cycle": 5, "points": pts},
+        {"num_ctx": 13, "lindilate": 1, "rd_lat": 4, "tile_limit": 16, "buf_cycle": 1,
+         "points": [dict(p, pixels_per_clock=1.0) for p in pts]}]}))
+    s = build_summary(_partial(built), default, bits)
+    assert s["params"] == {"NUM_CTX": 13, "RD_LAT": 4, "TILE_LIMIT": 16, "BUF_CYCLE": 5}
+    assert s["command"].endswith('"--num-ctx=13 --rd-lat=4 --tile-limit=16 --buf-cycle=5"')
+    assert s["pixels_per_clock_latency_256"] == 3.63
+    top = s["modules"]["msr_top"]
+    assert top["pixels_per_second"] == round(200e6 * 3.63)
+    assert top["pixels_per_second_per_mm2_logic"] == round(200e6 * 3.63 / 10.0)
+    assert top["pixels_per_second_per_mm2_total"] == round(200e6 * 3.63 / 50.0)
+    with pytest.raises(asic.AsicError, match="msr_top"):
+        build_summary(_partial(built, with_top=False), default, bits)
+    with pytest.raises(asic.AsicError, match="default build"):
+        build_summary(_partial(default), default, bits)

@@ -13,7 +13,7 @@ from .config import COMB_CELLS, DATA, DOC, NAND2, OUT, SEQ_CELLS, SRAM_MODULE, T
 from .mapping import map_unit, sim_netlist
 from .netlist import netlist_figures
 from .page import gate_level_result, write_doc
-from .report import new_report, read_data, write_report
+from .report import build_summary, new_report, read_data, write_report
 from .rows import add_rates, scaled, top_row, unit_row
 from .timing import run_sta
 from .tools import liberty, liberty_areas
@@ -67,6 +67,9 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--num-ctx", type=int, default=None, metavar="N",
                     help="NUM_CTX of the engine and the top (2..16; default: the top's; another value writes "
                          "only the partial report)")
+    ap.add_argument("--record-build", action="store_true",
+                    help="keep the last partial run of the engine and the top in another memory build "
+                         "(build/asic/report_partial.json) in docs/asic.json under builds, and rewrite docs/asic.md")
     ap.add_argument("--netlist-only", action="store_true",
                     help="only map msr_tile_engine for the gate-level bench (no timing, no report)")
     return ap
@@ -93,9 +96,28 @@ def doc_only() -> int:
     return 0
 
 
+def record_build() -> int:
+    """docs/asic.json's builds: the last partial run's engine and top under its parameters' tag."""
+    partial = OUT / "report_partial.json"
+    try:
+        run_data = json.loads(partial.read_text())
+    except (OSError, ValueError) as e:
+        raise AsicError(f"no readable {rel(partial)} ({e})") from None
+    report = read_data()
+    files = read_filelist()
+    summary = build_summary(run_data, default_params(files, TOP))
+    report.setdefault("builds", {})[unit_tag(TOP, summary["params"])] = summary
+    DATA.write_text(json.dumps(report, indent=2) + "\n")
+    write_doc(report)
+    print(f"asic: {rel(DATA)} builds.{unit_tag(TOP, summary['params'])} and {rel(DOC)} written", file=sys.stderr)
+    return 0
+
+
 def run(args) -> int:
     if args.doc_only:
         return doc_only()
+    if args.record_build:
+        return record_build()
     if args.period_ns <= 0:
         raise AsicError("--period-ns must be positive")
     if not 1 <= args.rd_lat <= 4:

@@ -101,7 +101,8 @@ def render(report: dict) -> str:
         top_share=top.get("sequential_share", 0) if top_ok else 0,
         dffsr=types.get("DFFSR", 0), dff=types.get("DFFPOSX1", 0),
         top_area=max(1.0, top.get("area_um2", 1.0) if top_ok else 1.0),
-        mc=macro_cycle(report["sram_model"], report["clock"]["period_ns"]))
+        mc=macro_cycle(report["sram_model"], report["clock"]["period_ns"]),
+        mc16=macro_cycle(report["sram_model"], report["clock"]["period_ns"], 256))
 
 
 def write_doc(report: dict, doc: Path = DOC) -> None:

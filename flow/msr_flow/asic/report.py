@@ -53,3 +53,53 @@ def read_data(path: Path = DATA) -> dict:
         return json.loads(path.read_text())
     except (OSError, ValueError) as e:
         raise AsicError(f"no readable {rel(path)} ({e}): run make asic first") from None
+
+
+# The memory build's parameters a partial run may set (msr_flow.asic.cli: --num-ctx, --rd-lat,
+# --tile-limit, --buf-cycle) and their flags.
+BUILD_FLAGS = {"NUM_CTX": "--num-ctx", "RD_LAT": "--rd-lat", "TILE_LIMIT": "--tile-limit", "BUF_CYCLE": "--buf-cycle"}
+BENCH_BITS = ROOT / "data" / "bench" / "tile_bits.json"
+
+
+def build_summary(partial: dict, default_top: dict, bits_record: Path = BENCH_BITS) -> dict:
+    """A partial run of the engine and the top in another memory build, as the page's data keep
+    it: the parameters set, the command, each unit's area, flip-flops, Fmax (logic alone and with
+    the cited macro's own timing) and macros, and the pixels per clock make bench-bits measured
+    for that build at latency 256 (the slower rule), which gives the pixel rates."""
+    mods = partial.get("modules", {})
+    rows = {u: mods.get(u) for u in ("msr_tile_engine", "msr_top")}
+    bad = [u for u, r in rows.items() if not r or "error" in r]
+    if bad:
+        raise AsicError(f"{rel(OUT / 'report_partial.json')} has no result for {', '.join(bad)}: "
+                        "make asic UNIT=msr_tile_engine,msr_top ASIC_ARGS=\"--rd-lat=... \" first")
+    top_params = partial["top_params"]
+    overrides = {k: top_params[k] for k in BUILD_FLAGS if top_params.get(k, default_top[k]) != default_top[k]}
+    if not overrides:
+        raise AsicError("the partial run is the default build: a full make asic records it")
+    ppc = None
+    try:
+        for d in json.loads(bits_record.read_text())["design_points"]:
+            point = (d["num_ctx"], d["lindilate"], d.get("rd_lat", 1), d.get("tile_limit", 32), d.get("buf_cycle", 1))
+            if point == tuple(top_params.get(k, default_top[k])
+                              for k in ("NUM_CTX", "LINDILATE", "RD_LAT", "TILE_LIMIT", "BUF_CYCLE")):
+                ppc = min(p["pixels_per_clock"] for p in d["points"] if p["render_latency"] == 256)
+    except (OSError, ValueError, KeyError):
+        ppc = None
+    out = {"params": overrides,
+           "command": "make asic UNIT=msr_tile_engine,msr_top ASIC_ARGS=\""
+                      + " ".join(f"{BUILD_FLAGS[k]}={v}" for k, v in overrides.items()) + "\"",
+           "pixels_per_clock_latency_256": ppc, "pixels_per_clock_source": rel(bits_record) if bits_record.is_relative_to(ROOT) else str(bits_record),
+           "modules": {}}
+    for unit, r in rows.items():
+        sm = r["sram_macros"]
+        fmax = r.get("fmax_with_cited_sram_mhz") or r["fmax_mhz"]
+        row = {"area_um2": r["area_um2"], "flip_flops": r["flip_flops"], "fmax_mhz": r["fmax_mhz"],
+               "fmax_with_cited_sram_mhz": fmax, "sram_read_clocks": r.get("sram_read_clocks", 1),
+               "sram_bits": sm["bits"], "sram_area_um2": sm["area_um2"], "sram_macros_1r1w": sm["macros_1r1w"],
+               "sram_variants": sm["variants"]}
+        if unit == "msr_top" and ppc:
+            row["pixels_per_second"] = round(fmax * 1e6 * ppc)
+            row["pixels_per_second_per_mm2_logic"] = round(fmax * 1e6 * ppc / (r["area_um2"] / 1e6))
+            row["pixels_per_second_per_mm2_total"] = round(fmax * 1e6 * ppc / ((r["area_um2"] + sm["area_um2"]) / 1e6))
+        out["modules"][unit] = row
+    return out
