@@ -12,8 +12,9 @@
 // Life of a context: FREE -> (start_i) COMPUTE -> (controller idle, nothing pending) FULL
 // -> (stream_done_i) FREE. Its tile buffer is read for decisions while computing (port 0
 // B, port 1 A, addresses straight from the controller's output register) and by the
-// streamer while full (port 0). Every pixel of the tile is written exactly once before the
-// tile is streamed, so the buffer needs no clearing.
+// streamer while full (port 0; with BUF_CYCLE > 1 ports 0 and 1 in turn). Every pixel of the
+// tile is written exactly once before the tile is streamed (lindilate's dilation may write a
+// pixel once more), so the buffer needs no clearing.
 `include "msr_assert.svh"
 `include "msr_flops.svh"
 

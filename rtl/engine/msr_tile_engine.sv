@@ -10,7 +10,8 @@
 //   out   : msr_req_out: interpolate -> write {16+k, C}; trace -> tag -> render request
 //   rsp   : msr_rsp_check: the tag pool; each response checked -> write {k, rgb} to its context
 //   writes: msr_ctx_write: each context's one write port, registered
-//   drain : msr_ctx_drain: full contexts, round robin --> msr_tile_stream --> pix stream
+//   drain : msr_ctx_drain (rtl/drain): full contexts, round robin --> msr_tile_stream --> pix
+//           stream; with BUF_CYCLE > 1 several streamers, their rows merged (msr_row_merge)
 //
 // Why contexts: a tile is a chain of 5-7 dependent passes, each waiting up to one render
 // latency for its traced neighbours. NUM_CTX tiles are worked on at once; every clock the
