@@ -2,8 +2,9 @@
 // port's ready free, within the engine's contract: a result, once offered, stays (same trace
 // flag) until it leaves; the retro phase (msr_lin_dilate) is high only with a result, and ends
 // for good once its request has taken a tag. Reset assumed in the first cycle.
-// Proves: a tag is taken only while one is free; an interpolated result is written at once
-// and leaves; a result never leaves in its retro phase; a traced result leaves exactly when
+// Proves: a tag is taken only while one is free; an interpolated result is written and leaves
+// exactly when its context's port is free (wr_ok_i, free here: a macro's cycle makes it wait);
+// a result never leaves in its retro phase; a traced result leaves exactly when
 // its request takes a tag; every result takes exactly trace + retro tags (no request lost or
 // doubled); the render request is held, unchanged, until taken.
 module msr_req_out_fv
@@ -12,7 +13,7 @@ module msr_req_out_fv
   parameter int unsigned TAG_W = 2
 ) (
   input logic             clk_i, rst_ni, clear_i,
-  input logic             out_valid_i, out_trace_i, retro_phase_i,
+  input logic             out_valid_i, out_trace_i, retro_phase_i, wr_ok_i,
   input coord_t           req_x_i, req_y_i,
   input logic             tag_avail_i,
   input logic [TAG_W-1:0] free_tag_i,
@@ -23,7 +24,7 @@ module msr_req_out_fv
   logic [TAG_W-1:0] req_tag_o;
 
   msr_req_out #(.TAG_W(TAG_W)) dut (
-    .clk_i, .rst_ni, .clear_i, .out_valid_i, .out_ready_o, .out_trace_i, .retro_phase_i,
+    .clk_i, .rst_ni, .clear_i, .out_valid_i, .out_ready_o, .out_trace_i, .retro_phase_i, .wr_ok_i,
     .out_write_o, .req_x_i, .req_y_i, .tag_avail_i, .free_tag_i, .alloc_tag_o, .req_valid_o,
     .req_ready_i, .req_x_o, .req_y_o, .req_tag_o
   );
@@ -63,7 +64,9 @@ module msr_req_out_fv
 
   a_alloc_avail: assert property (@(posedge clk_i) disable iff (!rst_ni) !alloc_tag_o || tag_avail_i);
   a_write:       assert property (@(posedge clk_i) disable iff (!rst_ni)
-                                  out_write_o == (out_valid_i && !out_trace_i && !retro_phase_i));
+                                  out_write_o == (out_valid_i && !out_trace_i && !retro_phase_i && wr_ok_i));
+  a_write_waits: assert property (@(posedge clk_i) disable iff (!rst_ni)
+                                  !(out_valid_i && !out_trace_i && !wr_ok_i) || !out_ready_o);
   a_write_done:  assert property (@(posedge clk_i) disable iff (!rst_ni) !out_write_o || out_ready_o);
   a_retro_stays: assert property (@(posedge clk_i) disable iff (!rst_ni) !retro_phase_i || !out_ready_o);
   a_trace_req:   assert property (@(posedge clk_i) disable iff (!rst_ni)
@@ -77,5 +80,7 @@ module msr_req_out_fv
 
   c_retro_trace: cover property (@(posedge clk_i) disable iff (!rst_ni) done && rsent_q && out_trace_i);
   c_retro_write: cover property (@(posedge clk_i) disable iff (!rst_ni) done && rsent_q && out_write_o);
+  c_port_wait:   cover property (@(posedge clk_i) disable iff (!rst_ni)
+                                  held_q && !out_trace_i && out_write_o);
   c_stall:       cover property (@(posedge clk_i) disable iff (!rst_ni) stall_q && out_valid_i && out_trace_i);
 endmodule

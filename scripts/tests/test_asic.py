@@ -280,13 +280,19 @@ def test_render_marks_a_failed_unit_and_a_missing_top():
 
 
 def test_gate_level_result_reads_cocotb_xml(tmp_path):
-    xml = tmp_path / "results.xml"
-    assert page.gate_level_result(xml) is None
+    xml, rl4 = tmp_path / "results.xml", tmp_path / "results_rl4.xml"
+    assert page.gate_level_result(xml, rl4) is None
     xml.write_text('<testsuites><testsuite><testcase name="a"/></testsuite></testsuites>')
-    assert page.gate_level_result(xml) == {"result": "passed", "from": str(xml)}
+    assert page.gate_level_result(xml, rl4) == {"result": "passed", "from": str(xml)}
     xml.write_text('<testsuites><testsuite><testcase name="a"><failure message="x"/></testcase>'
                    '</testsuite></testsuites>')
-    assert page.gate_level_text(page.gate_level_result(xml)).startswith("FAILED (`make test-gate`")
+    assert page.gate_level_text(page.gate_level_result(xml, rl4)).startswith("FAILED (`make test-gate`")
+    # the netlist for the cited macro (RD_LAT 4, BUF_CYCLE 5) is reported beside it, alone too
+    rl4.write_text('<testsuites><testsuite><testcase name="a"/></testsuite></testsuites>')
+    assert page.gate_level_result(xml, rl4)["rd_lat_4"] == {"result": "passed", "from": str(rl4)}
+    xml.unlink()
+    text = page.gate_level_text(page.gate_level_result(xml, rl4))
+    assert text.startswith("not run here") and "BUF_CYCLE 5): passed" in text
 
 
 def test_partial_run_never_replaces_the_page_data(monkeypatch, tmp_path):

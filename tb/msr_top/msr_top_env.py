@@ -290,8 +290,13 @@ async def setup(dut, seed):
     return env, rng
 
 
+def tiles_built():
+    """The tile sizes this build takes (CONFIG.TILE up to its TILE_LIMIT)."""
+    return tuple(t for t in (8, 16, 32) if t <= TILE_LIMIT)
+
+
 def random_config(rng):
-    tile = rng.choice([t for t in (8, 16, 32) if t <= TILE_LIMIT])
+    tile = rng.choice(tiles_built())
     levels = rng.randint(1, 3)
     return dict(W=rng.randint(1, 48), H=rng.randint(1, 40), tile=tile, levels=levels, metric=rng.randint(0, 1),
                 thr=[rng.choice((0, 4, 8, 16, 40, 255)) for _ in range(levels)], gain=rng.choice((0, 0, 30, 255)))

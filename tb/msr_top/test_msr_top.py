@@ -89,6 +89,20 @@ def test_msr_top_patent_only():
                testcase="test_rule")
 
 
+def test_msr_top_macro_cycle():
+    """msr_top built as a slow SRAM macro needs it: reads of 4 clocks (RD_LAT), a port's address
+    once per 5 (BUF_CYCLE: 3 streamers per engine, rows of tiles interleaved), 16 x 16 buffers
+    (TILE_LIMIT): random frames bit-exact under memory pauses and render back-pressure, and soft
+    resets in every state (the streamers and the row merge cleared mid-row)."""
+    from msr_flow.filelist import rtl_sources
+    from msr_flow.runner import run_cocotb
+    run_cocotb("msr_top", ",".join(COCOTB_MODULES), HERE,
+               {"NUM_ENGINES": 2, "MAX_OUTSTANDING": 16, "NUM_CTX": 5, "AXI_DATA_W": 256, "RD_LAT": 4,
+                "BUF_CYCLE": 5, "TILE_LIMIT": 16},
+               "macro_cycle", extra_env={"NUM_ENGINES": "2", "TILE_LIMIT": "16"}, sources=rtl_sources(),
+               testcase="test_random_frames,test_soft_reset,test_soft_reset_states")
+
+
 def test_msr_top_budget():
     """msr_top built with the ray-budget controller (BUDGET_EN 1): test_budget's sequences and
     refusals, and random frames with the budget off bit-exact as without it."""

@@ -16,7 +16,7 @@ async def test_random_frames(dut):
     # Fixed corner cases first, then random ones; pauses on every channel vary per frame.
     configs = [dict(W=37, H=21, tile=16, levels=2, metric=0, thr=[8, 16], gain=0),
                dict(W=1, H=1, tile=8, levels=1, metric=0, thr=[8], gain=0),
-               dict(W=33, H=9, tile=32, levels=3, metric=1, thr=[4, 8, 16], gain=100)]
+               dict(W=33, H=9, tile=min(32, TILE_LIMIT), levels=3, metric=1, thr=[4, 8, 16], gain=100)]
     configs += [random_config(rng) for _ in range(5)]
     for i, c in enumerate(configs):
         env.set_pauses(rng.choice((0.0, 0.2, 0.5)))

@@ -45,20 +45,21 @@ def path_end(p: dict, key: str) -> str:
 def gate_level_result(results: Path = GATE_RESULTS, results_rl4: Path | None = GATE_RESULTS_RL4) -> dict | None:
     """The gate-level bench's last result (cocotb's results.xml), None when it has not run here;
     with the result on the RD_LAT 4 netlist under "rd_lat_4" when that has run too."""
+    rl4 = gate_level_result(results_rl4, None) if results_rl4 is not None else None
     if not results.is_file():
-        return None
+        return {"result": "not run here", "from": None, "rd_lat_4": rl4} if rl4 else None
     failed = any(t.tag in ("failure", "error") for t in ET.parse(results).iter())
     where = rel(results) if results.is_relative_to(ROOT) else str(results)
     out = {"result": "FAILED" if failed else "passed", "from": where}
-    if results_rl4 is not None and results_rl4.is_file():
-        out["rd_lat_4"] = gate_level_result(results_rl4, None)
+    if rl4:
+        out["rd_lat_4"] = rl4
     return out
 
 
 def gate_level_text(gl: dict | None) -> str:
     if not gl:
         return "not run yet (`make test-gate` runs it)"
-    text = f"{gl['result']} (`make test-gate`, {gl['from']})"
+    text = f"{gl['result']} (`make test-gate`" + (f", {gl['from']})" if gl.get("from") else ")")
     rl4 = gl.get("rd_lat_4")
     return text + (f"; as the cited macro needs it (RD_LAT 4, BUF_CYCLE 5): {rl4['result']} ({rl4['from']})"
                    if rl4 else "")
