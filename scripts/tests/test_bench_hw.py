@@ -101,7 +101,8 @@ def test_stats_carry_the_build_and_the_layout(tmp_path):
     rtl = HarnessRun(HARNESS, "cornell", 20, 12, p, latency=0, jitter=0, quiet=True).run()
     st = rtl.stats
     assert st["build"] == {"num_engines": 1, "max_outstanding": 16, "num_ctx": 7, "budget_en": 0,
-                           "depth_en": 0, "rd_lat": 1, "axi_beat_bytes": 32}
+                           "depth_en": 0, "rd_lat": 1, "tile_limit": 32, "buf_cycle": 1,
+                           "axi_beat_bytes": 32}
     # frame buffer at 0x1000, stride 4 * 20; codes on the next 4 KiB page, stride 20
     assert st["layout"] == {"fb_base": 0x1000, "fb_stride": 80, "src_base": 0x2000, "src_stride": 20}
     assert st["params"] == {"width": 20, "height": 12, "tile": 8, "levels": 2, "thr": [8, 16, 0],

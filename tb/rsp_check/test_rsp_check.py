@@ -4,7 +4,8 @@ flight.
 Random allocations (each with a random context, tile-buffer address and level) whenever a tag
 is free, answered after a random delay in random order; now and then an answer is sent twice
 in a row (a duplicate) or an answer arrives for a tag that is not in flight (stale). The
-pipeline's own write (pipe_we_i on a random context) takes the context's port at random.
+pipeline's own write (pipe_we_i on a random context) takes the context's port at random, and
+the port of the answer's context is busy at random (port_ok_i low: a macro's cycle).
 Checked every cycle: each accepted answer has exactly one outcome, in order: a write of the
 entry its tag was allocated with and the answer's colour (the tag is then free), or a drop
 (duplicates and stale answers); a write never meets the pipeline's write to the same context;
@@ -24,7 +25,7 @@ from msr_tb import next_cycle, seeded_rng, settle, start_clock_and_reset
 
 CTX_W, TADDR_W = 3, 10
 IDLE = {"clear_i": 0, "rsp_valid_i": 0, "rsp_tag_i": 0, "rsp_rgb_i": 0, "alloc_i": 0, "alloc_ctx_i": 0,
-        "alloc_addr_i": 0, "alloc_level_i": 0, "pipe_we_i": 0, "pipe_ctx_i": 0}
+        "alloc_addr_i": 0, "alloc_level_i": 0, "pipe_we_i": 0, "pipe_ctx_i": 0, "port_ok_i": 1}
 
 
 async def wait_init(dut, n: int) -> None:
@@ -53,6 +54,8 @@ async def run(dut, rng: random.Random, n_tags: int, n_answers: int, p_pipe: floa
         pipe_we, pipe_ctx = int(rng.random() < p_pipe), rng.randrange(1 << CTX_W)
         dut.alloc_ctx_i.value, dut.alloc_addr_i.value, dut.alloc_level_i.value = entry
         dut.pipe_we_i.value, dut.pipe_ctx_i.value = pipe_we, pipe_ctx
+        port_ok = int(rng.random() < 0.8)
+        dut.port_ok_i.value = port_ok
         if rsp is None:
             ready = [d for d in due if d[0] <= cycle]
             if ready and rng.random() < 0.7:
@@ -85,6 +88,7 @@ async def run(dut, rng: random.Random, n_tags: int, n_answers: int, p_pipe: floa
             assert outcomes and outcomes[0][0] == "write" and outcomes[0][1:3] == got, \
                 f"cycle {cycle}: write {got}, want {outcomes[:1]}"
             assert not (pipe_we and pipe_ctx == got[0][0]), f"cycle {cycle}: write meets the pipeline's"
+            assert port_ok, f"cycle {cycle}: write while the context's port rests"
             freed = outcomes.pop(0)[3]
             writes += 1
         if alloc:
@@ -112,7 +116,9 @@ async def run(dut, rng: random.Random, n_tags: int, n_answers: int, p_pipe: floa
             allocs += 1
         dut.alloc_i.value = 0
         cycle += 1
-        if rsp is None or rsp[2] == "ok":       # an odd answer on offer keeps the pool quiet
+        # an odd answer on offer keeps the pool quiet, and so does a clock with a resting port
+        # (the answers ahead of it wait, so it reaches the tag lookup later)
+        if (rsp is None or rsp[2] == "ok") and port_ok:
             quiet = max(0, quiet - 1)
         assert cycle < 100 * n_answers + 1000, f"timeout: {writes} writes, {drops} drops"
     for _ in range(6):          # the last odd answers leave
@@ -130,6 +136,7 @@ async def random_answers(dut):
     rng = seeded_rng(dut, 21)
     n = int(os.environ["MAX_OUTSTANDING"])
     dut.pipe_we_i.value = 0
+    dut.port_ok_i.value = 1
     await start_clock_and_reset(dut, IDLE)
     await wait_init(dut, n)
     for p_pipe, p_odd in ((0.0, 0.0), (0.3, 0.1), (0.8, 0.3)):
